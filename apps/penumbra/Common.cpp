@@ -1,0 +1,66 @@
+#include "Common.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+namespace penumbra::app {
+
+void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
+  app.add_option("--scene", o.scene, "built-in scene name or scene .json file (penumbra list shows the names)")
+      ->capture_default_str();
+  app.add_option("--filter", o.filter, "shadow filter id (default: the scene's own, else hard)");
+  app.add_option("--projection", o.projection, "light projection id (default: the scene's own, else uniform)");
+  app.add_option("--set", o.sets, "parameter override key=value, repeatable (e.g. hard.bias=slope, light.size=0.1)");
+  app.add_option("--size", o.size, "image size WxH in pixels")->capture_default_str();
+  app.add_option("--shadow-map", o.shadowMapSize, "shadow-map resolution in texels per side (default: the scene's, 2048)");
+  app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  const size_t x = text.find('x');
+  int w = 0, h = 0;
+  auto parse = [](std::string_view s, int& out) {
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    return ec == std::errc() && end == s.data() + s.size();
+  };
+  if (x == std::string::npos || !parse(std::string_view(text).substr(0, x), w) ||
+      !parse(std::string_view(text).substr(x + 1), h) || w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw usageError(fmt::format("--size {}: expected WxH with each side in 1..16384, e.g. 640x360", text));
+  return {w, h};
+}
+
+Setup makeSetup(const TechniqueOptions& o) {
+  Setup s;
+  s.scene = loadScene(o.scene);
+  s.projection = makeProjection(o.projection.value_or(s.scene.shadow.projection));
+  s.filter = makeFilter(o.filter.value_or(s.scene.shadow.filter));
+  // The scene's own params apply when they belong to the technique in use (a scene may carry
+  // settings for several); --set applies strictly.
+  std::vector<std::pair<std::string, std::string>> sceneParams;
+  for (const auto& kv : s.scene.shadow.params) {
+    const std::string prefix = kv.first.substr(0, kv.first.find('.'));
+    if (prefix == "light" || prefix == s.projection->id() || prefix == s.filter->id()) {
+      sceneParams.push_back(kv);
+    } else {
+      const std::vector<std::string> p = projectionIds(), f = filterIds();
+      if (std::find(p.begin(), p.end(), prefix) == p.end() && std::find(f.begin(), f.end(), prefix) == f.end())
+        throw Error(fmt::format("{}: shadow.params.{}: no technique '{}'", s.scene.sourceFile.string(), kv.first, prefix));
+    }
+  }
+  applyParams(sceneParams, s.scene, *s.projection, *s.filter);
+  std::vector<std::pair<std::string, std::string>> cli;
+  for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
+  applyParams(cli, s.scene, *s.projection, *s.filter);
+  const auto [w, h] = parseSize(o.size);
+  s.render.width = w;
+  s.render.height = h;
+  s.render.shadowMapSize = o.shadowMapSize.value_or(s.scene.shadow.mapSize);
+  if (s.render.shadowMapSize < 16)
+    throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
+  return s;
+}
+
+}  // namespace penumbra::app

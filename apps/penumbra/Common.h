@@ -1,0 +1,42 @@
+#pragma once
+// Options shared by the subcommands that render (render, compare, bench, view) and the one
+// place that turns them into a scene + technique.
+#include <penumbra/Registry.h>
+#include <penumbra/Renderer.h>
+#include <penumbra/SceneIO.h>
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::app {
+
+struct TechniqueOptions {
+  std::string scene = "boxes";
+  std::optional<std::string> filter, projection;  ///< unset = the scene's own choice
+  std::vector<std::string> sets;                  ///< "key=value"
+  std::string size = "640x360";
+  std::optional<int> shadowMapSize;
+  bool verbose = false;
+};
+
+/// Adds --scene --filter --projection --set --size --shadow-map --verbose to a subcommand.
+void addTechniqueOptions(CLI::App& app, TechniqueOptions& o);
+
+struct Setup {
+  Scene scene;
+  std::unique_ptr<Projection> projection;
+  std::unique_ptr<Filter> filter;
+  RenderOptions render;
+};
+
+/// Loads the scene, makes the technique, applies the scene's params then --set (usage errors
+/// for anything unknown or out of range).
+Setup makeSetup(const TechniqueOptions& o);
+
+/// "640x360" → (640, 360); throws a usage error otherwise.
+std::pair<int, int> parseSize(const std::string& text);
+
+}  // namespace penumbra::app

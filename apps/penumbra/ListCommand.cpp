@@ -1,0 +1,93 @@
+// penumbra list: scenes, projections, filters and every parameter (default, range, help).
+#include "Commands.h"
+
+#include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+
+namespace penumbra::app {
+namespace {
+
+nlohmann::json paramsJson(std::span<const ParamDesc> descs) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ParamDesc& d : descs) {
+    nlohmann::json p = {{"key", d.key}, {"label", d.label}, {"help", d.help}};
+    if (d.isChoice()) {
+      p["default"] = formatParamValue(d, d.def);
+      p["choices"] = nlohmann::json::array();
+      for (std::string_view c : d.choices) p["choices"].push_back(c);
+    } else {
+      p["default"] = d.def;
+      p["min"] = d.min;
+      p["max"] = d.max;
+      p["integer"] = d.isInteger();
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+void printParams(std::span<const ParamDesc> descs) {
+  for (const ParamDesc& d : descs) {
+    std::string range;
+    if (d.isChoice()) {
+      for (std::string_view c : d.choices) range += (range.empty() ? "" : "|") + std::string(c);
+    } else {
+      range = fmt::format("{} .. {}", d.min, d.max);
+    }
+    std::printf("    %-28s default %-8s [%s]  %s\n", std::string(d.key).c_str(), formatParamValue(d, d.def).c_str(),
+                range.c_str(), std::string(d.help).c_str());
+  }
+}
+
+}  // namespace
+
+void addListCommand(CLI::App& app, std::vector<Command>& commands) {
+  auto json = std::make_shared<bool>(false);
+  CLI::App* sub = app.add_subcommand("list", "list scenes, projections, filters and their parameters");
+  sub->add_flag("--json", *json, "print one JSON object instead of text");
+  commands.push_back({sub, [json] {
+    nlohmann::json j;
+    j["scenes"] = nlohmann::json::array();
+    for (const std::string& n : builtinSceneNames()) j["scenes"].push_back({{"name", n}, {"description", builtinSceneDescription(n)}});
+    j["scene_params"] = paramsJson(sceneParamDescs());
+    j["projections"] = nlohmann::json::array();
+    for (const std::string& id : projectionIds()) {
+      auto p = makeProjection(id);
+      j["projections"].push_back({{"id", id}, {"description", p->description()}, {"params", paramsJson(p->paramDescs())}});
+    }
+    j["filters"] = nlohmann::json::array();
+    for (const std::string& id : filterIds()) {
+      auto f = makeFilter(id);
+      j["filters"].push_back({{"id", id}, {"description", f->description()}, {"params", paramsJson(f->paramDescs())}});
+    }
+    if (*json) {
+      std::printf("%s\n", j.dump(2).c_str());
+      return 0;
+    }
+    std::printf("Scenes (--scene NAME, or a .json file):\n");
+    for (const std::string& n : builtinSceneNames()) std::printf("  %-10s %s\n", n.c_str(), std::string(builtinSceneDescription(n)).c_str());
+    std::printf("\nScene parameters (--set key=value):\n");
+    printParams(sceneParamDescs());
+    std::printf("\nProjections (--projection ID):\n");
+    for (const std::string& id : projectionIds()) {
+      auto p = makeProjection(id);
+      std::printf("  %-10s %s\n", id.c_str(), std::string(p->description()).c_str());
+      printParams(p->paramDescs());
+    }
+    std::printf("\nFilters (--filter ID):\n");
+    for (const std::string& id : filterIds()) {
+      auto f = makeFilter(id);
+      std::printf("  %-10s %s\n", id.c_str(), std::string(f->description()).c_str());
+      printParams(f->paramDescs());
+    }
+    return 0;
+  }});
+}
+
+}  // namespace penumbra::app

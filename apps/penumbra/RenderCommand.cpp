@@ -1,0 +1,50 @@
+// penumbra render: one frame of a scene with a technique, to PNG (+ visibility EXR, + dump).
+#include "Commands.h"
+#include "Common.h"
+
+#include "gl/Context.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace penumbra::app {
+
+void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
+  struct Options {
+    TechniqueOptions technique;
+    std::string out = "penumbra.png";
+    std::string visibility, dump;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand("render", "render one frame to a PNG (the default subcommand)");
+  addTechniqueOptions(*sub, o->technique);
+  sub->add_option("--out", o->out, "output PNG")->capture_default_str();
+  sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
+  sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
+  commands.push_back({sub, [o] {
+    Setup s = makeSetup(o->technique);
+    gl::HeadlessContext context({.debug = false, .verbose = o->technique.verbose});
+    Renderer renderer(context);
+    renderer.setScene(s.scene);
+    renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+    renderer.render(s.render);
+    const ColorImage color = renderer.readColor();
+    writePng(o->out, color.width, color.height, color.rgba);
+    if (!o->visibility.empty()) {
+      const std::vector<float> v = renderer.readVisibility();
+      writeExr(o->visibility, s.render.width, s.render.height, flipRows<float>(v, s.render.width, s.render.height));
+    }
+    if (!o->dump.empty()) renderer.dump(o->dump);
+    if (o->technique.verbose) {
+      for (const auto& [pass, ms] : renderer.timings().ms) std::fprintf(stderr, "penumbra: %-10s %8.2f ms\n", pass.c_str(), ms);
+      std::fprintf(stderr, "penumbra: times by %s on %s\n", renderer.timings().clock.c_str(), context.info().renderer.c_str());
+    }
+    std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
+                s.scene.name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
+    return 0;
+  }});
+}
+
+}  // namespace penumbra::app

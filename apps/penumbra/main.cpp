@@ -1,0 +1,36 @@
+// penumbra: one CLI for every job. Usage errors exit 2, runtime errors exit 1, each with one
+// line on stderr. With no subcommand it runs `render` with its defaults.
+#include "Commands.h"
+
+#include <penumbra/Error.h>
+
+#include <cstdio>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Penumbra: real-time shadow techniques, rendered and measured against a ray-traced reference.\n"
+               "With no subcommand, renders the default scene to penumbra.png."};
+  app.require_subcommand(0, 1);
+  std::vector<penumbra::app::Command> commands;
+  penumbra::app::registerCommands(app, commands);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", e.what());
+    return 2;
+  }
+  try {
+    for (const penumbra::app::Command& c : commands)
+      if (c.app->parsed()) return c.run();
+    return commands.front().run();
+  } catch (const penumbra::Error& e) {
+    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    return e.kind() == penumbra::ErrorKind::Usage ? 2 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,45 @@
+#pragma once
+// The softness axis: what the shadow map stores and how visibility is computed from it.
+// A filter is one class + one GLSL file (src/shadows/filters/), registered in one line
+// (src/shadows/Registry.cpp). It renders its maps, optionally prefilters them, and writes the
+// visibility texture (R32F, 1 = lit): the contract read by everything downstream.
+#include <penumbra/Params.h>
+#include <penumbra/Scene.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra {
+
+class FrameContext;  // src/render/FrameContext.h: what a filter may use during a frame
+
+namespace gl { class Texture; }
+
+/// An intermediate a filter can show: dumped by --dump, shown by the viewer.
+struct DebugImage {
+  std::string name;              ///< file-name friendly: "shadow-map", "sat"
+  const gl::Texture* texture;    ///< 2D or 2D array (layer 0 shown)
+};
+
+class Filter : public Parameterized {
+public:
+  using Parameterized::Parameterized;
+  virtual std::string_view id() const = 0;
+  virtual std::string_view description() const = 0;
+  /// Empty when this filter works with the given projection and light; otherwise the reason,
+  /// shown to the user (a pair that cannot work is refused, never rendered wrong).
+  virtual std::string incompatibility(std::string_view projectionId, const Light& light) const {
+    (void)projectionId; (void)light;
+    return {};
+  }
+  /// Rasterises the shadow map(s), one per view of FrameContext::frusta().
+  virtual void renderShadowMaps(FrameContext& frame) = 0;
+  /// Builds mip chains / summed-area tables from the maps (timed as the "prefilter" pass).
+  virtual void prefilter(FrameContext& frame) { (void)frame; }
+  /// Writes V for every G-buffer pixel into the frame's visibility image.
+  virtual void computeVisibility(FrameContext& frame) = 0;
+  virtual std::vector<DebugImage> debugImages() const { return {}; }
+};
+
+}  // namespace penumbra

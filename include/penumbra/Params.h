@@ -1,0 +1,57 @@
+#pragma once
+// Parameters are declared once, as ParamDesc tables, and reach the CLI (--set key=value), scene
+// files ("params"), the viewer's widgets and benchmark sweeps from that one table.
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra {
+
+/// One tunable. Numeric unless `choices` is non-empty, in which case the value is the index of
+/// the chosen name (def/min/max are indices too). Units are part of the key ("…Texels", "…World").
+struct ParamDesc {
+  std::string_view key;    ///< "technique.name", e.g. "pcss.blockerSamples"
+  std::string_view label;  ///< short UI label
+  std::string_view help;   ///< one sentence: meaning, unit
+  float def = 0.0f, min = 0.0f, max = 1.0f, step = 0.0f;  ///< step 1 = integer-valued
+  std::span<const std::string_view> choices = {};
+
+  bool isChoice() const { return !choices.empty(); }
+  bool isInteger() const { return isChoice() || step == 1.0f; }
+};
+
+/// Parses `text` for `desc` (a number, or a choice name); throws a usage Error naming the key
+/// when the text is not a number/choice or lies outside [min, max].
+float parseParamValue(const ParamDesc& desc, std::string_view text);
+/// Checks a numeric value against the range; throws a usage Error naming the key.
+void checkParamValue(const ParamDesc& desc, float value);
+/// "0.002", "slope", "16".
+std::string formatParamValue(const ParamDesc& desc, float value);
+/// Splits "key=value"; throws a usage Error if there is no '='.
+std::pair<std::string, std::string> splitAssignment(std::string_view text);
+
+/// The current values of one ParamDesc table. Base of every Projection and Filter.
+class Parameterized {
+public:
+  explicit Parameterized(std::span<const ParamDesc> descs);
+  virtual ~Parameterized() = default;
+
+  std::span<const ParamDesc> paramDescs() const { return mDescs; }
+  bool hasParam(std::string_view key) const;
+  /// Throws a usage Error for an unknown key or an out-of-range value.
+  void setParam(std::string_view key, float value);
+  void setParam(std::string_view key, std::string_view text);
+  float param(std::string_view key) const;
+  int paramInt(std::string_view key) const { return static_cast<int>(param(key)); }
+
+private:
+  size_t indexOf(std::string_view key) const;
+  std::span<const ParamDesc> mDescs;
+  std::vector<float> mValues;
+};
+
+/// Scene-level parameters ("light.size", ...): they change the scene, not a technique.
+std::span<const ParamDesc> sceneParamDescs();
+
+}  // namespace penumbra

@@ -1,0 +1,100 @@
+#pragma once
+// The ground truth: visibility and shading ray traced on the CPU with Embree, pixel-aligned with
+// the renderer's G-buffer. Every technique is measured against this (docs/reference.md).
+//
+// For each G-buffer pixel that faces the light, shadow rays start at the surface (offset along
+// the geometric normal) and go toward the light: one ray for a light of size 0, N stratified
+// samples, uniform in solid angle, over the cone the light subtends for a spherical spot light or
+// the sun's disk. Results are deterministic (per-pixel seeds) and cached on disk.
+#include <penumbra/Renderer.h>
+#include <penumbra/Scene.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+namespace penumbra {
+
+/// Version of the reference's maths; part of every cache key. Bump it whenever a change to the
+/// code changes the numbers it produces, so that stale cache files are never read.
+inline constexpr uint32_t kReferenceCodeVersion = 1;
+
+struct ReferenceOptions {
+  /// Light samples per pixel for a light of size > 0, in [1, kMaxReferenceSamples]; default 256.
+  /// Laid out as a jittered nx × ny grid with nx·ny = samples (nx = the largest divisor ≤ √N,
+  /// so squares and powers of two stratify well). Lights of size 0 always use one ray.
+  int samples = 256;
+  uint32_t seed = 0;           ///< the same seed gives bit-identical results
+  bool progress = true;        ///< progress bar on stderr; drawn only when stderr is a terminal
+  bool useCache = true;        ///< read and write the on-disk cache
+  /// Where cache files go; empty = defaultReferenceCacheDir().
+  std::filesystem::path cacheDir;
+};
+
+inline constexpr int kMaxReferenceSamples = 1 << 16;
+
+/// Per-pixel arrays are width × height, row 0 = bottom (the G-buffer's GL order).
+struct ReferenceResult {
+  int width = 0, height = 0;
+  int samplesPerPixel = 0;  ///< 1 for a light of size 0, else ReferenceOptions::samples
+
+  /// 1 where the pixel is covered, faces the light (geometric N·L > 0 toward the light's centre)
+  /// and, for a spot light, lies inside its cone. Metrics are taken over these pixels only.
+  std::vector<uint8_t> litMask;
+  /// V_ref in [0, 1]: the fraction of the light's solid angle (above the surface's horizon)
+  /// that is unoccluded. Outside litMask: 0 for covered pixels (no direct light), 1 for background.
+  std::vector<float> visibility;
+  /// Cosine-weighted visibility ∫cos·V dω / ∫cos dω = shadingExact / unshadowed shading. Its
+  /// difference to `visibility` is the split approximation's error in units of V.
+  std::vector<float> visibilityCosWeighted;
+  /// Outgoing radiance (linear RGB) of a Lambertian surface with the G-buffer albedo:
+  /// ∫ L_e · (albedo/π) · cos · V dω over the light (exact) …
+  std::vector<glm::vec3> shadingExact;
+  /// … and the split approximation every shadow map makes: V_ref · ∫ L_e · (albedo/π) · cos dω.
+  /// Both use the same light samples, so their difference is the split alone, not noise.
+  std::vector<glm::vec3> shadingSplit;
+  /// shadingSplit − shadingExact: > 0 where the split model is too bright.
+  std::vector<glm::vec3> approximationError;
+
+  double seconds = 0.0;       ///< wall-clock seconds of this call (a cache hit: the load time)
+  double traceSeconds = 0.0;  ///< wall-clock seconds of the trace that produced the data
+  bool fromCache = false;
+  uint64_t cacheKey = 0;
+};
+
+/// $PENUMBRA_CACHE if set, else $XDG_CACHE_HOME/penumbra, else ~/.cache/penumbra; empty when
+/// none of these can be formed (no HOME).
+std::filesystem::path defaultReferenceCacheDir();
+
+/// An Embree BVH of the scene's shadow casters (objects with castsShadow), in world space, and
+/// the tracer that computes reference results from G-buffers. Thread-safe for concurrent trace()
+/// calls. Materials with alphaMask cut holes: an occlusion filter reads their texture's alpha.
+class ReferenceTracer {
+public:
+  /// Builds the BVH. Throws penumbra::Error if Embree cannot be initialised or the scene is invalid.
+  explicit ReferenceTracer(const Scene& scene);
+  ~ReferenceTracer();
+  ReferenceTracer(const ReferenceTracer&) = delete;
+  ReferenceTracer& operator=(const ReferenceTracer&) = delete;
+
+  /// Traces every covered pixel of `gbuffer` (position, geoNormal and albedo are read) toward
+  /// `light`. Throws penumbra::Error on inconsistent inputs, bad options, or an unusable cache dir.
+  ReferenceResult trace(const GBufferData& gbuffer, const Light& light,
+                        const ReferenceOptions& options = {}) const;
+
+  /// The key under which trace() caches its result: a hash of the casters' world-space
+  /// triangles (and alpha masks), the light, the G-buffer contents, samples, seed and
+  /// kReferenceCodeVersion.
+  uint64_t cacheKey(const GBufferData& gbuffer, const Light& light,
+                    const ReferenceOptions& options) const;
+
+  /// Distance (m) that ray origins are moved along the geometric normal; scales with the scene.
+  float rayOffsetM() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> mImpl;
+};
+
+}  // namespace penumbra

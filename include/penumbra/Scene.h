@@ -1,0 +1,121 @@
+#pragma once
+// The scene: meshes, materials, object instances, lights and a camera. Pure data, no GL.
+// Conventions (DESIGN.md): right-handed world, metres, +Y up.
+#include <penumbra/Math.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec2 uv{0.0f};
+};
+
+/// An indexed triangle list in object space.
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  ///< three per triangle
+  Aabb bounds() const;
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+/// RGBA8 texture in memory (row 0 = top), used for base colour and alpha masks.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+};
+
+struct Material {
+  std::string name;
+  glm::vec3 baseColor{0.8f};   ///< linear RGB albedo, each in [0, 1]
+  float roughness = 0.5f;      ///< [0, 1]; drives the Blinn-Phong exponent
+  int baseColorTexture = -1;   ///< index into Scene::images, -1 = none
+  bool alphaMask = false;      ///< alpha-tested: texels with alpha < alphaCutoff are holes
+  float alphaCutoff = 0.5f;
+};
+
+/// One placed mesh.
+struct Object {
+  std::string name;
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  glm::mat4 worldFromObject{1.0f};
+  bool castsShadow = true;
+};
+
+enum class LightType { Directional, Spot };
+
+struct Light {
+  LightType type = LightType::Directional;
+  glm::vec3 position{0.0f, 10.0f, 0.0f};   ///< spot only, metres
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit, from the light toward the scene
+  glm::vec3 color{1.0f};                   ///< linear RGB
+  float intensity = 3.0f;                  ///< irradiance scale (sun) or intensity at 1 m (spot)
+  float coneAngleRad = 0.6f;               ///< spot half angle, (0, pi/2)
+  /// Physical size for soft shadows: spot = sphere radius in metres, sun = angular radius in
+  /// radians. 0 = a point/delta light (hard shadows).
+  float size = 0.0f;
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 2.0f, 6.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovYRad = 0.8f;   ///< vertical field of view
+  float nearM = 0.05f;
+  float farM = 200.0f;
+
+  glm::mat4 viewFromWorld() const;
+  /// Reversed-Z, [0,1] clip depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)): near → 1, far → 0.
+  glm::mat4 clipFromView(float aspect) const;
+  glm::vec3 forward() const { return glm::normalize(target - position); }
+};
+
+/// The shadow technique a scene asks for; CLI options override it.
+struct ShadowSettings {
+  std::string projection = "uniform";
+  std::string filter = "hard";
+  int mapSize = 2048;  ///< shadow-map resolution (texels per side)
+  /// "key" → "value" as written (numbers or choice names); applied by the parameter system.
+  std::vector<std::pair<std::string, std::string>> params;
+};
+
+struct Scene {
+  std::string name;
+  std::filesystem::path sourceFile;  ///< empty for built-in scenes
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Image> images;
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  Camera camera;
+  ShadowSettings shadow;
+  glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB)
+
+  const Light& light() const;  ///< the shadow-casting light (the first one); throws if none
+  Aabb bounds() const;         ///< world bounds of every object
+  Aabb casterBounds() const;   ///< world bounds of shadow casters
+  size_t triangleCount() const;
+  /// Throws penumbra::Error if indices are out of range, positions not finite, etc.
+  void validate() const;
+};
+
+// Procedural shapes (object space, outward normals, counter-clockwise front faces).
+Mesh makePlane(float sizeX, float sizeZ);                   ///< XZ plane through the origin, normal +Y
+Mesh makeBox(const glm::vec3& size);                         ///< centred at the origin
+Mesh makeSphere(float radius, int slices = 32, int stacks = 16);
+Mesh makeCylinder(float radius, float height, int slices = 24);  ///< axis +Y, base at y = 0
+Mesh makeCone(float radius, float height, int slices = 24);      ///< axis +Y, base at y = 0
+
+/// Adds a mesh + material + object in one call; returns the object's index.
+uint32_t addObject(Scene& scene, std::string name, Mesh mesh, const glm::vec3& color,
+                   const glm::mat4& worldFromObject = glm::mat4(1.0f), bool castsShadow = true);
+
+}  // namespace penumbra

@@ -1,0 +1,24 @@
+#pragma once
+// Getting scenes: built-in names and scene files (JSON). Errors name the file and the field.
+#include <penumbra/Scene.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra {
+
+/// Names of the built-in scenes, the default first.
+std::vector<std::string> builtinSceneNames();
+/// One-line description of a built-in scene.
+std::string_view builtinSceneDescription(std::string_view name);
+/// Builds a built-in scene; throws a usage Error for an unknown name.
+Scene makeBuiltinScene(std::string_view name);
+
+/// Loads a scene JSON file. Throws Error("file: field: problem") on any bad input.
+Scene loadSceneFile(const std::filesystem::path& path);
+
+/// A built-in name or a path to a scene file.
+Scene loadScene(const std::string& nameOrPath);
+
+}  // namespace penumbra

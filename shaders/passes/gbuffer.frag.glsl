@@ -1,0 +1,26 @@
+// G-buffer pass: world position, shading and geometric normals (both turned toward the camera,
+// so open meshes shade from either side), base colour.
+#include "common/frame.glsl"
+
+layout(location = PN_LOC_OBJECT) uniform int u_object;
+in vec3 v_wsPosition;
+in vec3 v_wsNormal;
+in vec2 v_uv;
+
+layout(location = 0) out vec4 o_position;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_geoNormal;
+layout(location = 3) out vec4 o_albedo;
+
+void main() {
+  vec3 toCamera = u_frame.cameraPosition.xyz - v_wsPosition;
+  // The triangle's own plane, from screen-space derivatives of the interpolated position.
+  vec3 g = normalize(cross(dFdx(v_wsPosition), dFdy(v_wsPosition)));
+  if (dot(g, toCamera) < 0.0) g = -g;
+  vec3 n = normalize(v_wsNormal);
+  if (dot(n, g) < 0.0) n = -n;
+  o_position = vec4(v_wsPosition, 1.0);
+  o_normal = vec4(n, 0.0);
+  o_geoNormal = vec4(g, 0.0);
+  o_albedo = vec4(u_objects[u_object].baseColor.rgb, 1.0);
+}

@@ -1,0 +1,23 @@
+// Shared vertex stage of the shadow and G-buffer passes: object → world → the camera's clip
+// space (u_view < 0) or shadow view u_view's clip space.
+#include "common/frame.glsl"
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+
+layout(location = PN_LOC_OBJECT) uniform int u_object;
+layout(location = PN_LOC_VIEW) uniform int u_view;
+
+out vec3 v_wsPosition;
+out vec3 v_wsNormal;
+out vec2 v_uv;
+
+void main() {
+  ObjectGpu o = u_objects[u_object];
+  vec4 ws = o.worldFromObject * vec4(a_position, 1.0);
+  v_wsPosition = ws.xyz;
+  v_wsNormal = mat3(o.normalFromObject) * a_normal;
+  v_uv = a_uv;
+  gl_Position = u_view < 0 ? u_frame.clipFromWorld * ws : u_shadow.views[u_view].clipFromWorld * ws;
+}

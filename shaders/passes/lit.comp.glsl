@@ -1,0 +1,53 @@
+// Lit pass, identical for every technique: ambient + V · direct (Lambert + Blinn-Phong),
+// an ACES-style tone map and sRGB encoding. The subject of Penumbra is V, so shading stays simple.
+#include "common/frame.glsl"
+
+layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
+layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_gbufPosition;
+layout(binding = PN_TEX_GBUF_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = PN_TEX_GBUF_ALBEDO) uniform sampler2D s_gbufAlbedo;
+layout(binding = PN_TEX_VISIBILITY) uniform sampler2D s_visibility;
+layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
+layout(location = PN_LOC_LEVEL) uniform int u_debugView;
+
+const float kSpecularStrength = 0.25;  // share of the direct light reflected specularly
+const float kSpotEdgeSoftness = 0.05;  // cos range over which the spot cone fades out
+
+vec3 acesApprox(vec3 x) {  // Narkowicz's fit of the ACES filmic curve
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+vec3 toSrgb(vec3 c) {
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
+  vec4 pos = texelFetch(s_gbufPosition, px, 0);
+  float v = texelFetch(s_visibility, px, 0).r;
+  vec3 color;
+  if (pos.w < 0.5) {
+    float t = float(px.y) / float(u_frame.screen.y);
+    color = mix(vec3(0.55, 0.6, 0.65), vec3(0.25, 0.4, 0.65), t);  // sky gradient (display-referred)
+  } else if (u_debugView == PN_VIEW_VISIBILITY) {
+    color = vec3(v);
+  } else {
+    vec3 n = texelFetch(s_gbufNormal, px, 0).xyz;
+    vec3 albedo = texelFetch(s_gbufAlbedo, px, 0).rgb;
+    vec3 l = toLight(pos.xyz);
+    vec3 radiance = u_frame.lightRadiance.rgb;
+    if (isSpotLight()) {
+      vec3 d = u_frame.lightPosition.xyz - pos.xyz;
+      float cosAxis = dot(-l, u_frame.lightDirection.xyz);
+      float cone = smoothstep(u_frame.lightPosition.w, u_frame.lightPosition.w + kSpotEdgeSoftness, cosAxis);
+      radiance *= cone / max(dot(d, d), 1e-4);
+    }
+    vec3 h = normalize(l + normalize(u_frame.cameraPosition.xyz - pos.xyz));
+    float NoL = max(dot(n, l), 0.0);
+    float specular = kSpecularStrength * pow(max(dot(n, h), 0.0), 48.0) * step(0.0, NoL);
+    vec3 direct = (albedo * NoL + specular) * radiance;
+    vec3 hdr = u_frame.ambient.rgb * albedo + v * direct;
+    color = toSrgb(acesApprox(hdr));
+  }
+  imageStore(i_color, px, vec4(color, 1.0));
+}

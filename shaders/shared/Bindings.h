@@ -1,0 +1,39 @@
+#pragma once
+// Binding points shared by C++ and GLSL. One name per slot; never a bare number in either.
+
+// Uniform blocks
+#define PN_UBO_FRAME 0    // FrameUniforms: camera, light, screen (Frame.h)
+#define PN_UBO_SHADOW 1   // ShadowUniforms: the light's shadow views (Shadow.h)
+#define PN_UBO_FILTER 2   // the active filter's own block (its shared header)
+
+// Storage blocks
+#define PN_SSBO_OBJECTS 0  // ObjectGpu[]: per-object transform and material (Frame.h)
+#define PN_SSBO_TEST 1     // GLSL unit tests write their results here
+#define PN_SSBO_AUX 2      // free for a pass's own data
+
+// Texture units (samplers)
+#define PN_TEX_GBUF_POSITION 0  // RGBA32F: world position (m), w = 1 where geometry
+#define PN_TEX_GBUF_NORMAL 1    // RGBA16F: shading normal, w = view depth is not stored here
+#define PN_TEX_GBUF_GEONORMAL 2 // RGBA16F: geometric normal (for bias and the reference)
+#define PN_TEX_GBUF_ALBEDO 3    // RGBA8: base colour
+#define PN_TEX_VISIBILITY 4     // R32F: V, 1 = lit
+#define PN_TEX_BASECOLOR 5      // a material's base-colour/alpha texture
+#define PN_TEX_FILTER0 8        // units 8..15 belong to the active filter
+#define PN_TEX_FILTER1 9
+#define PN_TEX_FILTER2 10
+#define PN_TEX_FILTER3 11
+
+// Image units
+#define PN_IMG_VISIBILITY 0  // r32f output of the visibility pass
+#define PN_IMG_OUTPUT 1      // a pass's main output
+#define PN_IMG_AUX0 2
+#define PN_IMG_AUX1 3
+
+// Explicit uniform locations for per-draw integers (no string look-ups)
+#define PN_LOC_OBJECT 0  // int: index into ObjectGpu[]
+#define PN_LOC_VIEW 1    // int: shadow view (cascade) being rendered
+#define PN_LOC_LEVEL 2   // int: mip level / pass-specific integer
+
+// Limits
+#define PN_MAX_SHADOW_VIEWS 8  // csm allows up to 8 cascades
+#define PN_SCREEN_GROUP 8      // workgroup side of full-screen compute passes

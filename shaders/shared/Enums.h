@@ -1,0 +1,15 @@
+#pragma once
+// Enum values shared by C++ and GLSL. C++ enum classes are defined from these macros.
+
+#define PN_LIGHT_SUN 0
+#define PN_LIGHT_SPOT 1
+
+// hard.bias
+#define PN_BIAS_NONE 0
+#define PN_BIAS_CONSTANT 1
+#define PN_BIAS_SLOPE 2
+#define PN_BIAS_NORMAL 3
+
+// Debug views of the lit pass
+#define PN_VIEW_SHADED 0
+#define PN_VIEW_VISIBILITY 1

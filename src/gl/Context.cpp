@@ -1,0 +1,206 @@
+#include "gl/Context.h"
+
+#include <penumbra/Error.h>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace penumbra::gl {
+namespace {
+
+constexpr const char* kHowToGetLlvmpipe =
+    "install Mesa's software renderer (Debian: apt-get install libegl-mesa0 libgl1-mesa-dri, "
+    "or run scripts/install-deps) or a GPU driver with EGL; EGL_PLATFORM=surfaceless and "
+    "LIBGL_ALWAYS_SOFTWARE=1 force llvmpipe";
+
+// The first GL error since the last check. The callback runs inside the driver, so it only
+// records; throwIfGlError() throws from our own code (never unwind through the driver).
+thread_local std::string tPendingError;
+
+void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
+                               const GLchar* message, const void*) {
+  if (type == GL_DEBUG_TYPE_ERROR) {
+    if (tPendingError.empty()) tPendingError = message;
+  } else if (severity == GL_DEBUG_SEVERITY_HIGH) {
+    std::fprintf(stderr, "penumbra: GL: %s\n", message);
+  }
+}
+
+std::string glString(GLenum name) {
+  const auto* s = reinterpret_cast<const char*>(glGetString(name));
+  return s ? s : "";
+}
+
+}  // namespace
+
+void throwIfGlError(const char* where) {
+  std::string pending;
+  pending.swap(tPendingError);
+  if (pending.empty()) {
+    const GLenum e = glGetError();
+    if (e != GL_NO_ERROR) pending = fmt::format("glGetError 0x{:04x}", e);
+  }
+  if (!pending.empty()) throw Error(fmt::format("OpenGL error in {}: {}", where, pending));
+}
+
+void Context::initialiseCurrent(const ContextOptions& options, std::string platform) {
+  PN_CHECK(epoxy_gl_version() >= 45,
+           fmt::format("the OpenGL context from {} is version {}.{}, Penumbra needs 4.5 core; {}", platform,
+                       epoxy_gl_version() / 10, epoxy_gl_version() % 10, kHowToGetLlvmpipe));
+  mInfo.renderer = glString(GL_RENDERER);
+  mInfo.version = glString(GL_VERSION);
+  mInfo.vendor = glString(GL_VENDOR);
+  mInfo.platform = std::move(platform);
+  mInfo.softwareRenderer = mInfo.renderer.find("llvmpipe") != std::string::npos ||
+                           mInfo.renderer.find("softpipe") != std::string::npos;
+  if (options.verbose)
+    std::fprintf(stderr, "penumbra: GL_RENDERER %s | GL_VERSION %s | %s\n", mInfo.renderer.c_str(),
+                 mInfo.version.c_str(), mInfo.platform.c_str());
+  if (options.debug) {
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(onDebugMessage, nullptr);
+  }
+  // Reversed-Z camera depth (DESIGN.md conventions).
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+}
+
+// ---- EGL --------------------------------------------------------------------------------
+struct HeadlessContext::Impl {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  std::string platform;
+};
+
+namespace {
+
+bool hasExtension(const char* list, const char* name) {
+  if (!list) return false;
+  const size_t n = std::strlen(name);
+  for (const char* p = list; (p = std::strstr(p, name)); p += n)
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+  return false;
+}
+
+// Tries to make a 4.5 core context current on `display`; returns it or EGL_NO_CONTEXT with a
+// reason appended to `why`.
+EGLContext tryCreate(EGLDisplay display, const std::string& name, std::string& why) {
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) {
+    why += fmt::format("; {}: eglInitialize failed (0x{:x})", name, eglGetError());
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    why += fmt::format("; {}: no desktop OpenGL API", name);
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  const char* exts = eglQueryString(display, EGL_EXTENSIONS);
+  EGLConfig config = EGL_NO_CONFIG_KHR;
+  if (!hasExtension(exts, "EGL_KHR_no_config_context")) {
+    const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+    EGLint count = 0;
+    if (!eglChooseConfig(display, attribs, &config, 1, &count) || count == 0) {
+      why += fmt::format("; {}: no OpenGL-renderable config", name);
+      eglTerminate(display);
+      return EGL_NO_CONTEXT;
+    }
+  }
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_NONE};
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
+  if (context == EGL_NO_CONTEXT) {
+    why += fmt::format("; {}: no OpenGL 4.5 core context (0x{:x})", name, eglGetError());
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+    why += fmt::format("; {}: eglMakeCurrent without a surface failed (0x{:x})", name, eglGetError());
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  return context;
+}
+
+}  // namespace
+
+HeadlessContext::HeadlessContext(const ContextOptions& options) : mImpl(std::make_unique<Impl>()) {
+  std::string why;
+  const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!clientExts) {
+    throw Error(fmt::format("no EGL library could be loaded; {}", kHowToGetLlvmpipe));
+  }
+  // 1. Mesa's surfaceless platform (llvmpipe, or Mesa GPU drivers).
+  if (hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
+    EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (d != EGL_NO_DISPLAY) {
+      EGLContext c = tryCreate(d, "EGL surfaceless", why);
+      if (c != EGL_NO_CONTEXT) { mImpl->display = d; mImpl->context = c; mImpl->platform = "EGL surfaceless"; }
+    } else {
+      why += "; EGL surfaceless: no display";
+    }
+  } else {
+    why += "; EGL surfaceless: extension EGL_MESA_platform_surfaceless missing";
+  }
+  // 2. The EGL device platform (NVIDIA's driver exposes its GPUs this way).
+  if (mImpl->context == EGL_NO_CONTEXT && hasExtension(clientExts, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(16, devices, &count)) {
+      for (EGLint i = 0; i < count && mImpl->context == EGL_NO_CONTEXT; ++i) {
+        EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+        if (d == EGL_NO_DISPLAY) continue;
+        const std::string name = fmt::format("EGL device {}", i);
+        EGLContext c = tryCreate(d, name, why);
+        if (c != EGL_NO_CONTEXT) { mImpl->display = d; mImpl->context = c; mImpl->platform = name; }
+      }
+    }
+    if (count == 0) why += "; EGL device: no devices";
+  }
+  if (mImpl->context == EGL_NO_CONTEXT)
+    throw Error(fmt::format("could not create a headless OpenGL 4.5 core context (tried{}); {}",
+                            why.empty() ? " nothing" : why.substr(1), kHowToGetLlvmpipe));
+  initialiseCurrent(options, mImpl->platform);
+}
+
+HeadlessContext::~HeadlessContext() {
+  if (mImpl && mImpl->display != EGL_NO_DISPLAY) {
+    eglMakeCurrent(mImpl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(mImpl->display, mImpl->context);
+    eglTerminate(mImpl->display);
+  }
+}
+
+// ---- GLFW -------------------------------------------------------------------------------
+WindowContext::WindowContext(int width, int height, const std::string& title, const ContextOptions& options) {
+  PN_CHECK(glfwInit(), "could not initialise GLFW (is a display available? under no display, run with xvfb-run)");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
+  mWindow = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!mWindow) {
+    glfwTerminate();
+    throw Error(fmt::format("could not open a {}x{} window with an OpenGL 4.5 core context; {}", width,
+                            height, kHowToGetLlvmpipe));
+  }
+  glfwMakeContextCurrent(mWindow);
+  initialiseCurrent(options, "GLFW");
+}
+
+WindowContext::~WindowContext() {
+  if (mWindow) glfwDestroyWindow(mWindow);
+  glfwTerminate();
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,141 @@
+#include "gl/Objects.h"
+
+#include <penumbra/Error.h>
+
+#include <atomic>
+#include <fmt/format.h>
+
+namespace penumbra::gl {
+namespace {
+std::atomic<int> gLiveObjects{0};
+
+GLenum labelNamespace(GLenum target) { return target; }
+
+void label(GLenum ns, GLuint id, std::string_view text) {
+  if (!text.empty()) glObjectLabel(labelNamespace(ns), id, static_cast<GLsizei>(text.size()), text.data());
+}
+}  // namespace
+
+int liveObjectCount() { return gLiveObjects.load(); }
+
+void Handle::adopt(GLuint id) {
+  mId = id;
+  if (id) ++gLiveObjects;
+}
+
+// ---- Buffer -----------------------------------------------------------------------------
+Buffer::Buffer(std::string_view name, size_t bytes, const void* data, GLbitfield flags) : mSize(bytes) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  adopt(id);
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+  label(GL_BUFFER, id, name);
+}
+void Buffer::destroy() { glDeleteBuffers(1, &mId); --gLiveObjects; }
+void Buffer::upload(const void* data, size_t bytes, size_t offset) {
+  PN_ASSERT(offset + bytes <= mSize);
+  glNamedBufferSubData(mId, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+void Buffer::download(void* data, size_t bytes, size_t offset) const {
+  PN_ASSERT(offset + bytes <= mSize);
+  glGetNamedBufferSubData(mId, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+// ---- Texture ----------------------------------------------------------------------------
+Texture::Texture(std::string_view name, const TextureDesc& desc) : mDesc(desc) {
+  PN_CHECK(desc.width > 0 && desc.height > 0 && desc.depth > 0, "texture size must be positive");
+  const int maxSize = maxTextureSize();
+  PN_CHECK(desc.width <= maxSize && desc.height <= maxSize,
+           fmt::format("texture '{}' of {}x{} exceeds the driver's maximum of {}", name, desc.width,
+                       desc.height, maxSize));
+  if (mDesc.levels == 0) {
+    int levels = 1;
+    for (int s = std::max(desc.width, desc.height); s > 1; s /= 2) ++levels;
+    mDesc.levels = levels;
+  }
+  GLuint id = 0;
+  glCreateTextures(desc.target, 1, &id);
+  adopt(id);
+  if (desc.target == GL_TEXTURE_2D)
+    glTextureStorage2D(id, mDesc.levels, desc.format, desc.width, desc.height);
+  else
+    glTextureStorage3D(id, mDesc.levels, desc.format, desc.width, desc.height, desc.depth);
+  label(GL_TEXTURE, id, name);
+  setSampling(mDesc.levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
+}
+void Texture::destroy() { glDeleteTextures(1, &mId); --gLiveObjects; }
+void Texture::setSampling(GLenum minFilter, GLenum magFilter, GLenum wrap) {
+  glTextureParameteri(mId, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter));
+  glTextureParameteri(mId, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(magFilter));
+  glTextureParameteri(mId, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+  glTextureParameteri(mId, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+  glTextureParameteri(mId, GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
+}
+void Texture::setCompare(bool on) {
+  glTextureParameteri(mId, GL_TEXTURE_COMPARE_MODE, on ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  glTextureParameteri(mId, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+void Texture::bindImage(GLuint unit, GLenum access, int level) const {
+  const GLboolean layered = mDesc.target == GL_TEXTURE_2D ? GL_FALSE : GL_TRUE;
+  glBindImageTexture(unit, mId, level, layered, 0, access, mDesc.format);
+}
+void Texture::read(GLenum format, GLenum type, void* out, size_t bytes, int level) const {
+  glGetTextureImage(mId, level, format, type, static_cast<GLsizei>(bytes), out);
+}
+
+// ---- Framebuffer ------------------------------------------------------------------------
+Framebuffer::Framebuffer(std::string_view name) {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  adopt(id);
+  label(GL_FRAMEBUFFER, id, name);
+}
+void Framebuffer::destroy() { glDeleteFramebuffers(1, &mId); --gLiveObjects; }
+void Framebuffer::attach(GLenum attachment, const Texture& texture, int level, int layer) {
+  if (layer >= 0)
+    glNamedFramebufferTextureLayer(mId, attachment, texture.id(), level, layer);
+  else
+    glNamedFramebufferTexture(mId, attachment, texture.id(), level);
+}
+void Framebuffer::finish(int colorCount) {
+  GLenum buffers[8];
+  PN_ASSERT(colorCount <= 8);
+  for (int i = 0; i < colorCount; ++i) buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+  if (colorCount == 0)
+    glNamedFramebufferDrawBuffer(mId, GL_NONE);
+  else
+    glNamedFramebufferDrawBuffers(mId, colorCount, buffers);
+  const GLenum status = glCheckNamedFramebufferStatus(mId, GL_FRAMEBUFFER);
+  PN_CHECK(status == GL_FRAMEBUFFER_COMPLETE, fmt::format("framebuffer incomplete (status 0x{:04x})", status));
+}
+
+// ---- VertexArray, Program, Query ---------------------------------------------------------
+VertexArray::VertexArray(std::string_view name) {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  adopt(id);
+  label(GL_VERTEX_ARRAY, id, name);
+}
+void VertexArray::destroy() { glDeleteVertexArrays(1, &mId); --gLiveObjects; }
+
+Program::Program(std::string_view name, GLuint linkedProgram) {
+  adopt(linkedProgram);
+  label(GL_PROGRAM, linkedProgram, name);
+}
+void Program::destroy() { glDeleteProgram(mId); --gLiveObjects; }
+
+Query::Query(std::string_view name, GLenum target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  adopt(id);
+  label(GL_QUERY, id, name);
+}
+void Query::destroy() { glDeleteQueries(1, &mId); --gLiveObjects; }
+
+int maxTextureSize() {
+  GLint v = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
+  return v;
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,147 @@
+#pragma once
+// RAII, move-only wrappers over OpenGL 4.5 DSA objects. Each object carries a debug label
+// (glObjectLabel) so captures and debug messages name it. Destruction deletes the object.
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <string_view>
+#include <utility>
+
+namespace penumbra::gl {
+
+/// Live-object counter, for the "no GL object growth" checks.
+int liveObjectCount();
+
+class Handle {
+public:
+  Handle() = default;
+  Handle(Handle&& o) noexcept : mId(std::exchange(o.mId, 0)) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) { reset(); mId = std::exchange(o.mId, 0); }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  GLuint id() const { return mId; }
+  explicit operator bool() const { return mId != 0; }
+
+protected:
+  ~Handle() = default;
+  virtual void destroy() = 0;
+  void reset() { if (mId) { destroy(); mId = 0; } }
+  void adopt(GLuint id);
+  GLuint mId = 0;
+};
+
+class Buffer final : public Handle {
+public:
+  Buffer() = default;
+  Buffer(std::string_view label, size_t bytes, const void* data = nullptr,
+         GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+  ~Buffer() { reset(); }
+  Buffer(Buffer&&) = default;
+  Buffer& operator=(Buffer&&) = default;
+  size_t size() const { return mSize; }
+  void upload(const void* data, size_t bytes, size_t offset = 0);
+  template <class T> void upload(const T& value) { upload(&value, sizeof(T)); }
+  void download(void* data, size_t bytes, size_t offset = 0) const;
+  void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, mId); }
+
+private:
+  void destroy() override;
+  size_t mSize = 0;
+};
+
+struct TextureDesc {
+  GLenum target = GL_TEXTURE_2D;  ///< GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_3D
+  GLenum format = GL_RGBA8;       ///< sized internal format
+  int width = 1, height = 1;
+  int depth = 1;   ///< layers for arrays, depth for 3D
+  int levels = 1;  ///< mip levels; 0 = a full chain
+};
+
+class Texture final : public Handle {
+public:
+  Texture() = default;
+  Texture(std::string_view label, const TextureDesc& desc);
+  ~Texture() { reset(); }
+  Texture(Texture&&) = default;
+  Texture& operator=(Texture&&) = default;
+  const TextureDesc& desc() const { return mDesc; }
+  int width() const { return mDesc.width; }
+  int height() const { return mDesc.height; }
+  int layers() const { return mDesc.depth; }
+  int levels() const { return mDesc.levels; }
+  /// Sets min/mag filter and clamp-to-edge wrapping.
+  void setSampling(GLenum minFilter, GLenum magFilter, GLenum wrap = GL_CLAMP_TO_EDGE);
+  /// Turns on hardware depth comparison (sampler2DShadow): lit when ref <= stored.
+  void setCompare(bool on);
+  void bindUnit(GLuint unit) const { glBindTextureUnit(unit, mId); }
+  void bindImage(GLuint unit, GLenum access, int level = 0) const;
+  /// Reads a whole level (all layers) as floats/bytes in `format`/`type`.
+  void read(GLenum format, GLenum type, void* out, size_t bytes, int level = 0) const;
+
+private:
+  void destroy() override;
+  TextureDesc mDesc;
+};
+
+class Framebuffer final : public Handle {
+public:
+  Framebuffer() = default;
+  explicit Framebuffer(std::string_view label);
+  ~Framebuffer() { reset(); }
+  Framebuffer(Framebuffer&&) = default;
+  Framebuffer& operator=(Framebuffer&&) = default;
+  /// Attaches `layer` of an array texture when layer >= 0, the whole texture otherwise.
+  void attach(GLenum attachment, const Texture& texture, int level = 0, int layer = -1);
+  /// Sets the draw buffers to COLOR_ATTACHMENT0..count-1 (0 = none) and checks completeness.
+  void finish(int colorCount);
+
+private:
+  void destroy() override;
+};
+
+class VertexArray final : public Handle {
+public:
+  VertexArray() = default;
+  explicit VertexArray(std::string_view label);
+  ~VertexArray() { reset(); }
+  VertexArray(VertexArray&&) = default;
+  VertexArray& operator=(VertexArray&&) = default;
+
+private:
+  void destroy() override;
+};
+
+class Program final : public Handle {
+public:
+  Program() = default;
+  /// Takes ownership of a linked program id.
+  Program(std::string_view label, GLuint linkedProgram);
+  ~Program() { reset(); }
+  Program(Program&&) = default;
+  Program& operator=(Program&&) = default;
+  void use() const { glUseProgram(mId); }
+
+private:
+  void destroy() override;
+};
+
+class Query final : public Handle {
+public:
+  Query() = default;
+  Query(std::string_view label, GLenum target);
+  ~Query() { reset(); }
+  Query(Query&&) = default;
+  Query& operator=(Query&&) = default;
+
+private:
+  void destroy() override;
+};
+
+/// Maximum 2D texture size of the current context.
+int maxTextureSize();
+
+}  // namespace penumbra::gl

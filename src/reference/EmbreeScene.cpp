@@ -1,0 +1,150 @@
+// Builds the Embree scene of the shadow casters and answers occlusion queries.
+// Alpha-masked materials (Material::alphaMask with a base-colour texture) get an occlusion
+// filter that rejects hits on texels with alpha < alphaCutoff; it is installed only on those
+// geometries, so opaque scenes pay nothing for it.
+#include "reference/EmbreeScene.h"
+
+#include "reference/Hash.h"
+
+#include <penumbra/Error.h>
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace penumbra::reference {
+namespace {
+
+// Embree reports errors through a callback, possibly from its build threads; keep the last
+// message so that PN_CHECK can name it.
+void onEmbreeError(void* user, RTCError code, const char* message) {
+  auto* log = static_cast<EmbreeErrorLog*>(user);
+  const std::lock_guard lock(log->mutex);
+  log->last = fmt::format("Embree error {}: {}", static_cast<int>(code), message ? message : "");
+}
+
+void checkDevice(RTCDevice device, EmbreeErrorLog& log, const std::string& what) {
+  const RTCError code = rtcGetDeviceError(device);
+  const std::lock_guard lock(log.mutex);
+  PN_CHECK(code == RTC_ERROR_NONE,
+           fmt::format("reference: {} failed ({})", what, log.last.empty() ? "unknown Embree error" : log.last));
+}
+
+/// Nearest-texel alpha with repeat wrapping. uv (0,0) is the image's first stored row (the top):
+/// the renderer uploads Image rows as stored, so GL's t = 0 reads that row too.
+float alphaAt(const Image& image, glm::vec2 uv) {
+  const glm::vec2 wrapped = uv - glm::floor(uv);
+  const int x = std::min(image.width - 1, static_cast<int>(wrapped.x * static_cast<float>(image.width)));
+  const int y = std::min(image.height - 1, static_cast<int>(wrapped.y * static_cast<float>(image.height)));
+  const size_t texel = static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x);
+  return static_cast<float>(image.rgba[4 * texel + 3]) / 255.0f;
+}
+
+void alphaOcclusionFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* mask = static_cast<const AlphaMaskGeometry*>(args->geometryUserPtr);
+  for (unsigned int i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned int prim = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const glm::vec2* t = &mask->uvs[3 * static_cast<size_t>(prim)];
+    const glm::vec2 uv = (1.0f - u - v) * t[0] + u * t[1] + v * t[2];
+    if (alphaAt(*mask->image, uv) < mask->alphaCutoff) args->valid[i] = 0;  // a hole: keep going
+  }
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) {
+  scene.validate();
+  mImages = scene.images;
+
+  mDevice.reset(rtcNewDevice(nullptr));
+  PN_CHECK(mDevice, fmt::format("reference: cannot create an Embree device ({})",
+                                           rtcGetDeviceError(nullptr) == RTC_ERROR_UNSUPPORTED_CPU
+                                               ? "this CPU is not supported" : "unknown error"));
+  RTCDevice device = mDevice.get();
+  rtcSetDeviceErrorFunction(device, onEmbreeError, &mErrors);
+  mScene.reset(rtcNewScene(device));
+  checkDevice(device, mErrors, "creating a scene");
+  RTCScene rtcScene = mScene.get();
+  // Robust mode: watertight edges, so no shadow ray slips between two triangles of a mesh.
+  rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(rtcScene, RTC_BUILD_QUALITY_HIGH);
+
+  Hasher hash;
+  for (const Object& object : scene.objects) {
+    if (!object.castsShadow) continue;
+    const Mesh& mesh = scene.meshes[object.mesh];
+    const size_t triangles = mesh.triangleCount();
+    if (triangles == 0) continue;
+
+    // Attached right away: the scene owns it from here, so an exception cannot leak it.
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    checkDevice(device, mErrors, fmt::format("creating the geometry of '{}'", object.name));
+    rtcAttachGeometry(rtcScene, geometry);
+    rtcReleaseGeometry(geometry);
+    auto* vertices = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertices.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
+    checkDevice(device, mErrors, fmt::format("allocating the geometry of '{}'", object.name));
+    for (size_t i = 0; i < mesh.vertices.size(); ++i)
+      vertices[i] = glm::vec3(object.worldFromObject * glm::vec4(mesh.vertices[i].position, 1.0f));
+    std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+    // The key sees world-space triangles, not (mesh, matrix) pairs: the same geometry placed by
+    // a different route hashes the same, and any change of a transform changes it.
+    for (uint32_t index : mesh.indices) hash.value(vertices[index]);
+
+    const Material& material = scene.materials[object.material];
+    if (material.alphaMask && material.baseColorTexture >= 0) {
+      auto mask = std::make_unique<AlphaMaskGeometry>();
+      mask->image = &mImages[static_cast<size_t>(material.baseColorTexture)];
+      mask->alphaCutoff = material.alphaCutoff;
+      mask->uvs.reserve(mesh.indices.size());
+      for (uint32_t index : mesh.indices) mask->uvs.push_back(mesh.vertices[index].uv);
+      PN_CHECK(mask->image->width > 0 && mask->image->height > 0 &&
+                   mask->image->rgba.size() == 4 * static_cast<size_t>(mask->image->width) *
+                                                   static_cast<size_t>(mask->image->height),
+               fmt::format("reference: material '{}': its alpha-mask texture is empty or malformed", material.name));
+      hash.value(mask->alphaCutoff);
+      hash.array(std::span<const glm::vec2>(mask->uvs));
+      hash.value(mask->image->width);
+      hash.array(std::span<const uint8_t>(mask->image->rgba));
+      rtcSetGeometryUserData(geometry, mask.get());
+      rtcSetGeometryOccludedFilterFunction(geometry, alphaOcclusionFilter);
+      mAlphaMasks.push_back(std::move(mask));
+    }
+    rtcCommitGeometry(geometry);
+    mCasterTriangles += triangles;
+  }
+  rtcCommitScene(rtcScene);
+  checkDevice(device, mErrors, "building the BVH");
+  hash.value(mCasterTriangles);
+  mGeometryHash = hash.digest();
+
+  const Aabb bounds = scene.bounds();
+  const glm::vec3 farthest = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
+  mSceneScaleM = std::max({bounds.radius(), farthest.x, farthest.y, farthest.z});
+}
+
+void EmbreeScene::ReleaseDevice::operator()(RTCDevice device) const { rtcReleaseDevice(device); }
+void EmbreeScene::ReleaseScene::operator()(RTCScene scene) const { rtcReleaseScene(scene); }
+
+bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tFar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = origin.x; ray.org_y = origin.y; ray.org_z = origin.z;
+  ray.dir_x = direction.x; ray.dir_y = direction.y; ray.dir_z = direction.z;
+  ray.tnear = 0.0f;
+  ray.tfar = tFar;
+  ray.mask = std::numeric_limits<unsigned int>::max();
+  rtcOccluded1(mScene.get(), &context, &ray);
+  return ray.tfar == -std::numeric_limits<float>::infinity();  // Embree's "hit something"
+}
+
+}  // namespace penumbra::reference

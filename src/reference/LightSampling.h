@@ -1,0 +1,98 @@
+#pragma once
+// Light sampling for the reference: deterministic per-pixel random numbers, a jittered grid of
+// strata, and the area-preserving map from the unit square to a cone of directions (uniform in
+// solid angle). Inline: these run once per shadow ray.
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace penumbra::reference {
+
+/// PCG32 (O'Neill 2014): small state, good statistics, one independent stream per pixel.
+class Pcg32 {
+public:
+  Pcg32(uint64_t seed, uint64_t stream) : mInc((stream << 1u) | 1u) {
+    next();
+    mState += seed;
+    next();
+  }
+  uint32_t next() {
+    const uint64_t old = mState;
+    mState = old * 6364136223846793005ull + mInc;
+    const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+  /// Uniform in [0, 1): 24 random bits, so 1.0f is never returned.
+  float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
+
+private:
+  uint64_t mState = 0;
+  uint64_t mInc;
+};
+
+/// Columns of the jittered grid for n samples: the largest divisor of n that is ≤ √n, so the
+/// grid has exactly n cells (16×16 for 256, 8×16 for 128; a prime n degrades to 1×n strips).
+inline int strataColumns(int n) {
+  int columns = static_cast<int>(std::sqrt(static_cast<double>(n)));
+  while (columns > 1 && n % columns != 0) --columns;
+  return columns < 1 ? 1 : columns;
+}
+
+/// Shirley & Chiu's concentric map, unit square → unit disk. Area-preserving and with low
+/// distortion, so square strata stay compact cells on the disk (and on the light).
+inline glm::vec2 concentricDisk(glm::vec2 u) {
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
+  constexpr float kQuarterPi = 0.78539816339744830962f;
+  float r, theta;
+  if (std::abs(o.x) > std::abs(o.y)) {
+    r = o.x;
+    theta = kQuarterPi * (o.y / o.x);
+  } else {
+    r = o.y;
+    theta = 2.0f * kQuarterPi - kQuarterPi * (o.x / o.y);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+/// 1 − cos α for a cone of half angle α, without the cancellation of 1 − cos α for the sun's
+/// tiny angles (0.0047 rad would keep ~2 significant digits in float).
+inline float oneMinusCos(float angleRad) {
+  const float s = std::sin(0.5f * angleRad);
+  return 2.0f * s * s;
+}
+
+/// 1 − cos α of the cone subtended by a sphere of radius r at distance d > r: sin α = r/d.
+inline float sphereOneMinusCos(float radiusM, float distanceM) {
+  const float s2 = (radiusM / distanceM) * (radiusM / distanceM);
+  return s2 / (1.0f + std::sqrt(1.0f - s2));
+}
+
+/// A disk point → a direction in the cone about +Z with 1 − cos α = `capHeight`. The disk's area
+/// maps linearly onto the cap's solid angle (r² ∝ 1 − cos θ), so uniform in → uniform out.
+inline glm::vec3 coneDirection(glm::vec2 disk, float capHeight) {
+  const float r2 = glm::dot(disk, disk);
+  const float h = r2 * capHeight;  // 1 − cos θ
+  const float cosTheta = 1.0f - h;
+  if (r2 <= 0.0f) return {0.0f, 0.0f, 1.0f};
+  const float sinTheta = std::sqrt(std::max(0.0f, h * (2.0f - h)));
+  const float scale = sinTheta / std::sqrt(r2);
+  return {disk.x * scale, disk.y * scale, cosTheta};
+}
+
+/// An orthonormal frame with `n` as its third axis (Duff et al. 2017, branchless).
+struct Frame {
+  glm::vec3 t, b, n;
+  glm::vec3 toWorld(const glm::vec3& v) const { return v.x * t + v.y * b + v.z * n; }
+};
+inline Frame frameAround(const glm::vec3& n) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+}
+
+}  // namespace penumbra::reference

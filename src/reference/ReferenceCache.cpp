@@ -1,0 +1,169 @@
+#include "reference/ReferenceCache.h"
+
+#include "reference/Hash.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <span>
+#include <system_error>
+#include <unistd.h>
+#include <vector>
+
+namespace penumbra {
+
+std::filesystem::path defaultReferenceCacheDir() {
+  if (const char* dir = std::getenv("PENUMBRA_CACHE"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "penumbra";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "penumbra";
+  return {};
+}
+
+}  // namespace penumbra
+
+namespace penumbra::reference {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'P', 'N', 'R', 'E', 'F', 'B', 'I', 'N'};
+
+// Fixed-size header; the payload follows: litMask (n bytes), visibility, visibilityCosWeighted
+// (n floats each), shadingExact, shadingSplit (3n floats each). Native (little-endian) order:
+// the cache is local to one machine.
+struct Header {
+  char magic[8];
+  uint32_t codeVersion;
+  int32_t samplesPerPixel;
+  uint64_t key;
+  int32_t width, height;
+  double traceSeconds;
+  uint64_t payloadHash;
+};
+
+static_assert(sizeof(Header) == 48, "the header has no padding: every byte is written");
+
+size_t payloadBytes(size_t pixels) {
+  return pixels * (sizeof(uint8_t) + 2 * sizeof(float) + 2 * sizeof(glm::vec3));
+}
+
+template <class T>
+void append(std::vector<char>& out, std::span<const T> values) {
+  const auto* bytes = reinterpret_cast<const char*>(values.data());
+  out.insert(out.end(), bytes, bytes + values.size_bytes());
+}
+
+template <class T>
+const char* take(const char* in, std::vector<T>& values, size_t count) {
+  values.resize(count);
+  std::memcpy(values.data(), in, count * sizeof(T));
+  return in + count * sizeof(T);
+}
+
+std::atomic<unsigned> gTempCounter{0};
+
+}  // namespace
+
+fs::path cacheFilePath(const fs::path& dir, uint64_t key) {
+  return dir / fmt::format("reference-{:016x}.bin", key);
+}
+
+void prepareCacheDir(const fs::path& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  PN_CHECK(!error && fs::is_directory(dir),
+           fmt::format("reference cache: cannot create directory '{}' ({}); set PENUMBRA_CACHE to a "
+                       "writable directory or turn the cache off",
+                       dir.string(), error ? error.message() : "not a directory"));
+}
+
+std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t key) {
+  std::ifstream in(cacheFilePath(dir, key), std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::vector<char> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.good() && !in.eof()) return std::nullopt;
+  Header header;
+  if (file.size() < sizeof(Header)) return std::nullopt;
+  std::memcpy(&header, file.data(), sizeof(Header));
+  if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.codeVersion != kReferenceCodeVersion ||
+      header.key != key || header.width <= 0 || header.height <= 0)
+    return std::nullopt;
+  const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
+  if (file.size() != sizeof(Header) + payloadBytes(pixels)) return std::nullopt;
+  Hasher hash;
+  hash.bytes(file.data() + sizeof(Header), payloadBytes(pixels));
+  if (hash.digest() != header.payloadHash) return std::nullopt;
+
+  ReferenceResult r;
+  r.width = header.width;
+  r.height = header.height;
+  r.samplesPerPixel = header.samplesPerPixel;
+  r.traceSeconds = header.traceSeconds;
+  r.cacheKey = key;
+  r.fromCache = true;
+  const char* p = file.data() + sizeof(Header);
+  p = take(p, r.litMask, pixels);
+  p = take(p, r.visibility, pixels);
+  p = take(p, r.visibilityCosWeighted, pixels);
+  p = take(p, r.shadingExact, pixels);
+  take(p, r.shadingSplit, pixels);
+  // Derived, not stored: recomputing it is exact and keeps the file a fifth smaller.
+  r.approximationError.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) r.approximationError[i] = r.shadingSplit[i] - r.shadingExact[i];
+  return r;
+}
+
+void storeCachedResult(const fs::path& dir, const ReferenceResult& result) {
+  const size_t pixels = static_cast<size_t>(result.width) * static_cast<size_t>(result.height);
+  std::vector<char> payload;
+  payload.reserve(payloadBytes(pixels));
+  append(payload, std::span<const uint8_t>(result.litMask));
+  append(payload, std::span<const float>(result.visibility));
+  append(payload, std::span<const float>(result.visibilityCosWeighted));
+  append(payload, std::span<const glm::vec3>(result.shadingExact));
+  append(payload, std::span<const glm::vec3>(result.shadingSplit));
+  PN_ASSERT(payload.size() == payloadBytes(pixels));
+
+  Header header{};
+  std::memcpy(header.magic, kMagic, sizeof(kMagic));
+  header.codeVersion = kReferenceCodeVersion;
+  header.samplesPerPixel = result.samplesPerPixel;
+  header.key = result.cacheKey;
+  header.width = result.width;
+  header.height = result.height;
+  header.traceSeconds = result.traceSeconds;
+  Hasher hash;
+  hash.bytes(payload.data(), payload.size());
+  header.payloadHash = hash.digest();
+
+  const fs::path path = cacheFilePath(dir, result.cacheKey);
+  // Unique per process and call: two runs that store the same key never share a temporary.
+  const fs::path temp = fs::path(path).concat(fmt::format(".tmp.{}.{}", getpid(), gTempCounter.fetch_add(1)));
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
+    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temp, ignored);
+      throw Error(fmt::format("reference cache: cannot write '{}'", temp.string()));
+    }
+  }
+  std::error_code error;
+  fs::rename(temp, path, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw Error(fmt::format("reference cache: cannot rename '{}' to '{}' ({})", temp.string(), path.string(),
+                            error.message()));
+  }
+}
+
+}  // namespace penumbra::reference

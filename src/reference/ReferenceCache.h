@@ -1,0 +1,25 @@
+#pragma once
+// The on-disk cache of reference results: one file per key, "<dir>/reference-<key>.bin".
+// Files are written to a unique temporary name and renamed, so a reader never sees half a file;
+// a file that fails any check (size, magic, version, key, payload hash) is ignored.
+#include <penumbra/Reference.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+namespace penumbra::reference {
+
+std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);
+
+/// Creates `dir` if needed. Throws penumbra::Error naming it when it cannot be created — before
+/// the trace, so a bad cache directory costs nothing.
+void prepareCacheDir(const std::filesystem::path& dir);
+
+/// The result stored under `key`, or nothing when there is none or it is unreadable or corrupt.
+std::optional<ReferenceResult> loadCachedResult(const std::filesystem::path& dir, uint64_t key);
+
+/// Stores `result` under result.cacheKey. Throws penumbra::Error naming the file on I/O failure.
+void storeCachedResult(const std::filesystem::path& dir, const ReferenceResult& result);
+
+}  // namespace penumbra::reference

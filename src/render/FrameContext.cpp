@@ -1,0 +1,70 @@
+#include "render/FrameContext.h"
+
+#include "render/GpuScene.h"
+#include "shared/Bindings.h"
+
+#include <penumbra/Error.h>
+
+namespace penumbra {
+
+const gl::Program& FrameContext::shadowProgram(std::string_view fragment, const ShaderDefines& defines) {
+  ProgramDesc d;
+  d.label = "shadow pass " + std::string(fragment);
+  d.vertex = {"passes/geometry.vert.glsl"};
+  d.fragment = {std::string(fragment)};
+  d.defines = defines;
+  return mShaders.program(d);
+}
+
+const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
+  ProgramDesc d;
+  d.label = "visibility " + std::string(filterFile);
+  d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
+  d.defines = defines;
+  return mShaders.program(d);
+}
+
+void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {
+  program.use();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_CLAMP);
+  glDisable(GL_CULL_FACE);
+  glViewport(0, 0, maps.size(), maps.size());
+  const float clearDepth = 1.0f;
+  for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
+    gl::Framebuffer& fb = maps.framebuffer(v);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+    if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+    drawCasters(program, v);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_DEPTH_CLAMP);
+}
+
+void FrameContext::drawCasters(const gl::Program& program, int view) const {
+  glProgramUniform1i(program.id(), PN_LOC_VIEW, view);
+  mGpuScene.draw(program.id(), true);
+}
+
+void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
+  PN_CHECK(bytes <= mFilterBlock.size(), "filter uniform block too large");
+  mFilterBlock.upload(data, bytes);
+  mFilterBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
+}
+
+void FrameContext::dispatchScreen(const gl::Program& program) const {
+  PN_ASSERT(mVisibility != nullptr);
+  mVisibility->bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
+  dispatch2D(program, mScreen.x, mScreen.y, PN_SCREEN_GROUP);
+}
+
+void FrameContext::dispatch2D(const gl::Program& program, int width, int height, int group) {
+  program.use();
+  glDispatchCompute(static_cast<GLuint>((width + group - 1) / group), static_cast<GLuint>((height + group - 1) / group), 1);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,48 @@
+#pragma once
+// Per-pass GPU times. Real GPUs: GL_TIME_ELAPSED queries. Software rasterisers (llvmpipe),
+// whose timer queries read 0 for real work: glFinish + std::chrono::steady_clock around the
+// pass. Which clock produced a number is recorded with it (PassTimings::clock).
+#include "gl/Objects.h"
+
+#include <penumbra/Renderer.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+class PassTimer {
+public:
+  explicit PassTimer(bool useCpuClock) : mCpuClock(useCpuClock) {}
+  void beginFrame();
+  void begin(std::string name);
+  void end();
+  /// Collects the frame's results (waits for the queries).
+  PassTimings endFrame();
+
+private:
+  struct Entry {
+    std::string name;
+    gl::Query query;
+    double cpuMs = 0.0;
+  };
+  bool mCpuClock;
+  std::vector<Entry> mEntries;
+  std::vector<gl::Query> mPool;  // reused across frames: no GL object growth
+  std::chrono::steady_clock::time_point mStart;
+};
+
+/// Times one pass for the lifetime of the scope.
+class ScopedPass {
+public:
+  ScopedPass(PassTimer& t, std::string name) : mT(t) { mT.begin(std::move(name)); }
+  ~ScopedPass() { mT.end(); }
+  ScopedPass(const ScopedPass&) = delete;
+  ScopedPass& operator=(const ScopedPass&) = delete;
+
+private:
+  PassTimer& mT;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,29 @@
+#pragma once
+// A layered shadow-map target (one layer per shadow view / cascade) with one framebuffer per
+// layer: a depth texture, and optionally a colour texture (moments) rendered with it.
+#include "gl/Objects.h"
+
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+class ShadowMapArray {
+public:
+  /// (Re)creates the textures when size, layer count or formats change; cheap otherwise.
+  /// colorFormat 0 = depth only. colorLevels 0 = a full mip chain on the colour texture.
+  void ensure(const std::string& label, int size, int layers, GLenum colorFormat = 0, int colorLevels = 1);
+  const gl::Texture& depth() const { return mDepth; }
+  const gl::Texture& color() const { return mColor; }
+  gl::Framebuffer& framebuffer(int layer) { return mFbos[static_cast<size_t>(layer)]; }
+  int size() const { return mSize; }
+  int layers() const { return mLayers; }
+
+private:
+  gl::Texture mDepth, mColor;
+  std::vector<gl::Framebuffer> mFbos;
+  int mSize = 0, mLayers = 0, mColorLevels = 1;
+  GLenum mColorFormat = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,219 @@
+// Scene files (scenes/*.json). Every key is checked: an unknown key or a bad value is an error
+// that names the file and the field ("scenes/x.json: objects[2].size: expected 3 numbers").
+#include <penumbra/Error.h>
+#include <penumbra/SceneIO.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+namespace penumbra {
+namespace {
+
+using Json = nlohmann::json;
+
+/// A JSON object being read: remembers its path for messages and which keys were used.
+class Reader {
+public:
+  Reader(const Json& j, std::string file, std::string path) : mJ(j), mFile(std::move(file)), mPath(std::move(path)) {
+    if (!mJ.is_object()) fail("", "expected an object");
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    const std::string field = key.empty() ? mPath : (mPath.empty() ? key : mPath + "." + key);
+    throw Error(fmt::format("{}: {}: {}", mFile, field.empty() ? "(top level)" : field, what));
+  }
+  bool has(const std::string& key) { mAllowed.insert(key); return mJ.contains(key); }
+  const Json& raw(const std::string& key) { mAllowed.insert(key); return mJ.at(key); }
+
+  float number(const std::string& key, float def, float lo = -1e30f, float hi = 1e30f) {
+    if (!has(key)) return def;
+    const Json& v = mJ.at(key);
+    if (!v.is_number()) fail(key, "expected a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || d < lo || d > hi) fail(key, fmt::format("{} is outside [{}, {}]", d, lo, hi));
+    return static_cast<float>(d);
+  }
+  std::string string(const std::string& key, const std::string& def) {
+    if (!has(key)) return def;
+    if (!mJ.at(key).is_string()) fail(key, "expected a string");
+    return mJ.at(key).get<std::string>();
+  }
+  bool boolean(const std::string& key, bool def) {
+    if (!has(key)) return def;
+    if (!mJ.at(key).is_boolean()) fail(key, "expected true or false");
+    return mJ.at(key).get<bool>();
+  }
+  template <int N>
+  glm::vec<N, float> vec(const std::string& key, glm::vec<N, float> def) {
+    if (!has(key)) return def;
+    const Json& v = mJ.at(key);
+    if (!v.is_array() || v.size() != N) fail(key, fmt::format("expected an array of {} numbers", N));
+    glm::vec<N, float> r;
+    for (int i = 0; i < N; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(key, fmt::format("expected an array of {} numbers", N));
+      r[i] = v[i].get<float>();
+    }
+    return r;
+  }
+  Reader child(const std::string& key) { return Reader(raw(key), mFile, mPath.empty() ? key : mPath + "." + key); }
+  /// Call last: any key not read is an error.
+  void finish() const {
+    for (const auto& [k, v] : mJ.items())
+      if (!mAllowed.count(k)) fail(k, "unknown key");
+  }
+  const std::string& file() const { return mFile; }
+  const std::string& path() const { return mPath; }
+
+private:
+  const Json& mJ;
+  std::string mFile, mPath;
+  std::set<std::string> mAllowed;
+};
+
+Mesh readShape(Reader& r) {
+  const std::string shape = r.string("shape", "");
+  constexpr float kMaxSizeM = 1e6f;  // keeps the float math of every pass meaningful
+  if (shape == "plane") {
+    const glm::vec2 size = r.vec<2>("size", {10, 10});
+    if (size.x <= 0 || size.y <= 0 || size.x > kMaxSizeM || size.y > kMaxSizeM) r.fail("size", "must be positive and at most 1e6");
+    return makePlane(size.x, size.y);
+  }
+  if (shape == "box") {
+    const glm::vec3 size = r.vec<3>("size", {1, 1, 1});
+    if (glm::any(glm::lessThanEqual(size, glm::vec3(0))) || glm::any(glm::greaterThan(size, glm::vec3(kMaxSizeM))))
+      r.fail("size", "must be positive and at most 1e6");
+    return makeBox(size);
+  }
+  if (shape == "sphere") return makeSphere(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), 48, 24);
+  if (shape == "cylinder") return makeCylinder(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), r.number("height", 1.0f, 1e-6f, kMaxSizeM));
+  if (shape == "cone") return makeCone(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), r.number("height", 1.0f, 1e-6f, kMaxSizeM));
+  if (shape.empty()) r.fail("shape", "missing (plane, box, sphere, cylinder or cone)");
+  r.fail("shape", fmt::format("unknown shape '{}' (plane, box, sphere, cylinder or cone)", shape));
+}
+
+glm::mat4 readTransform(Reader& r) {
+  const glm::vec3 t = r.vec<3>("translate", glm::vec3(0));
+  const glm::vec3 rotDeg = r.vec<3>("rotateDeg", glm::vec3(0));
+  const glm::vec3 s = r.vec<3>("scale", glm::vec3(1));
+  if (glm::any(glm::equal(s, glm::vec3(0)))) r.fail("scale", "must not be zero");
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), t);
+  m = glm::rotate(m, glm::radians(rotDeg.y), {0, 1, 0});
+  m = glm::rotate(m, glm::radians(rotDeg.x), {1, 0, 0});
+  m = glm::rotate(m, glm::radians(rotDeg.z), {0, 0, 1});
+  return glm::scale(m, s);
+}
+
+Light readLight(Reader& r) {
+  Light l;
+  const std::string type = r.string("type", "sun");
+  if (type == "sun") l.type = LightType::Directional;
+  else if (type == "spot") l.type = LightType::Spot;
+  else r.fail("type", fmt::format("unknown light type '{}' (sun or spot)", type));
+  l.direction = r.vec<3>("direction", l.direction);
+  if (glm::length(l.direction) < 1e-6f) r.fail("direction", "must not be zero");
+  l.direction = glm::normalize(l.direction);
+  if (l.type == LightType::Spot) {
+    l.position = r.vec<3>("position", l.position);
+    if (r.has("target")) {
+      const glm::vec3 target = r.vec<3>("target", glm::vec3(0));
+      if (glm::length(target - l.position) < 1e-6f) r.fail("target", "equals the position");
+      l.direction = glm::normalize(target - l.position);
+    }
+    l.coneAngleRad = glm::radians(r.number("coneAngleDeg", glm::degrees(l.coneAngleRad), 1.0f, 85.0f));
+    l.size = r.number("size", 0.0f, 0.0f, 100.0f);
+  } else {
+    l.size = r.number("size", 0.0f, 0.0f, 0.5f);
+  }
+  l.color = r.vec<3>("color", l.color);
+  l.intensity = r.number("intensity", l.intensity, 0.0f, 1e6f);
+  r.finish();
+  return l;
+}
+
+}  // namespace
+
+Scene loadSceneFile(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot open the scene file ({})", file, std::filesystem::exists(path) ? "not readable" : "no such file"));
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const Json::parse_error& e) {
+    throw Error(fmt::format("{}: not valid JSON: {}", file, e.what()));
+  }
+  Reader top(j, file, "");
+  Scene s;
+  s.sourceFile = path;
+  s.name = top.string("name", path.stem().string());
+  s.ambient = top.vec<3>("ambient", s.ambient);
+
+  if (top.has("camera")) {
+    Reader c = top.child("camera");
+    s.camera.position = c.vec<3>("position", s.camera.position);
+    s.camera.target = c.vec<3>("target", s.camera.target);
+    s.camera.up = c.vec<3>("up", s.camera.up);
+    s.camera.fovYRad = glm::radians(c.number("fovYDeg", glm::degrees(s.camera.fovYRad), 1.0f, 170.0f));
+    s.camera.nearM = c.number("near", s.camera.nearM, 1e-4f, 1e4f);
+    s.camera.farM = c.number("far", s.camera.farM, 1e-3f, 1e7f);
+    if (s.camera.farM <= s.camera.nearM) c.fail("far", "must be larger than near");
+    if (glm::length(s.camera.target - s.camera.position) < 1e-6f) c.fail("target", "equals the position");
+    c.finish();
+  }
+
+  if (!top.has("lights")) top.fail("lights", "missing (at least one light)");
+  const Json& lights = top.raw("lights");
+  if (!lights.is_array() || lights.empty()) top.fail("lights", "expected a non-empty array");
+  for (size_t i = 0; i < lights.size(); ++i) {
+    Reader r(lights[i], file, fmt::format("lights[{}]", i));
+    s.lights.push_back(readLight(r));
+  }
+
+  if (!top.has("objects")) top.fail("objects", "missing");
+  const Json& objects = top.raw("objects");
+  if (!objects.is_array() || objects.empty()) top.fail("objects", "expected a non-empty array");
+  for (size_t i = 0; i < objects.size(); ++i) {
+    Reader r(objects[i], file, fmt::format("objects[{}]", i));
+    const std::string name = r.string("name", fmt::format("object {}", i));
+    Mesh mesh = readShape(r);
+    const glm::vec3 color = r.vec<3>("color", glm::vec3(0.8f));
+    if (glm::any(glm::lessThan(color, glm::vec3(0))) || glm::any(glm::greaterThan(color, glm::vec3(1))))
+      r.fail("color", "each component must be in [0, 1]");
+    const glm::mat4 m = readTransform(r);
+    const bool casts = r.boolean("castsShadow", true);
+    r.finish();
+    addObject(s, name, std::move(mesh), color, m, casts);
+  }
+
+  if (top.has("shadow")) {
+    Reader sh = top.child("shadow");
+    s.shadow.projection = sh.string("projection", s.shadow.projection);
+    s.shadow.filter = sh.string("filter", s.shadow.filter);
+    s.shadow.mapSize = static_cast<int>(sh.number("mapSize", static_cast<float>(s.shadow.mapSize), 16.0f, 16384.0f));
+    if (sh.has("params")) {
+      Reader p = sh.child("params");
+      for (const auto& [key, value] : sh.raw("params").items()) {
+        p.has(key);
+        if (value.is_number()) s.shadow.params.emplace_back(key, fmt::format("{}", value.get<double>()));
+        else if (value.is_string()) s.shadow.params.emplace_back(key, value.get<std::string>());
+        else p.fail(key, "expected a number or a name");
+      }
+    }
+    sh.finish();
+  }
+  top.finish();
+  s.validate();
+  return s;
+}
+
+Scene loadScene(const std::string& nameOrPath) {
+  const bool looksLikeFile = nameOrPath.find('/') != std::string::npos || nameOrPath.find('.') != std::string::npos;
+  if (!looksLikeFile) return makeBuiltinScene(nameOrPath);
+  return loadSceneFile(nameOrPath);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,139 @@
+// Procedural shapes with outward normals and counter-clockwise front faces.
+#include <penumbra/Scene.h>
+
+#include <glm/gtc/constants.hpp>
+
+namespace penumbra {
+namespace {
+
+void addQuad(Mesh& m, glm::vec3 origin, glm::vec3 du, glm::vec3 dv, glm::vec2 uvScale = {1, 1}) {
+  const glm::vec3 n = glm::normalize(glm::cross(du, dv));
+  const auto base = static_cast<uint32_t>(m.vertices.size());
+  m.vertices.push_back({origin, n, {0, 0}});
+  m.vertices.push_back({origin + du, n, {uvScale.x, 0}});
+  m.vertices.push_back({origin + du + dv, n, uvScale});
+  m.vertices.push_back({origin + dv, n, {0, uvScale.y}});
+  for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+}
+
+// A surface of revolution around +Y from a profile of (radius, y, normal r, normal y) rings.
+void addLathe(Mesh& m, const std::vector<glm::vec4>& ringsPos, const std::vector<glm::vec2>& ringsNormal, int slices) {
+  const auto base = static_cast<uint32_t>(m.vertices.size());
+  const int rings = static_cast<int>(ringsPos.size());
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s <= slices; ++s) {
+      const float a = glm::two_pi<float>() * static_cast<float>(s) / static_cast<float>(slices);
+      const glm::vec2 dir{std::cos(a), -std::sin(a)};
+      const glm::vec3 p{ringsPos[r].x * dir.x, ringsPos[r].y, ringsPos[r].x * dir.y};
+      glm::vec3 n{ringsNormal[r].x * dir.x, ringsNormal[r].y, ringsNormal[r].x * dir.y};
+      m.vertices.push_back({p, glm::normalize(n), {static_cast<float>(s) / static_cast<float>(slices), ringsPos[r].z}});
+    }
+  }
+  const auto stride = static_cast<uint32_t>(slices + 1);
+  for (int r = 0; r + 1 < rings; ++r) {
+    for (uint32_t s = 0; s < static_cast<uint32_t>(slices); ++s) {
+      const uint32_t a = base + static_cast<uint32_t>(r) * stride + s, b = a + 1, c = a + stride, d = c + 1;
+      if (ringsPos[r].x > 0.0f || ringsPos[r + 1].x > 0.0f) {
+        for (uint32_t i : {a, b, d, a, d, c}) m.indices.push_back(i);
+      }
+    }
+  }
+}
+
+// A flat disk at height y facing up (+1) or down (-1).
+void addDisk(Mesh& m, float radius, float y, float facing, int slices) {
+  const auto centre = static_cast<uint32_t>(m.vertices.size());
+  const glm::vec3 n{0, facing, 0};
+  m.vertices.push_back({{0, y, 0}, n, {0.5f, 0.5f}});
+  for (int s = 0; s <= slices; ++s) {
+    const float a = glm::two_pi<float>() * static_cast<float>(s) / static_cast<float>(slices);
+    m.vertices.push_back({{radius * std::cos(a), y, -radius * std::sin(a)}, n, {0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a)}});
+  }
+  for (uint32_t s = 0; s < static_cast<uint32_t>(slices); ++s) {
+    const uint32_t a = centre + 1 + s, b = a + 1;
+    if (facing > 0) { m.indices.insert(m.indices.end(), {centre, a, b}); }
+    else { m.indices.insert(m.indices.end(), {centre, b, a}); }
+  }
+}
+
+}  // namespace
+
+Aabb Mesh::bounds() const {
+  Aabb b;
+  for (const Vertex& v : vertices) b.extend(v.position);
+  return b;
+}
+
+Mesh makePlane(float sizeX, float sizeZ) {
+  Mesh m;
+  m.name = "plane";
+  addQuad(m, {-0.5f * sizeX, 0, 0.5f * sizeZ}, {sizeX, 0, 0}, {0, 0, -sizeZ}, {sizeX, sizeZ});
+  return m;
+}
+
+Mesh makeBox(const glm::vec3& size) {
+  Mesh m;
+  m.name = "box";
+  const glm::vec3 h = 0.5f * size;
+  const glm::vec3 X{size.x, 0, 0}, Y{0, size.y, 0}, Z{0, 0, size.z};
+  addQuad(m, {-h.x, -h.y, h.z}, X, Y);     // +Z
+  addQuad(m, {h.x, -h.y, -h.z}, -X, Y);    // -Z
+  addQuad(m, {h.x, -h.y, h.z}, -Z, Y);     // +X
+  addQuad(m, {-h.x, -h.y, -h.z}, Z, Y);    // -X
+  addQuad(m, {-h.x, h.y, h.z}, X, -Z);     // +Y
+  addQuad(m, {-h.x, -h.y, -h.z}, X, Z);    // -Y
+  return m;
+}
+
+Mesh makeSphere(float radius, int slices, int stacks) {
+  Mesh m;
+  m.name = "sphere";
+  std::vector<glm::vec4> pos;
+  std::vector<glm::vec2> nrm;
+  for (int i = 0; i <= stacks; ++i) {
+    const float phi = glm::pi<float>() * (1.0f - static_cast<float>(i) / static_cast<float>(stacks));  // from the bottom
+    const float r = std::sin(phi), y = std::cos(phi);
+    pos.push_back({radius * r, radius * y, static_cast<float>(i) / static_cast<float>(stacks), 0});
+    nrm.push_back({r, y});
+  }
+  addLathe(m, pos, nrm, slices);
+  return m;
+}
+
+Mesh makeCylinder(float radius, float height, int slices) {
+  Mesh m;
+  m.name = "cylinder";
+  addLathe(m, {{radius, 0, 0, 0}, {radius, height, 1, 0}}, {{1, 0}, {1, 0}}, slices);
+  addDisk(m, radius, height, 1.0f, slices);
+  addDisk(m, radius, 0.0f, -1.0f, slices);
+  return m;
+}
+
+Mesh makeCone(float radius, float height, int slices) {
+  Mesh m;
+  m.name = "cone";
+  const glm::vec2 n = glm::normalize(glm::vec2(height, radius));
+  // The apex ring has radius 0; a tiny radius keeps its normals defined.
+  addLathe(m, {{radius, 0, 0, 0}, {0.0f, height, 1, 0}}, {n, n}, slices);
+  addDisk(m, radius, 0.0f, -1.0f, slices);
+  return m;
+}
+
+uint32_t addObject(Scene& scene, std::string name, Mesh mesh, const glm::vec3& color,
+                   const glm::mat4& worldFromObject, bool castsShadow) {
+  Material material;
+  material.name = name;
+  material.baseColor = color;
+  scene.meshes.push_back(std::move(mesh));
+  scene.materials.push_back(material);
+  Object o;
+  o.name = std::move(name);
+  o.mesh = static_cast<uint32_t>(scene.meshes.size() - 1);
+  o.material = static_cast<uint32_t>(scene.materials.size() - 1);
+  o.worldFromObject = worldFromObject;
+  o.castsShadow = castsShadow;
+  scene.objects.push_back(o);
+  return static_cast<uint32_t>(scene.objects.size() - 1);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,90 @@
+#include <penumbra/Error.h>
+#include <penumbra/Params.h>
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+
+namespace penumbra {
+
+void checkParamValue(const ParamDesc& d, float value) {
+  if (!std::isfinite(value) || value < d.min || value > d.max)
+    throw usageError(fmt::format("{}={} is out of range [{}, {}]", d.key, value, d.min, d.max));
+  if (d.isInteger() && value != std::floor(value))
+    throw usageError(fmt::format("{}={} must be a whole number", d.key, value));
+}
+
+float parseParamValue(const ParamDesc& d, std::string_view text) {
+  if (d.isChoice()) {
+    for (size_t i = 0; i < d.choices.size(); ++i)
+      if (d.choices[i] == text) return static_cast<float>(i);
+    std::string names;
+    for (std::string_view c : d.choices) names += (names.empty() ? "" : ", ") + std::string(c);
+    throw usageError(fmt::format("{}={}: expected one of {}", d.key, text, names));
+  }
+  float v = 0.0f;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+    throw usageError(fmt::format("{}={}: not a number", d.key, text));
+  checkParamValue(d, v);
+  return v;
+}
+
+std::string formatParamValue(const ParamDesc& d, float value) {
+  if (d.isChoice()) {
+    const auto i = static_cast<size_t>(value);
+    return i < d.choices.size() ? std::string(d.choices[i]) : fmt::format("{}", value);
+  }
+  return fmt::format("{}", value);
+}
+
+std::pair<std::string, std::string> splitAssignment(std::string_view text) {
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    throw usageError(fmt::format("'{}': expected key=value", text));
+  return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1))};
+}
+
+Parameterized::Parameterized(std::span<const ParamDesc> descs) : mDescs(descs) {
+  for (const ParamDesc& d : descs) mValues.push_back(d.def);
+}
+
+bool Parameterized::hasParam(std::string_view key) const {
+  for (const ParamDesc& d : mDescs)
+    if (d.key == key) return true;
+  return false;
+}
+
+size_t Parameterized::indexOf(std::string_view key) const {
+  for (size_t i = 0; i < mDescs.size(); ++i)
+    if (mDescs[i].key == key) return i;
+  std::string known;
+  for (const ParamDesc& d : mDescs) known += (known.empty() ? "" : ", ") + std::string(d.key);
+  throw usageError(fmt::format("unknown parameter '{}'{}", key, known.empty() ? "" : " (this one has: " + known + ")"));
+}
+
+void Parameterized::setParam(std::string_view key, float value) {
+  const size_t i = indexOf(key);
+  checkParamValue(mDescs[i], value);
+  mValues[i] = value;
+}
+
+void Parameterized::setParam(std::string_view key, std::string_view text) {
+  const size_t i = indexOf(key);
+  mValues[i] = parseParamValue(mDescs[i], text);
+}
+
+float Parameterized::param(std::string_view key) const { return mValues[indexOf(key)]; }
+
+namespace {
+constexpr ParamDesc kSceneParams[] = {
+    {"light.size", "Light size",
+     "overrides the first light's size: spot = sphere radius (m), sun = angular radius (rad); 0 = hard; unset = the scene's own size",
+     0.0f, 0.0f, 10.0f, 0.0f},
+};
+}  // namespace
+
+std::span<const ParamDesc> sceneParamDescs() { return kSceneParams; }
+
+}  // namespace penumbra

@@ -1,0 +1,76 @@
+// Every technique by id. Adding one = one line here + its own files.
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+
+#include "shadows/filters/HardFilter.h"
+#include "shadows/projections/UniformProjection.h"
+
+#include <fmt/format.h>
+
+#include <functional>
+
+namespace penumbra {
+namespace {
+
+template <class T>
+struct Entry {
+  std::string_view id;
+  std::function<std::unique_ptr<T>()> make;
+};
+
+const std::vector<Entry<Projection>>& projections() {
+  static const std::vector<Entry<Projection>> list = {
+      {"uniform", [] { return std::make_unique<UniformProjection>(); }},
+  };
+  return list;
+}
+
+const std::vector<Entry<Filter>>& filters() {
+  static const std::vector<Entry<Filter>> list = {
+      {"hard", [] { return std::make_unique<HardFilter>(); }},
+  };
+  return list;
+}
+
+template <class T>
+std::unique_ptr<T> make(const std::vector<Entry<T>>& list, std::string_view id, const char* what) {
+  for (const Entry<T>& e : list)
+    if (e.id == id) return e.make();
+  std::string known;
+  for (const Entry<T>& e : list) known += (known.empty() ? "" : ", ") + std::string(e.id);
+  throw usageError(fmt::format("unknown {} '{}' (known: {})", what, id, known));
+}
+
+template <class T>
+std::vector<std::string> ids(const std::vector<Entry<T>>& list) {
+  std::vector<std::string> out;
+  for (const Entry<T>& e : list) out.emplace_back(e.id);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> projectionIds() { return ids(projections()); }
+std::vector<std::string> filterIds() { return ids(filters()); }
+std::unique_ptr<Projection> makeProjection(std::string_view id) { return make(projections(), id, "projection"); }
+std::unique_ptr<Filter> makeFilter(std::string_view id) { return make(filters(), id, "filter"); }
+
+void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
+                 Projection& projection, Filter& filter) {
+  for (const auto& [key, value] : settings) {
+    if (key == "light.size") {
+      const float v = parseParamValue(sceneParamDescs()[0], value);
+      PN_CHECK(!scene.lights.empty(), "light.size: the scene has no light");
+      scene.lights.front().size = v;
+    } else if (projection.hasParam(key)) {
+      projection.setParam(key, std::string_view(value));
+    } else if (filter.hasParam(key)) {
+      filter.setParam(key, std::string_view(value));
+    } else {
+      throw usageError(fmt::format("unknown parameter '{}' for --projection {} --filter {} (penumbra list shows them all)",
+                                   key, projection.id(), filter.id()));
+    }
+  }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,45 @@
+#include "shadows/filters/HardFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/filters/hard.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+constexpr std::string_view kBiasModes[] = {"none", "constant", "slope", "normal"};
+static_assert(PN_BIAS_NONE == 0 && PN_BIAS_CONSTANT == 1 && PN_BIAS_SLOPE == 2 && PN_BIAS_NORMAL == 3,
+              "kBiasModes follows the PN_BIAS_* order");
+
+constexpr ParamDesc kParams[] = {
+    {"hard.bias", "Bias", "how self-shadowing (acne) is avoided: none, constant, slope (constant + slope-scaled) or normal (offset along the normal + constant)",
+     PN_BIAS_SLOPE, 0, 3, 1, kBiasModes},
+    {"hard.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+     0.0002f, 0.0f, 0.05f, 0.0f},
+    {"hard.slopeBias", "Slope bias", "slope-scaled offset: multiples of texel size × tan(angle to the light)",
+     1.0f, 0.0f, 16.0f, 0.0f},
+    {"hard.normalOffsetTexels", "Normal offset", "receiver moved along its normal by this many shadow-map texels",
+     1.0f, 0.0f, 16.0f, 0.0f},
+};
+
+}  // namespace
+
+HardFilter::HardFilter() : Filter(kParams) {}
+
+void HardFilter::renderShadowMaps(FrameContext& frame) {
+  mMaps.ensure("hard shadow map", frame.mapSize(), frame.viewCount());
+  frame.renderViews(mMaps, frame.shadowProgram());
+}
+
+void HardFilter::computeVisibility(FrameContext& frame) {
+  gpu::HardUniforms u{};
+  u.bias = glm::vec4(param("hard.constantBias"), param("hard.slopeBias"), param("hard.normalOffsetTexels"), 0.0f);
+  u.mode = glm::ivec4(paramInt("hard.bias"), 0, 0, 0);
+  frame.setFilterBlock(u);
+  mMaps.depth().bindUnit(PN_TEX_FILTER0);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl"));
+}
+
+std::vector<DebugImage> HardFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+
+}  // namespace penumbra

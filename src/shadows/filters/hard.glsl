@@ -1,0 +1,26 @@
+// hard: the two-pass shadow map test (Williams 1978). The receiver's linear light depth is
+// compared with the nearest depth stored in the map: lit when not farther. The comparison of
+// a surface with its own rasterised depth fails at random along the texel grid ("acne"),
+// worst when the light grazes the surface; the bias modes trade it against "peter-panning"
+// (shadows detached from their casters).
+#include "common/visibility.glsl"
+#include "shadows/filters/hard.shared.h"
+
+layout(std140, binding = PN_UBO_FILTER) uniform HardBlock { HardUniforms u_hard; };
+layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_shadowMap;
+
+float shadowVisibility(SurfacePoint s) {
+  int view = selectShadowView(s.ws);
+  int mode = u_hard.mode.x;
+  float texelM = shadowTexelWorldSize(view, s.ws);
+  vec3 ws = s.ws;
+  if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * texelM);
+  vec3 coord = shadowCoord(view, ws);
+  if (!insideMap(coord)) return 1.0;
+  float bias = 0.0;
+  if (mode != PN_BIAS_NONE) bias = u_hard.bias.x;
+  // Across one texel, a plane tilted by θ from the light changes depth by texel · tan θ.
+  if (mode == PN_BIAS_SLOPE) bias += u_hard.bias.y * texelM * slopeTangent(s) / depthRangeM(view);
+  float stored = texelFetch(s_shadowMap, ivec3(coord.xy * shadowMapSize(), view), 0).r;
+  return coord.z - bias <= stored ? 1.0 : 0.0;
+}

@@ -1,0 +1,49 @@
+#include "GlFixture.h"
+
+#include <memory>
+
+namespace penumbra::test {
+
+gl::HeadlessContext& glContext() {
+  static std::unique_ptr<gl::HeadlessContext> context = std::make_unique<gl::HeadlessContext>(gl::ContextOptions{.debug = true});
+  return *context;
+}
+
+RenderResult renderScene(const Scene& sceneIn, const std::string& projection, const std::string& filter,
+                         const std::vector<std::pair<std::string, std::string>>& params, int width, int height,
+                         int mapSize) {
+  Scene scene = sceneIn;
+  auto p = makeProjection(projection);
+  auto f = makeFilter(filter);
+  applyParams(params, scene, *p, *f);
+  Renderer renderer(glContext());
+  renderer.setScene(scene);
+  renderer.setTechnique(std::move(p), std::move(f));
+  RenderOptions o;
+  o.width = width;
+  o.height = height;
+  o.shadowMapSize = mapSize;
+  renderer.render(o);
+  RenderResult r;
+  r.visibility = renderer.readVisibility();
+  r.gbuffer = renderer.readGBuffer();
+  r.frusta = renderer.frusta();
+  r.timings = renderer.timings();
+  r.width = width;
+  r.height = height;
+  return r;
+}
+
+glm::ivec2 projectToPixel(const Scene& scene, const glm::vec3& ws, int width, int height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const glm::vec4 c = scene.camera.clipFromView(aspect) * scene.camera.viewFromWorld() * glm::vec4(ws, 1.0f);
+  const glm::vec2 ndc = glm::vec2(c) / c.w;
+  return glm::ivec2((ndc * 0.5f + 0.5f) * glm::vec2(width, height));
+}
+
+}  // namespace penumbra::test
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

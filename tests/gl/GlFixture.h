@@ -1,0 +1,37 @@
+#pragma once
+// One headless OpenGL 4.5 context (llvmpipe here) for the whole GL test binary, plus helpers
+// that render a scene with a technique and read the visibility back.
+#include "gl/Context.h"
+
+#include <penumbra/Registry.h>
+#include <penumbra/Renderer.h>
+#include <penumbra/SceneIO.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra::test {
+
+gl::HeadlessContext& glContext();
+
+struct RenderResult {
+  std::vector<float> visibility;  ///< row 0 = bottom
+  GBufferData gbuffer;
+  LightFrusta frusta;
+  PassTimings timings;
+  int width = 0, height = 0;
+  float at(int x, int y) const { return visibility[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; }
+};
+
+/// Renders `scene` with the given technique and "key=value" settings.
+RenderResult renderScene(const Scene& scene, const std::string& projection, const std::string& filter,
+                         const std::vector<std::pair<std::string, std::string>>& params, int width, int height,
+                         int mapSize);
+
+/// Projects a world point to pixel coordinates (x right, y up) of a width × height image.
+glm::ivec2 projectToPixel(const Scene& scene, const glm::vec3& ws, int width, int height);
+
+}  // namespace penumbra::test

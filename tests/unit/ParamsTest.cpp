@@ -1,0 +1,64 @@
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
+
+#include <gtest/gtest.h>
+
+using namespace penumbra;
+
+namespace {
+
+void expectUsageError(const std::function<void()>& f, const std::string& mustMention) {
+  try {
+    f();
+    ADD_FAILURE() << "no error thrown";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage) << e.what();
+    EXPECT_NE(std::string(e.what()).find(mustMention), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(Params, SetAcceptsKnownKeysAndChoices) {
+  Scene scene = makeBuiltinScene("boxes");
+  auto p = makeProjection("uniform");
+  auto f = makeFilter("hard");
+  applyParams({{"hard.bias", "none"}, {"hard.slopeBias", "2.5"}, {"light.size", "0.05"}}, scene, *p, *f);
+  EXPECT_EQ(f->paramInt("hard.bias"), 0);
+  EXPECT_FLOAT_EQ(f->param("hard.slopeBias"), 2.5f);
+  EXPECT_FLOAT_EQ(scene.light().size, 0.05f);
+}
+
+TEST(Params, SetRejectsUnknownKeys) {
+  Scene scene = makeBuiltinScene("boxes");
+  auto p = makeProjection("uniform");
+  auto f = makeFilter("hard");
+  expectUsageError([&] { applyParams({{"hard.nope", "1"}}, scene, *p, *f); }, "hard.nope");
+  expectUsageError([&] { applyParams({{"pcss.lightSize", "1"}}, scene, *p, *f); }, "pcss.lightSize");
+}
+
+TEST(Params, SetRejectsOutOfRangeAndMalformedValues) {
+  Scene scene = makeBuiltinScene("boxes");
+  auto p = makeProjection("uniform");
+  auto f = makeFilter("hard");
+  expectUsageError([&] { applyParams({{"hard.slopeBias", "1000"}}, scene, *p, *f); }, "hard.slopeBias");
+  expectUsageError([&] { applyParams({{"hard.slopeBias", "-1"}}, scene, *p, *f); }, "out of range");
+  expectUsageError([&] { applyParams({{"hard.slopeBias", "abc"}}, scene, *p, *f); }, "not a number");
+  expectUsageError([&] { applyParams({{"hard.bias", "sloped"}}, scene, *p, *f); }, "expected one of");
+  expectUsageError([&] { applyParams({{"light.size", "-0.1"}}, scene, *p, *f); }, "light.size");
+  expectUsageError([] { splitAssignment("novalue"); }, "key=value");
+}
+
+TEST(Params, UnknownTechniquesAreUsageErrors) {
+  expectUsageError([] { makeFilter("blurry"); }, "blurry");
+  expectUsageError([] { makeProjection("fisheye"); }, "fisheye");
+  expectUsageError([] { makeBuiltinScene("nowhere"); }, "nowhere");
+}
+
+TEST(Params, EveryDeclaredDefaultIsInRange) {
+  for (const std::string& id : filterIds())
+    for (const ParamDesc& d : makeFilter(id)->paramDescs()) EXPECT_NO_THROW(checkParamValue(d, d.def)) << d.key;
+  for (const std::string& id : projectionIds())
+    for (const ParamDesc& d : makeProjection(id)->paramDescs()) EXPECT_NO_THROW(checkParamValue(d, d.def)) << d.key;
+}
