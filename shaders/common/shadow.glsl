@@ -9,7 +9,7 @@ float shadowMapSize() { return float(u_shadow.info.y); }
 // Linear light-space depth in [0,1] (DESIGN.md: shadow maps store linear depth).
 float lightDepth(int view, vec3 ws) { return dot(u_shadow.views[view].depthPlane, vec4(ws, 1.0)); }
 
-// Metres from the light's near plane… along its axis.
+// Distance (m) from the light along its axis.
 float lightDistance(int view, vec3 ws) {
   vec4 r = u_shadow.views[view].range;
   return r.x + lightDepth(view, ws) * (r.y - r.x);
@@ -23,9 +23,9 @@ vec3 shadowCoord(int view, vec3 ws) {
   return vec3(c.xy / c.w * 0.5 + 0.5, lightDepth(view, ws));
 }
 
-// World-space size (m) of one shadow-map texel at ws (x axis of the map).
+// World-space size (m) of one shadow-map texel at ws (the larger side of a non-square texel).
 float shadowTexelWorldSize(int view, vec3 ws) {
-  float extent = u_shadow.views[view].extent.x;
+  float extent = max(u_shadow.views[view].extent.x, u_shadow.views[view].extent.y);
   float scale = isPerspectiveView(view) ? lightDistance(view, ws) : 1.0;
   return extent * scale / shadowMapSize();
 }

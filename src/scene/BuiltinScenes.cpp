@@ -29,7 +29,7 @@ Light sun(const glm::vec3& towardScene, float angularRadiusRad) {
 Scene makePen() {
   Scene s;
   s.name = "pen";
-  addObject(s, "floor", makePlane(8.0f, 8.0f), kFloorColor, glm::mat4(1.0f), false);
+  addObject(s, "floor", makePlane(8.0f, 8.0f), kFloorColor);
   constexpr float kRadiusM = 0.04f, kBodyM = 1.5f, kTipM = 0.12f;
   constexpr float kLeanRad = 0.45f;  // angle between pencil and floor
   // Pencil axis: from the tip on the floor at the origin, up and toward -X.
@@ -62,7 +62,7 @@ Scene makePen() {
 Scene makeBoxes() {
   Scene s;
   s.name = "boxes";
-  addObject(s, "floor", makePlane(24.0f, 24.0f), kFloorColor, glm::mat4(1.0f), false);
+  addObject(s, "floor", makePlane(24.0f, 24.0f), kFloorColor);
   addObject(s, "box A", makeBox({1.0f, 1.0f, 1.0f}), {0.8f, 0.3f, 0.25f}, translate({-1.5f, 0.5f, 0.0f}));
   addObject(s, "box B", makeBox({0.8f, 2.0f, 0.8f}), {0.3f, 0.5f, 0.8f}, translate({1.2f, 1.0f, -1.0f}));
   addObject(s, "box C", makeBox({2.0f, 0.4f, 0.6f}), {0.4f, 0.7f, 0.35f},
@@ -81,7 +81,7 @@ Scene makeBoxes() {
 Scene makeFence() {
   Scene s;
   s.name = "fence";
-  addObject(s, "floor", makePlane(16.0f, 16.0f), kFloorColor, glm::mat4(1.0f), false);
+  addObject(s, "floor", makePlane(16.0f, 16.0f), kFloorColor);
   addObject(s, "wall", makeBox({8.0f, 3.0f, 0.2f}), {0.8f, 0.78f, 0.7f}, translate({0.0f, 1.5f, -2.5f}));
   constexpr int kRows = 3, kSlatsPerRow = 9;
   constexpr float kSlatWidthM = 0.12f, kSpacingM = 0.4f, kSlatHeightM = 1.6f;
@@ -106,7 +106,7 @@ Scene makeFence() {
 Scene makeGrazing() {
   Scene s;
   s.name = "grazing";
-  addObject(s, "floor", makePlane(40.0f, 40.0f), kFloorColor, glm::mat4(1.0f), false);
+  addObject(s, "floor", makePlane(40.0f, 40.0f), kFloorColor);
   addObject(s, "box", makeBox({1.0f, 1.0f, 1.0f}), {0.8f, 0.35f, 0.3f}, translate({0.0f, 0.5f, 0.0f}));
   constexpr float kElevationDeg = 10.0f;  // 80 degrees from the plane's normal
   const float e = glm::radians(kElevationDeg);

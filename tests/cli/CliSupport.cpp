@@ -1,0 +1,35 @@
+#include "CliSupport.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace penumbra::test {
+
+std::string freshDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("penumbra-cli-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+RunResult runPenumbra(const std::string& args, const std::string& workDir) {
+  const std::string dir = workDir.empty() ? freshDir("run") : workDir;
+  const std::string outFile = dir + "/.stdout", errFile = dir + "/.stderr";
+  const std::string cmd = "cd '" + dir + "' && '" PENUMBRA_BINARY "' " + args + " > '" + outFile + "' 2> '" + errFile + "' < /dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  auto slurp = [](const std::string& f) {
+    std::ifstream in(f);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  r.out = slurp(outFile);
+  r.err = slurp(errFile);
+  return r;
+}
+
+}  // namespace penumbra::test

@@ -1,0 +1,18 @@
+#pragma once
+// Runs the penumbra binary and captures exit code, stdout and stderr.
+#include <string>
+
+namespace penumbra::test {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+/// Runs `penumbra <args>` in `workDir` (created if needed). `args` is passed to the shell as is.
+RunResult runPenumbra(const std::string& args, const std::string& workDir = "");
+
+/// A fresh empty folder under the system temp dir.
+std::string freshDir(const std::string& name);
+
+}  // namespace penumbra::test

@@ -1,0 +1,97 @@
+#include "CliSupport.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+size_t countLines(const std::string& s) {
+  size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+}  // namespace
+
+TEST(RenderCli, NoArgumentsWritesANonBlankPng) {
+  const std::string dir = freshDir("noargs");
+  const RunResult r = runPenumbra("", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> rgba = readPng(dir + "/penumbra.png", w, h);
+  EXPECT_EQ(w, 640);
+  EXPECT_EQ(h, 360);
+  // Non-blank: many distinct grey levels, and both shadowed and lit pixels.
+  std::vector<bool> seen(256, false);
+  for (size_t i = 0; i < rgba.size(); i += 4) seen[rgba[i + 1]] = true;
+  EXPECT_GT(std::count(seen.begin(), seen.end(), true), 40);
+  // No temporary file left behind.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST(RenderCli, MissingSceneFileExits1NamingIt) {
+  const RunResult r = runPenumbra("render --scene /no/such/scene.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("/no/such/scene.json"), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+TEST(RenderCli, UnknownFilterExits2) {
+  const RunResult r = runPenumbra("render --filter blurry");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("blurry"), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+TEST(RenderCli, BadSetIsAUsageError) {
+  RunResult r = runPenumbra("render --set hard.nothing=1");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("hard.nothing"), std::string::npos) << r.err;
+  r = runPenumbra("render --set hard.slopeBias=99");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("out of range"), std::string::npos) << r.err;
+  r = runPenumbra("render --size 10by10");
+  EXPECT_EQ(r.exitCode, 2);
+  r = runPenumbra("render --no-such-option");
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+TEST(RenderCli, ShadowMapBeyondTheDriverLimitIsAClearError) {
+  const RunResult r = runPenumbra("render --shadow-map 1000000 --size 32x32");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("maximum"), std::string::npos) << r.err;
+}
+
+TEST(RenderCli, VisibilityExrAndDump) {
+  const std::string dir = freshDir("dump");
+  const RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --visibility v.exr --dump d --out c.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<float> v = readExr(dir + "/v.exr", w, h);
+  EXPECT_EQ(w, 64);
+  EXPECT_EQ(h, 48);
+  EXPECT_GT(*std::max_element(v.begin(), v.end()), 0.9f);
+  EXPECT_LT(*std::min_element(v.begin(), v.end()), 0.1f);
+  for (const char* f : {"color.png", "visibility.exr", "gbuffer-normal.png", "gbuffer-albedo.png", "shadow-map.exr", "shadow-map.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/d/" + f)) << f;
+}
+
+TEST(RenderCli, HelpOnEverySubcommand) {
+  for (const char* sub : {"", "render", "list"}) {
+    const RunResult r = runPenumbra(std::string(sub) + " --help");
+    EXPECT_EQ(r.exitCode, 0) << sub;
+    EXPECT_NE(r.out.find("--"), std::string::npos) << sub;
+  }
+}
+
+TEST(ListCli, JsonListsEveryTechniqueAndParameter) {
+  const RunResult r = runPenumbra("list --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* s : {"\"scenes\"", "\"boxes\"", "\"pen\"", "\"fence\"", "\"grazing\"", "\"uniform\"", "\"hard\"", "hard.bias", "light.size"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+}

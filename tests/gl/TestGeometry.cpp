@@ -1,0 +1,58 @@
+#include "TestGeometry.h"
+
+namespace penumbra::test {
+
+CasterTriangles::CasterTriangles(const Scene& scene) {
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow) continue;
+    const Mesh& m = scene.meshes[o.mesh];
+    for (uint32_t i : m.indices) mV.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.vertices[i].position, 1.0f)));
+  }
+}
+
+float CasterTriangles::nearestHit(const glm::vec3& o, const glm::vec3& d, float tMin, float tMax) const {
+  float nearest = tMax;
+  for (size_t i = 0; i + 2 < mV.size(); i += 3) {  // Möller–Trumbore
+    const glm::vec3 e1 = mV[i + 1] - mV[i], e2 = mV[i + 2] - mV[i];
+    const glm::vec3 p = glm::cross(d, e2);
+    const float det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-12f) continue;
+    const float inv = 1.0f / det;
+    const glm::vec3 s = o - mV[i];
+    const float u = glm::dot(s, p) * inv;
+    if (u < 0.0f || u > 1.0f) continue;
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(d, q) * inv;
+    if (v < 0.0f || u + v > 1.0f) continue;
+    const float t = glm::dot(e2, q) * inv;
+    if (t > tMin && t < nearest) nearest = t;
+  }
+  return nearest;
+}
+
+float CasterTriangles::robustOcclusion(const Scene& scene, const glm::vec3& origin, const glm::vec3& normal,
+                                       float jitterM, const glm::vec3& onlyAlong) const {
+  const Light& l = scene.light();
+  const glm::vec3 t1 = glm::normalize(glm::cross(normal, std::abs(normal.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+  const glm::vec3 t2 = glm::cross(normal, t1);
+  std::vector<glm::vec3> offsets = {glm::vec3(0), t1 * jitterM, -t1 * jitterM, t2 * jitterM, -t2 * jitterM};
+  if (glm::length(onlyAlong) > 0.0f) offsets = {glm::vec3(0), onlyAlong * jitterM, -onlyAlong * jitterM};
+  int hits = 0;
+  constexpr float kStartM = 1e-3f;  // leave the surface the point lies on
+  for (const glm::vec3& off : offsets) {
+    const glm::vec3 p = origin + off + normal * kStartM;
+    glm::vec3 dir;
+    float tMax = 1e30f;
+    if (l.type == LightType::Spot) {
+      dir = l.position - p;
+      tMax = glm::length(dir);
+      dir /= tMax;
+    } else {
+      dir = -l.direction;
+    }
+    hits += blocked(p, dir, 0.0f, tMax) ? 1 : 0;
+  }
+  return hits == static_cast<int>(offsets.size()) ? 1.0f : hits == 0 ? 0.0f : 0.5f;
+}
+
+}  // namespace penumbra::test
