@@ -36,7 +36,7 @@ void printParams(std::span<const ParamDesc> descs) {
   for (const ParamDesc& d : descs) {
     std::string range;
     if (d.isChoice()) {
-      for (std::string_view c : d.choices) range += (range.empty() ? "" : "|") + std::string(c);
+      range = joinNames(d.choices, "|");
     } else {
       range = fmt::format("{} .. {}", d.min, d.max);
     }

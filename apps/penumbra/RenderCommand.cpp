@@ -25,7 +25,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
   commands.push_back({sub, [o] {
     Setup s = makeSetup(o->technique);
-    gl::HeadlessContext context({.debug = false, .verbose = o->technique.verbose});
+    gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     Renderer renderer(context);
     renderer.setScene(s.scene);
     renderer.setTechnique(std::move(s.projection), std::move(s.filter));

@@ -51,6 +51,17 @@ private:
   std::vector<float> mValues;
 };
 
+/// "a, b, c": names joined for messages and listings.
+template <class Range>
+std::string joinNames(const Range& names, std::string_view separator = ", ") {
+  std::string out;
+  for (const auto& n : names) {
+    if (!out.empty()) out += separator;
+    out += std::string_view(n);
+  }
+  return out;
+}
+
 /// Scene-level parameters ("light.size", ...): they change the scene, not a technique.
 std::span<const ParamDesc> sceneParamDescs();
 

@@ -18,6 +18,10 @@ struct ShadowView {
   /// along the light axis mapped from [nearM, farM]. Linear for ortho and perspective views.
   glm::vec4 depthPlane{0.0f};
   bool perspective = false;
+  /// clipFromWorld is warped (psm, tsm): a projective map in the light's image plane on top of
+  /// the plain light view, so texel size varies over the map. `extent` then describes the unwarped
+  /// fit; shaders take the local texel size from clipFromWorld's derivatives (common/shadow.glsl).
+  bool warped = false;
   float nearM = 0.0f, farM = 1.0f;  ///< along the light axis, metres
   /// Ortho: world size (m) of the map's x and y extent. Perspective: the extent at unit
   /// distance from the light, i.e. 2·tan(half fov) on each axis.

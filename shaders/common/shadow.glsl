@@ -23,23 +23,95 @@ vec3 shadowCoord(int view, vec3 ws) {
   return vec3(c.xy / c.w * 0.5 + 0.5, lightDepth(view, ws));
 }
 
+// psm/tsm: clipFromWorld carries a projective warp, so a texel's size depends on where it is.
+bool isWarpedView(int view) { return u_shadow.views[view].extent.w > 0.5; }
+
+// Gradients (per world metre) of the map's u and v at ws: uv = 0.5 + 0.5·clip.xy / clip.w.
+void shadowUvGradients(int view, vec3 ws, out vec3 gradU, out vec3 gradV) {
+  mat4 m = u_shadow.views[view].clipFromWorld;
+  vec4 c = m * vec4(ws, 1.0);
+  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
+  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
+  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
+  gradU = 0.5 * (rowX * c.w - c.x * rowW) / (c.w * c.w);
+  gradV = 0.5 * (rowY * c.w - c.y * rowW) / (c.w * c.w);
+}
+
+// Metres that one uv unit of the map spans at ws along its x and y axes, measured across the
+// light's rays (the plane a texel is cut from): the lengths of a texel's two edges there (× map
+// size). Unwarped views: the extent (× distance for a perspective view). Warped views: from
+// the derivatives of clipFromWorld; their texels are sheared, so the edge along u is the
+// column of the inverse Jacobian, |∇v⊥| / |det|, not 1 / |∇u| (the spacing of u's iso-lines,
+// which is shorter and would leave slope biases a texel short).
+vec2 shadowMetresPerUv(int view, vec3 ws) {
+  if (!isWarpedView(view)) {
+    vec2 extent = u_shadow.views[view].extent.xy;
+    return isPerspectiveView(view) ? extent * lightDistance(view, ws) : extent;
+  }
+  vec3 gradU, gradV;
+  shadowUvGradients(view, ws, gradU, gradV);
+  vec3 l = toLight(ws);
+  gradU -= dot(gradU, l) * l;
+  gradV -= dot(gradV, l) * l;
+  const float kMinDeterminant = 1e-12;  // uv² per m²; keeps a degenerate warp finite
+  float det = max(abs(dot(cross(gradU, gradV), l)), kMinDeterminant);
+  return vec2(length(gradV), length(gradU)) / det;
+}
+
 // World-space size (m) of one shadow-map texel at ws (the larger side of a non-square texel).
 float shadowTexelWorldSize(int view, vec3 ws) {
-  float extent = max(u_shadow.views[view].extent.x, u_shadow.views[view].extent.y);
-  float scale = isPerspectiveView(view) ? lightDistance(view, ws) : 1.0;
-  return extent * scale / shadowMapSize();
+  vec2 metres = shadowMetresPerUv(view, ws);
+  return max(metres.x, metres.y) / shadowMapSize();
 }
 
 // Metres of light-axis distance per unit of stored depth.
 float depthRangeM(int view) { return u_shadow.views[view].range.y - u_shadow.views[view].range.x; }
 
-// The view (cascade) whose split contains this point's camera depth; the last one otherwise.
-int selectShadowView(vec3 ws) {
-  float viewDepth = -(u_frame.viewFromWorld * vec4(ws, 1.0)).z;
+// Camera view depth (m) of a world point: what cascades are split by.
+float cameraViewDepth(vec3 ws) { return -(u_frame.viewFromWorld * vec4(ws, 1.0)).z; }
+
+// The view (cascade) whose split contains this camera depth; the last one otherwise.
+int shadowViewAtDepth(float viewDepth) {
   int n = shadowViewCount();
   for (int i = 0; i < n - 1; ++i)
     if (viewDepth <= u_shadow.views[i].range.w) return i;
   return n - 1;
+}
+
+// Set by the visibility pass while it evaluates one side of a cascade blend (-1: by depth).
+// Filters need not know: every one of them asks selectShadowView.
+int g_forcedShadowView = -1;
+
+// The view (cascade) a filter should use for this point.
+int selectShadowView(vec3 ws) {
+  return g_forcedShadowView >= 0 ? g_forcedShadowView : shadowViewAtDepth(cameraViewDepth(ws));
+}
+
+// Cascade blend: within the band (extent.z metres of camera depth) before a split, visibility is
+// mix(V(first), V(second), weight), the weight rising linearly from 0 to 1 across the band, so
+// the resolution step at the split does not show as a seam. The next cascade is fitted to cover
+// the band. Outside a band: first == second, weight 0.
+struct ShadowViewBlend {
+  int first;
+  int second;
+  float weight;
+};
+
+ShadowViewBlend shadowViewBlend(vec3 ws) {
+  float depth = cameraViewDepth(ws);
+  ShadowViewBlend b;
+  b.first = shadowViewAtDepth(depth);
+  b.second = b.first;
+  b.weight = 0.0;
+  float band = u_shadow.views[b.first].extent.z;
+  if (b.first < shadowViewCount() - 1 && band > 0.0) {
+    float start = u_shadow.views[b.first].range.w - band;
+    if (depth > start) {
+      b.second = b.first + 1;
+      b.weight = clamp((depth - start) / band, 0.0, 1.0);
+    }
+  }
+  return b;
 }
 
 bool insideMap(vec3 coord) { return all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(1.0))); }

@@ -1,8 +1,8 @@
 // G-buffer pass: world position, shading and geometric normals (both turned toward the camera,
 // so open meshes shade from either side), base colour.
 #include "common/frame.glsl"
+#include "common/material.glsl"
 
-layout(location = PN_LOC_OBJECT) uniform int u_object;
 in vec3 v_wsPosition;
 in vec3 v_wsNormal;
 in vec2 v_uv;
@@ -13,6 +13,7 @@ layout(location = 2) out vec4 o_geoNormal;
 layout(location = 3) out vec4 o_albedo;
 
 void main() {
+  alphaTest(v_uv);
   vec3 toCamera = u_frame.cameraPosition.xyz - v_wsPosition;
   // The triangle's own plane, from screen-space derivatives of the interpolated position.
   vec3 g = normalize(cross(dFdx(v_wsPosition), dFdy(v_wsPosition)));
@@ -22,5 +23,5 @@ void main() {
   o_position = vec4(v_wsPosition, 1.0);
   o_normal = vec4(n, 0.0);
   o_geoNormal = vec4(g, 0.0);
-  o_albedo = vec4(u_objects[u_object].baseColor.rgb, 1.0);
+  o_albedo = vec4(materialBaseColor(v_uv), 1.0);
 }

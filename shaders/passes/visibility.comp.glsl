@@ -1,9 +1,53 @@
 // The visibility pass: one thread per pixel; V = shadowVisibility(...) of the active filter
 // for pixels that face the light, 0 for pixels that face away (no direct light reaches them),
-// 1 where there is no geometry.
+// 1 where there is no geometry. Inside a cascade blend band V mixes two cascades (the filter is
+// run once per cascade with selectShadowView forced). With PN_VISIBILITY_POINTS defined the same
+// is done for a list of world points (Renderer::visibilityAt) instead of the G-buffer.
 #include "common/visibility.glsl"
+#include "shared/VisibilityPoints.h"
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
+
+float blendedVisibility(SurfacePoint s) {
+  ShadowViewBlend b = shadowViewBlend(s.ws);
+  g_forcedShadowView = b.first;
+  float v = clamp(shadowVisibility(s), 0.0, 1.0);
+  if (b.weight > 0.0) {
+    g_forcedShadowView = b.second;
+    v = mix(v, clamp(shadowVisibility(s), 0.0, 1.0), b.weight);
+  }
+  g_forcedShadowView = -1;
+  return v;
+}
+
+float surfaceVisibility(vec3 ws, vec3 geoNormal, ivec2 px) {
+  SurfacePoint s;
+  s.ws = ws;
+  s.geoNormal = normalize(geoNormal);
+  s.toLight = toLight(s.ws);
+  s.NoL = dot(s.geoNormal, s.toLight);
+  s.pixel = px;
+  return s.NoL > 0.0 ? blendedVisibility(s) : 0.0;
+}
+
+#ifdef PN_VISIBILITY_POINTS
+
+layout(std430, binding = PN_SSBO_POINTS) readonly buffer PointBlock {
+  ivec4 u_pointInfo;  // x: count, y: grid width
+  VisibilityPointGpu u_points[];
+};
+layout(std430, binding = PN_SSBO_POINT_VISIBILITY) writeonly buffer PointVisibilityBlock { float o_pointVisibility[]; };
+
+void main() {
+  ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+  int i = id.y * u_pointInfo.y + id.x;
+  if (id.x >= u_pointInfo.y || i >= u_pointInfo.x) return;
+  VisibilityPointGpu p = u_points[i];
+  o_pointVisibility[i] = surfaceVisibility(p.position.xyz, p.geoNormal.xyz, p.pixel.xy);
+}
+
+#else
+
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
 
 void main() {
@@ -11,14 +55,8 @@ void main() {
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
   vec4 pos = texelFetch(s_gbufPosition, px, 0);
   float v = 1.0;
-  if (pos.w > 0.5) {
-    SurfacePoint s;
-    s.ws = pos.xyz;
-    s.geoNormal = normalize(texelFetch(s_gbufGeoNormal, px, 0).xyz);
-    s.toLight = toLight(s.ws);
-    s.NoL = dot(s.geoNormal, s.toLight);
-    s.pixel = px;
-    v = s.NoL > 0.0 ? clamp(shadowVisibility(s), 0.0, 1.0) : 0.0;
-  }
+  if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, texelFetch(s_gbufGeoNormal, px, 0).xyz, px);
   imageStore(i_visibility, px, vec4(v));
 }
+
+#endif

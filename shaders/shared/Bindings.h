@@ -10,6 +10,8 @@
 #define PN_SSBO_OBJECTS 0  // ObjectGpu[]: per-object transform and material (Frame.h)
 #define PN_SSBO_TEST 1     // GLSL unit tests write their results here
 #define PN_SSBO_AUX 2      // free for a pass's own data
+#define PN_SSBO_POINTS 3   // VisibilityPointGpu[]: world points for Renderer::visibilityAt (VisibilityPoints.h)
+#define PN_SSBO_POINT_VISIBILITY 4  // float[]: V at those points
 
 // Texture units (samplers)
 #define PN_TEX_GBUF_POSITION 0  // RGBA32F: world position (m), w = 1 where geometry

@@ -13,3 +13,5 @@
 // Debug views of the lit pass
 #define PN_VIEW_SHADED 0
 #define PN_VIEW_VISIBILITY 1
+#define PN_VIEW_CASCADES 2       // shading tinted by the cascade (view) each pixel uses; blends mixed
+#define PN_VIEW_TEXEL_DENSITY 3  // screen pixels per shadow-map texel as a heatmap (shared/DensityRamp.h)

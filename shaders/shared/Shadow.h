@@ -9,7 +9,7 @@ struct ShadowViewGpu {
   mat4 clipFromWorld;  // rasterisation and lookup: ndc.xy * 0.5 + 0.5 = map uv
   vec4 depthPlane;     // linear light depth in [0,1] = dot(depthPlane, vec4(ws, 1))
   vec4 range;          // x: near (m), y: far (m), z: 1 = perspective / 0 = orthographic, w: split far (view depth, m)
-  vec4 extent;         // xy: ortho: map extent (m); perspective: extent at 1 m (2 tan(half fov)); z: blend band (m); w: unused
+  vec4 extent;         // xy: ortho: map extent (m); perspective: extent at 1 m (2 tan(half fov)); z: blend band (m); w: 1 = warped (psm/tsm: texel size from clipFromWorld's derivatives)
 };
 
 struct ShadowUniforms {

@@ -16,8 +16,16 @@ struct GlInfo {
   bool softwareRenderer = false;
 };
 
+#ifdef NDEBUG
+inline constexpr bool kDebugBuild = false;
+#else
+inline constexpr bool kDebugBuild = true;
+#endif
+
 struct ContextOptions {
-  bool debug = false;    ///< install the debug-message callback (GL errors throw)
+  /// Install the debug-message callback (GL errors then throw at the end of the pass);
+  /// on by default in Debug builds.
+  bool debug = kDebugBuild;
   bool verbose = false;  ///< print GL_RENDERER / GL_VERSION once on stderr
 };
 

@@ -56,10 +56,31 @@ void alphaOcclusionFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+/// What Embree would crash on rather than report: bad indices, non-finite vertices. (Not
+/// Scene::validate(): the tracer does not need the scene's lights.)
+void checkCasters(const Scene& scene) {
+  for (const Object& object : scene.objects) {
+    PN_CHECK(object.mesh < scene.meshes.size() && object.material < scene.materials.size(),
+             fmt::format("reference: object '{}': mesh or material index out of range", object.name));
+    if (!object.castsShadow) continue;
+    const Mesh& mesh = scene.meshes[object.mesh];
+    PN_CHECK(mesh.indices.size() % 3 == 0 &&
+                 std::all_of(mesh.indices.begin(), mesh.indices.end(), [&](uint32_t i) { return i < mesh.vertices.size(); }),
+             fmt::format("reference: mesh '{}': indices are not triangles within its {} vertices", mesh.name,
+                         mesh.vertices.size()));
+    for (const Vertex& v : mesh.vertices)
+      PN_CHECK(std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z),
+                fmt::format("reference: mesh '{}': a vertex is not finite", mesh.name));
+  }
+  for (const Material& m : scene.materials)
+    PN_CHECK(m.baseColorTexture < static_cast<int>(scene.images.size()),
+             fmt::format("reference: material '{}': texture index out of range", m.name));
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
-  scene.validate();
+  checkCasters(scene);
   mImages = scene.images;
 
   mDevice.reset(rtcNewDevice(nullptr));

@@ -2,6 +2,7 @@
 
 #include "render/GpuScene.h"
 #include "shared/Bindings.h"
+#include "shared/VisibilityPoints.h"
 
 #include <penumbra/Error.h>
 
@@ -21,6 +22,10 @@ const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, 
   d.label = "visibility " + std::string(filterFile);
   d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
   d.defines = defines;
+  if (mPoints) {
+    d.label += " (points)";
+    d.defines.set("PN_VISIBILITY_POINTS");
+  }
   return mShaders.program(d);
 }
 
@@ -56,6 +61,12 @@ void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
 }
 
 void FrameContext::dispatchScreen(const gl::Program& program) const {
+  if (mPoints) {
+    mPoints->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINTS);
+    mPointVisibility->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINT_VISIBILITY);
+    dispatch2D(program, PN_POINTS_GRID_WIDTH, (mPointCount + PN_POINTS_GRID_WIDTH - 1) / PN_POINTS_GRID_WIDTH, PN_SCREEN_GROUP);
+    return;
+  }
   PN_ASSERT(mVisibility != nullptr);
   mVisibility->bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
   dispatch2D(program, mScreen.x, mScreen.y, PN_SCREEN_GROUP);

@@ -53,7 +53,18 @@ public:
   void setFilterBlockBytes(const void* data, size_t bytes);
 
   /// Binds the G-buffer and the visibility image, then runs `program` once per pixel.
+  /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
   void dispatchScreen(const gl::Program& program) const;
+
+  /// Points mode, used by Renderer::visibilityAt: visibilityProgram() compiles the pass with
+  /// PN_VISIBILITY_POINTS (positions from `points`, a PointBlock of shared/VisibilityPoints.h,
+  /// V into `visibility`, one float per point) and dispatchScreen() runs over the points. A
+  /// filter needs no code for it as long as its visibility goes through those two calls.
+  void setPoints(const gl::Buffer* points, const gl::Buffer* visibility, int count) {
+    mPoints = points;
+    mPointVisibility = visibility;
+    mPointCount = count;
+  }
   /// Runs `program` over a width × height grid in groups of `group`².
   static void dispatch2D(const gl::Program& program, int width, int height, int group);
 
@@ -67,6 +78,9 @@ private:
   gl::Buffer& mFilterBlock;
   PassTimer& mTimer;
   const gl::Texture* mVisibility;
+  const gl::Buffer* mPoints = nullptr;
+  const gl::Buffer* mPointVisibility = nullptr;
+  int mPointCount = 0;
 };
 
 }  // namespace penumbra

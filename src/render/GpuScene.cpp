@@ -3,11 +3,41 @@
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
 
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
 namespace penumbra {
+namespace {
+
+// sRGB storage: the shaders read linear colour (texelFetch decodes), alpha stays linear. One
+// level: materials are sampled at the nearest texel (material.glsl), like the reference does.
+gl::Texture uploadImage(const std::string& label, int width, int height, const uint8_t* rgba) {
+  gl::Texture t(label, {GL_TEXTURE_2D, GL_SRGB8_ALPHA8, width, height, 1, 1});
+  glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  t.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
+  return t;
+}
+
+}  // namespace
 
 GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
+  const uint8_t white[4] = {255, 255, 255, 255};
+  mWhite = uploadImage("white texture", 1, 1, white);
+  mTextures.resize(scene.images.size());
+  const int maxSide = gl::maxTextureSize();
+  for (const Material& mat : scene.materials) {
+    if (mat.baseColorTexture < 0) continue;
+    const auto i = static_cast<size_t>(mat.baseColorTexture);
+    if (mTextures[i]) continue;
+    const Image& im = scene.images[i];
+    PN_CHECK(im.width > 0 && im.height > 0 && im.width <= maxSide && im.height <= maxSide &&
+                 im.rgba.size() == 4 * static_cast<size_t>(im.width) * static_cast<size_t>(im.height),
+             fmt::format("image {} of material '{}' is {}x{} with {} bytes (each side 1..{}, RGBA8)", i, mat.name,
+                         im.width, im.height, im.rgba.size(), maxSide));
+    mTextures[i] = uploadImage(fmt::format("image {}", i), im.width, im.height, im.rgba.data());
+  }
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
   std::vector<std::pair<size_t, size_t>> meshRanges;  // first vertex, first index
@@ -20,8 +50,9 @@ GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
   for (const Object& o : scene.objects) {
     const Mesh& m = scene.meshes[o.mesh];
     const Material& mat = scene.materials[o.material];
+    const GLuint texture = mat.baseColorTexture >= 0 ? mTextures[static_cast<size_t>(mat.baseColorTexture)].id() : mWhite.id();
     mDraws.push_back({static_cast<GLsizei>(m.indices.size()), meshRanges[o.mesh].second,
-                      static_cast<GLint>(meshRanges[o.mesh].first), o.castsShadow});
+                      static_cast<GLint>(meshRanges[o.mesh].first), o.castsShadow, texture});
     gpu::ObjectGpu g{};
     g.worldFromObject = o.worldFromObject;
     g.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(o.worldFromObject)));
@@ -51,6 +82,7 @@ void GpuScene::draw(GLuint program, bool castersOnly) const {
     const Draw& d = mDraws[i];
     if (castersOnly && !d.castsShadow) continue;
     glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
+    glBindTextureUnit(PN_TEX_BASECOLOR, d.texture);
     glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(d.firstIndex * sizeof(uint32_t)), d.baseVertex);
   }

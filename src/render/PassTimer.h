@@ -36,8 +36,15 @@ private:
 /// Times one pass for the lifetime of the scope.
 class ScopedPass {
 public:
-  ScopedPass(PassTimer& t, std::string name) : mT(t) { mT.begin(std::move(name)); }
-  ~ScopedPass() { mT.end(); }
+  /// Also opens a GL debug group named after the pass, so captures show the frame's structure.
+  ScopedPass(PassTimer& t, std::string name) : mT(t) {
+    glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, static_cast<GLsizei>(name.size()), name.c_str());
+    mT.begin(std::move(name));
+  }
+  ~ScopedPass() {
+    mT.end();
+    glPopDebugGroup();
+  }
   ScopedPass(const ScopedPass&) = delete;
   ScopedPass& operator=(const ScopedPass&) = delete;
 

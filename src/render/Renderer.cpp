@@ -11,6 +11,7 @@
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
+#include "shared/VisibilityPoints.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
@@ -40,6 +41,8 @@ struct Renderer::Impl {
   gl::Texture position, normal, geoNormal, albedo, depth, visibility, color;
   gl::Framebuffer gbuffer;
   int frameIndex = 0;
+  int mapSize = 0;                   // of the last frame
+  int debugView = PN_VIEW_SHADED;    // of the last frame
 
   explicit Impl(bool cpuClock) : timer(cpuClock) {}
 
@@ -125,7 +128,7 @@ gpu::ShadowUniforms shadowUniforms(const LightFrusta& frusta, int mapSize) {
     s.views[i].clipFromWorld = v.clipFromWorld;
     s.views[i].depthPlane = v.depthPlane;
     s.views[i].range = glm::vec4(v.nearM, v.farM, v.perspective ? 1.0f : 0.0f, v.splitFarM);
-    s.views[i].extent = glm::vec4(v.extent, frusta.blendBandM, 0.0f);
+    s.views[i].extent = glm::vec4(v.extent, frusta.blendBandM, v.warped ? 1.0f : 0.0f);
   }
   s.info = glm::ivec4(static_cast<int>(frusta.views.size()), mapSize, 0, 0);
   return s;
@@ -142,6 +145,8 @@ void Renderer::render(const RenderOptions& options) {
     throw Error(fmt::format("shadow map size {} is outside 1..{} (the driver's maximum texture size)",
                             options.shadowMapSize, maxSize));
   im.ensureScreen({options.width, options.height});
+  im.mapSize = options.shadowMapSize;
+  im.debugView = options.debugView;
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   mFrusta = mProjection->computeFrusta(im.scene.camera, aspect, im.scene.light(), im.scene, options.shadowMapSize);
 
@@ -199,17 +204,105 @@ void Renderer::render(const RenderOptions& options) {
   gl::throwIfGlError("the visibility pass");
   {
     ScopedPass pass(im.timer, "lit");
-    ProgramDesc d;
-    d.label = "lit";
-    d.compute = {"passes/lit.comp.glsl"};
-    const gl::Program& program = mShaders->program(d);
-    glProgramUniform1i(program.id(), PN_LOC_LEVEL, PN_VIEW_SHADED);
-    im.visibility.bindUnit(PN_TEX_VISIBILITY);
-    im.color.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
-    FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
+    runLitPass();
   }
-  gl::throwIfGlError("the lit pass");
   mTimings = im.timer.endFrame();
+}
+
+void Renderer::runLitPass() {
+  Impl& im = *mImpl;
+  ProgramDesc d;
+  d.label = "lit";
+  d.compute = {"passes/lit.comp.glsl"};
+  const gl::Program& program = mShaders->program(d);
+  glProgramUniform1i(program.id(), PN_LOC_LEVEL, im.debugView);
+  im.position.bindUnit(PN_TEX_GBUF_POSITION);
+  im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
+  im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
+  im.visibility.bindUnit(PN_TEX_VISIBILITY);
+  im.color.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
+  im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);  // cascade and texel-density views
+  FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
+  gl::throwIfGlError("the lit pass");
+}
+
+std::vector<float> Renderer::visibilityAt(std::span<const SurfaceSample> points) {
+  PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "visibilityAt() before render()");
+  Impl& im = *mImpl;
+  if (points.empty()) return {};
+  const glm::ivec4 header(static_cast<int>(points.size()), PN_POINTS_GRID_WIDTH, 0, 0);
+  std::vector<gpu::VisibilityPointGpu> data(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    data[i] = {glm::vec4(points[i].position, 1.0f), glm::vec4(points[i].geoNormal, 0.0f), glm::ivec4(points[i].pixel, 0, 0)};
+  gl::Buffer in("visibility points", sizeof(header) + data.size() * sizeof(gpu::VisibilityPointGpu));
+  in.upload(&header, sizeof(header));
+  in.upload(data.data(), data.size() * sizeof(gpu::VisibilityPointGpu), sizeof(header));
+  gl::Buffer out("visibility at points", points.size() * sizeof(float));
+  im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
+  FrameContext ctx(im.scene, mFrusta, im.mapSize, im.size, *mShaders, *im.gpuScene, im.filterBlock, im.timer, &im.visibility);
+  ctx.setPoints(&in, &out, static_cast<int>(points.size()));
+  im.timer.beginFrame();  // a filter may time sub-passes; these times are not kept
+  mFilter->computeVisibility(ctx);
+  im.timer.endFrame();
+  gl::throwIfGlError("the visibility pass at points");
+  std::vector<float> v(points.size());
+  out.download(v.data(), v.size() * sizeof(float));
+  return v;
+}
+
+std::vector<float> Renderer::computeScreenScalar(const std::string& computeShader) {
+  PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "computeScreenScalar() before render()");
+  Impl& im = *mImpl;
+  ProgramDesc d;
+  d.label = computeShader;
+  d.compute = {computeShader};
+  const gl::Program& program = mShaders->program(d);
+  gl::Texture target("screen scalar", {GL_TEXTURE_2D, GL_R32F, im.size.x, im.size.y, 1, 1});
+  im.position.bindUnit(PN_TEX_GBUF_POSITION);
+  im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
+  im.geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
+  im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
+  im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
+  target.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
+  FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
+  gl::throwIfGlError(computeShader.c_str());
+  std::vector<float> v(static_cast<size_t>(im.size.x) * static_cast<size_t>(im.size.y));
+  target.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
+  return v;
+}
+
+ColorImage Renderer::shadeWithVisibility(std::span<const float> visibility) {
+  Impl& im = *mImpl;
+  const size_t n = static_cast<size_t>(im.size.x) * static_cast<size_t>(im.size.y);
+  PN_CHECK(visibility.size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", visibility.size(), im.size.x, im.size.y));
+  const std::vector<float> own = readVisibility();
+  glTextureSubImage2D(im.visibility.id(), 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, visibility.data());
+  runLitPass();
+  ColorImage out = readColor();
+  glTextureSubImage2D(im.visibility.id(), 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, own.data());
+  runLitPass();
+  return out;
+}
+
+void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>& lights) {
+  if (lights.empty()) throw usageError("setCameraAndLights: a scene needs at least one light");
+  mImpl->scene.camera = camera;
+  mImpl->scene.lights = lights;
+}
+
+const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
+
+std::vector<DebugImage> Renderer::debugImages() const {
+  std::vector<DebugImage> out = {{"visibility", &mImpl->visibility},
+                                 {"gbuffer-depth", &mImpl->depth},
+                                 {"gbuffer-normal", &mImpl->normal},
+                                 {"gbuffer-albedo", &mImpl->albedo}};
+  if (mFilter)
+    for (const DebugImage& d : mFilter->debugImages()) out.push_back(d);
+  return out;
 }
 
 std::vector<float> Renderer::readVisibility() const {

@@ -1,5 +1,6 @@
 // The built-in scenes: each one isolates a shadowing case that the techniques are judged on.
 #include <penumbra/Error.h>
+#include <penumbra/Params.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -51,8 +52,8 @@ Scene makePen() {
   spot.size = 0.12f;
   spot.intensity = 9.0f;
   s.lights.push_back(spot);
-  s.camera.position = {-0.3f, 1.9f, 2.6f};
-  s.camera.target = {-0.45f, 0.1f, 0.0f};
+  s.camera.position = {-0.7f, 2.1f, 2.7f};
+  s.camera.target = {-0.85f, 0.1f, -0.1f};
   s.camera.fovYRad = 0.75f;
   s.camera.farM = 50.0f;
   return s;
@@ -117,6 +118,73 @@ Scene makeGrazing() {
   return s;
 }
 
+// A city for large views (csm/psm/tsm and the aliasing measure): a 640 m ground with a grid of
+// buildings, street poles and trees, a plaza of trees and poles in front of the camera, which
+// stands at eye height looking down an avenue toward the horizon under a low sun from the side.
+Scene makeCity() {
+  Scene s;
+  s.name = "city";
+  constexpr float kHalfM = 320.0f;               // the ground is 640 m on a side
+  constexpr float kPitchM = 40.0f, kStreetM = 12.0f;  // block grid: 28 m blocks, 12 m streets
+  constexpr float kPlazaStartZ = 240.0f;         // no buildings beyond: the plaza by the camera
+  // Deterministic per-cell numbers in [0,1) (a hash: the same city on every platform).
+  auto hash01 = [](uint32_t a, uint32_t b) {
+    uint32_t h = a * 0x9E3779B1u ^ (b + 0x7F4A7C15u) * 0x85EBCA77u;
+    h ^= h >> 15; h *= 0x2C1B3C6Du; h ^= h >> 12; h *= 0x297A2D39u; h ^= h >> 15;
+    return static_cast<float>(h & 0xFFFFFFu) / 16777216.0f;
+  };
+  addObject(s, "ground", makePlane(2.0f * kHalfM, 2.0f * kHalfM), kFloorColor);
+  const Mesh pole = makeCylinder(0.12f, 6.0f, 8), trunk = makeCylinder(0.25f, 3.0f, 8), crown = makeSphere(2.0f, 12, 8);
+  auto addTree = [&](const glm::vec3& at, int id) {
+    addObject(s, fmt::format("trunk {}", id), trunk, {0.4f, 0.3f, 0.2f}, translate(at));
+    addObject(s, fmt::format("crown {}", id), crown, {0.3f, 0.55f, 0.25f}, translate(at + glm::vec3(0.0f, 4.5f, 0.0f)));
+  };
+  int trees = 0, poles = 0;
+  const int cells = static_cast<int>(2.0f * kHalfM / kPitchM);
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const float x = -kHalfM + kPitchM * (static_cast<float>(i) + 0.5f), z = -kHalfM + kPitchM * (static_cast<float>(j) + 0.5f);
+      const auto ui = static_cast<uint32_t>(i), uj = static_cast<uint32_t>(j);
+      // A pole at every crossing corner of the block.
+      addObject(s, fmt::format("pole {}", poles++), pole, {0.3f, 0.3f, 0.32f},
+                translate({x - 0.5f * kPitchM + 1.5f, 0.0f, z - 0.5f * kPitchM + 1.5f}));
+      if (z > kPlazaStartZ) continue;
+      const float block = kPitchM - kStreetM;
+      if (hash01(ui, uj) < 0.15f) {  // a park: four trees
+        for (int t = 0; t < 4; ++t)
+          addTree({x + (t % 2 == 0 ? -0.25f : 0.25f) * block, 0.0f, z + (t < 2 ? -0.25f : 0.25f) * block}, trees++);
+        continue;
+      }
+      const glm::vec3 size(block * (0.55f + 0.45f * hash01(ui + 101u, uj)), 8.0f + 37.0f * hash01(ui, uj + 211u),
+                           block * (0.55f + 0.45f * hash01(ui + 307u, uj + 13u)));
+      const float tone = 0.55f + 0.3f * hash01(ui + 17u, uj + 19u);
+      addObject(s, fmt::format("building {}.{}", i, j), makeBox(size), {tone, tone * 0.95f, tone * 0.88f},
+                translate({x, 0.5f * size.y, z}));
+    }
+  // The plaza in front of the camera: rows of trees and poles on open ground.
+  for (int r = 0; r < 5; ++r)
+    for (int c = -3; c <= 3; ++c) {
+      const glm::vec3 at(7.0f * static_cast<float>(c) + 3.5f * static_cast<float>(r % 2), 0.0f, 302.0f - 12.0f * static_cast<float>(r));
+      if (std::abs(at.x) < 2.0f) continue;  // keep the view down the avenue open
+      if (c % 2 == 0) addTree(at, trees++);
+      else addObject(s, fmt::format("pole {}", poles++), pole, {0.3f, 0.3f, 0.32f}, translate(at));
+    }
+  for (float x : {-4.0f, 4.0f})  // benches a few metres ahead: shadows right by the camera
+    addObject(s, "bench", makeBox({2.0f, 0.5f, 0.6f}), {0.5f, 0.35f, 0.25f}, translate({x, 0.25f, 306.0f}));
+  constexpr float kSunElevationDeg = 20.0f;
+  const float e = glm::radians(kSunElevationDeg);
+  // From the left and a little behind the camera: shadows fall across the avenue.
+  const glm::vec3 horizontal = glm::normalize(glm::vec3(1.0f, 0.0f, -0.25f));
+  s.lights.push_back(sun(horizontal * std::cos(e) + glm::vec3(0.0f, -std::sin(e), 0.0f), 0.005f));
+  s.camera.position = {0.0f, 1.7f, 312.0f};
+  s.camera.target = {0.0f, -2.0f, 212.0f};
+  s.camera.fovYRad = 0.8f;
+  s.camera.nearM = 0.1f;
+  s.camera.farM = 2000.0f;
+  s.shadow.projection = "csm";
+  return s;
+}
+
 struct Builtin {
   std::string_view name, description;
   std::function<Scene()> make;
@@ -128,6 +196,7 @@ const std::vector<Builtin>& builtins() {
       {"pen", "a pencil leaning on the floor under a spherical spot light: contact-hardening penumbra", makePen},
       {"fence", "rows of thin slats before a wall: overlapping occluders, variance light leaks", makeFence},
       {"grazing", "a plane lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},
+      {"city", "a 640 m city under a low sun, seen from eye height: perspective aliasing (csm/psm/tsm)", makeCity},
   };
   return list;
 }
@@ -153,8 +222,7 @@ Scene makeBuiltinScene(std::string_view name) {
       s.validate();
       return s;
     }
-  std::string known;
-  for (const Builtin& b : builtins()) known += (known.empty() ? "" : ", ") + std::string(b.name);
+  const std::string known = joinNames(builtinSceneNames());
   throw usageError(fmt::format("unknown scene '{}' (built-in scenes: {}; or give a .json file)", name, known));
 }
 

@@ -3,6 +3,8 @@
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>
 
+#include "scene/loaders/ModelImport.h"
+
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -179,6 +181,23 @@ Scene loadSceneFile(const std::filesystem::path& path) {
   for (size_t i = 0; i < objects.size(); ++i) {
     Reader r(objects[i], file, fmt::format("objects[{}]", i));
     const std::string name = r.string("name", fmt::format("object {}", i));
+    if (r.has("file")) {  // a glTF/OBJ model, path relative to this file, in place of a shape (docs/scenes.md)
+      const std::string model = r.string("file", "");
+      if (model.empty()) r.fail("file", "must name a .gltf, .glb or .obj file");
+      for (const char* key : {"shape", "color"})
+        if (r.has(key)) r.fail(key, "not allowed with 'file' (the model brings its own meshes and materials)");
+      const glm::mat4 m = readTransform(r);
+      const bool casts = r.boolean("castsShadow", true);
+      r.finish();
+      const std::filesystem::path modelPath = path.parent_path() / model;
+      if (!loaders::isModelFile(modelPath)) r.fail("file", fmt::format("'{}' is not a .gltf, .glb or .obj file", model));
+      try {
+        loaders::appendModel(s, loaders::loadModelFile(modelPath).scene, m, casts, name, modelPath.string());
+      } catch (const Error& e) {
+        r.fail("file", e.what());
+      }
+      continue;
+    }
     Mesh mesh = readShape(r);
     const glm::vec3 color = r.vec<3>("color", glm::vec3(0.8f));
     if (glm::any(glm::lessThan(color, glm::vec3(0))) || glm::any(glm::greaterThan(color, glm::vec3(1))))
@@ -213,6 +232,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
 Scene loadScene(const std::string& nameOrPath) {
   const bool looksLikeFile = nameOrPath.find('/') != std::string::npos || nameOrPath.find('.') != std::string::npos;
   if (!looksLikeFile) return makeBuiltinScene(nameOrPath);
+  if (loaders::isModelFile(nameOrPath)) return loaders::loadModelScene(nameOrPath);
   return loadSceneFile(nameOrPath);
 }
 

@@ -19,8 +19,7 @@ float parseParamValue(const ParamDesc& d, std::string_view text) {
   if (d.isChoice()) {
     for (size_t i = 0; i < d.choices.size(); ++i)
       if (d.choices[i] == text) return static_cast<float>(i);
-    std::string names;
-    for (std::string_view c : d.choices) names += (names.empty() ? "" : ", ") + std::string(c);
+    const std::string names = joinNames(d.choices);
     throw usageError(fmt::format("{}={}: expected one of {}", d.key, text, names));
   }
   float v = 0.0f;
@@ -59,9 +58,9 @@ bool Parameterized::hasParam(std::string_view key) const {
 size_t Parameterized::indexOf(std::string_view key) const {
   for (size_t i = 0; i < mDescs.size(); ++i)
     if (mDescs[i].key == key) return i;
-  std::string known;
-  for (const ParamDesc& d : mDescs) known += (known.empty() ? "" : ", ") + std::string(d.key);
-  throw usageError(fmt::format("unknown parameter '{}'{}", key, known.empty() ? "" : " (this one has: " + known + ")"));
+  std::vector<std::string_view> keys;
+  for (const ParamDesc& d : mDescs) keys.push_back(d.key);
+  throw usageError(fmt::format("unknown parameter '{}' (this one has: {})", key, keys.empty() ? "none" : joinNames(keys)));
 }
 
 void Parameterized::setParam(std::string_view key, float value) {

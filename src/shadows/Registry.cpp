@@ -3,7 +3,15 @@
 #include <penumbra/Registry.h>
 
 #include "shadows/filters/HardFilter.h"
+#include "shadows/filters/PcfFilter.h"
+#include "shadows/filters/PcssFilter.h"
+#include "shadows/filters/SecondDepthFilter.h"
+#include "shadows/filters/VsmFilter.h"
+#include "shadows/projections/CascadedProjection.h"
+#include "shadows/projections/PerspectiveProjection.h"
+#include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
+#include "shadows/sdf/SdfFilter.h"
 
 #include <fmt/format.h>
 
@@ -21,6 +29,9 @@ struct Entry {
 const std::vector<Entry<Projection>>& projections() {
   static const std::vector<Entry<Projection>> list = {
       {"uniform", [] { return std::make_unique<UniformProjection>(); }},
+      {"csm", [] { return std::make_unique<CascadedProjection>(); }},
+      {"psm", [] { return std::make_unique<PerspectiveProjection>(); }},
+      {"tsm", [] { return std::make_unique<TrapezoidalProjection>(); }},
   };
   return list;
 }
@@ -28,17 +39,13 @@ const std::vector<Entry<Projection>>& projections() {
 const std::vector<Entry<Filter>>& filters() {
   static const std::vector<Entry<Filter>> list = {
       {"hard", [] { return std::make_unique<HardFilter>(); }},
+      {"pcf", [] { return std::make_unique<PcfFilter>(); }},
+      {"pcss", [] { return std::make_unique<PcssFilter>(); }},
+      {"second-depth", [] { return std::make_unique<SecondDepthFilter>(); }},
+      {"sdf", [] { return std::make_unique<SdfFilter>(); }},
+      {"vsm", [] { return std::make_unique<VsmFilter>(); }},
   };
   return list;
-}
-
-template <class T>
-std::unique_ptr<T> make(const std::vector<Entry<T>>& list, std::string_view id, const char* what) {
-  for (const Entry<T>& e : list)
-    if (e.id == id) return e.make();
-  std::string known;
-  for (const Entry<T>& e : list) known += (known.empty() ? "" : ", ") + std::string(e.id);
-  throw usageError(fmt::format("unknown {} '{}' (known: {})", what, id, known));
 }
 
 template <class T>
@@ -46,6 +53,14 @@ std::vector<std::string> ids(const std::vector<Entry<T>>& list) {
   std::vector<std::string> out;
   for (const Entry<T>& e : list) out.emplace_back(e.id);
   return out;
+}
+
+template <class T>
+std::unique_ptr<T> make(const std::vector<Entry<T>>& list, std::string_view id, const char* what) {
+  for (const Entry<T>& e : list)
+    if (e.id == id) return e.make();
+  const std::string known = joinNames(ids(list));
+  throw usageError(fmt::format("unknown {} '{}' (known: {})", what, id, known));
 }
 
 }  // namespace

@@ -10,7 +10,8 @@ struct RunResult {
 };
 
 /// Runs `penumbra <args>` in `workDir` (created if needed). `args` is passed to the shell as is.
-RunResult runPenumbra(const std::string& args, const std::string& workDir = "");
+/// `launcher` goes before the binary (e.g. "xvfb-run -a" for the viewer).
+RunResult runPenumbra(const std::string& args, const std::string& workDir = "", const std::string& launcher = "");
 
 /// A fresh empty folder under the system temp dir.
 std::string freshDir(const std::string& name);

@@ -3,7 +3,7 @@
 // a surface with its own rasterised depth fails at random along the texel grid ("acne"),
 // worst when the light grazes the surface; the bias modes trade it against "peter-panning"
 // (shadows detached from their casters).
-#include "common/visibility.glsl"
+#include "common/depth_compare.glsl"
 #include "shadows/filters/hard.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform HardBlock { HardUniforms u_hard; };
@@ -20,7 +20,7 @@ float shadowVisibility(SurfacePoint s) {
   float bias = 0.0;
   if (mode != PN_BIAS_NONE) bias = u_hard.bias.x;
   // Across one texel, a plane tilted by θ from the light changes depth by texel · tan θ.
-  if (mode == PN_BIAS_SLOPE) bias += u_hard.bias.y * texelM * slopeTangent(s) / depthRangeM(view);
+  if (mode == PN_BIAS_SLOPE) bias += slopeDepthOffset(view, s.ws, slopeTangent(s), u_hard.bias.y);
   float stored = texelFetch(s_shadowMap, ivec3(coord.xy * shadowMapSize(), view), 0).r;
   return coord.z - bias <= stored ? 1.0 : 0.0;
 }

@@ -2,7 +2,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace penumbra {
 
@@ -57,6 +59,199 @@ Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera&
     out.extend(clipped.transformed(lightFromWorld));
   }
   return out;
+}
+
+
+// ---- Convex bodies -------------------------------------------------------------------------
+
+namespace {
+
+// Half-spaces given in a view space (p_view = viewFromWorld · p_world), moved to world space.
+std::vector<HalfSpace> toWorld(const std::vector<HalfSpace>& inView, const glm::mat4& viewFromWorld) {
+  const glm::dmat4 m(viewFromWorld);
+  const glm::dmat3 r(m);
+  const glm::dvec3 t(m[3]);
+  std::vector<HalfSpace> out;
+  for (const HalfSpace& h : inView) out.push_back({glm::transpose(r) * h.n, glm::dot(h.n, t) + h.d});
+  return out;
+}
+
+// A pyramid with apex at the view origin looking down -Z: |x| <= tx·depth, |y| <= ty·depth,
+// nearM <= depth <= farM (depth = -z).
+std::vector<HalfSpace> pyramidInView(double tx, double ty, double nearM, double farM) {
+  return {{{0, 0, -1}, -nearM}, {{0, 0, 1}, farM}, {{1, 0, -tx}, 0}, {{-1, 0, -tx}, 0}, {{0, 1, -ty}, 0}, {{0, -1, -ty}, 0}};
+}
+
+}  // namespace
+
+std::vector<HalfSpace> frustumHalfSpaces(const Camera& camera, float aspect, float nearM, float farM) {
+  const double ty = std::tan(0.5 * static_cast<double>(camera.fovYRad)), tx = ty * static_cast<double>(aspect);
+  return toWorld(pyramidInView(tx, ty, nearM, farM), camera.viewFromWorld());
+}
+
+std::vector<HalfSpace> boxHalfSpaces(const Aabb& box) {
+  std::vector<HalfSpace> out;
+  for (int a = 0; a < 3; ++a) {
+    glm::dvec3 n(0.0);
+    n[a] = 1.0;
+    out.push_back({n, -static_cast<double>(box.lo[a])});
+    out.push_back({-n, static_cast<double>(box.hi[a])});
+  }
+  return out;
+}
+
+std::vector<HalfSpace> spotHalfSpaces(const Light& light, float nearM) {
+  const double t = std::tan(static_cast<double>(light.coneAngleRad));
+  std::vector<HalfSpace> inView = pyramidInView(t, t, nearM, 0.0);
+  inView.erase(inView.begin() + 1);  // no far plane: the scene's box bounds the body
+  return toWorld(inView, lightViewMatrix(light.position, light.direction));
+}
+
+std::vector<glm::vec3> convexVertices(std::span<const HalfSpace> hs) {
+  // Scale for tolerances: the largest plane offset (metres); points this far off a plane, in
+  // relative terms, still count as on it.
+  double scale = 1.0;
+  for (const HalfSpace& h : hs) scale = std::max(scale, std::abs(h.d) / std::max(glm::length(h.n), 1e-300));
+  const double insideEps = 1e-7 * scale, mergeEps = 1e-6 * scale;
+  std::vector<glm::dvec3> found;
+  const size_t n = hs.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        const glm::dvec3 a = hs[i].n, b = hs[j].n, c = hs[k].n;
+        const glm::dvec3 bc = glm::cross(b, c);
+        const double det = glm::dot(a, bc);
+        if (std::abs(det) < 1e-12 * glm::length(a) * glm::length(b) * glm::length(c)) continue;
+        // Solve a·p = -da, b·p = -db, c·p = -dc (Cramer's rule in vector form).
+        const glm::dvec3 p = (-hs[i].d * bc - hs[j].d * glm::cross(c, a) - hs[k].d * glm::cross(a, b)) / det;
+        bool inside = true;
+        for (const HalfSpace& h : hs)
+          if (h.eval(p) < -insideEps * glm::length(h.n)) { inside = false; break; }
+        if (!inside) continue;
+        bool dup = false;
+        for (const glm::dvec3& q : found)
+          if (glm::length(q - p) < mergeEps) { dup = true; break; }
+        if (!dup) found.push_back(p);
+      }
+  std::vector<glm::vec3> out;
+  if (found.size() < 4) return out;  // empty, or flat: no volume to fit
+  for (const glm::dvec3& p : found) out.emplace_back(p);
+  return out;
+}
+
+std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const Scene& scene,
+                                    const Light& light) {
+  std::vector<HalfSpace> hs = frustumHalfSpaces(camera, aspect, nearM, farM);
+  const std::vector<HalfSpace> box = boxHalfSpaces(scene.bounds());
+  hs.insert(hs.end(), box.begin(), box.end());
+  if (light.type == LightType::Spot) {
+    constexpr float kSpotBodyNearM = 0.01f;  // receivers at the light's centre get no shadow
+    const std::vector<HalfSpace> spot = spotHalfSpaces(light, kSpotBodyNearM);
+    hs.insert(hs.end(), spot.begin(), spot.end());
+  }
+  return convexVertices(hs);
+}
+
+std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Light& light, const Aabb& casters) {
+  std::vector<glm::vec3> out;
+  if (body.empty() || casters.empty()) return out;
+  if (light.type == LightType::Directional) {
+    const glm::vec3 toLight = -glm::normalize(light.direction);
+    // Per slab: distance to its exit plane along toLight is affine in the point, so moving each
+    // vertex by it moves every point of the body by at least its true exit distance.
+    float bestWorst = std::numeric_limits<float>::max();
+    int bestAxis = -1;
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(toLight[a]) < 1e-6f) continue;
+      const float plane = toLight[a] > 0.0f ? casters.hi[a] : casters.lo[a];
+      float worst = 0.0f;
+      for (const glm::vec3& p : body) worst = std::max(worst, (plane - p[a]) / toLight[a]);
+      if (worst < bestWorst) { bestWorst = worst; bestAxis = a; }
+    }
+    const float plane = toLight[bestAxis] > 0.0f ? casters.hi[bestAxis] : casters.lo[bestAxis];
+    for (const glm::vec3& p : body) out.push_back(p + toLight * std::max(0.0f, (plane - p[bestAxis]) / toLight[bestAxis]));
+  } else {
+    // Toward the light's centre: p + (L − p)·s. The exit fraction through one slab is monotonic
+    // in the point's coordinate, so its largest value over the vertices bounds the whole body.
+    const glm::vec3 L = light.position;
+    float best = 1.0f;
+    for (int a = 0; a < 3; ++a) {
+      float worst = 0.0f;
+      for (const glm::vec3& p : body) {
+        const float toward = L[a] - p[a];
+        if (std::abs(toward) < 1e-6f) { worst = 1.0f; break; }
+        const float plane = toward > 0.0f ? casters.hi[a] : casters.lo[a];
+        worst = std::max(worst, std::clamp((plane - p[a]) / toward, 0.0f, 1.0f));
+      }
+      best = std::min(best, worst);
+    }
+    for (const glm::vec3& p : body) out.push_back(p + (L - p) * best);
+  }
+  return out;
+}
+
+glm::mat4 sunViewMatrix(const Scene& scene, const Light& light) {
+  const Aabb bounds = scene.bounds();
+  const float radius = std::max(bounds.radius(), 1e-3f);
+  return lightViewMatrix(bounds.center() - glm::normalize(light.direction) * (2.0f * radius), light.direction);
+}
+
+Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m) {
+  Aabb b;
+  for (const glm::vec3& p : points) b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+  return b;
+}
+
+ShadowView fitLightView(const Scene& scene, const Light& light, std::span<const glm::vec3> receivers,
+                        std::span<const glm::vec3> casters, float marginFraction) {
+  constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
+  constexpr float kMinNearM = 0.01f;              // a spot map's nearest near plane
+  constexpr float kMinNearFractionOfFar = 1e-3f;  // bounds the perspective depth ratio
+  ShadowView v;
+  if (light.type == LightType::Directional) {
+    v.viewFromWorld = sunViewMatrix(scene, light);
+    Aabb recv = boundsOf(receivers, v.viewFromWorld);
+    if (recv.empty()) recv = scene.bounds().transformed(v.viewFromWorld);
+    Aabb all = recv;
+    all.extend(boundsOf(casters, v.viewFromWorld));
+    const glm::vec2 pad = glm::vec2(recv.size()) * marginFraction;
+    const glm::vec2 lo = glm::vec2(recv.lo) - pad, hi = glm::vec2(recv.hi) + pad;
+    const float farM = -recv.lo.z, nearM = -all.hi.z;
+    const float padZ = (farM - nearM) * kDepthPaddingFraction + 1e-4f;
+    v.nearM = nearM - padZ;
+    v.farM = farM + padZ;
+    v.perspective = false;
+    v.extent = hi - lo;
+    v.clipFromWorld = glm::orthoRH_ZO(lo.x, hi.x, lo.y, hi.y, v.nearM, v.farM) * v.viewFromWorld;
+  } else {
+    v.viewFromWorld = lightViewMatrix(light.position, light.direction);
+    const float tanCone = std::tan(light.coneAngleRad);
+    glm::vec2 lo(tanCone), hi(-tanCone);
+    float farM = kMinNearM * 2.0f, nearM = std::numeric_limits<float>::max();
+    for (const glm::vec3& p : receivers) {
+      const glm::vec3 l(v.viewFromWorld * glm::vec4(p, 1.0f));
+      const float depth = std::max(-l.z, kMinNearM);
+      lo = glm::min(lo, glm::vec2(l) / depth);
+      hi = glm::max(hi, glm::vec2(l) / depth);
+      farM = std::max(farM, depth);
+      nearM = std::min(nearM, depth);
+    }
+    if (receivers.empty()) { lo = glm::vec2(-tanCone); hi = glm::vec2(tanCone); nearM = kMinNearM; }
+    for (const glm::vec3& p : casters) nearM = std::min(nearM, -(v.viewFromWorld * glm::vec4(p, 1.0f)).z);
+    lo = glm::max(lo, glm::vec2(-tanCone));
+    hi = glm::min(hi, glm::vec2(tanCone));
+    const glm::vec2 pad = (hi - lo) * marginFraction;
+    lo -= pad;
+    hi += pad;
+    v.nearM = std::max({nearM * (1.0f - kDepthPaddingFraction), kMinNearM, farM * kMinNearFractionOfFar});
+    v.farM = farM * (1.0f + kDepthPaddingFraction);
+    v.perspective = true;
+    v.extent = hi - lo;
+    v.clipFromWorld = glm::frustumRH_ZO(lo.x * v.nearM, hi.x * v.nearM, lo.y * v.nearM, hi.y * v.nearM, v.nearM, v.farM) *
+                      v.viewFromWorld;
+  }
+  v.depthPlane = linearDepthPlane(v.viewFromWorld, v.nearM, v.farM);
+  return v;
 }
 
 }  // namespace penumbra

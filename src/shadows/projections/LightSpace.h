@@ -4,6 +4,7 @@
 #include <penumbra/Projection.h>
 
 #include <array>
+#include <span>
 #include <vector>
 
 namespace penumbra {
@@ -28,5 +29,52 @@ glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float fa
 /// the camera frustum's box (both in light space). Empty if nothing is visible.
 Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
                                   const Scene& scene);
+
+// ---- Convex bodies for the large-view projections (csm, psm, tsm) -----------------------------
+
+/// A closed half-space {p : dot(n, p) + d >= 0}. Double precision: vertex enumeration intersects
+/// nearly parallel planes (a long thin frustum against a flat ground box).
+struct HalfSpace {
+  glm::dvec3 n{0.0};
+  double d = 0.0;
+  double eval(const glm::dvec3& p) const { return glm::dot(n, p) + d; }
+};
+
+/// The camera frustum between view depths nearM and farM (metres): 6 half-spaces.
+std::vector<HalfSpace> frustumHalfSpaces(const Camera& camera, float aspect, float nearM, float farM);
+/// An axis-aligned box: 6 half-spaces.
+std::vector<HalfSpace> boxHalfSpaces(const Aabb& box);
+/// A spot light's square pyramid of half angle coneAngleRad, beyond nearM from its centre: 5.
+std::vector<HalfSpace> spotHalfSpaces(const Light& light, float nearM);
+
+/// Vertices of the bounded convex polyhedron where all half-spaces hold (every triple of planes
+/// meeting at a point inside the rest). Empty when the intersection is empty or degenerate.
+std::vector<glm::vec3> convexVertices(std::span<const HalfSpace> halfSpaces);
+
+/// The region whose receivers can show in the image between camera depths nearM and farM: the
+/// camera frustum ∩ the scene's bounds (∩ the spot pyramid for a spot light), as the vertices of
+/// that convex body. Empty when the slice sees no part of the scene.
+std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const Scene& scene,
+                                    const Light& light);
+
+/// Points P such that conv(body ∪ P) holds every point inside `casters` that lies between a point
+/// of `body` and the light (the casters that can shadow the body). Sun: each vertex moved toward
+/// the light until it leaves the casters' box through one chosen slab plane (exact along the
+/// plane, conservative elsewhere). Spot: the body scaled toward the light by one common factor.
+std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Light& light, const Aabb& casters);
+
+/// The sun's view for projections that must not move with the camera: centred on the scene,
+/// looking along the light, eye 2 bounding radii back (the same basis as `uniform`).
+glm::mat4 sunViewMatrix(const Scene& scene, const Light& light);
+
+/// Bounds of points after the affine transform m.
+Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m);
+
+/// One unwarped light view fitted to `receivers` (world points, e.g. a receiverBody) with casters
+/// `casters` (e.g. a casterExtrusion): sun = orthographic in sunViewMatrix's basis, spot =
+/// off-centre perspective from the light clamped to its cone; near/far bracket receivers and
+/// casters along the light axis. marginFraction widens xy (texels of margin / map size).
+ShadowView fitLightView(const Scene& scene, const Light& light, std::span<const glm::vec3> receivers,
+                        std::span<const glm::vec3> casters, float marginFraction);
 
 }  // namespace penumbra

@@ -1,0 +1,128 @@
+// penumbra bench: every configuration of scenes × projections × filters (× sweeps) timed and
+// measured against the reference; writes results.csv, results.json and report.html (docs/bench.md).
+#include "Commands.h"
+#include "Common.h"
+
+#include "gl/Context.h"
+#include "report/BenchRunner.h"
+#include "report/HtmlReport.h"
+#include "report/ResultsIO.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Reference.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+namespace penumbra::app {
+namespace {
+
+// The command line as typed, with the program's path shortened to its name.
+std::string commandLine() {
+  std::ifstream in("/proc/self/cmdline", std::ios::binary);
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), out;
+  size_t start = 0;
+  for (size_t i = 0; i <= all.size(); ++i) {
+    if (i < all.size() && all[i] != '\0') continue;
+    std::string arg = all.substr(start, i - start);
+    if (start == 0) arg = std::filesystem::path(arg).filename().string();
+    if (!arg.empty()) out += (out.empty() ? "" : " ") + (arg.find(' ') == std::string::npos ? arg : "'" + arg + "'");
+    start = i + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
+  struct Options {
+    std::vector<std::string> scenes, filters, projections, sweeps;
+    std::optional<std::string> size;
+    std::optional<int> shadowMap, frames, warmup, samples;
+    std::optional<double> maxSeconds;
+    std::string out = "bench";
+    bool quick = false, noCache = false, verbose = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "bench", "time and measure every technique against the reference; write results.csv, results.json, report.html");
+  sub->add_option("--scenes", o->scenes, "built-in scene names or scene files, comma-separated (default: every built-in scene)")
+      ->delimiter(',');
+  sub->add_option("--filters", o->filters, "filter ids, comma-separated (default: every filter)")->delimiter(',');
+  sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: every projection)")->delimiter(',');
+  sub->add_option("--sweep", o->sweeps,
+                  "key=from:to:count, repeatable: run each technique that has the parameter at count values "
+                  "(light.size applies to all; e.g. pcss.filterSamples=8:64:4)");
+  sub->add_option("--frames", o->frames, "timed frames per configuration (default 5; --quick 3)")->check(CLI::Range(1, 1000));
+  sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
+  sub->add_option("--size", o->size, "image size WxH (default 256x144; --quick 96x64)");
+  sub->add_option("--shadow-map", o->shadowMap, "shadow-map texels per side (default 1024; --quick 512)")->check(CLI::Range(16, 16384));
+  sub->add_option("--samples", o->samples, "reference light samples per pixel (default 256; --quick 36)")
+      ->check(CLI::Range(1, kMaxReferenceSamples));
+  sub->add_option("--max-seconds", o->maxSeconds, "stop timing a configuration after this many seconds (default 4)")
+      ->check(CLI::Range(0.0, 3600.0));
+  sub->add_option("--out", o->out, "output folder")->capture_default_str();
+  sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
+  sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
+  sub->add_flag("--verbose", o->verbose, "one line per configuration on stderr instead of the progress bar");
+  commands.push_back({sub, [o] {
+    report::BenchSettings settings;
+    std::vector<report::BenchPlan> plans = report::defaultPlans(o->quick, settings);
+    if (!o->scenes.empty() || !o->filters.empty() || !o->projections.empty() || !o->sweeps.empty()) {
+      report::BenchPlan custom{.name = "custom", .scenes = plans.front().scenes,
+                               .projections = plans.front().projections, .filters = plans.front().filters, .sweeps = {}};
+      if (!o->scenes.empty()) custom.scenes = o->scenes;
+      if (!o->filters.empty()) custom.filters = o->filters;
+      if (!o->projections.empty()) custom.projections = o->projections;
+      for (const std::string& s : o->sweeps) custom.sweeps.push_back(report::parseSweep(s));
+      plans = {custom};
+    }
+    if (o->size) std::tie(settings.width, settings.height) = parseSize(*o->size);
+    if (o->shadowMap) settings.shadowMapSize = *o->shadowMap;
+    if (o->frames) settings.timedFrames = *o->frames;
+    if (o->warmup) settings.warmupFrames = *o->warmup;
+    if (o->samples) settings.referenceSamples = *o->samples;
+    if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
+    settings.useCache = !o->noCache;
+    const std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
+
+    gl::HeadlessContext context({.debug = false, .verbose = o->verbose});
+    const report::SetupFactory factory = [](const report::BenchConfig& c) {
+      TechniqueOptions t;
+      t.scene = c.scene;
+      t.filter = c.filter;
+      t.projection = c.projection;
+      for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
+      Setup s = makeSetup(t);
+      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter)};
+    };
+    const std::filesystem::path dir(o->out);
+    report::BenchResults results =
+        report::runBench(context, configs, factory, {.settings = settings, .outDir = dir, .progress = true, .verbose = o->verbose});
+    results.machine.command = commandLine();
+    report::writeResults(dir, results);
+    report::writeHtmlReport(dir, results);
+
+    size_t failed = 0;
+    for (const report::SkippedConfig& k : results.skipped)
+      if (k.failed) {
+        ++failed;
+        std::fprintf(stderr, "penumbra bench: %s --projection %s --filter %s %s failed: %s\n", k.config.scene.c_str(),
+                     k.config.projection.c_str(), k.config.filter.c_str(), k.config.paramsText().c_str(), k.reason.c_str());
+      }
+    std::printf("%zu configurations measured, %zu skipped (%zu failed) in %.1f s on %s (%s)\nreport: %s\n",
+                results.rows.size(), results.skipped.size(), failed, results.seconds, results.machine.glRenderer.c_str(),
+                results.machine.clock.c_str(), (dir / "report.html").string().c_str());
+    if (failed > 0) {
+      std::fprintf(stderr, "penumbra bench: %zu configuration(s) failed; the report lists them\n", failed);
+      return 1;
+    }
+    return 0;
+  }});
+}
+
+}  // namespace penumbra::app

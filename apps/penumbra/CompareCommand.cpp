@@ -1,0 +1,157 @@
+// penumbra compare: a technique against the ray-traced reference on the same pixels — metrics,
+// per-pass times, and images (technique, reference, error heatmap, split-approximation error).
+#include "Commands.h"
+#include "Common.h"
+
+#include "gl/Context.h"
+#include "report/FrameComparison.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
+#include <penumbra/Metrics.h>
+#include <penumbra/Reference.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace penumbra::app {
+namespace {
+
+// Signed split-approximation error as colour: grey where the split is exact, red where it is too
+// bright, blue where it is too dark; full colour at `fullScale` (in units of outgoing radiance).
+ColorImage approximationImage(const ReferenceResult& ref) {
+  ColorImage img;
+  img.width = ref.width;
+  img.height = ref.height;
+  const size_t n = static_cast<size_t>(ref.width) * static_cast<size_t>(ref.height);
+  float fullScale = 1e-6f;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3& e = ref.approximationError[i];
+    fullScale = std::max(fullScale, std::abs(e.x + e.y + e.z) / 3.0f);
+  }
+  std::vector<uint8_t> raw(n * 4);
+  constexpr float kGrey = 96.0f;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3& e = ref.approximationError[i];
+    const float s = std::clamp((e.x + e.y + e.z) / 3.0f / fullScale, -1.0f, 1.0f);
+    const float a = std::abs(s);
+    const uint8_t* tint = s > 0 ? kLeakColor : kOverDarkColor;
+    for (int c = 0; c < 3; ++c) raw[i * 4 + static_cast<size_t>(c)] = static_cast<uint8_t>(kGrey * (1 - a) + tint[c] * a);
+    raw[i * 4 + 3] = 255;
+  }
+  img.rgba = flipRows<uint8_t>(raw, img.width, img.height, 4);
+  return img;
+}
+
+// The four images in a 2 × 2 sheet.
+ColorImage sheet(const std::vector<const ColorImage*>& images) {
+  const int w = images[0]->width, h = images[0]->height;
+  ColorImage out;
+  out.width = 2 * w;
+  out.height = 2 * h;
+  out.rgba.assign(static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 4, 0);
+  for (size_t k = 0; k < images.size() && k < 4; ++k) {
+    const int ox = static_cast<int>(k % 2) * w, oy = static_cast<int>(k / 2) * h;
+    for (int y = 0; y < h; ++y)
+      std::copy_n(images[k]->rgba.begin() + static_cast<std::ptrdiff_t>(y) * w * 4, static_cast<size_t>(w) * 4,
+                  out.rgba.begin() + (static_cast<std::ptrdiff_t>(oy + y) * out.width + ox) * 4);
+  }
+  return out;
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
+  struct Options {
+    TechniqueOptions technique;
+    int samples = 256;
+    std::string out = "compare";
+    bool json = false, noCache = false;
+  };
+  auto o = std::make_shared<Options>();
+  o->technique.size = "256x256";
+  CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
+  addTechniqueOptions(*sub, o->technique);
+  sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")
+      ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
+  sub->add_option("--out", o->out, "folder for technique.png, reference.png, heatmap.png, approximation.png, sheet.png")
+      ->capture_default_str();
+  sub->add_flag("--json", o->json, "print one JSON object on stdout instead of the table");
+  sub->add_flag("--no-cache", o->noCache, "recompute the reference even if a cached one exists");
+  commands.push_back({sub, [o] {
+    Setup s = makeSetup(o->technique);
+    gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    Renderer renderer(context);
+    renderer.setScene(s.scene);
+    renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+    renderer.render(s.render);  // warm-up: the first frame includes shader compilation
+    renderer.render(s.render);
+    const GBufferData gbuffer = renderer.readGBuffer();
+
+    ReferenceOptions ro;
+    ro.samples = o->samples;
+    ro.useCache = !o->noCache;
+    ro.progress = !o->json;
+    const ReferenceTracer tracer(s.scene);
+    const ReferenceResult ref = tracer.trace(gbuffer, s.scene.light(), ro);
+    const report::FrameComparison cmp = report::compareFrame(renderer, ref, true);
+    const VisibilityMetrics& m = cmp.metrics;
+    const double approximationRmse = compareVisibility(ref.visibility, ref.visibilityCosWeighted, ref.litMask).rmse;
+
+    const std::filesystem::path dir(o->out);
+    const ColorImage &technique = cmp.technique, &reference = cmp.reference, &heat = cmp.heatmap;
+    const ColorImage approx = approximationImage(ref);
+    const ColorImage all = sheet({&technique, &reference, &heat, &approx});
+    for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
+                                    {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all}})
+      writePng(dir / name, img->width, img->height, img->rgba);
+
+    const PassTimings& t = renderer.timings();
+    const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
+    if (o->json) {
+      nlohmann::json j;
+      j["scene"] = s.scene.name;
+      j["filter"] = filter;
+      j["projection"] = projection;
+      j["width"] = gbuffer.width;
+      j["height"] = gbuffer.height;
+      j["shadow_map"] = s.render.shadowMapSize;
+      j["light_size"] = s.scene.light().size;
+      j["rmse"] = m.rmse;
+      j["mae"] = m.mae;
+      j["leak_pct"] = m.leakPct;
+      j["overdark_pct"] = m.overDarkPct;
+      j["penumbra_rmse"] = m.penumbraRmse;
+      j["approximation_rmse"] = approximationRmse;
+      j["pixels"] = m.pixels;
+      j["timings_ms"] = nlohmann::json::object();
+      for (const auto& [pass, ms] : t.ms) j["timings_ms"][pass] = ms;
+      j["clock"] = t.clock;
+      j["gl_renderer"] = context.info().renderer;
+      j["reference_seconds"] = ref.traceSeconds;
+      j["reference_samples"] = ref.samplesPerPixel;
+      j["reference_cached"] = ref.fromCache;
+      std::printf("%s\n", j.dump(2).c_str());
+      return 0;
+    }
+    std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n", s.scene.name.c_str(),
+                projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height, s.render.shadowMapSize, s.scene.light().size);
+    std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f\n  over-dark %%     %8.3f\n"
+                "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
+                "  pixels          %8zu\n",
+                m.rmse, m.mae, m.leakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+    std::printf("  times (%s on %s):\n", t.clock.c_str(), context.info().renderer.c_str());
+    for (const auto& [pass, ms] : t.ms) std::printf("    %-12s %8.2f ms\n", pass.c_str(), ms);
+    std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", ref.samplesPerPixel, ref.traceSeconds,
+                ref.fromCache ? " (cached)" : "", o->out.c_str());
+    return 0;
+  }});
+}
+
+}  // namespace penumbra::app

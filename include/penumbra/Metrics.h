@@ -1,0 +1,64 @@
+#pragma once
+// The ruler: how far a technique's visibility V is from the reference V_ref, and images that
+// show where. Pure C++ (no GL). Per-pixel inputs are width × height arrays in the G-buffer's
+// row order (row 0 = bottom); output images are row 0 = top, ready for writePng.
+#include <penumbra/Renderer.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace penumbra {
+
+/// V − V_ref above this counts as a leak (light where the truth has shadow), V_ref − V above it
+/// as over-darkening. 0.1 is a visible step on a lit surface yet well above the reference's
+/// own noise at 256 samples (σ ≤ 0.03 in a penumbra).
+inline constexpr float kLeakThresholdV = 0.1f;
+/// Penumbra pixels: V_ref strictly inside (kPenumbraLowV, kPenumbraHighV). The margins keep
+/// the reference's sampling noise on fully lit/umbra pixels out of the penumbra statistic.
+inline constexpr float kPenumbraLowV = 0.02f;
+inline constexpr float kPenumbraHighV = 0.98f;
+
+/// Errors of V against V_ref over the mask's pixels. Percentages are of the mask's pixels.
+struct VisibilityMetrics {
+  double rmse = 0.0;          ///< sqrt(mean (V − V_ref)²)
+  double mae = 0.0;           ///< mean |V − V_ref|
+  double bias = 0.0;          ///< mean (V − V_ref): > 0 = too bright on average
+  double leakPct = 0.0;       ///< % of pixels with V − V_ref > kLeakThresholdV
+  double overDarkPct = 0.0;   ///< % of pixels with V_ref − V > kLeakThresholdV
+  double penumbraRmse = 0.0;  ///< RMSE over penumbra pixels only (0 when there are none)
+  size_t pixels = 0;          ///< pixels in the mask
+  size_t leakPixels = 0, overDarkPixels = 0, penumbraPixels = 0;
+};
+
+/// Compares V with V_ref where mask ≠ 0 (ReferenceResult::litMask). An empty mask means every
+/// pixel. Throws penumbra::Error when the sizes differ. All zeros when the mask selects nothing.
+/// Also measures the split approximation: compareVisibility(ref.visibility,
+/// ref.visibilityCosWeighted, ref.litMask).rmse is its error in units of V.
+VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const float> vRef,
+                                    std::span<const uint8_t> mask);
+
+struct HeatmapOptions {
+  /// |ΔV| at which the error colour is fully opaque over the grey; smaller errors blend in
+  /// linearly, so colour intensity ∝ |ΔV|. Range (0, 1], default 0.5.
+  float fullScaleDeltaV = 0.5f;
+};
+
+/// Signed error heatmap: a dimmed grey version of `base` (sRGB RGBA8, row 0 = top, the same
+/// size; e.g. the technique's colour image), or of V_ref when `base` is null, with leaks
+/// (V > V_ref) tinted kLeakColor and over-darkening (V < V_ref) tinted kOverDarkColor, by
+/// |ΔV| / fullScaleDeltaV. Pixels outside a non-empty mask stay grey. Throws on size mismatch.
+ColorImage errorHeatmap(std::span<const float> v, std::span<const float> vRef, std::span<const uint8_t> mask,
+                        int width, int height, const ColorImage* base = nullptr,
+                        const HeatmapOptions& options = {});
+
+/// Leaks in warm red, over-darkening in blue: distinguishable for the common colour-vision
+/// deficiencies and from any grey.
+inline constexpr uint8_t kLeakColor[3] = {230, 40, 20};
+inline constexpr uint8_t kOverDarkColor[3] = {20, 110, 255};
+
+/// V as grey (linear: 0 → 0, 1 → 255, no sRGB curve: the picture shows the number, not light);
+/// values are clamped to [0, 1]. Input row 0 = bottom, output row 0 = top.
+ColorImage visibilityImage(std::span<const float> v, int width, int height);
+
+}  // namespace penumbra

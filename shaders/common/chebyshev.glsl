@@ -1,0 +1,27 @@
+#pragma once
+// The Chebyshev–Cantelli one-tailed inequality, shared by every variance-based filter (vsm, vssm).
+// For any distribution of depths z with mean mu and variance var, and a receiver at depth t > mu:
+//   P(z >= t) <= p_max(t) = var / (var + (t - mu)^2).
+// It assumes nothing about the distribution's shape; it is exact for a single planar occluder in
+// front of a planar receiver, and too bright (light bleeding) when several occluders at different
+// depths share a filter region.
+
+// Upper bound on the fraction of depths at or beyond t ("lit fraction"); 1 where t <= mu.
+float chebyshevUpperBound(float mu, float var, float t) {
+  if (t <= mu) return 1.0;
+  float d = t - mu;
+  return var / (var + d * d);
+}
+
+// Mean and floored variance from the first two raw moments (E[z], E[z^2]). The floor hides both
+// the float cancellation of E[z^2] - E[z]^2 and the zero variance of a region of one flat depth.
+vec2 meanVariance(vec2 moments, float minVariance) {
+  return vec2(moments.x, max(moments.y - moments.x * moments.x, minVariance));
+}
+
+// Light-bleeding reduction: visibilities below `amount` become 0 and the rest is stretched back
+// over [0, 1]. Bleeding regions are usually faint (p_max small), so cutting the low tail removes
+// them at the price of darker, narrower penumbrae. amount = 0 is the identity.
+float reduceLightBleeding(float pMax, float amount) {
+  return clamp((pMax - amount) / (1.0 - amount), 0.0, 1.0);
+}

@@ -1,0 +1,50 @@
+#pragma once
+// A screen pixel's footprint in a shadow map, for prefiltered lookups (mip chains). The
+// visibility pass is a compute shader, so there are no implicit derivatives: instead the camera
+// rays through the neighbouring pixels are intersected with the surface's tangent plane (ray
+// differentials) and the offsets are projected into the map. Exact for planar receivers; assumes
+// the camera's symmetric perspective projection (Camera::clipFromView).
+#include "common/visibility.glsl"
+
+// A pixel's footprint is never allowed to exceed this many texels: at grazing angles the ray
+// differential grows without bound and would average the whole map into one value.
+const float kMaxFootprintTexels = 64.0;
+
+// World-space direction of the camera ray through normalised device coordinates ndc.
+vec3 cameraRayDirection(vec2 ndc) {
+  mat4 m = u_frame.clipFromWorld;
+  // clipFromWorld = P·V with P symmetric: its rows 0 and 1 are P00·(row 0 of V) and P11·(row 1 of
+  // V), and V's rotation rows are unit vectors, so their xyz lengths are P00 and P11.
+  float p00 = length(vec3(m[0][0], m[1][0], m[2][0]));
+  float p11 = length(vec3(m[0][1], m[1][1], m[2][1]));
+  return transpose(mat3(u_frame.viewFromWorld)) * vec3(ndc.x / p00, ndc.y / p11, -1.0);
+}
+
+// Where the ray through ndc meets the plane through ws with normal n (ws itself if it misses).
+vec3 hitTangentPlane(vec2 ndc, vec3 ws, vec3 n) {
+  vec3 o = u_frame.cameraPosition.xyz;
+  vec3 d = cameraRayDirection(ndc);
+  float dn = dot(d, n);
+  float t = abs(dn) > 1e-6 ? dot(ws - o, n) / dn : -1.0;
+  return t > 0.0 ? o + t * d : ws;
+}
+
+// Map-uv offsets of one pixel step in screen x and y at s, in view `view`; `uv` is s's map uv.
+void shadowFootprint(int view, SurfacePoint s, vec2 uv, out vec2 dUVdx, out vec2 dUVdy) {
+  vec2 screen = vec2(u_frame.screen.xy);
+  vec2 ndc = (vec2(s.pixel) + 0.5) / screen * 2.0 - 1.0;
+  vec2 stepNdc = 2.0 / screen;
+  dUVdx = shadowCoord(view, hitTangentPlane(ndc + vec2(stepNdc.x, 0.0), s.ws, s.geoNormal)).xy - uv;
+  dUVdy = shadowCoord(view, hitTangentPlane(ndc + vec2(0.0, stepNdc.y), s.ws, s.geoNormal)).xy - uv;
+  float maxUV = kMaxFootprintTexels / shadowMapSize();
+  if (length(dUVdx) > maxUV) dUVdx *= maxUV / length(dUVdx);
+  if (length(dUVdy) > maxUV) dUVdy *= maxUV / length(dUVdy);
+}
+
+// Widens a footprint so that each axis spans at least minUV (a minimum filter width: the
+// softness of a filtered hard shadow). A degenerate axis takes the map's own axis.
+void widenFootprint(float minUV, inout vec2 dUVdx, inout vec2 dUVdy) {
+  float lx = length(dUVdx), ly = length(dUVdy);
+  dUVdx = lx > 1e-12 ? dUVdx * max(1.0, minUV / lx) : vec2(minUV, 0.0);
+  dUVdy = ly > 1e-12 ? dUVdy * max(1.0, minUV / ly) : vec2(0.0, minUV);
+}

@@ -1,0 +1,81 @@
+// Images that show where V is wrong: a signed heatmap over a grey picture, and V as grey.
+// Inputs are in the G-buffer's order (row 0 = bottom); images come out row 0 = top.
+#include <penumbra/Error.h>
+#include <penumbra/Metrics.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+// The grey underlay spans [kGreyFloor, kGreyFloor + kGreyContrast·255]: dimmed and lifted so
+// that both colours stand out on black shadows and on white lit areas alike.
+constexpr float kGreyFloor = 40.0f;
+constexpr float kGreyContrast = 0.6f;
+// Rec. 709 luma weights, applied to the sRGB bytes: a display grey, not a light quantity.
+constexpr float kLumaR = 0.2126f, kLumaG = 0.7152f, kLumaB = 0.0722f;
+
+uint8_t toByte(float value) { return static_cast<uint8_t>(std::clamp(std::lround(value), 0L, 255L)); }
+
+void checkSize(size_t count, int width, int height, const char* what) {
+  PN_CHECK(width > 0 && height > 0 && count == static_cast<size_t>(width) * static_cast<size_t>(height),
+           fmt::format("metrics: {} has {} values, not {}x{}", what, count, width, height));
+}
+
+}  // namespace
+
+ColorImage visibilityImage(std::span<const float> v, int width, int height) {
+  checkSize(v.size(), width, height, "V");
+  ColorImage image{width, height, std::vector<uint8_t>(4 * v.size())};
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t in = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      const size_t out = static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      const uint8_t grey = toByte(255.0f * std::clamp(v[in], 0.0f, 1.0f));
+      image.rgba[4 * out + 0] = image.rgba[4 * out + 1] = image.rgba[4 * out + 2] = grey;
+      image.rgba[4 * out + 3] = 255;
+    }
+  }
+  return image;
+}
+
+ColorImage errorHeatmap(std::span<const float> v, std::span<const float> vRef, std::span<const uint8_t> mask,
+                        int width, int height, const ColorImage* base, const HeatmapOptions& options) {
+  checkSize(v.size(), width, height, "V");
+  checkSize(vRef.size(), width, height, "V_ref");
+  PN_CHECK(mask.empty() || mask.size() == v.size(),
+           fmt::format("metrics: the mask has {} pixels but V has {}", mask.size(), v.size()));
+  PN_CHECK(!base || (base->width == width && base->height == height && base->rgba.size() == 4 * v.size()),
+           fmt::format("metrics: the heatmap's base image is {}x{}, not {}x{}", base ? base->width : 0,
+                       base ? base->height : 0, width, height));
+  PN_CHECK(options.fullScaleDeltaV > 0.0f && options.fullScaleDeltaV <= 1.0f,
+           fmt::format("metrics: heatmap full scale {} must be in (0, 1]", options.fullScaleDeltaV));
+
+  ColorImage image{width, height, std::vector<uint8_t>(4 * v.size())};
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t in = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      const size_t out = static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      float luma;
+      if (base) {
+        const uint8_t* p = &base->rgba[4 * out];
+        luma = kLumaR * p[0] + kLumaG * p[1] + kLumaB * p[2];
+      } else {
+        luma = 255.0f * std::clamp(vRef[in], 0.0f, 1.0f);
+      }
+      const float grey = kGreyFloor + kGreyContrast * luma;
+      const float delta = v[in] - vRef[in];
+      const bool measured = mask.empty() || mask[in] != 0;
+      const float t = measured ? std::min(1.0f, std::abs(delta) / options.fullScaleDeltaV) : 0.0f;
+      const uint8_t* tint = delta > 0.0f ? kLeakColor : kOverDarkColor;
+      for (int c = 0; c < 3; ++c) image.rgba[4 * out + static_cast<size_t>(c)] = toByte(grey + t * (tint[c] - grey));
+      image.rgba[4 * out + 3] = 255;
+    }
+  }
+  return image;
+}
+
+}  // namespace penumbra

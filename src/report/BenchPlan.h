@@ -1,0 +1,77 @@
+#pragma once
+// What `penumbra bench` runs: lists of scenes × projections × filters, parameter sweeps over any
+// ParamDesc key (light.size included), and the settings every configuration shares. Pure C++
+// (no GL): the expansion into configurations is unit-tested (tests/unit/BenchReportTest.cpp).
+#include <penumbra/Params.h>
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace penumbra::report {
+
+/// `--sweep key=from:to:count`: count values evenly spaced from `from` to `to` (both included).
+struct Sweep {
+  std::string key;
+  float from = 0.0f, to = 0.0f;
+  int count = 1;
+  /// The values; rounded and de-duplicated for integer and choice parameters of `desc`.
+  std::vector<float> values(const ParamDesc& desc) const;
+};
+
+/// Parses "key=from:to:count"; throws a usage Error naming the text on bad syntax or count < 1.
+Sweep parseSweep(std::string_view text);
+
+/// Highest count one sweep may have: a guard against a typo that would run for hours.
+inline constexpr int kMaxSweepCount = 64;
+
+/// One cross product of scenes × projections × filters, each run once per combination of the
+/// values of the sweeps that apply to it (a sweep applies when its key is a scene parameter or
+/// is declared by the configuration's projection or filter).
+struct BenchPlan {
+  std::string name;  ///< "matrix", "light-size", "custom": the group a row belongs to
+  std::vector<std::string> scenes, projections, filters;
+  std::vector<Sweep> sweeps;
+};
+
+/// One configuration to measure.
+struct BenchConfig {
+  std::string plan;
+  std::string scene, projection, filter;
+  /// Swept values as "key" → "value" text (parseParamValue form), applied after the scene's own
+  /// parameters. Empty: the technique's defaults.
+  std::vector<std::pair<std::string, std::string>> params;
+  /// Shown in the report's image grid (technique | reference | heatmap).
+  bool inGrid = false;
+  /// "key=value;key=value" of `params`, "" when there are none.
+  std::string paramsText() const;
+};
+
+/// Settings shared by every configuration of a run.
+struct BenchSettings {
+  int width = 256, height = 144;  ///< image size (pixels)
+  int shadowMapSize = 1024;       ///< texels per side of each shadow map
+  int warmupFrames = 1;           ///< untimed frames first: the first one compiles the shaders
+  int timedFrames = 5;            ///< timed frames per configuration (median and spread over them)
+  /// A configuration stops after this many seconds of timed frames (at least one frame is
+  /// always timed): a technique that is very slow on this machine does not hold up the run.
+  double maxSecondsPerConfig = 4.0;
+  int referenceSamples = 256;     ///< light samples per pixel of the ray-traced reference
+  bool useCache = true;           ///< on-disk reference cache
+  int microRepetitions = 5;       ///< timed repetitions of each micro-benchmark
+};
+
+/// Every configuration of the plans, in run order (grouped by scene, then light, so that a
+/// scene is uploaded and its reference traced once). One configuration per scene and filter is
+/// marked inGrid: the first with the scene's own projection and no swept value (else the
+/// closest to that). Throws a usage Error for an unknown scene or id, a sweep
+/// whose key no technique of its plan declares, or swept values outside the parameter's range.
+std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans);
+
+/// The plans of `penumbra bench` with no arguments (quick = the `--quick` variant): every
+/// registered filter and projection on every built-in scene, plus a light-size sweep of every
+/// filter on the `pen` scene (cost vs light size). Also sets the matching settings.
+std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings);
+
+}  // namespace penumbra::report

@@ -1,0 +1,84 @@
+#include "report/BenchResults.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <thread>
+#include <sys/utsname.h>
+
+namespace penumbra::report {
+namespace {
+
+// The q-quantile of sorted samples, interpolating linearly between the two nearest ranks.
+double quantile(const std::vector<double>& sorted, double q) {
+  const double pos = q * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<size_t>(pos);
+  const size_t hi = std::min(lo + 1, sorted.size() - 1);
+  const double t = pos - static_cast<double>(lo);
+  return sorted[lo] * (1.0 - t) + sorted[hi] * t;
+}
+
+}  // namespace
+
+TimeStats timeStats(std::span<const double> samplesMs) {
+  if (samplesMs.empty()) return {};
+  std::vector<double> s(samplesMs.begin(), samplesMs.end());
+  std::sort(s.begin(), s.end());
+  constexpr double kLow = 0.1, kHigh = 0.9;  // the p10–p90 band: robust to one outlier frame
+  return {quantile(s, 0.5), quantile(s, kLow), quantile(s, kHigh)};
+}
+
+TimeStats BenchRow::time(std::string_view pass) const {
+  for (const PassStats& p : passes)
+    if (p.name == pass) return p.ms;
+  return {};
+}
+
+std::vector<std::string> BenchResults::passNames() const {
+  std::vector<std::string> names;
+  for (const BenchRow& r : rows)
+    for (const PassStats& p : r.passes)
+      if (p.name != kTotalPass && std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+  names.emplace_back(kTotalPass);
+  return names;
+}
+
+MachineInfo describeMachine() {
+  MachineInfo m;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.starts_with("model name")) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) m.cpu = line.substr(line.find_first_not_of(' ', colon + 1));
+      break;
+    }
+  utsname u{};
+  if (uname(&u) == 0) m.os = fmt::format("{} {} {}", u.sysname, u.release, u.machine);
+  m.hardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  char text[32] = {};
+  if (gmtime_r(&now, &utc) && std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc) > 0) m.date = text;
+  return m;
+}
+
+std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y) {
+  std::vector<size_t> order(x.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  // Ascending x, ties by ascending y: a point is on the front when its y beats every earlier one.
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
+  std::vector<size_t> front;
+  double bestY = std::numeric_limits<double>::infinity();
+  for (const size_t i : order)
+    if (y[i] < bestY) {
+      front.push_back(i);
+      bestY = y[i];
+    }
+  return front;
+}
+
+}  // namespace penumbra::report

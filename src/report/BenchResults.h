@@ -1,0 +1,90 @@
+#pragma once
+// What a bench run measured: one row per configuration (per-pass time statistics and quality
+// metrics against the reference), the configurations that were refused or failed, the
+// micro-benchmarks, and the machine. Written as CSV/JSON (ResultsIO.h) and HTML (HtmlReport.h).
+#include "report/BenchPlan.h"
+
+#include <penumbra/Metrics.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace penumbra::report {
+
+/// Spread of one pass's time over the timed frames, in milliseconds.
+struct TimeStats {
+  double median = 0.0, p10 = 0.0, p90 = 0.0;
+};
+
+/// Median and 10th/90th percentiles (linear interpolation between order statistics; with one
+/// sample all three are that sample). Empty input: all zero.
+TimeStats timeStats(std::span<const double> samplesMs);
+
+/// The time row a chart reads: the named pass, "total" for the sum of every pass.
+inline constexpr const char* kTotalPass = "total";
+
+struct PassStats {
+  std::string name;  ///< a Renderer pass ("shadow", "visibility", ...) or kTotalPass
+  TimeStats ms;
+};
+
+struct BenchRow {
+  BenchConfig config;
+  float lightSize = 0.0f;  ///< the light size in effect (scene's own or swept)
+  int width = 0, height = 0, shadowMapSize = 0;
+  int frames = 0;  ///< timed frames actually run (fewer than asked when the time cap hit)
+  std::vector<PassStats> passes;  ///< in frame order, then kTotalPass
+  VisibilityMetrics metrics;
+  /// Image files relative to the output folder; empty when the row is not in the grid.
+  std::string imagePath, heatmapPath, referencePath;
+
+  /// Median/spread of `pass`; zeros when the row has no such pass.
+  TimeStats time(std::string_view pass) const;
+};
+
+/// A configuration that did not produce a row.
+struct SkippedConfig {
+  BenchConfig config;
+  std::string reason;
+  bool failed = false;  ///< false: refused as an unsupported pair; true: an error during the run
+};
+
+/// A timed building block outside the frame (e.g. a summed-area table against a plain copy of
+/// the same texture).
+struct MicroResult {
+  std::string name;         ///< "copy", "mip chain", "sat"
+  std::string description;  ///< what was timed, on what texture
+  std::string baseline;     ///< name of the result it is compared with (a copy of its texture); "" = none
+  TimeStats ms;
+  int repetitions = 0;
+};
+
+struct MachineInfo {
+  std::string glRenderer, glVersion, glVendor, clock;  ///< clock: PassTimings::clock
+  std::string cpu, os;
+  int hardwareThreads = 0;
+  std::string date;     ///< UTC, ISO 8601
+  std::string command;  ///< the command line of the run
+};
+
+struct BenchResults {
+  MachineInfo machine;
+  BenchSettings settings;
+  std::vector<BenchRow> rows;
+  std::vector<SkippedConfig> skipped;
+  std::vector<MicroResult> micro;
+  double seconds = 0.0;  ///< wall-clock time of the whole run
+
+  /// Names of every pass that occurs in some row, in first-seen order, kTotalPass last.
+  std::vector<std::string> passNames() const;
+};
+
+/// Fills cpu, os, hardwareThreads and date (not the GL fields or the command).
+MachineInfo describeMachine();
+
+/// Indices of the rows on the Pareto front of (x, y), both minimised: no other point is at
+/// least as good in both and better in one. Ascending x.
+std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y);
+
+}  // namespace penumbra::report

@@ -1,0 +1,167 @@
+#include "report/BenchRunner.h"
+
+#include "gl/Context.h"
+#include "reference/ProgressBar.h"
+#include "report/FrameComparison.h"
+#include "report/MicroBenchmarks.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
+#include <penumbra/Reference.h>
+#include <penumbra/Renderer.h>
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <optional>
+
+namespace penumbra::report {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The light.* parameters of a configuration: configurations that share them (and the scene)
+// share one reference.
+std::string lightKey(const BenchConfig& c) {
+  std::string key;
+  for (const auto& [k, v] : c.params)
+    if (k.starts_with("light.")) key += k + "=" + v + ";";
+  return key;
+}
+
+// Per-pass samples over the timed frames, in first-seen pass order.
+struct PassSamples {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> ms;
+  void add(const std::string& name, double value) {
+    if (!ms.contains(name)) order.push_back(name);
+    ms[name].push_back(value);
+  }
+};
+
+void writeImage(const std::filesystem::path& dir, const std::string& relative, const ColorImage& img) {
+  writePng(dir / relative, img.width, img.height, img.rgba);
+}
+
+}  // namespace
+
+std::string fileStem(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const bool safe = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ||
+                      ch == '-' || ch == '_';
+    out += safe ? ch : '_';
+  }
+  return out;
+}
+
+BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& configs, const SetupFactory& makeSetup,
+                      const RunOptions& options) {
+  const BenchSettings& set = options.settings;
+  const auto runStart = Clock::now();
+  BenchResults results;
+  results.settings = set;
+  results.machine = describeMachine();
+  results.machine.glRenderer = context.info().renderer;
+  results.machine.glVersion = context.info().version;
+  results.machine.glVendor = context.info().vendor;
+
+  Renderer renderer(context);
+  const RenderOptions render{.width = set.width, .height = set.height, .shadowMapSize = set.shadowMapSize, .debugView = 0};
+  std::optional<std::string> currentScene, currentLight;
+  std::unique_ptr<ReferenceTracer> tracer;
+  std::map<std::string, ReferenceResult> references;  // by light key, for the current scene
+  std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
+  reference::ProgressBar bar("bench", configs.size(), options.progress && !options.verbose);
+
+  for (const BenchConfig& c : configs) {
+    BenchSetup s = makeSetup(c);
+    const std::string light = lightKey(c);
+    if (currentScene != c.scene) {
+      renderer.setScene(s.scene);
+      tracer = std::make_unique<ReferenceTracer>(s.scene);
+      references.clear();
+      referenceImages.clear();
+      currentScene = c.scene;
+      currentLight = light;
+    } else if (currentLight != light) {
+      renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
+      currentLight = light;
+    }
+    const auto configStart = Clock::now();
+    try {
+      renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Usage) throw;
+      results.skipped.push_back({c, e.what(), false});
+      bar.advance(1);
+      continue;
+    }
+    try {
+      for (int i = 0; i < std::max(set.warmupFrames, 1); ++i) renderer.render(render);
+      PassSamples samples;
+      int frames = 0;
+      const auto timedStart = Clock::now();
+      while (frames < set.timedFrames) {
+        renderer.render(render);
+        const PassTimings& t = renderer.timings();
+        for (const auto& [name, ms] : t.ms) samples.add(name, ms);
+        samples.add(kTotalPass, t.total());
+        results.machine.clock = t.clock;
+        ++frames;
+        if (std::chrono::duration<double>(Clock::now() - timedStart).count() > set.maxSecondsPerConfig) break;
+      }
+
+      if (!references.contains(light)) {
+        ReferenceOptions ro;
+        ro.samples = set.referenceSamples;
+        ro.useCache = set.useCache;
+        ro.progress = false;  // the bench's own bar is on screen
+        references[light] = tracer->trace(renderer.readGBuffer(), renderer.scene().light(), ro);
+      }
+      const ReferenceResult& ref = references[light];
+      const FrameComparison cmp = compareFrame(renderer, ref, c.inGrid);
+
+      BenchRow row;
+      row.config = c;
+      row.lightSize = renderer.scene().light().size;
+      row.width = set.width;
+      row.height = set.height;
+      row.shadowMapSize = set.shadowMapSize;
+      row.frames = frames;
+      for (const std::string& name : samples.order) row.passes.push_back({name, timeStats(samples.ms[name])});
+      row.metrics = cmp.metrics;
+      if (c.inGrid) {
+        const std::string scene = fileStem(renderer.scene().name);
+        const std::string stem = fmt::format("images/{}-{}-{}", scene, fileStem(c.projection), fileStem(c.filter));
+        row.imagePath = stem + ".png";
+        row.heatmapPath = stem + "-heatmap.png";
+        writeImage(options.outDir, row.imagePath, cmp.technique);
+        writeImage(options.outDir, row.heatmapPath, cmp.heatmap);
+        if (!referenceImages.contains(light)) {
+          const std::string path = fmt::format("images/{}-reference{}.png", scene, light.empty() ? "" : "-" + fileStem(light));
+          writeImage(options.outDir, path, cmp.reference);
+          referenceImages[light] = path;
+        }
+        row.referencePath = referenceImages[light];
+      }
+      results.rows.push_back(std::move(row));
+      if (options.verbose)
+        std::fprintf(stderr, "bench: %s %s %s %s: visibility %.2f ms, RMSE %.4f (%d frames, %.1f s)\n", c.scene.c_str(),
+                     c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
+                     results.rows.back().time("visibility").median, cmp.metrics.rmse, frames,
+                     std::chrono::duration<double>(Clock::now() - configStart).count());
+    } catch (const std::exception& e) {
+      results.skipped.push_back({c, e.what(), true});
+      if (options.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
+    }
+    bar.advance(1);
+  }
+  results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, context.info().softwareRenderer);
+  results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+  return results;
+}
+
+}  // namespace penumbra::report

@@ -1,0 +1,253 @@
+#include "report/HtmlReport.h"
+
+#include "report/ReportCharts.h"
+#include "report/SvgChart.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra::report {
+namespace {
+
+const char* const kStyle = R"(
+body { font: 14px/1.45 system-ui, sans-serif; margin: 24px auto; max-width: 1280px; padding: 0 16px; color: #222; }
+h1 { font-size: 24px; } h2 { margin-top: 36px; border-bottom: 1px solid #ccc; } h3 { margin-top: 24px; }
+table { border-collapse: collapse; margin: 8px 0 16px; }
+th, td { border: 1px solid #ddd; padding: 3px 7px; text-align: right; vertical-align: top; white-space: nowrap; }
+th { background: #f3f3f3; } td.l, th.l { text-align: left; }
+td small { color: #777; }
+.charts { display: flex; flex-wrap: wrap; gap: 12px; } figure { margin: 0; width: 600px; } figcaption { font-size: 13px; }
+.grid td, .grid th { text-align: center; } .grid img { display: block; image-rendering: pixelated; }
+.note { color: #555; } .front { font-weight: bold; } .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: middle; }
+code { background: #f4f4f4; padding: 1px 4px; }
+)";
+
+std::string esc(std::string_view s) { return escapeXml(s); }
+
+// Milliseconds with about three significant digits, never in exponent form.
+std::string msText(double v) {
+  const double a = std::abs(v);
+  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
+}
+
+std::string ms(const TimeStats& t) {
+  return fmt::format("{} <small>{}–{}</small>", msText(t.median), msText(t.p10), msText(t.p90));
+}
+
+// Passes run the same way whatever the technique (DESIGN.md): left out of the ratio table.
+bool techniqueIndependent(const std::string& pass) { return pass == "gbuffer" || pass == "lit"; }
+
+std::vector<std::string> scenesInOrder(const BenchResults& r) {
+  std::vector<std::string> scenes;
+  for (const BenchRow& row : r.rows)
+    if (std::find(scenes.begin(), scenes.end(), row.config.scene) == scenes.end()) scenes.push_back(row.config.scene);
+  return scenes;
+}
+
+std::string header(const BenchResults& r) {
+  const MachineInfo& m = r.machine;
+  const BenchSettings& s = r.settings;
+  size_t refused = 0, failed = 0;
+  for (const SkippedConfig& k : r.skipped) (k.failed ? failed : refused)++;
+  std::string h = "<h1>Penumbra bench: shadow techniques, quality against cost</h1>\n";
+  h += fmt::format(
+      "<p>{} configurations measured, {} refused as unsupported pairs, {} failed; {:.0f} s in all. Raw data: "
+      "<a href=\"results.csv\">results.csv</a>, <a href=\"results.json\">results.json</a>.</p>\n",
+      r.rows.size(), refused, failed, r.seconds);
+  h += fmt::format(
+      "<p>Each configuration: {} warm-up frame(s) (the first compiles the shaders), then up to {} timed frames "
+      "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}², "
+      "reference {} light samples per pixel (Embree). Clock: <b>{}</b> on <b>{}</b>; compare times only as ratios "
+      "within one run.</p>\n",
+      s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height, s.shadowMapSize, s.referenceSamples,
+      esc(m.clock), esc(m.glRenderer));
+  h += "<p class=\"note\">Contents: <a href=\"#quality\">1. quality vs cost</a> · <a href=\"#light\">2. cost vs light "
+       "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
+  return h;
+}
+
+std::string qualitySection(const BenchResults& r) {
+  std::string h = "<h2 id=\"quality\">1. Quality against cost</h2>\n<p>One point per configuration: the RMSE of its "
+                  "visibility V against the ray-traced V<sub>ref</sub> (pixels that face the light) against the median "
+                  "time of its visibility pass, the only pass that differs between filters. Colour: filter; marker: "
+                  "projection; ringed and joined by the dashed staircase: the Pareto front (no other configuration is "
+                  "both faster and more accurate). Hover a point for its numbers.</p>\n";
+  h += "<div class=\"charts\">\n";
+  for (const QualityCostChart& q : qualityCostCharts(r)) {
+    h += "<figure>" + svgChart(q.chart) + "<figcaption>Pareto front: ";
+    for (size_t k = 0; k < q.frontRows.size(); ++k) {
+      const BenchRow& row = r.rows[q.frontRows[k]];
+      h += fmt::format("{}<span class=\"front\">{}</span> ({:.3g} ms, RMSE {:.4f})", k ? " → " : "", esc(rowLabel(row)),
+                       row.time(kCostPass).median, row.metrics.rmse);
+    }
+    h += "</figcaption></figure>\n";
+  }
+  return h + "</div>\n";
+}
+
+std::string lightSection(const BenchResults& r) {
+  std::string h = "<h2 id=\"light\">2. Cost against light size</h2>\n";
+  const std::vector<LightSizeCharts> charts = lightSizeCharts(r);
+  if (charts.empty())
+    return h + "<p class=\"note\">This run swept no light size; add <code>--sweep light.size=0.02:0.2:5</code>.</p>\n";
+  h += "<p>The lecture's claim: PCSS's blocker search and filter grow with the penumbra (the light size), so its cost "
+       "grows; the pre-filtered methods (vssm, msm-soft: one summed-area-table lookup per region) and the distance "
+       "field (sdf) pay the same whatever the size. Every technique run at two or more light sizes is drawn; bars are "
+       "the p10–p90 spread over the timed frames.</p>\n";
+  for (const LightSizeCharts& l : charts) h += "<div class=\"charts\">" + svgChart(l.cost) + svgChart(l.error) + "</div>\n";
+  return h;
+}
+
+std::string gridSection(const BenchResults& r) {
+  std::string h = fmt::format(
+      "<h2 id=\"grid\">3. Images</h2>\n<p>Per scene, each filter with the scene's own projection: the technique, the "
+      "same frame lit with the reference V<sub>ref</sub>, and the error heatmap over the technique's image: "
+      "<span class=\"swatch\" style=\"background:rgb({},{},{})\"></span> leak (too bright), "
+      "<span class=\"swatch\" style=\"background:rgb({},{},{})\"></span> over-dark; colour strength ∝ |ΔV|.</p>\n",
+      kLeakColor[0], kLeakColor[1], kLeakColor[2], kOverDarkColor[0], kOverDarkColor[1], kOverDarkColor[2]);
+  for (const std::string& scene : scenesInOrder(r)) {
+    std::string rows;
+    for (const BenchRow& row : r.rows) {
+      if (row.config.scene != scene || row.imagePath.empty()) continue;
+      auto img = [&](const std::string& path, const std::string& alt) {
+        return fmt::format("<td><img src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}\"></td>", esc(path), row.width,
+                           row.height, esc(alt));
+      };
+      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} %<br>over-dark {:.2f} %<br>{} {:.3g} ms</td>",
+                          esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
+                          row.metrics.overDarkPct, kCostPass, row.time(kCostPass).median);
+      rows += img(row.imagePath, row.config.filter + " " + row.config.projection) +
+              img(row.referencePath, "reference") + img(row.heatmapPath, "error heatmap") + "</tr>\n";
+    }
+    if (rows.empty()) continue;
+    h += fmt::format("<h3>{}</h3>\n<table class=\"grid\"><tr><th class=\"l\">configuration</th><th>technique</th>"
+                     "<th>reference</th><th>heatmap</th></tr>\n{}</table>\n", esc(scene), rows);
+  }
+  return h;
+}
+
+std::string microTable(const BenchResults& r) {
+  std::string h = "<h3>Building blocks: prefilters against a plain copy of the same texture</h3>\n";
+  if (r.micro.empty()) return h + "<p class=\"note\">No micro-benchmarks in this run.</p>\n";
+  h += "<table><tr><th class=\"l\">what</th><th class=\"l\">timed</th><th>median ms <small>p10–p90</small></th>"
+       "<th>× its copy</th></tr>\n";
+  for (const MicroResult& m : r.micro) {
+    std::string ratio = "—";
+    for (const MicroResult& b : r.micro)
+      if (!m.baseline.empty() && b.name == m.baseline && b.ms.median > 0)
+        ratio = fmt::format("{:.2f} × ({})", m.ms.median / b.ms.median, esc(b.name));
+    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
+                     esc(m.description), ms(m.ms), ratio);
+  }
+  return h + "</table>\n";
+}
+
+std::string ratioTable(const BenchResults& r) {
+  std::string h = "<h3>Cost ratios</h3>\n";
+  std::string rows;
+  std::vector<std::string> passes = r.passNames();
+  std::erase_if(passes, techniqueIndependent);
+  for (const auto& [num, den] : kCostRatioPairs) {
+    for (const BenchRow& a : r.rows) {
+      if (a.config.filter != num || !techniqueParams(a).empty()) continue;
+      for (const BenchRow& b : r.rows) {
+        if (b.config.filter != den || b.config.scene != a.config.scene || b.config.projection != a.config.projection ||
+            lightParams(b) != lightParams(a) || !techniqueParams(b).empty())
+          continue;
+        const std::string light = lightParams(a).empty() ? "scene's own" : lightParams(a);
+        rows += fmt::format("<tr><td class=\"l\">{} / {}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>",
+                            num, den, esc(a.config.scene), esc(a.config.projection), esc(light));
+        for (const std::string& p : passes) {
+          const double x = a.time(p).median, y = b.time(p).median;
+          rows += y > 0 ? fmt::format("<td>{:.2f}</td>", x / y) : "<td>—</td>";
+        }
+        rows += "</tr>\n";
+      }
+    }
+  }
+  if (rows.empty()) {
+    std::string names;
+    for (const auto& [num, den] : kCostRatioPairs) names += fmt::format("{}{}/{}", names.empty() ? "" : ", ", num, den);
+    return h + "<p class=\"note\">No pair (" + names + ") ran on the same scene and projection in this run.</p>\n";
+  }
+  h += "<p>Median time of the first filter divided by the second's, per pass that depends on the technique, same "
+       "scene, projection and light (default parameters).</p>\n"
+       "<table><tr><th class=\"l\">ratio</th><th class=\"l\">scene</th><th class=\"l\">projection</th><th class=\"l\">light</th>";
+  for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
+  return h + "</tr>\n" + rows + "</table>\n";
+}
+
+std::string resultsTables(const BenchResults& r) {
+  const std::vector<std::string> passes = r.passNames();
+  std::string h = "<h3>All configurations</h3>\n<p>Times: median ms, p10–p90 in small print. Sorted by " +
+                  std::string(kCostPass) + " time per scene.</p>\n";
+  for (const std::string& scene : scenesInOrder(r)) {
+    std::vector<const BenchRow*> rows;
+    for (const BenchRow& row : r.rows)
+      if (row.config.scene == scene) rows.push_back(&row);
+    std::stable_sort(rows.begin(), rows.end(), [](const BenchRow* a, const BenchRow* b) {
+      return a->time(kCostPass).median < b->time(kCostPass).median;
+    });
+    h += "<h4>" + esc(scene) + "</h4>\n<table><tr><th class=\"l\">filter</th><th class=\"l\">projection</th>"
+         "<th class=\"l\">params</th><th>light size</th><th>frames</th>";
+    for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
+    h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>over-dark %</th></tr>\n";
+    for (const BenchRow* row : rows) {
+      h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{:g}</td><td>{}</td>",
+                       esc(row->config.filter), esc(row->config.projection), esc(row->config.paramsText()),
+                       row->lightSize, row->frames);
+      for (const std::string& p : passes) h += "<td>" + ms(row->time(p)) + "</td>";
+      h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n", row->metrics.rmse,
+                       row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.overDarkPct);
+    }
+    h += "</table>\n";
+  }
+  return h;
+}
+
+std::string skippedTable(const BenchResults& r) {
+  std::string h = "<h3>Skipped configurations</h3>\n";
+  if (r.skipped.empty()) return h + "<p class=\"note\">None: every configuration ran.</p>\n";
+  h += "<table><tr><th class=\"l\">scene</th><th class=\"l\">projection</th><th class=\"l\">filter</th>"
+       "<th class=\"l\">params</th><th class=\"l\">why</th></tr>\n";
+  for (const SkippedConfig& k : r.skipped)
+    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+                     "<td class=\"l\">{}: {}</td></tr>\n",
+                     esc(k.config.scene), esc(k.config.projection), esc(k.config.filter), esc(k.config.paramsText()),
+                     k.failed ? "<b>failed</b>" : "refused", esc(k.reason));
+  return h + "</table>\n";
+}
+
+std::string machineTable(const BenchResults& r) {
+  const MachineInfo& m = r.machine;
+  std::string h = "<h3>Machine</h3>\n<table>";
+  for (const auto& [k, v] : std::vector<std::pair<const char*, std::string>>{
+           {"GL_RENDERER", m.glRenderer}, {"GL_VERSION", m.glVersion}, {"GL_VENDOR", m.glVendor},
+           {"clock", m.clock}, {"CPU", m.cpu}, {"hardware threads", std::to_string(m.hardwareThreads)},
+           {"OS", m.os}, {"date (UTC)", m.date}, {"command", m.command}})
+    h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", k, esc(v));
+  return h + "</table>\n";
+}
+
+}  // namespace
+
+std::string htmlReport(const BenchResults& r) {
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                  "<meta name=\"viewport\" content=\"width=device-width\"><title>Penumbra bench</title>"
+                  "<link rel=\"icon\" href=\"data:,\"><style>";
+  h += kStyle;
+  h += "</style></head><body>\n";
+  h += header(r) + qualitySection(r) + lightSection(r) + gridSection(r);
+  h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + ratioTable(r) + resultsTables(r) + skippedTable(r) + machineTable(r);
+  return h + "</body></html>\n";
+}
+
+void writeHtmlReport(const std::filesystem::path& dir, const BenchResults& results) {
+  writeTextFile(dir / "report.html", htmlReport(results));
+}
+
+}  // namespace penumbra::report

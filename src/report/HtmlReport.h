@@ -1,0 +1,25 @@
+#pragma once
+// report.html: one self-contained page (no script, no network; the grid's PNGs lie beside it in
+// images/) that a user reads to choose a technique: 1. quality vs cost with the Pareto front,
+// 2. cost vs light size, 3. the image grid per scene (technique | reference | heatmap),
+// 4. tables (micro-benchmarks such as the SAT build against a copy, cost ratios such as msm/vsm,
+// every row, skipped configurations, the machine).
+#include "report/BenchResults.h"
+
+#include <filesystem>
+#include <string>
+
+namespace penumbra::report {
+
+/// Pairs of filters whose cost ratio the report tabulates (numerator, denominator): more moments
+/// against fewer, and a soft variant against its base.
+inline constexpr std::pair<const char*, const char*> kCostRatioPairs[] = {
+    {"msm", "vsm"}, {"msm-soft", "vssm"}, {"pcss", "pcf"}};
+
+/// The page as text.
+std::string htmlReport(const BenchResults& results);
+
+/// Writes dir/report.html (atomically). The images the rows name must already be in dir.
+void writeHtmlReport(const std::filesystem::path& dir, const BenchResults& results);
+
+}  // namespace penumbra::report

@@ -1,0 +1,125 @@
+#include "report/ResultsIO.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <fmt/format.h>
+
+namespace penumbra::report {
+namespace {
+
+constexpr int kFormatVersion = 1;
+const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
+
+std::string csvField(const Cell& c) {
+  if (std::holds_alternative<std::monostate>(c)) return {};
+  if (const double* d = std::get_if<double>(&c)) return fmt::format("{}", *d);
+  const std::string& s = std::get<std::string>(c);
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (const char ch : s) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
+
+nlohmann::json jsonCell(const Cell& c) {
+  if (std::holds_alternative<std::monostate>(c)) return nullptr;
+  if (const double* d = std::get_if<double>(&c)) return *d;
+  return std::get<std::string>(c);
+}
+
+nlohmann::json statsJson(const TimeStats& t) { return {{"median", t.median}, {"p10", t.p10}, {"p90", t.p90}}; }
+
+}  // namespace
+
+std::vector<std::string> tableColumns(const BenchResults& results) {
+  std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "width", "height",
+                                   "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "overdark_pct",
+                                   "penumbra_rmse", "pixels"};
+  for (const std::string& pass : results.passNames())
+    for (const char* suffix : kStatSuffixes) cols.push_back(pass + suffix);
+  for (const char* c : {"image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
+  return cols;
+}
+
+std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
+  const VisibilityMetrics& m = r.metrics;
+  auto num = [](auto v) { return Cell(static_cast<double>(v)); };
+  std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
+                             r.config.paramsText(), num(r.lightSize), num(r.width), num(r.height),
+                             num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
+                             num(m.leakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
+  for (const std::string& pass : results.passNames()) {
+    const auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassStats& p) { return p.name == pass; });
+    if (it == r.passes.end()) {
+      cells.insert(cells.end(), 3, Cell());
+    } else {
+      cells.insert(cells.end(), {num(it->ms.median), num(it->ms.p10), num(it->ms.p90)});
+    }
+  }
+  for (const std::string* s : {&r.imagePath, &r.heatmapPath, &r.referencePath, &results.machine.clock,
+                               &results.machine.glRenderer})
+    cells.emplace_back(*s);
+  return cells;
+}
+
+std::string resultsCsv(const BenchResults& results) {
+  std::string out;
+  auto line = [&](const std::vector<std::string>& fields) {
+    for (size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
+    out += "\r\n";
+  };
+  std::vector<std::string> header;
+  for (const std::string& c : tableColumns(results)) header.push_back(csvField(c));
+  line(header);
+  for (const BenchRow& r : results.rows) {
+    std::vector<std::string> fields;
+    for (const Cell& c : tableRow(results, r)) fields.push_back(csvField(c));
+    line(fields);
+  }
+  return out;
+}
+
+nlohmann::json resultsJson(const BenchResults& results) {
+  const MachineInfo& m = results.machine;
+  const BenchSettings& s = results.settings;
+  nlohmann::json j;
+  j["format"] = "penumbra-bench";
+  j["version"] = kFormatVersion;
+  j["machine"] = {{"gl_renderer", m.glRenderer}, {"gl_version", m.glVersion}, {"gl_vendor", m.glVendor},
+                  {"clock", m.clock},           {"cpu", m.cpu},              {"os", m.os},
+                  {"hardware_threads", m.hardwareThreads}, {"date", m.date}, {"command", m.command}};
+  j["settings"] = {{"width", s.width},
+                   {"height", s.height},
+                   {"shadow_map", s.shadowMapSize},
+                   {"warmup_frames", s.warmupFrames},
+                   {"timed_frames", s.timedFrames},
+                   {"max_seconds_per_config", s.maxSecondsPerConfig},
+                   {"reference_samples", s.referenceSamples},
+                   {"micro_repetitions", s.microRepetitions}};
+  j["seconds"] = results.seconds;
+  const std::vector<std::string> columns = tableColumns(results);
+  j["columns"] = columns;
+  j["rows"] = nlohmann::json::array();
+  for (const BenchRow& r : results.rows) {
+    const std::vector<Cell> cells = tableRow(results, r);
+    nlohmann::json row = nlohmann::json::object();
+    for (size_t i = 0; i < columns.size(); ++i) row[columns[i]] = jsonCell(cells[i]);
+    j["rows"].push_back(std::move(row));
+  }
+  j["skipped"] = nlohmann::json::array();
+  for (const SkippedConfig& k : results.skipped)
+    j["skipped"].push_back({{"plan", k.config.plan}, {"scene", k.config.scene}, {"projection", k.config.projection},
+                            {"filter", k.config.filter}, {"params", k.config.paramsText()},
+                            {"reason", k.reason}, {"failed", k.failed}});
+  j["micro"] = nlohmann::json::array();
+  for (const MicroResult& mr : results.micro)
+    j["micro"].push_back({{"name", mr.name}, {"description", mr.description}, {"baseline", mr.baseline}, {"ms", statsJson(mr.ms)},
+                          {"repetitions", mr.repetitions}});
+  return j;
+}
+
+void writeResults(const std::filesystem::path& dir, const BenchResults& results) {
+  writeTextFile(dir / "results.csv", resultsCsv(results));
+  writeTextFile(dir / "results.json", resultsJson(results).dump(1) + "\n");
+}
+
+}  // namespace penumbra::report

@@ -1,0 +1,35 @@
+#pragma once
+// results.csv and results.json: the same rows, the same columns, the same numbers. Both are
+// built from one flattening of a row (tableColumns/tableRow), so they cannot drift apart; the
+// JSON also carries the machine, the settings, the skipped configurations and micro-benchmarks.
+#include "report/BenchResults.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace penumbra::report {
+
+/// A cell: text, a number, or nothing (a pass this row does not have).
+using Cell = std::variant<std::monostate, std::string, double>;
+
+/// Column names, in order: configuration, quality, then <pass>_ms_{median,p10,p90} for every
+/// pass of results.passNames(), then image paths and the clock.
+std::vector<std::string> tableColumns(const BenchResults& results);
+/// One row's cells, aligned with tableColumns(results).
+std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& row);
+
+/// RFC 4180 CSV: a header line, one line per row; numbers in shortest round-trip form (parsing
+/// the text gives back the same double), empty for no value.
+std::string resultsCsv(const BenchResults& results);
+/// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
+///  "skipped": [...], "micro": [...]}; rows hold numbers as numbers, null for no value.
+nlohmann::json resultsJson(const BenchResults& results);
+
+/// Writes results.csv and results.json into dir (each atomically).
+void writeResults(const std::filesystem::path& dir, const BenchResults& results);
+
+}  // namespace penumbra::report

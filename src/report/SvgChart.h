@@ -1,0 +1,63 @@
+#pragma once
+// Charts as inline SVG text, written by hand (no JavaScript, no library): axes with "nice"
+// ticks (linear or logarithmic), points with optional error bars and hover titles, optional
+// connecting lines, a highlighted polyline (the Pareto front) and a legend.
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::report {
+
+enum class Marker { Circle, Square, Triangle, Diamond };
+
+/// Colour of Chart::front (a legend entry for it uses this with line + dashed).
+inline constexpr const char* kFrontColor = "#444";
+
+struct ChartPoint {
+  double x = 0.0, y = 0.0;
+  /// Error bar from yLow to yHigh (both NaN = none).
+  double yLow = std::numeric_limits<double>::quiet_NaN(), yHigh = std::numeric_limits<double>::quiet_NaN();
+  std::string tooltip;     ///< shown on hover (an SVG <title>)
+  bool emphasised = false; ///< drawn with a ring (e.g. on the Pareto front)
+};
+
+struct ChartSeries {
+  std::string color = "#333";  ///< CSS colour
+  Marker marker = Marker::Circle;
+  bool connect = false;        ///< a line through the points in x order
+  std::vector<ChartPoint> points;
+};
+
+struct LegendEntry {
+  std::string label, color;
+  Marker marker = Marker::Circle;
+  bool line = false;    ///< a line sample instead of a marker
+  bool dashed = false;  ///< the line sample dashed (the front's style)
+};
+
+struct Chart {
+  std::string title, xLabel, yLabel;
+  bool logX = false, logY = false;  ///< log axes skip non-positive values
+  int width = 600, height = 400;    ///< pixels, legend included (two fit side by side in the report)
+  std::vector<ChartSeries> series;
+  /// A polyline drawn under the points as a staircase (e.g. the Pareto front), in x order.
+  std::vector<std::pair<double, double>> front;
+  std::vector<LegendEntry> legend;
+};
+
+/// The chart as an <svg> element (role="img", with a <title>). Empty charts get a note instead
+/// of axes.
+std::string svgChart(const Chart& chart);
+
+/// Text escaped for XML/HTML content and attribute values.
+std::string escapeXml(std::string_view text);
+
+/// Tick values for [lo, hi]: 1-2-5 steps, about `target` of them (linear), or powers of ten
+/// (with 2 and 5 between when the range spans less than three decades) for log axes.
+std::vector<double> axisTicks(double lo, double hi, bool log, int target = 6);
+
+/// A fixed set of distinguishable colours (Okabe–Ito first), cycled by index.
+std::string paletteColor(size_t index);
+
+}  // namespace penumbra::report

@@ -1,0 +1,74 @@
+#include "shadows/filters/PcfFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/filters/pcf.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+static_assert(PN_KERNEL_BOX == 0 && PN_KERNEL_POISSON == 1, "kKernelNames follows the PN_KERNEL_* order");
+
+// 64 = the Poisson disk's size (common/sampling.glsl, kPoissonDiskSize).
+constexpr float kMaxPoissonTaps = 64.0f;
+
+constexpr ParamDesc kParams[] = {
+    {"pcf.kernel", "Kernel", "box: a (2·ceil(r)+1)² grid of comparisons, one per texel; poisson: pcf.samples taps of a Poisson disk rotated per pixel",
+     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames},
+    {"pcf.radiusTexels", "Radius", "kernel radius in shadow-map texels (0 = one comparison, a hard shadow)",
+     2.0f, 0.0f, 32.0f, 0.0f},
+    {"pcf.samples", "Samples", "taps of the Poisson kernel (the box kernel's count follows its radius)",
+     16.0f, 1.0f, kMaxPoissonTaps, 1.0f},
+    {"pcf.hardwareCompare", "Hardware compare", "on: each tap is the hardware's bilinear 2x2 comparison (sampler2DShadow), smoother edges for the same tap count",
+     0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+     0.0002f, 0.0f, 0.05f, 0.0f},
+    {"pcf.slopeBias", "Slope bias", "slope-scaled offset at the kernel's centre in texels × tan(angle to the light); it grows by one texel of slope per texel of tap distance",
+     1.0f, 0.0f, 16.0f, 0.0f},
+};
+
+}  // namespace
+
+ComparisonSampler::~ComparisonSampler() {
+  if (mId) glDeleteSamplers(1, &mId);
+}
+
+void ComparisonSampler::bind(GLuint unit) {
+  if (!mId) {
+    glCreateSamplers(1, &mId);
+    constexpr std::string_view kLabel = "hardware depth comparison";
+    glObjectLabel(GL_SAMPLER, mId, static_cast<GLsizei>(kLabel.size()), kLabel.data());
+    glSamplerParameteri(mId, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(mId, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glSamplerParameteri(mId, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(mId, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+      glSamplerParameteri(mId, wrap, GL_CLAMP_TO_EDGE);
+  }
+  glBindSampler(unit, mId);
+}
+
+PcfFilter::PcfFilter() : Filter(kParams) {}
+
+void PcfFilter::renderShadowMaps(FrameContext& frame) {
+  mMaps.ensure("pcf shadow map", frame.mapSize(), frame.viewCount());
+  frame.renderViews(mMaps, frame.shadowProgram());
+}
+
+void PcfFilter::computeVisibility(FrameContext& frame) {
+  gpu::PcfUniforms u{};
+  u.params = glm::vec4(param("pcf.radiusTexels"), param("pcf.constantBias"), param("pcf.slopeBias"), 0.0f);
+  u.config = glm::ivec4(paramInt("pcf.kernel"), paramInt("pcf.samples"), 0, 0);
+  frame.setFilterBlock(u);
+  const bool hardware = paramInt("pcf.hardwareCompare") != 0;
+  ShaderDefines defines;
+  if (hardware) defines.set("PN_HARDWARE_COMPARE");
+  mMaps.depth().bindUnit(PN_TEX_FILTER0);
+  if (hardware) mCompare.bind(PN_TEX_FILTER0);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", defines));
+  if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
+}
+
+std::vector<DebugImage> PcfFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+
+}  // namespace penumbra

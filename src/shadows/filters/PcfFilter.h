@@ -1,0 +1,49 @@
+#pragma once
+// pcf: percentage-closer filtering with a box or Poisson kernel of fixed radius (pcf.glsl).
+#include "render/ShadowMaps.h"
+
+#include <penumbra/Filter.h>
+
+#include <string_view>
+
+namespace penumbra {
+
+/// Names of PN_KERNEL_* (pcf.kernel, pcss.pattern), in enum order.
+inline constexpr std::string_view kKernelNames[] = {"box", "poisson"};
+/// pcf.hardwareCompare / pcss.hardwareCompare.
+inline constexpr std::string_view kOffOn[] = {"off", "on"};
+
+/// A GL sampler object that turns on hardware depth comparison (sampler2DArrayShadow: lit when
+/// ref ≤ stored) with bilinear filtering, bound over a depth texture's unit for one dispatch:
+/// the texture's own state (raw depths, nearest) stays as other passes expect. Created on first
+/// use, so filters can be made without a GL context.
+class ComparisonSampler {
+public:
+  ComparisonSampler() = default;
+  ~ComparisonSampler();
+  ComparisonSampler(const ComparisonSampler&) = delete;
+  ComparisonSampler& operator=(const ComparisonSampler&) = delete;
+  void bind(GLuint unit);
+  static void unbind(GLuint unit) { glBindSampler(unit, 0); }
+
+private:
+  GLuint mId = 0;
+};
+
+class PcfFilter final : public Filter {
+public:
+  PcfFilter();
+  std::string_view id() const override { return "pcf"; }
+  std::string_view description() const override {
+    return "percentage-closer filtering: average of depth comparisons over a box or rotated Poisson kernel";
+  }
+  void renderShadowMaps(FrameContext& frame) override;
+  void computeVisibility(FrameContext& frame) override;
+  std::vector<DebugImage> debugImages() const override;
+
+private:
+  ShadowMapArray mMaps;
+  ComparisonSampler mCompare;
+};
+
+}  // namespace penumbra

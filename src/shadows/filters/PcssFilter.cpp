@@ -1,0 +1,60 @@
+#include "shadows/filters/PcssFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/filters/pcss.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+// 64 = the Poisson disk's size (common/sampling.glsl, kPoissonDiskSize).
+constexpr float kMaxTaps = 64.0f;
+
+constexpr ParamDesc kParams[] = {
+    {"pcss.blockerSamples", "Blocker samples", "taps of the blocker search (box pattern: the largest odd grid with at most this many)",
+     16.0f, 1.0f, kMaxTaps, 1.0f},
+    {"pcss.filterSamples", "Filter samples", "taps of the percentage-closer filter (box pattern: the largest odd grid with at most this many)",
+     32.0f, 1.0f, kMaxTaps, 1.0f},
+    {"pcss.pattern", "Pattern", "sampling pattern of both steps: box grid or Poisson disk rotated per pixel",
+     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames},
+    {"pcss.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
+     1.0f, 0.0f, 8.0f, 0.0f},
+    {"pcss.maxRadiusTexels", "Max radius", "largest search and filter radius in texels: bounds the footprint (wider penumbrae are cut to it)",
+     96.0f, 1.0f, 512.0f, 0.0f},
+    {"pcss.hardwareCompare", "Hardware compare", "on: each filter tap is the hardware's bilinear 2x2 comparison (sampler2DShadow)",
+     0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+     0.0002f, 0.0f, 0.05f, 0.0f},
+    {"pcss.slopeBias", "Slope bias", "slope-scaled offset at the kernel's centre in texels × tan(angle to the light); it grows by one texel of slope per texel of tap distance",
+     1.0f, 0.0f, 16.0f, 0.0f},
+};
+
+}  // namespace
+
+PcssFilter::PcssFilter() : Filter(kParams) {}
+
+void PcssFilter::renderShadowMaps(FrameContext& frame) {
+  mMaps.ensure("pcss shadow map", frame.mapSize(), frame.viewCount());
+  frame.renderViews(mMaps, frame.shadowProgram());
+}
+
+void PcssFilter::computeVisibility(FrameContext& frame) {
+  gpu::PcssUniforms u{};
+  u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), param("pcss.minRadiusTexels"),
+                       param("pcss.maxRadiusTexels"));
+  u.config = glm::ivec4(paramInt("pcss.blockerSamples"), paramInt("pcss.filterSamples"), paramInt("pcss.pattern"), 0);
+  frame.setFilterBlock(u);
+  const bool hardware = paramInt("pcss.hardwareCompare") != 0;
+  ShaderDefines defines;
+  if (hardware) defines.set("PN_HARDWARE_COMPARE");
+  // One map at two units: raw depths for the blocker search, comparisons for the filter.
+  mMaps.depth().bindUnit(PN_TEX_FILTER0);
+  mMaps.depth().bindUnit(PN_TEX_FILTER1);
+  if (hardware) mCompare.bind(PN_TEX_FILTER1);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", defines));
+  if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER1);
+}
+
+std::vector<DebugImage> PcssFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+
+}  // namespace penumbra

@@ -1,0 +1,26 @@
+#pragma once
+// pcss: percentage-closer soft shadows — blocker search, penumbra estimate, PCF (pcss.glsl).
+#include "render/ShadowMaps.h"
+#include "shadows/filters/PcfFilter.h"
+
+#include <penumbra/Filter.h>
+
+namespace penumbra {
+
+class PcssFilter final : public Filter {
+public:
+  PcssFilter();
+  std::string_view id() const override { return "pcss"; }
+  std::string_view description() const override {
+    return "percentage-closer soft shadows: blocker search, penumbra width from the light size, PCF of that width";
+  }
+  void renderShadowMaps(FrameContext& frame) override;
+  void computeVisibility(FrameContext& frame) override;
+  std::vector<DebugImage> debugImages() const override;
+
+private:
+  ShadowMapArray mMaps;
+  ComparisonSampler mCompare;
+};
+
+}  // namespace penumbra

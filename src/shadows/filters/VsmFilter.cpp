@@ -1,0 +1,53 @@
+#include "shadows/filters/VsmFilter.h"
+
+#include "render/FrameContext.h"
+#include "render/MipBuilder.h"
+#include "shadows/filters/vsm.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+constexpr ParamDesc kParams[] = {
+    {"vsm.minVariance", "Min variance",
+     "floor of the variance, in linear depth² units: hides float cancellation and the acne of flat receivers",
+     2e-6f, 0.0f, 1e-2f, 0.0f},
+    {"vsm.bleedReduction", "Bleed reduction",
+     "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
+     0.0f, 0.0f, 0.95f, 0.0f},
+    {"vsm.filterTexels", "Filter width",
+     "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness", 2.0f, 1.0f,
+     64.0f, 0.0f},
+    {"vsm.anisotropy", "Anisotropy", "maximum anisotropic taps (clamped to the driver's maximum; 1 = trilinear only)",
+     16.0f, 1.0f, 16.0f, 1.0f},
+};
+
+}  // namespace
+
+VsmFilter::VsmFilter() : Filter(kParams) {}
+
+void VsmFilter::renderShadowMaps(FrameContext& frame) {
+  constexpr int kFullMipChain = 0;
+  mMaps.ensure("vsm moments", frame.mapSize(), frame.viewCount(), GL_RG32F, kFullMipChain);
+  const ShaderDefines defines = ShaderDefines().set("PN_MOMENT_COUNT", 2).set("PN_MOMENT_SLOPE_VARIANCE");
+  // Cleared to the moments of the far plane (z = 1): no occluder where nothing was drawn.
+  frame.renderViews(mMaps, frame.shadowProgram("passes/moments.frag.glsl", defines), glm::vec4(1.0f));
+}
+
+void VsmFilter::prefilter(FrameContext& frame) {
+  (void)frame;
+  MipBuilder::build(mMaps.color());
+}
+
+void VsmFilter::computeVisibility(FrameContext& frame) {
+  gpu::VsmUniforms u{};
+  u.params = glm::vec4(param("vsm.minVariance"), param("vsm.bleedReduction"), param("vsm.filterTexels"), 0.0f);
+  frame.setFilterBlock(u);
+  MipBuilder::setTrilinearAnisotropic(mMaps.color(), param("vsm.anisotropy"));
+  mMaps.color().bindUnit(PN_TEX_FILTER0);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl"));
+}
+
+std::vector<DebugImage> VsmFilter::debugImages() const { return {{"vsm-moments", &mMaps.color()}}; }
+
+}  // namespace penumbra

@@ -1,0 +1,23 @@
+// pcf: percentage-closer filtering (Reeves, Salesin & Cook 1987). Around the receiver's texel,
+// many depth comparisons are made and their 0/1 results averaged, giving a fractional V that
+// anti-aliases the shadow's edge. The kernel is a box grid or a Poisson disk rotated per pixel,
+// of a fixed radius in texels: the edge is equally soft everywhere, so this is not a physical
+// penumbra (pcss sizes the kernel from the light). Linear light depth, spot and sun alike.
+// Artifacts: banding (box) or noise (Poisson) at large radii; a wide kernel on a tilted
+// receiver needs a bias growing with tap distance, which detaches contact shadows a little.
+#include "common/depth_compare.glsl"
+#include "shadows/filters/pcf.shared.h"
+
+layout(std140, binding = PN_UBO_FILTER) uniform PcfBlock { PcfUniforms u_pcf; };
+layout(binding = PN_TEX_FILTER0) uniform PN_COMPARISON_MAP s_shadowMap;
+
+float shadowVisibility(SurfacePoint s) {
+  int view = selectShadowView(s.ws);
+  vec3 coord = shadowCoord(view, s.ws);
+  if (!insideMap(coord)) return 1.0;
+  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcf.params.y, u_pcf.params.z);
+  float radiusTexels = u_pcf.params.x;
+  vec2 radiusUv = vec2(radiusTexels / shadowMapSize());
+  if (u_pcf.config.x == PN_KERNEL_BOX) return percentageCloserBox(s_shadowMap, r, radiusUv, int(ceil(radiusTexels)));
+  return percentageCloserPoisson(s_shadowMap, r, radiusUv, u_pcf.config.y, pixelRotation(s.pixel));
+}

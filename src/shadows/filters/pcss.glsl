@@ -1,0 +1,64 @@
+// pcss: percentage-closer soft shadows (Fernando 2005). (1) Blocker search: over the region of
+// the map that the light subtends from the receiver (similar triangles onto the near plane),
+// average the depths of the texels closer than the receiver. (2) Penumbra estimate:
+// w = (d_receiver − d_blocker) · w_light / d_blocker (common/penumbra.glsl; the sun's version
+// uses its angular radius). (3) PCF with a kernel of that width. Linear light depth, per view,
+// so cascades with different extents and ranges work alike; the light size is the scene's.
+// Artifacts: one average blocker depth per receiver, so overlapping blockers at different
+// depths get one penumbra; noise from the rotated Poisson taps; cost grows with the taps only.
+#include "common/depth_compare.glsl"
+#include "common/penumbra.glsl"
+#include "shadows/filters/pcss.shared.h"
+
+layout(std140, binding = PN_UBO_FILTER) uniform PcssBlock { PcssUniforms u_pcss; };
+layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_depthMap;       // raw depths: blocker search
+layout(binding = PN_TEX_FILTER1) uniform PN_COMPARISON_MAP s_compareMap;  // the same map: filtering
+
+// Tap i of `taps` in the chosen pattern, in the unit disk (Poisson) or square (box).
+vec2 patternTap(int i, int taps, mat2 rotation) {
+  return u_pcss.config.z == PN_KERNEL_BOX ? boxTap(i, boxHalfSideForTaps(taps)) : poissonTap(i, rotation);
+}
+int patternTapCount(int taps) {
+  return u_pcss.config.z == PN_KERNEL_BOX ? boxTapCount(boxHalfSideForTaps(taps)) : clamp(taps, 1, kPoissonDiskSize);
+}
+
+// Step (1): the mean linear depth of the texels in ±radiusUv that are closer to the light than
+// the receiver (the same biased test as the filter, so the receiver never blocks itself).
+// False when there is none: the receiver is fully lit.
+bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
+  vec2 size = vec2(textureSize(s_depthMap, 0).xy);
+  int taps = patternTapCount(u_pcss.config.x);
+  float sum = 0.0;
+  int blockers = 0;
+  for (int i = 0; i < taps; ++i) {
+    vec2 offset = patternTap(i, u_pcss.config.x, rotation) * radiusUv;
+    float stored = texelFetch(s_depthMap, mapTexel(s_depthMap, r.uv + offset, r.layer), 0).r;
+    if (compareDepth(tapDepth(r, offset, size), stored) == 0.0) {
+      sum += stored;
+      ++blockers;
+    }
+  }
+  blockerDepth = blockers > 0 ? sum / float(blockers) : r.depth;
+  return blockers > 0;
+}
+
+float shadowVisibility(SurfacePoint s) {
+  int view = selectShadowView(s.ws);
+  vec3 coord = shadowCoord(view, s.ws);
+  if (!insideMap(coord)) return 1.0;
+  float lightSize = u_frame.lightRadiance.w;
+  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcss.params.x, u_pcss.params.y);
+  float texelUv = 1.0 / shadowMapSize();
+  vec2 maxRadiusUv = vec2(u_pcss.params.w * texelUv);
+  mat2 rotation = pixelRotation(s.pixel);
+
+  vec2 searchUv = min(blockerSearchRadiusUv(view, r.depth, lightSize), maxRadiusUv);
+  float blockerDepth;
+  if (!averageBlockerDepth(r, searchUv, rotation, blockerDepth)) return 1.0;
+
+  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, r.depth, blockerDepth, lightSize),
+                        vec2(u_pcss.params.z * texelUv), maxRadiusUv);
+  if (u_pcss.config.z == PN_KERNEL_BOX)
+    return percentageCloserBox(s_compareMap, r, radiusUv, boxHalfSideForTaps(u_pcss.config.y));
+  return percentageCloserPoisson(s_compareMap, r, radiusUv, u_pcss.config.y, rotation);
+}

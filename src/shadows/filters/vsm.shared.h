@@ -1,0 +1,16 @@
+#pragma once
+// The vsm filter's uniform block, declared once for C++ and GLSL.
+#include "shared/Cpp.h"
+
+PN_GPU_BEGIN
+
+struct VsmUniforms {
+  vec4 params;  // x: minimum variance (linear depth^2), y: light-bleeding reduction amount [0, 1),
+                // z: minimum filter width (texels), w: unused
+};
+
+PN_GPU_END
+
+#ifdef __cplusplus
+static_assert(sizeof(penumbra::gpu::VsmUniforms) == 16, "std140 size of VsmUniforms");
+#endif

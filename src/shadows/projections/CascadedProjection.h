@@ -1,0 +1,36 @@
+#pragma once
+// csm: cascaded shadow maps. The camera's depth range is cut into 1–8 slices by the practical
+// split scheme (a λ-blend of logarithmic and uniform splits; Zhang et al., "Parallel-split shadow
+// maps", 2006) and each slice gets its own map of the same resolution, so texel size grows with
+// distance roughly as a pixel's footprint does. Stabilised (sun only): each cascade is the
+// bounding sphere of its slice, whose size never changes, placed on a texel grid fixed in the
+// world, so a moving camera never re-samples the edges (no shimmer); the square around the
+// sphere leaves many texels unused.
+// Neighbouring cascades overlap by a blend band where the visibility pass mixes the two.
+// Artifacts: a resolution step at each split (hidden by the band), N shadow passes.
+#include <penumbra/Projection.h>
+
+#include <vector>
+
+namespace penumbra {
+
+/// The practical split scheme: cascades + 1 camera depths from nearM to farM, each the blend
+/// z_i = λ·n·(f/n)^(i/N) + (1 − λ)·(n + (f − n)·i/N). λ = 0 uniform, 1 logarithmic.
+std::vector<float> practicalSplits(float nearM, float farM, int cascades, float lambda);
+
+/// The shadowed far distance rounded up to one of a fixed ladder of values (4 steps per octave),
+/// so that splits, and with them the cascades' sizes, stay constant while the camera moves.
+float stableFarDistance(float farM);
+
+class CascadedProjection final : public Projection {
+public:
+  CascadedProjection();
+  std::string_view id() const override { return "csm"; }
+  std::string_view description() const override {
+    return "cascaded maps over practical splits of the view depth; stabilised, with a blend band";
+  }
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+                            int mapSize) const override;
+};
+
+}  // namespace penumbra

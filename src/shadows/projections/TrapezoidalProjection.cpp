@@ -1,0 +1,126 @@
+#include "shadows/projections/TrapezoidalProjection.h"
+
+#include "shadows/projections/LightSpace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace penumbra {
+namespace {
+
+constexpr ParamDesc kParams[] = {
+    {"tsm.focusDistanceM", "Focus distance", "camera depth (m) up to which the focus region reaches; mapped to focusMapFraction of the map",
+     20.0f, 0.1f, 10000.0f, 0.0f},
+    {"tsm.focusMapFraction", "Focus share", "share of the map's height the focus region is mapped to (the paper's 80% rule)",
+     0.8f, 0.05f, 0.95f, 0.0f},
+    {"tsm.marginTexels", "Margin", "border added around the trapezoid, in texels", 2.0f, 0.0f, 64.0f, 1.0f},
+};
+
+// The projected view axis must span at least this much of the unwarped map (NDC units, the map
+// is 2 wide) for a trapezoid to make sense; shorter means the camera looks along the light.
+constexpr float kMinCentreLineNdc = 0.05f;
+// The apex is kept between these multiples of the trapezoid's height behind its top edge: closer
+// would put a singularity at the camera, farther is a uniform map with rounding noise.
+constexpr float kMinApexOverHeight = 1e-3f;
+constexpr float kMaxApexOverHeight = 1e4f;
+
+glm::vec2 toNdc(const glm::mat4& clip, const glm::vec3& p, bool& valid) {
+  const glm::vec4 c = clip * glm::vec4(p, 1.0f);
+  valid = valid && c.w > 0.0f;
+  return glm::vec2(c) / c.w;
+}
+
+}  // namespace
+
+float trapezoidApexDistance(float lambda, float delta, float mapFraction) {
+  const float denominator = mapFraction * lambda - delta;
+  if (denominator <= 0.0f) return std::numeric_limits<float>::infinity();
+  return (1.0f - mapFraction) * lambda * delta / denominator;
+}
+
+glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float lambda, float tMin, float tMax) {
+  // Frame at the apex: a = distance along u (the homogeneous w), b = offset across it.
+  // x = (b/a − tMid)/tHalf spans the sides; y = A − B/a maps a = η → −1 and a = η + λ → +1
+  // with A = 1 + 2η/λ, B = 2η(η + λ)/λ (a 1-D perspective along the centre line).
+  const glm::vec2 v(-u.y, u.x);
+  const float tMid = 0.5f * (tMax + tMin), tHalf = 0.5f * (tMax - tMin);
+  const float A = 1.0f + 2.0f * eta / lambda, B = 2.0f * eta * (eta + lambda) / lambda;
+  const float qu = glm::dot(q, u), qv = glm::dot(q, v);
+  glm::mat4 m(0.0f);  // m[column][row], acting on (x, y, z, w) of the unwarped clip space
+  const glm::vec3 rowX = glm::vec3(v.x - tMid * u.x, v.y - tMid * u.y, -qv + tMid * qu) / tHalf;
+  const glm::vec3 rowY(A * u.x, A * u.y, -A * qu - B);
+  const glm::vec3 rowW(u.x, u.y, -qu);
+  const glm::vec3 rows[4] = {rowX, rowY, 0.5f * rowW, rowW};
+  for (int r = 0; r < 4; ++r) {
+    m[0][r] = rows[r].x;
+    m[1][r] = rows[r].y;
+    m[3][r] = rows[r].z;
+  }
+  return m;
+}
+
+TrapezoidalProjection::TrapezoidalProjection() : Projection(kParams) {}
+
+LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
+                                                 const Scene& scene, int mapSize) const {
+  const float marginFraction = param("tsm.marginTexels") / static_cast<float>(mapSize);
+  const float nearM = camera.nearM, farM = std::max(shadowFarDistance(camera, scene), 2.0f * nearM);
+  std::vector<glm::vec3> body = receiverBody(camera, aspect, nearM, farM, scene, light);
+  const std::vector<glm::vec3> casters = casterExtrusion(body, light, scene.casterBounds());
+  LightFrusta f;
+  ShadowView base = fitLightView(scene, light, body, casters, 0.0f);
+  f.views.push_back(base);
+  if (body.empty()) return f;
+
+  // The centre line: the view axis across the receivers' depth range, in the light's image plane.
+  const glm::vec3 fwd = camera.forward();
+  float depthLo = farM, depthHi = nearM;
+  for (const glm::vec3& p : body) {
+    depthLo = std::min(depthLo, glm::dot(p - camera.position, fwd));
+    depthHi = std::max(depthHi, glm::dot(p - camera.position, fwd));
+  }
+  depthLo = std::max(depthLo, nearM);
+  bool valid = true;
+  const glm::vec2 top = toNdc(base.clipFromWorld, camera.position + fwd * depthLo, valid);
+  const glm::vec2 bottom = toNdc(base.clipFromWorld, camera.position + fwd * depthHi, valid);
+  const float focusDepth = std::clamp(param("tsm.focusDistanceM"), depthLo, depthHi);
+  const glm::vec2 focus = toNdc(base.clipFromWorld, camera.position + fwd * focusDepth, valid);
+  std::vector<glm::vec2> hull;
+  for (const glm::vec3& p : body) hull.push_back(toNdc(base.clipFromWorld, p, valid));
+  if (!valid || glm::length(bottom - top) < kMinCentreLineNdc) return f;  // looking along the light
+  const glm::vec2 u = glm::normalize(bottom - top), v(-u.y, u.x);
+
+  // Top and base edges: perpendicular to u, touching the receivers' region.
+  float sMin = std::numeric_limits<float>::max(), sMax = -sMin;
+  for (const glm::vec2& h : hull) {
+    sMin = std::min(sMin, glm::dot(h - top, u));
+    sMax = std::max(sMax, glm::dot(h - top, u));
+  }
+  const float lambda = sMax - sMin;
+  if (lambda <= 0.0f) return f;
+  const float delta = std::clamp(glm::dot(focus - top, u) - sMin, 0.0f, lambda);
+  const float eta = std::clamp(trapezoidApexDistance(lambda, delta, param("tsm.focusMapFraction")),
+                               kMinApexOverHeight * lambda, kMaxApexOverHeight * lambda);
+  const glm::vec2 q = top + u * (sMin - eta);
+
+  // Sides: the widest tangents from the apex to the region.
+  float tMin = std::numeric_limits<float>::max(), tMax = -tMin;
+  for (const glm::vec2& h : hull) {
+    const float t = glm::dot(h - q, v) / glm::dot(h - q, u);
+    tMin = std::min(tMin, t);
+    tMax = std::max(tMax, t);
+  }
+  const float widen = (tMax - tMin) * marginFraction + 1e-6f;
+  tMin -= widen;
+  tMax += widen;
+  // The margin along u: the top edge moves toward the apex, the base away from it.
+  const float etaMargin = eta * (1.0f - marginFraction), lambdaMargin = lambda * (1.0f + marginFraction) + eta * marginFraction;
+
+  ShadowView& w = f.views.front();
+  w.clipFromWorld = trapezoidWarp(q, u, etaMargin, lambdaMargin, tMin, tMax) * base.clipFromWorld;
+  w.warped = true;
+  return f;
+}
+
+}  // namespace penumbra

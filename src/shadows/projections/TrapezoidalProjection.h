@@ -1,0 +1,38 @@
+#pragma once
+// tsm: trapezoidal shadow maps (Martin & Tan, "Anti-aliasing and continuity with trapezoidal
+// shadow maps", EGSR 2004). In the light's image plane the visible receivers form a region
+// elongated along the projected view axis; a trapezoid around it, narrow end at the camera, is
+// mapped onto the square map by a perspective warp, so the map spends its texels near the
+// camera. The warp's strength follows the 80% rule: the point at the focus distance lands on the
+// line 80% of the way across the map. The map still stores the light's linear depth; only the
+// rasterisation and lookup positions are warped. Degenerates (falls back to `uniform`'s fit)
+// when the camera looks along the light. Artifacts: texels are stretched along the trapezoid's
+// sides; as the camera turns the trapezoid changes every frame (no snapping: edges crawl).
+#include <penumbra/Projection.h>
+
+namespace penumbra {
+
+class TrapezoidalProjection final : public Projection {
+public:
+  TrapezoidalProjection();
+  std::string_view id() const override { return "tsm"; }
+  std::string_view description() const override {
+    return "one map warped by a trapezoid around the view frustum in light space (80% focus rule)";
+  }
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+                            int mapSize) const override;
+};
+
+/// The warp of the light's image plane (normalised device xy of the unwarped light view) that
+/// maps a trapezoid onto [-1,1]²: apex q, unit centre-line direction u, the top and base edges at
+/// distances eta and eta + lambda from q along u, the sides at tangents tMin, tMax from the line.
+/// Returned as a 4×4 acting on the unwarped light clip coordinates (clip z/w is set to 0.5: the
+/// depth written is the linear light depth, not this).
+glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float lambda, float tMin, float tMax);
+
+/// The 80% rule: distance η of the apex behind the top edge so that a point δ past the top edge
+/// (of a trapezoid of height λ) maps to `mapFraction` of the way across the map:
+/// η = (1 − m)·λ·δ / (m·λ − δ). Returns +inf when δ ≥ m·λ (no warp is needed).
+float trapezoidApexDistance(float lambda, float delta, float mapFraction);
+
+}  // namespace penumbra

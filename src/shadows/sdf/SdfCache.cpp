@@ -1,0 +1,157 @@
+// The on-disk cache of baked SDFs: one file per key, "<dir>/sdf-<key>.bin", written to a unique
+// temporary name and renamed, so a reader never sees half a file. A file that fails any check
+// (size, magic, version, key, dimensions, payload hash) is ignored and baked over.
+#include "shadows/sdf/SdfBake.h"
+
+#include "reference/Hash.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Reference.h>
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <span>
+#include <system_error>
+#include <unistd.h>
+
+namespace penumbra::sdf {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'P', 'N', 'S', 'D', 'F', 'B', 'I', 'N'};
+
+// Fixed-size header; the payload follows: dims.x·dims.y·dims.z floats (x fastest). Native
+// (little-endian) order: the cache is local to one machine.
+struct Header {
+  char magic[8];
+  uint32_t codeVersion;
+  int32_t dims[3];
+  uint64_t key;
+  float lo[3];
+  float voxelM;
+  uint64_t triangles;
+  double bakeSeconds;
+  uint64_t payloadHash;
+};
+static_assert(sizeof(Header) == 72, "the header has no padding: every byte is written");
+
+std::atomic<unsigned> gTempCounter{0};
+
+size_t voxelCount(const int32_t dims[3]) {
+  return static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]) * static_cast<size_t>(dims[2]);
+}
+
+std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::vector<char> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (file.size() < sizeof(Header)) return std::nullopt;
+  Header header;
+  std::memcpy(&header, file.data(), sizeof(Header));
+  if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.codeVersion != kSdfCodeVersion || header.key != key)
+    return std::nullopt;
+  for (int32_t d : header.dims)
+    if (d < 1 || d > 4 * kMaxResolution) return std::nullopt;
+  const size_t voxels = voxelCount(header.dims);
+  if (file.size() != sizeof(Header) + voxels * sizeof(float)) return std::nullopt;
+  reference::Hasher hash;
+  hash.bytes(file.data() + sizeof(Header), voxels * sizeof(float));
+  if (hash.digest() != header.payloadHash || !(header.voxelM > 0.0f)) return std::nullopt;
+
+  SdfVolume v;
+  v.dims = {header.dims[0], header.dims[1], header.dims[2]};
+  v.lo = {header.lo[0], header.lo[1], header.lo[2]};
+  v.voxelM = header.voxelM;
+  v.distances.resize(voxels);
+  std::memcpy(v.distances.data(), file.data() + sizeof(Header), voxels * sizeof(float));
+  v.stats.bakeSeconds = header.bakeSeconds;
+  v.stats.triangles = header.triangles;
+  v.stats.gridBytes = voxels * sizeof(float);
+  v.stats.fromCache = true;
+  v.stats.cacheKey = key;
+  return v;
+}
+
+void store(const fs::path& path, const SdfVolume& v) {
+  Header header{};
+  std::memcpy(header.magic, kMagic, sizeof(kMagic));
+  header.codeVersion = kSdfCodeVersion;
+  for (int a = 0; a < 3; ++a) {
+    header.dims[a] = v.dims[a];
+    header.lo[a] = v.lo[a];
+  }
+  header.key = v.stats.cacheKey;
+  header.voxelM = v.voxelM;
+  header.triangles = v.stats.triangles;
+  header.bakeSeconds = v.stats.bakeSeconds;
+  reference::Hasher hash;
+  hash.bytes(v.distances.data(), v.distances.size() * sizeof(float));
+  header.payloadHash = hash.digest();
+
+  // Unique per process and call: two runs that store the same key never share a temporary.
+  const fs::path temp = fs::path(path).concat(fmt::format(".tmp.{}.{}", getpid(), gTempCounter.fetch_add(1)));
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
+    out.write(reinterpret_cast<const char*>(v.distances.data()), static_cast<std::streamsize>(v.distances.size() * sizeof(float)));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temp, ignored);
+      throw Error(fmt::format("sdf cache: cannot write '{}'", temp.string()));
+    }
+  }
+  std::error_code error;
+  fs::rename(temp, path, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw Error(fmt::format("sdf cache: cannot rename '{}' to '{}' ({})", temp.string(), path.string(), error.message()));
+  }
+}
+
+}  // namespace
+
+uint64_t cacheKey(const Scene& scene, int resolution) {
+  reference::Hasher hash;
+  hash.text("penumbra sdf");
+  hash.value(kSdfCodeVersion);
+  hash.value(resolution);
+  hash.value(kPadVoxels);
+  const std::vector<glm::vec3> triangles = casterTriangles(scene);
+  hash.array(std::span<const glm::vec3>(triangles));
+  return hash.digest();
+}
+
+fs::path cacheFilePath(const fs::path& dir, uint64_t key) { return dir / fmt::format("sdf-{:016x}.bin", key); }
+
+SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
+  const fs::path dir = options.useCache ? (options.cacheDir.empty() ? defaultReferenceCacheDir() : options.cacheDir) : fs::path();
+  if (dir.empty()) return bake(scene, options);
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t key = cacheKey(scene, options.resolution);
+  const fs::path path = cacheFilePath(dir, key);
+  if (std::optional<SdfVolume> cached = load(path, key)) {
+    cached->stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return std::move(*cached);
+  }
+  std::error_code error;
+  fs::create_directories(dir, error);
+  PN_CHECK(!error && fs::is_directory(dir),
+           fmt::format("sdf cache: cannot create directory '{}' ({}); set PENUMBRA_CACHE to a writable directory",
+                       dir.string(), error ? error.message() : "not a directory"));
+  SdfVolume v = bake(scene, options);
+  v.stats.cacheKey = key;
+  if (!v.empty()) store(path, v);
+  return v;
+}
+
+}  // namespace penumbra::sdf

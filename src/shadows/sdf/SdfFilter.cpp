@@ -1,0 +1,96 @@
+#include "shadows/sdf/SdfFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/sdf/sdf.shared.h"
+#include "shared/Bindings.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+namespace penumbra {
+namespace {
+
+constexpr std::string_view kKModes[] = {"manual", "light"};
+constexpr std::string_view kEstimators[] = {"classic", "improved"};
+constexpr std::string_view kPenumbrae[] = {"outer", "centered"};
+static_assert(PN_SDF_K_MANUAL == 0 && PN_SDF_K_LIGHT == 1, "kKModes follows the PN_SDF_K_* order");
+static_assert(PN_SDF_ESTIMATOR_CLASSIC == 0 && PN_SDF_ESTIMATOR_IMPROVED == 1, "kEstimators follows PN_SDF_ESTIMATOR_*");
+static_assert(PN_SDF_PENUMBRA_OUTER == 0 && PN_SDF_PENUMBRA_CENTERED == 1, "kPenumbrae follows PN_SDF_PENUMBRA_*");
+
+/// k for a light of size 0 (a point or a delta-direction sun) in light mode: a clearance of
+/// 1/1000 of the ray length already counts as lit, i.e. a hard shadow up to a 1 mm band per metre.
+constexpr float kPointLightK = 1000.0f;
+
+constexpr ParamDesc kParams[] = {
+    {"sdf.kMode", "k from", "light: k = 1/tan(angular radius of the light seen from the receiver), so the scene's light size "
+     "sets the penumbra; manual: k = sdf.k", PN_SDF_K_LIGHT, 0, 1, 1, kKModes},
+    {"sdf.k", "k", "penumbra hardness in manual mode: V = min(k·d/t, 1) for free distance d at ray length t; larger = harder",
+     16.0f, 0.5f, 1000.0f, 0.0f},
+    {"sdf.maxSteps", "Max steps", "sphere-tracing steps per pixel; a ray still marching after them counts as unoccluded beyond",
+     128, 1, 1024, 1},
+    {"sdf.epsilon", "Epsilon", "hit distance and smallest step, in voxels: a sample closer than this to a caster ends the march in "
+     "shadow (outer mode)", 0.1f, 0.001f, 2.0f, 0.0f},
+    {"sdf.startOffset", "Start offset", "the march starts this many voxels off the receiver along its geometric normal, out of "
+     "the field's blur around its own surface", 1.0f, 0.0f, 8.0f, 0.0f},
+    {"sdf.estimator", "Estimator", "classic: k·d/t at each sample; improved: at the closest approach estimated from the previous "
+     "sample's distance (Aaltonen 2018), less banding", PN_SDF_ESTIMATOR_IMPROVED, 0, 1, 1, kEstimators},
+    {"sdf.penumbra", "Penumbra", "outer: V = min(k·d/t, 1), the penumbra grows outward from the hard shadow; centered: the "
+     "march goes on through casters (d < 0) and V is the visible part of a disc light at that angle, half inside, half outside",
+     PN_SDF_PENUMBRA_CENTERED, 0, 1, 1, kPenumbrae},
+    {"sdf.resolution", "Resolution", "voxels along the longest side of the casters' bounds (cubic voxels); changing it rebakes",
+     sdf::kDefaultResolution, sdf::kMinResolution, sdf::kMaxResolution, 1},
+};
+
+}  // namespace
+
+SdfFilter::SdfFilter() : Filter(kParams) {}
+
+void SdfFilter::renderShadowMaps(FrameContext& frame) {
+  const int resolution = paramInt("sdf.resolution");
+  const uint64_t key = sdf::cacheKey(frame.scene(), resolution);
+  if (mHaveField && key == mKey) return;
+  sdf::BakeOptions options;
+  options.resolution = resolution;
+  upload(sdf::loadOrBake(frame.scene(), options));
+  mKey = key;
+  mHaveField = true;
+}
+
+void SdfFilter::upload(const sdf::SdfVolume& volume) {
+  mGrid = volume;
+  mGrid.distances.clear();
+  mGrid.distances.shrink_to_fit();
+  // An empty scene still binds a valid 1³ texture; the shader returns V = 1 without reading it.
+  const glm::ivec3 dims = volume.empty() ? glm::ivec3(1) : volume.dims;
+  GLint max3d = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  PN_CHECK(dims.x <= max3d && dims.y <= max3d && dims.z <= max3d,
+           fmt::format("sdf: a {}x{}x{} field exceeds the driver's 3D texture limit of {}; lower sdf.resolution", dims.x,
+                       dims.y, dims.z, max3d));
+  mField = gl::Texture("sdf field", {GL_TEXTURE_3D, GL_R32F, dims.x, dims.y, dims.z, 1});
+  mField.setSampling(GL_LINEAR, GL_LINEAR);
+  mSlice = gl::Texture("sdf middle z slice", {GL_TEXTURE_2D, GL_R32F, dims.x, dims.y, 1, 1});
+  mSlice.setSampling(GL_NEAREST, GL_NEAREST);
+  const float empty = 0.0f;
+  const float* data = volume.empty() ? &empty : volume.distances.data();
+  glTextureSubImage3D(mField.id(), 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED, GL_FLOAT, data);
+  const size_t slice = static_cast<size_t>(dims.z / 2) * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y);
+  glTextureSubImage2D(mSlice.id(), 0, 0, 0, dims.x, dims.y, GL_RED, GL_FLOAT, volume.empty() ? data : data + slice);
+}
+
+void SdfFilter::computeVisibility(FrameContext& frame) {
+  PN_ASSERT(mHaveField);
+  gpu::SdfUniforms u{};
+  u.gridLo = glm::vec4(mGrid.lo, mGrid.voxelM);
+  u.gridSize = glm::vec4(mGrid.size(), mGrid.dims.x > 0 ? 1.0f : 0.0f);  // dims 0: no casters
+  u.march = glm::vec4(param("sdf.k"), param("sdf.epsilon"), param("sdf.startOffset"), kPointLightK);
+  u.mode = glm::ivec4(paramInt("sdf.maxSteps"), paramInt("sdf.kMode"), paramInt("sdf.estimator"), paramInt("sdf.penumbra"));
+  frame.setFilterBlock(u);
+  mField.bindUnit(PN_TEX_FILTER0);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/sdf/sdf.glsl"));
+}
+
+std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice}}; }
+
+}  // namespace penumbra

@@ -1,0 +1,103 @@
+#include "viewer/HeatmapJob.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Reference.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <utility>
+
+namespace penumbra::viewer {
+namespace {
+
+// Rows traced per call: small enough that progress moves and cancelling is quick, large enough
+// that Embree's threads stay busy within a band.
+constexpr int kBandRows = 8;
+
+template <class T>
+std::vector<T> rows(const std::vector<T>& all, int width, int y0, int y1) {
+  const auto w = static_cast<std::ptrdiff_t>(width);
+  return std::vector<T>(all.begin() + y0 * w, all.begin() + y1 * w);
+}
+
+}  // namespace
+
+HeatmapJob::~HeatmapJob() { cancel(); }
+
+void HeatmapJob::cancel() {
+  mCancel = true;
+  if (mThread.joinable()) mThread.join();
+  mCancel = false;
+  mRunning = false;
+}
+
+void HeatmapJob::start(const Scene& scene, GBufferData gbuffer, std::vector<float> visibility, ColorImage color,
+                       int samples, uint64_t version) {
+  cancel();
+  {
+    std::lock_guard lock(mMutex);
+    mError.clear();
+    mResult.reset();
+  }
+  mProgress = 0.0f;
+  mRunning = true;
+  mThread = std::thread(&HeatmapJob::run, this, scene, std::move(gbuffer), std::move(visibility), std::move(color),
+                        samples, version);
+}
+
+std::optional<HeatmapResult> HeatmapJob::takeResult() {
+  std::lock_guard lock(mMutex);
+  return std::exchange(mResult, std::nullopt);
+}
+
+std::string HeatmapJob::takeError() {
+  std::lock_guard lock(mMutex);
+  return std::exchange(mError, std::string());
+}
+
+void HeatmapJob::run(Scene scene, GBufferData g, std::vector<float> v, ColorImage color, int samples, uint64_t version) {
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    const ReferenceTracer tracer(scene);
+    ReferenceOptions options;
+    options.samples = samples;
+    options.progress = false;  // the viewer draws its own progress bar
+    options.useCache = false;  // per-band results are not worth a cache file each
+    const size_t n = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
+    std::vector<float> vRef(n, 1.0f);
+    std::vector<uint8_t> mask(n, 0);
+    int spp = 0;
+    for (int y0 = 0; y0 < g.height; y0 += kBandRows) {
+      if (mCancel) return;
+      const int y1 = std::min(g.height, y0 + kBandRows);
+      GBufferData band;
+      band.width = g.width;
+      band.height = y1 - y0;
+      band.position = rows(g.position, g.width, y0, y1);
+      band.geoNormal = rows(g.geoNormal, g.width, y0, y1);
+      band.normal = rows(g.normal, g.width, y0, y1);
+      band.albedo = rows(g.albedo, g.width, y0, y1);
+      const ReferenceResult r = tracer.trace(band, scene.light(), options);
+      std::copy(r.visibility.begin(), r.visibility.end(), vRef.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
+      std::copy(r.litMask.begin(), r.litMask.end(), mask.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
+      spp = r.samplesPerPixel;
+      mProgress = static_cast<float>(y1) / static_cast<float>(g.height);
+    }
+    HeatmapResult result;
+    result.metrics = compareVisibility(v, vRef, mask);
+    result.image = errorHeatmap(v, vRef, mask, g.width, g.height, color.rgba.empty() ? nullptr : &color);
+    result.samplesPerPixel = spp;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.version = version;
+    std::lock_guard lock(mMutex);
+    mResult = std::move(result);
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mMutex);
+    mError = e.what();
+  }
+  mRunning = false;
+}
+
+}  // namespace penumbra::viewer

@@ -1,0 +1,146 @@
+// The viewer's scripted mode: Script.h's actions executed on the Viewer, one frame at a time.
+#include "viewer/Viewer.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace penumbra::viewer {
+namespace {
+
+void requireKnown(const ScriptAction& a, const std::vector<std::string>& known, const char* what) {
+  if (std::find(known.begin(), known.end(), a.args[0]) == known.end()) {
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw usageError(fmt::format("{}: unknown {} '{}' (known: {})", a.where, what, a.args[0], list));
+  }
+}
+
+}  // namespace
+
+void Viewer::runScript() {
+  if (mWaitFrames > 0) {
+    --mWaitFrames;
+    return;
+  }
+  if (mWaitHeatmap) {
+    if (mHeatmap.running() || mHeatmapRequest) return;
+    mWaitHeatmap = false;
+  }
+  while (mScriptIndex < mOptions.script.size()) {
+    const ScriptAction& a = mOptions.script[mScriptIndex++];
+    try {
+      if (execute(a)) return;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      if (msg.rfind(a.where, 0) == 0) throw;  // already names the script line
+      throw Error(fmt::format("{}: {}: {}", a.where, a.verb, msg), e.kind());
+    }
+  }
+  mQuit = true;
+}
+
+bool Viewer::execute(const ScriptAction& a) {
+  const std::string& v = a.verb;
+  const std::string arg = a.args.empty() ? "" : a.args[0];
+  auto refused = [&] {
+    std::printf("refused %s=%s: %s\n", v.c_str(), arg.c_str(), mStatus.c_str());
+    std::fflush(stdout);
+  };
+  if (v == "scene") {
+    if (!selectScene(arg)) throw usageError(mStatus);
+  } else if (v == "filter") {
+    requireKnown(a, filterIds(), "filter");
+    if (!selectFilter(arg)) refused();
+  } else if (v == "projection") {
+    requireKnown(a, projectionIds(), "projection");
+    if (!selectProjection(arg)) refused();
+  } else if (v == "set") {
+    mSession.setParam(arg);
+  } else if (v == "camera") {
+    if (arg == "mode") {
+      mFly = a.args[1] == "fly";
+      mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
+      mFlyCamera = FlyCamera::fromCamera(mSession.scene().camera);
+    } else if (arg == "orbit") {
+      mFly = false;
+      mOrbit.yawRad = glm::radians(scriptFloat(a, 1));
+      mOrbit.pitchRad = glm::radians(scriptFloat(a, 2));
+      mOrbit.distanceM = 1.0f;
+      mOrbit.rotate(0.0f, 0.0f);  // clamps the pitch
+      mOrbit.zoom(scriptFloat(a, 3));  // clamps the distance
+      mOrbit.apply(mSession.camera());
+    } else {  // look
+      Camera& c = mSession.camera();
+      c.position = {scriptFloat(a, 1), scriptFloat(a, 2), scriptFloat(a, 3)};
+      c.target = {scriptFloat(a, 4), scriptFloat(a, 5), scriptFloat(a, 6)};
+      if (glm::length(c.target - c.position) <= 0.0f) throw usageError("the target equals the position");
+      mOrbit = OrbitCamera::fromCamera(c);
+      mFlyCamera = FlyCamera::fromCamera(c);
+    }
+  } else if (v == "light") {
+    const glm::vec3 xyz = a.args.size() == 4 ? glm::vec3(scriptFloat(a, 1), scriptFloat(a, 2), scriptFloat(a, 3)) : glm::vec3(0.0f);
+    Light& light = mSession.light();
+    if (arg == "angles") {
+      setLightAngles(light, lightAimPoint(light, mSession.scene().bounds()), glm::radians(scriptFloat(a, 1)),
+                     glm::radians(scriptFloat(a, 2)));
+    } else if (arg == "direction") {
+      if (glm::length(xyz) <= 0.0f) throw usageError("the direction must not be zero");
+      light.direction = glm::normalize(xyz);
+    } else {
+      if (light.type != LightType::Spot) throw usageError("the light is a sun: it has a direction, not a position");
+      light.position = xyz;
+    }
+  } else if (v == "view") {
+    mMain.name = arg;
+  } else if (v == "inset") {
+    mInset.name = arg;
+  } else if (v == "wait") {
+    const int n = scriptInt(a, 0, 0, 1 << 30);
+    if (n == 0) return false;
+    mWaitFrames = n - 1;
+    return true;
+  } else if (v == "screenshot") {
+    mViewShot = arg;
+    return true;
+  } else if (v == "screenshot-window") {
+    mWindowShot = arg;
+    return true;
+  } else if (v == "print") {
+    if (arg == "gl-objects") {
+      std::printf("gl-objects %d\n", gl::liveObjectCount());
+    } else if (arg == "technique") {
+      std::printf("technique scene=%s projection=%s filter=%s\n", mSession.scene().name.c_str(), mSession.projectionId().c_str(),
+                  mSession.filterId().c_str());
+    } else {
+      const PassTimings& t = mSession.renderer().timings();
+      std::string line = "timings";
+      for (const auto& [pass, ms] : t.ms) line += fmt::format(" {}={:.3f}", pass, ms);
+      std::printf("%s frame=%.3f clock=%s\n", line.c_str(), mLastFrameMs, t.clock.c_str());
+    }
+    std::fflush(stdout);
+  } else if (v == "heatmap") {
+    mHeatmapRequest = a.args.empty() ? mHeatmapSamples : scriptInt(a, 0, 1, 1 << 16);
+    return true;
+  } else if (v == "wait-heatmap") {
+    mWaitHeatmap = true;
+    return true;
+  } else if (v == "reload") {
+    reloadShaders();
+    if (!mWatcher) throw usageError(mStatus);
+  } else if (v == "save") {
+    saveSettings(arg);
+  } else if (v == "ui") {
+    mOptions.showUi = arg == "on";
+  } else if (v == "quit") {
+    mQuit = true;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace penumbra::viewer

@@ -1,0 +1,150 @@
+#include "viewer/ViewSession.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace penumbra::viewer {
+namespace {
+
+std::string prefixOf(std::string_view key) { return std::string(key.substr(0, key.find('.'))); }
+
+bool isSceneParam(std::string_view key) {
+  const auto descs = sceneParamDescs();
+  return std::any_of(descs.begin(), descs.end(), [&](const ParamDesc& d) { return d.key == key; });
+}
+
+// The scene's own `light.*` settings (makeSetup applies them for the first scene).
+void applySceneLightParams(Scene& scene, Projection& projection, Filter& filter) {
+  std::vector<std::pair<std::string, std::string>> light;
+  for (const auto& kv : scene.shadow.params)
+    if (prefixOf(kv.first) == "light") light.push_back(kv);
+  applyParams(light, scene, projection, filter);
+}
+
+}  // namespace
+
+ViewSession::ViewSession(gl::Context& context, Scene scene, std::unique_ptr<Projection> projection,
+                         std::unique_ptr<Filter> filter, int shadowMapSize)
+    : mRenderer(context), mScene(std::move(scene)), mProjectionId(projection->id()), mFilterId(filter->id()),
+      mShadowMapSize(shadowMapSize) {
+  // What the command line set (and the scene's own values) is remembered like a widget edit.
+  for (const Parameterized* p : {static_cast<const Parameterized*>(projection.get()), static_cast<const Parameterized*>(filter.get())})
+    for (const ParamDesc& d : p->paramDescs())
+      if (p->param(d.key) != d.def) mRemembered[std::string(d.key)] = p->param(d.key);
+  mRenderer.setScene(mScene);
+  mRenderer.setTechnique(std::move(projection), std::move(filter));
+}
+
+void ViewSession::setShadowMapSize(int texels) {
+  if (texels < 16) throw usageError(fmt::format("shadow map size {}: must be at least 16", texels));
+  mShadowMapSize = texels;
+  ++mVersion;
+}
+
+Light& ViewSession::light() {
+  PN_CHECK(!mScene.lights.empty(), "the scene has no light");
+  ++mVersion;
+  return mScene.lights.front();
+}
+
+void ViewSession::applyRemembered(Parameterized& p) const {
+  for (const ParamDesc& d : p.paramDescs())
+    if (auto it = mRemembered.find(d.key); it != mRemembered.end()) p.setParam(d.key, it->second);
+}
+
+void ViewSession::rebuildTechnique(const std::string& projectionId, const std::string& filterId) {
+  std::unique_ptr<Projection> projection = makeProjection(projectionId);
+  std::unique_ptr<Filter> filter = makeFilter(filterId);
+  for (const auto& [key, value] : mScene.shadow.params) {
+    const std::string prefix = prefixOf(key);
+    if (prefix == projection->id()) projection->setParam(key, std::string_view(value));
+    if (prefix == filter->id()) filter->setParam(key, std::string_view(value));
+  }
+  applyRemembered(*projection);
+  applyRemembered(*filter);
+  mRenderer.setTechnique(std::move(projection), std::move(filter));  // throws before changing anything
+  mProjectionId = projectionId;
+  mFilterId = filterId;
+  ++mVersion;
+}
+
+void ViewSession::setProjection(const std::string& id) { rebuildTechnique(id, mFilterId); }
+void ViewSession::setFilter(const std::string& id) { rebuildTechnique(mProjectionId, id); }
+
+void ViewSession::loadScene(const std::string& nameOrPath) {
+  Scene next = penumbra::loadScene(nameOrPath);
+  applySceneLightParams(next, mRenderer.projection(), mRenderer.filter());
+  // What the new scene's file sets explicitly wins over values remembered from before.
+  auto previousRemembered = mRemembered;
+  for (const auto& kv : next.shadow.params) mRemembered.erase(kv.first);
+  Scene previous = std::move(mScene);
+  mScene = std::move(next);
+  try {
+    mRenderer.setScene(mScene);
+    rebuildTechnique(mProjectionId, mFilterId);
+  } catch (...) {
+    mScene = std::move(previous);
+    mRemembered = std::move(previousRemembered);
+    mRenderer.setScene(mScene);
+    throw;
+  }
+  mHasFrame = false;
+  ++mVersion;
+}
+
+std::vector<ParamGroup> ViewSession::paramGroups() {
+  Renderer& r = mRenderer;
+  return {{"Scene", sceneParamDescs()},
+          {fmt::format("Projection: {}", mProjectionId), r.projection().paramDescs()},
+          {fmt::format("Filter: {}", mFilterId), r.filter().paramDescs()}};
+}
+
+float ViewSession::paramValue(const ParamDesc& desc) {
+  Renderer& r = mRenderer;
+  if (r.projection().hasParam(desc.key)) return r.projection().param(desc.key);
+  if (r.filter().hasParam(desc.key)) return r.filter().param(desc.key);
+  // Scene parameters have no getter of their own: light.size is the light's size.
+  if (desc.key == "light.size" && !mScene.lights.empty()) return mScene.lights.front().size;
+  if (auto it = mRemembered.find(desc.key); it != mRemembered.end()) return it->second;
+  return desc.def;
+}
+
+void ViewSession::setParam(const ParamDesc& desc, float value) {
+  checkParamValue(desc, value);
+  if (isSceneParam(desc.key)) {
+    applyParams({{std::string(desc.key), formatParamValue(desc, value)}}, mScene, mRenderer.projection(), mRenderer.filter());
+  } else {
+    if (mRenderer.projection().hasParam(desc.key)) mRenderer.projection().setParam(desc.key, value);
+    else if (mRenderer.filter().hasParam(desc.key)) mRenderer.filter().setParam(desc.key, value);
+    else throw usageError(fmt::format("parameter '{}' belongs to neither --projection {} nor --filter {}", desc.key, mProjectionId, mFilterId));
+    mRemembered[std::string(desc.key)] = value;
+  }
+  ++mVersion;
+}
+
+void ViewSession::setParam(const std::string& assignment) {
+  const auto [key, text] = splitAssignment(assignment);
+  for (const ParamGroup& g : paramGroups())
+    for (const ParamDesc& d : g.descs)
+      if (d.key == key) return setParam(d, parseParamValue(d, text));
+  throw usageError(fmt::format("unknown parameter '{}' for --projection {} --filter {} (penumbra list shows them all)", key,
+                               mProjectionId, mFilterId));
+}
+
+void ViewSession::render(int width, int height, int litView) {
+  mRenderer.setCameraAndLights(mScene.camera, mScene.lights);
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.shadowMapSize = mShadowMapSize;
+  options.debugView = litView;
+  mRenderer.render(options);
+  mHasFrame = true;
+}
+
+}  // namespace penumbra::viewer

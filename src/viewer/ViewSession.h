@@ -1,0 +1,80 @@
+#pragma once
+// The viewer's model, without any UI: the scene being viewed, the technique, every parameter
+// value and the Renderer. The panels and the script runner both change the view through it,
+// so a script does exactly what a click does.
+#include <penumbra/Params.h>
+#include <penumbra/Renderer.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra::gl { class Context; }
+
+namespace penumbra::viewer {
+
+/// One panel's worth of parameters.
+struct ParamGroup {
+  std::string title;  ///< "Scene", "Projection: uniform", "Filter: hard"
+  std::span<const ParamDesc> descs;
+};
+
+class ViewSession {
+public:
+  /// Takes a prepared scene and technique (penumbra::app::makeSetup), uploads the scene.
+  /// Throws a usage Error when the pair cannot work.
+  ViewSession(gl::Context& context, Scene scene, std::unique_ptr<Projection> projection,
+              std::unique_ptr<Filter> filter, int shadowMapSize);
+
+  Renderer& renderer() { return mRenderer; }
+  const Renderer& renderer() const { return mRenderer; }
+  /// The scene as viewed now (camera and lights as moved).
+  const Scene& scene() const { return mScene; }
+  const std::string& projectionId() const { return mProjectionId; }
+  const std::string& filterId() const { return mFilterId; }
+  int shadowMapSize() const { return mShadowMapSize; }
+  void setShadowMapSize(int texels);
+
+  /// Each throws Error (usage for unknown ids / refused pairs) and leaves the view unchanged.
+  void loadScene(const std::string& nameOrPath);
+  void setProjection(const std::string& id);
+  void setFilter(const std::string& id);
+
+  std::vector<ParamGroup> paramGroups();
+  float paramValue(const ParamDesc& desc);
+  /// Sets a projection, filter or scene parameter; remembered across technique switches.
+  void setParam(const ParamDesc& desc, float value);
+  /// "key=value" as on the command line; throws a usage Error for unknown keys/bad values.
+  void setParam(const std::string& assignment);
+
+  /// Camera and light edits: take effect at the next render().
+  Camera& camera() { ++mVersion; return mScene.camera; }
+  Light& light();
+
+  /// Renders a width × height frame of the current state; `litView` = what the lit pass writes
+  /// (RenderOptions::debugView). Throws Error on GL/shader failures.
+  void render(int width, int height, int litView);
+  bool hasFrame() const { return mHasFrame; }
+
+  /// Changes whenever anything that affects the image changes (a stale-heatmap check).
+  uint64_t version() const { return mVersion; }
+
+private:
+  void rebuildTechnique(const std::string& projectionId, const std::string& filterId);
+  void applyRemembered(Parameterized& p) const;
+
+  Renderer mRenderer;
+  Scene mScene;
+  std::string mProjectionId, mFilterId;
+  int mShadowMapSize;
+  /// Values the user set, by key; re-applied when a technique is rebuilt.
+  std::map<std::string, float, std::less<>> mRemembered;
+  uint64_t mVersion = 1;
+  bool mHasFrame = false;
+};
+
+}  // namespace penumbra::viewer

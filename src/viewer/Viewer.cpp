@@ -1,0 +1,411 @@
+#include "viewer/Viewer.h"
+
+#include "viewer/SceneWriter.h"
+
+#include "shared/Enums.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
+#include <penumbra/Registry.h>
+
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace penumbra::viewer {
+namespace {
+
+constexpr float kOrbitRadPerPixel = 0.006f;  // a full turn per ~1000 px of drag
+constexpr float kLightRadPerPixel = 0.005f;
+constexpr float kZoomPerWheelNotch = 1.15f;  // distance factor per wheel step
+constexpr float kFlyFastFactor = 4.0f;       // Shift held in fly mode
+constexpr float kInsetFraction = 0.32f;      // inset side relative to the view
+constexpr int kInsetMarginPx = 8;
+constexpr float kMaxSidebarFraction = 0.5f;  // as in Panels.cpp: the panels never take more than half
+constexpr size_t kHistoryFrames = 240;       // rolling graphs: 4 s at 60 fps
+constexpr float kFlySpeedPerSceneRadius = 0.5f;  // metres per second per metre of scene radius
+
+// The lit pass's views (RenderOptions::debugView), shown as the colour output.
+struct LitView {
+  const char* name;
+  int debugView;
+};
+constexpr LitView kLitViews[] = {
+    {kShadedView, PN_VIEW_SHADED},
+    {"cascades", PN_VIEW_CASCADES},
+    {"texel-density", PN_VIEW_TEXEL_DENSITY},
+};
+
+const LitView* findLitView(const std::string& name) {
+  for (const LitView& v : kLitViews)
+    if (name == v.name) return &v;
+  return nullptr;
+}
+
+std::string join(const std::vector<std::string>& items, const char* separator) {
+  std::string out;
+  for (const std::string& i : items) out += (out.empty() ? "" : separator) + i;
+  return out;
+}
+
+std::string title(const ViewSession& s) {
+  return fmt::format("Penumbra view: {} | --projection {} --filter {}", s.scene().name, s.projectionId(), s.filterId());
+}
+
+}  // namespace
+
+Viewer::Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter, int shadowMapSize,
+               ViewerOptions options)
+    : mOptions(std::move(options)),
+      mWindow(mOptions.width, mOptions.height, "Penumbra view", {.debug = false, .verbose = mOptions.verbose}),
+      mSession(mWindow, std::move(scene), std::move(projection), std::move(filter), shadowMapSize),
+      mDisplay(mSession.renderer().shaders()) {
+  glfwSwapInterval(mOptions.vsync ? 1 : 0);
+  glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  if (mOptions.shaderTree) mWatcher = std::make_unique<ShaderWatcher>(mSession.renderer().shaders(), *mOptions.shaderTree);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(mWindow.window(), true);
+  ImGui_ImplOpenGL3_Init("#version 450 core");
+  mHomeCamera = mSession.scene().camera;
+  resetCamera();
+  std::snprintf(mSavePath, sizeof(mSavePath), "%s-view.json", mSession.scene().name.c_str());
+}
+
+Viewer::~Viewer() {
+  mHeatmap.cancel();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+int Viewer::run() {
+  while (frame()) {
+  }
+  return 0;
+}
+
+void Viewer::resetCamera() {
+  const Scene& s = mSession.scene();
+  mOrbit = OrbitCamera::fromCamera(s.camera);
+  mFlyCamera = FlyCamera::fromCamera(s.camera);
+  mFlySpeedMps = std::max(s.bounds().radius(), 1.0f) * kFlySpeedPerSceneRadius;
+}
+
+void Viewer::setStatus(std::string message, bool error) {
+  mStatus = std::move(message);
+  mStatusIsError = error;
+  if (mOptions.scripted || mOptions.verbose) std::fprintf(error ? stderr : stdout, "penumbra view: %s\n", mStatus.c_str());
+}
+
+bool Viewer::frame() {
+  const auto start = std::chrono::steady_clock::now();
+  glfwPollEvents();
+  if (glfwWindowShouldClose(mWindow.window())) return false;
+  if (mOptions.scripted) runScript();
+  if (mQuit) return false;
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  try {
+    drawFrame();
+  } catch (...) {
+    ImGui::EndFrame();  // leave ImGui consistent for the shutdown that follows
+    throw;
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  recordTimings(ms);
+  ++mFrameCount;
+  return mOptions.frames <= 0 || mFrameCount < mOptions.frames;
+}
+
+void Viewer::drawFrame() {
+  if (mOptions.showUi) drawPanels();
+  layout();
+  drawOverlay();
+  handleInput(static_cast<float>(mLastFrameMs) * 1e-3f);
+  pollHeatmap();
+  if (mWatcher && mAutoReload && mWatcher->poll())
+    setStatus(mWatcher->errors().empty() ? "shaders reloaded" : fmt::format("shader reload: {} error(s), last good kept", mWatcher->errors().size()),
+              !mWatcher->errors().empty());
+
+  renderFrame();
+  if (mHeatmapRequest) startHeatmap(*std::exchange(mHeatmapRequest, std::nullopt));  // on this frame
+  drawViews();
+  if (mViewShot) screenshotView(*std::exchange(mViewShot, std::nullopt));
+  ImGui::Render();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, mFramebuffer.x, mFramebuffer.y);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (mWindowShot) screenshotWindow(*std::exchange(mWindowShot, std::nullopt));
+  glfwSwapBuffers(mWindow.window());
+}
+
+void Viewer::layout() {
+  glfwGetFramebufferSize(mWindow.window(), &mFramebuffer.x, &mFramebuffer.y);
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  const int sidebar = mOptions.showUi ? static_cast<int>(std::min(mSidebarWidth * scale, kMaxSidebarFraction * static_cast<float>(mFramebuffer.x))) : 0;
+  mViewRect = {sidebar, 0, std::max(0, mFramebuffer.x - sidebar), mFramebuffer.y};
+  const int insetW = static_cast<int>(kInsetFraction * static_cast<float>(mViewRect.z));
+  const int insetH = static_cast<int>(kInsetFraction * static_cast<float>(mViewRect.w));
+  mInsetRect = {mViewRect.x + mViewRect.z - insetW - kInsetMarginPx, kInsetMarginPx, insetW, insetH};
+}
+
+void Viewer::handleInput(float dt) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const glm::vec2 d(io.MouseDelta.x, io.MouseDelta.y);
+  const float scale = io.DisplayFramebufferScale.y;
+  const glm::vec2 mouse = glm::vec2(io.MousePos.x, io.MousePos.y) * scale;
+  const bool overView = mouse.x >= static_cast<float>(mViewRect.x) && mouse.y >= 0.0f &&
+                        mouse.x < static_cast<float>(mViewRect.x + mViewRect.z) && mouse.y < static_cast<float>(mViewRect.w);
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_F1) || ImGui::IsKeyPressed(GLFW_KEY_TAB)) mOptions.showUi = !mOptions.showUi;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F5)) reloadShaders();
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12)) {
+      if (io.KeyShift) mWindowShot = nextScreenshotPath();
+      else mViewShot = nextScreenshotPath();
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) {
+      mFly = !mFly;
+      if (mFly) mFlyCamera = FlyCamera::fromCamera(mSession.scene().camera);
+      else mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) mHeatmapRequest = mHeatmapSamples;
+    if (mFly) {
+      glm::vec3 move(0.0f);
+      move.x = float(ImGui::IsKeyDown(GLFW_KEY_D)) - float(ImGui::IsKeyDown(GLFW_KEY_A));
+      move.y = float(ImGui::IsKeyDown(GLFW_KEY_E)) - float(ImGui::IsKeyDown(GLFW_KEY_Q));
+      move.z = float(ImGui::IsKeyDown(GLFW_KEY_W)) - float(ImGui::IsKeyDown(GLFW_KEY_S));
+      if (move != glm::vec3(0.0f)) {
+        mFlyCamera.move(move * mFlySpeedMps * dt * (io.KeyShift ? kFlyFastFactor : 1.0f));
+        mFlyCamera.apply(mSession.camera());
+      }
+    }
+  }
+  if (mViewRect.w <= 0) return;
+  // A drag belongs to the view when it starts there, and goes on over the panels.
+  const bool hoverView = overView && !io.WantCaptureMouse;
+  const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
+  if (!anyDown) mDragInView = false;
+  else if (hoverView && (io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2])) mDragInView = true;
+  const bool pan = io.MouseDown[ImGuiMouseButton_Middle] || (io.MouseDown[ImGuiMouseButton_Left] && io.KeyShift);
+  if (mDragInView && d != glm::vec2(0.0f)) {
+    if (io.MouseDown[ImGuiMouseButton_Right]) {
+      Light& light = mSession.light();
+      const glm::vec3 aim = lightAimPoint(light, mSession.scene().bounds());
+      const glm::vec2 angles = lightAngles(light, aim);
+      setLightAngles(light, aim, angles.x - d.x * kLightRadPerPixel, angles.y - d.y * kLightRadPerPixel);
+    } else if (mFly && io.MouseDown[ImGuiMouseButton_Left]) {
+      mFlyCamera.look(-d.x * kOrbitRadPerPixel, -d.y * kOrbitRadPerPixel);
+      mFlyCamera.apply(mSession.camera());
+    } else if (!mFly && pan) {
+      const float h = static_cast<float>(mViewRect.w) / scale;
+      mOrbit.pan(d.x / h, -d.y / h, mSession.scene().camera.fovYRad);
+      mOrbit.apply(mSession.camera());
+    } else if (!mFly && io.MouseDown[ImGuiMouseButton_Left]) {
+      mOrbit.rotate(-d.x * kOrbitRadPerPixel, d.y * kOrbitRadPerPixel);
+      mOrbit.apply(mSession.camera());
+    }
+  }
+  if (hoverView && io.MouseWheel != 0.0f) {
+    if (mFly) {
+      mFlySpeedMps *= std::pow(kZoomPerWheelNotch, io.MouseWheel);
+    } else {
+      mOrbit.zoom(std::pow(kZoomPerWheelNotch, -io.MouseWheel));
+      mOrbit.apply(mSession.camera());
+    }
+  }
+}
+
+void Viewer::renderFrame() {
+  if (mViewRect.z <= 0 || mViewRect.w <= 0) return;
+  const int w = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.z))));
+  const int h = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.w))));
+  try {
+    mSession.render(w, h, litView());
+    mRenderError.clear();
+  } catch (const Error& e) {
+    if (mOptions.scripted) throw;
+    mRenderError = e.what();  // shown in the panels; the last good frame stays on screen
+  }
+}
+
+int Viewer::litView() const {
+  const LitView* v = findLitView(mMain.name);
+  return v ? v->debugView : PN_VIEW_SHADED;
+}
+
+const gl::Texture* Viewer::findView(const std::string& name) const {
+  if (findLitView(name)) return &mSession.renderer().colorTexture();
+  if (name == kHeatmapView) return mHeatmapTexture ? &mHeatmapTexture : nullptr;
+  for (const DebugImage& d : mSession.renderer().debugImages())
+    if (d.name == name && d.texture && *d.texture) return d.texture;
+  return nullptr;
+}
+
+std::vector<std::string> Viewer::viewNames() const {
+  std::vector<std::string> names;
+  for (const LitView& v : kLitViews) names.emplace_back(v.name);
+  if (mHeatmapTexture) names.emplace_back(kHeatmapView);
+  for (const DebugImage& d : mSession.renderer().debugImages())
+    if (d.texture && *d.texture) names.push_back(d.name);
+  return names;
+}
+
+void Viewer::drawViews() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, mFramebuffer.x, mFramebuffer.y);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  if (!mSession.hasFrame()) return;
+  auto show = [&](ViewState& view, const glm::ivec4& rect, glm::vec2& range) {
+    const gl::Texture* texture = findView(view.name);
+    if (!texture) {
+      if (mOptions.scripted)
+        throw usageError(fmt::format("view '{}': no such image now (available: {})", view.name, join(viewNames(), ", ")));
+      texture = findView(kShadedView);
+    }
+    DisplaySettings s = view.settings;
+    if (texture == &mSession.renderer().colorTexture() || texture == &mHeatmapTexture) {
+      s = DisplaySettings{};  // colour images are shown as they are
+      s.channel = DisplaySettings::kChannelRgb;
+      s.autoRange = false;
+    }
+    try {
+      range = mDisplay.draw(*texture, s, rect);
+    } catch (const Error& e) {
+      if (mOptions.scripted) throw;
+      setStatus(fmt::format("view '{}': {}", view.name, e.what()), true);
+      view.name = kShadedView;
+    }
+  };
+  show(mMain, mViewRect, mMainRange);
+  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) show(mInset, mInsetRect, mInsetRange);
+}
+
+void Viewer::recordTimings(double frameMs) {
+  mLastFrameMs = frameMs;
+  auto push = [](std::deque<float>& h, double v) {
+    h.push_back(static_cast<float>(v));
+    while (h.size() > kHistoryFrames) h.pop_front();
+  };
+  push(mFrameHistory, frameMs);
+  for (const auto& [pass, ms] : mSession.renderer().timings().ms) push(mPassHistory[pass], ms);
+}
+
+void Viewer::pollHeatmap() {
+  if (std::optional<HeatmapResult> r = mHeatmap.takeResult()) {
+    const ColorImage& img = r->image;
+    if (!mHeatmapTexture || mHeatmapTexture.width() != img.width || mHeatmapTexture.height() != img.height) {
+      mHeatmapTexture = gl::Texture("viewer error heatmap", {GL_TEXTURE_2D, GL_RGBA8, img.width, img.height, 1, 1});
+      mHeatmapTexture.setSampling(GL_NEAREST, GL_NEAREST);
+    }
+    const std::vector<uint8_t> bottomUp = flipRows<uint8_t>(img.rgba, img.width, img.height, 4);
+    glTextureSubImage2D(mHeatmapTexture.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    const VisibilityMetrics& m = r->metrics;
+    setStatus(fmt::format("heatmap: RMSE {:.4f}, leak {:.2f}%, over-dark {:.2f}%, penumbra RMSE {:.4f} over {} px ({} spp, {:.1f} s)",
+                          m.rmse, m.leakPct, m.overDarkPct, m.penumbraRmse, m.pixels, r->samplesPerPixel, r->seconds),
+              false);
+    mHeatmapResult = std::move(r);
+    mMain.name = kHeatmapView;
+  }
+  if (const std::string e = mHeatmap.takeError(); !e.empty()) {
+    if (mOptions.scripted) throw Error("heatmap: " + e);
+    setStatus("heatmap: " + e, true);
+  }
+}
+
+void Viewer::startHeatmap(int samples) {
+  if (!mSession.hasFrame()) return setStatus("heatmap: no frame rendered yet", true);
+  Renderer& r = mSession.renderer();
+  // The backdrop is the shaded colour; a lit-pass debug view (cascade tints) would mislead.
+  ColorImage backdrop = litView() == PN_VIEW_SHADED ? r.readColor() : ColorImage{};
+  mHeatmap.start(mSession.scene(), r.readGBuffer(), r.readVisibility(), std::move(backdrop), samples, mSession.version());
+  setStatus(fmt::format("heatmap: tracing the reference at {} samples per pixel...", samples), false);
+}
+
+bool Viewer::selectScene(const std::string& nameOrPath) {
+  try {
+    mSession.loadScene(nameOrPath);
+  } catch (const Error& e) {
+    setStatus(fmt::format("scene {}: {}", nameOrPath, e.what()), true);
+    return false;
+  }
+  mHomeCamera = mSession.scene().camera;
+  resetCamera();
+  mHeatmap.cancel();
+  if (mMain.name == kHeatmapView) mMain.name = kShadedView;  // it measured another scene
+  glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  std::snprintf(mSavePath, sizeof(mSavePath), "%s-view.json", mSession.scene().name.c_str());
+  setStatus(fmt::format("scene {}", mSession.scene().name), false);
+  return true;
+}
+
+bool Viewer::selectProjection(const std::string& id) {
+  try {
+    mSession.setProjection(id);
+  } catch (const Error& e) {
+    setStatus(e.what(), true);
+    return false;
+  }
+  glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  return true;
+}
+
+bool Viewer::selectFilter(const std::string& id) {
+  try {
+    mSession.setFilter(id);
+  } catch (const Error& e) {
+    setStatus(e.what(), true);
+    return false;
+  }
+  glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  return true;
+}
+
+std::filesystem::path Viewer::nextScreenshotPath() const {
+  for (int i = 1;; ++i) {
+    std::filesystem::path p = fmt::format("penumbra-view-{:03}.png", i);
+    if (!std::filesystem::exists(p)) return p;
+  }
+}
+
+void Viewer::screenshotView(const std::filesystem::path& path) {
+  const ColorImage img = readWindow(mViewRect);
+  writePng(path, img.width, img.height, img.rgba);
+  setStatus(fmt::format("screenshot {} {}x{} scene={} projection={} filter={} view={}", path.string(), img.width, img.height,
+                        mSession.scene().name, mSession.projectionId(), mSession.filterId(), mMain.name),
+            false);
+}
+
+void Viewer::screenshotWindow(const std::filesystem::path& path) {
+  const ColorImage img = readWindow({0, 0, mFramebuffer.x, mFramebuffer.y});
+  writePng(path, img.width, img.height, img.rgba);
+  setStatus(fmt::format("screenshot-window {} {}x{}", path.string(), img.width, img.height), false);
+}
+
+void Viewer::saveSettings(const std::filesystem::path& path) {
+  Renderer& r = mSession.renderer();
+  saveSceneFile(path, mSession.scene(), r.projection(), r.filter(), mSession.shadowMapSize());
+  setStatus(fmt::format("saved {} (penumbra render --scene {})", path.string(), path.string()), false);
+}
+
+void Viewer::reloadShaders() {
+  if (!mWatcher) return setStatus("no shader source tree: start with --shader-dir DIR to reload shaders", true);
+  const std::vector<std::string>& errors = mWatcher->reload();
+  if (errors.empty()) return setStatus(fmt::format("shaders reloaded from {}", mWatcher->sourceTree().string()), false);
+  setStatus(fmt::format("shader reload: {} error(s), last good programs kept:\n{}", errors.size(), join(errors, "\n")), true);
+}
+
+}  // namespace penumbra::viewer

@@ -1,0 +1,150 @@
+#pragma once
+// `penumbra view`: a GLFW window with Dear ImGui panels around the Renderer's output.
+//  - Panels (Panels.cpp): scene, projection, filter and every parameter as a widget generated
+//    from its ParamDesc; light and camera; debug views; per-pass times; shaders; heatmap; save.
+//  - The view (this file): orbit/fly camera, light dragging, the main view + an inset (any
+//    Renderer::debugImages() entry, the colour output or the error heatmap), screenshots,
+//    shader hot reload, and the scripted mode (Script.h) used by tests and demos.
+#include "gl/Context.h"
+#include "gl/Objects.h"
+#include "viewer/Cameras.h"
+#include "viewer/DebugDisplay.h"
+#include "viewer/HeatmapJob.h"
+#include "viewer/Script.h"
+#include "viewer/ShaderWatcher.h"
+#include "viewer/ViewSession.h"
+
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::viewer {
+
+struct ViewerOptions {
+  int width = 1280, height = 720;  ///< window size in pixels
+  int frames = 0;                  ///< stop after this many frames; 0 = no limit
+  std::vector<ScriptAction> script;
+  bool scripted = false;           ///< --script given: exit after its last action; failures are fatal
+  bool showUi = true;
+  std::optional<std::filesystem::path> shaderTree;  ///< hot reload from this source tree
+  bool vsync = true;
+  bool verbose = false;
+};
+
+/// Names of the views that are not Renderer::debugImages() entries. The lit-pass views
+/// (RenderOptions::debugView: shaded, cascades, texel-density) are the colour output.
+inline constexpr const char* kShadedView = "shaded";
+inline constexpr const char* kHeatmapView = "heatmap";
+inline constexpr const char* kNoInset = "none";
+
+class Viewer {
+public:
+  /// Opens the window (throws Error if no 4.5 context), then the session on `scene`.
+  Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter, int shadowMapSize,
+         ViewerOptions options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  /// Runs until the window closes, the frame limit is reached or the script ends. Throws Error
+  /// for a script failure. Returns the exit code.
+  int run();
+
+private:
+  struct ViewState {  // what one of the two view slots shows and how
+    std::string name;
+    DisplaySettings settings;
+  };
+
+  bool frame();
+  void drawFrame();  ///< between ImGui's NewFrame and the buffer swap
+  void layout();
+  void handleInput(float dtSeconds);
+  void renderFrame();
+  void drawViews();
+  void recordTimings(double frameMs);
+  void pollHeatmap();
+
+  // Actions shared by the panels and the script. They report problems in the status line
+  // (and, when scripted, on stdout) instead of throwing, except for unknown names.
+  bool selectScene(const std::string& nameOrPath);
+  bool selectProjection(const std::string& id);
+  bool selectFilter(const std::string& id);
+  void startHeatmap(int samples);
+  void screenshotView(const std::filesystem::path& path);
+  void screenshotWindow(const std::filesystem::path& path);
+  void saveSettings(const std::filesystem::path& path);
+  void reloadShaders();
+  void resetCamera();
+  void setStatus(std::string message, bool error);
+  std::filesystem::path nextScreenshotPath() const;
+  const gl::Texture* findView(const std::string& name) const;
+  int litView() const;  ///< RenderOptions::debugView for the main view
+  std::vector<std::string> viewNames() const;
+
+  // Script.cpp's actions, run at the start of frames.
+  void runScript();
+  bool execute(const ScriptAction& a);  ///< true = let this frame pass before the next action
+
+  // Panels (Panels.cpp).
+  void drawPanels();
+  void drawOverlay();  ///< the heatmap's progress, over the view
+  void drawTechniquePanel();
+  void drawParams();
+  void drawLightCameraPanel();
+  void drawViewsPanel();
+  void drawViewSettings(const char* id, ViewState& view, bool allowNone);
+  void drawTimingPanel();
+  void drawToolsPanel();
+
+  ViewerOptions mOptions;
+  gl::WindowContext mWindow;
+  ViewSession mSession;
+  DebugDisplay mDisplay;
+  std::unique_ptr<ShaderWatcher> mWatcher;
+  bool mAutoReload = true;
+  HeatmapJob mHeatmap;
+  std::optional<HeatmapResult> mHeatmapResult;
+  gl::Texture mHeatmapTexture;
+  int mHeatmapSamples = 64;
+  std::optional<int> mHeatmapRequest;  ///< samples; started once this frame is rendered
+
+  // Layout (window pixels, origin lower-left) and cameras.
+  glm::ivec2 mFramebuffer{0};
+  glm::ivec4 mViewRect{0}, mInsetRect{0};
+  float mSidebarWidth = 360.0f;
+  float mRenderScale = 1.0f;
+  bool mFly = false;
+  bool mDragInView = false;  ///< a mouse drag that started over the view
+  Camera mHomeCamera;  ///< the scene's own camera ("Reset camera")
+  OrbitCamera mOrbit;
+  FlyCamera mFlyCamera;
+  float mFlySpeedMps = 2.0f;
+
+  ViewState mMain{kShadedView, {}}, mInset{kNoInset, {}};
+  glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};
+
+  // Status line, timings.
+  std::string mStatus;
+  bool mStatusIsError = false;
+  std::string mRenderError;
+  std::map<std::string, std::deque<float>> mPassHistory;
+  std::deque<float> mFrameHistory;
+  double mLastFrameMs = 0.0;
+  long mFrameCount = 0;
+
+  // Script and screenshot requests for the current frame.
+  size_t mScriptIndex = 0;
+  int mWaitFrames = 0;
+  bool mWaitHeatmap = false;
+  bool mQuit = false;
+  std::optional<std::filesystem::path> mViewShot, mWindowShot;
+  char mSavePath[512] = {};
+  char mScenePath[512] = {};
+};
+
+}  // namespace penumbra::viewer

@@ -1,0 +1,162 @@
+// penumbra bench as a user runs it: CSV and JSON carry the same rows; the HTML report opens in
+// headless Chromium without console errors and shows its charts and image grid.
+#include "CliSupport.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// RFC 4180: fields separated by commas, records by CRLF or LF, quoted fields may hold both and
+// "" for a quote.
+std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        rows.back().back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        rows.back().back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().emplace_back();
+    } else if (c == '\n') {
+      rows.emplace_back(1);
+    } else if (c != '\r') {
+      rows.back().back() += c;
+    }
+  }
+  if (rows.back().size() == 1 && rows.back()[0].empty()) rows.pop_back();
+  return rows;
+}
+
+// The first of Debian's and other distributions' Chromium binaries on PATH, or "".
+std::string findChromium() {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::vector<std::string> folders;
+  for (std::string d; std::getline(dirs, d, ':');) folders.push_back(d);
+  for (const char* name : {"chromium", "chromium-browser", "google-chrome", "google-chrome-stable"})
+    for (const std::string& d : folders)
+      if (!d.empty() && fs::exists(fs::path(d) / name)) return (fs::path(d) / name).string();
+  return {};
+}
+
+}  // namespace
+
+TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
+  const std::string dir = freshDir("bench-rows");
+  const RunResult r = runPenumbra(
+      "bench --scenes boxes --filters hard,pcf --projections uniform,csm --sweep pcf.radiusTexels=1:2:2 "
+      "--size 64x48 --shadow-map 256 --frames 2 --samples 4 --no-cache --out out",
+      dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::vector<std::vector<std::string>> csv = parseCsv(slurp(dir + "/out/results.csv"));
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  ASSERT_FALSE(csv.empty());
+  const std::vector<std::string>& header = csv[0];
+  EXPECT_EQ(header, json["columns"].get<std::vector<std::string>>());
+  // hard on 2 projections + pcf on 2 projections × 2 radii.
+  ASSERT_EQ(csv.size() - 1, 6u);
+  ASSERT_EQ(json["rows"].size(), 6u);
+  for (size_t i = 1; i < csv.size(); ++i) {
+    const nlohmann::json& row = json["rows"][i - 1];
+    ASSERT_EQ(csv[i].size(), header.size()) << "CSV line " << i;
+    for (size_t c = 0; c < header.size(); ++c) {
+      const std::string& cell = csv[i][c];
+      const nlohmann::json& value = row.at(header[c]);
+      if (value.is_null()) {
+        EXPECT_TRUE(cell.empty()) << header[c];
+      } else if (value.is_number()) {
+        // The CSV's shortest round-trip text reads back as the very same double.
+        EXPECT_EQ(std::strtod(cell.c_str(), nullptr), value.get<double>()) << header[c] << " row " << i;
+      } else {
+        EXPECT_EQ(cell, value.get<std::string>()) << header[c] << " row " << i;
+      }
+    }
+  }
+  // The numbers are measurements, not placeholders.
+  for (const nlohmann::json& row : json["rows"]) {
+    EXPECT_GT(row["visibility_ms_median"].get<double>(), 0.0);
+    EXPECT_LE(row["visibility_ms_p10"].get<double>(), row["visibility_ms_median"].get<double>());
+    EXPECT_GE(row["visibility_ms_p90"].get<double>(), row["visibility_ms_median"].get<double>());
+    EXPECT_GT(row["pixels"].get<double>(), 0.0);
+    EXPECT_LT(row["rmse"].get<double>(), 0.5);
+  }
+  EXPECT_EQ(json["rows"][0]["gl_renderer"], json["machine"]["gl_renderer"]);
+}
+
+TEST(BenchCli, UnknownSweepKeyIsAUsageError) {
+  const RunResult r = runPenumbra("bench --filters hard --sweep pcss.filterSamples=4:8:2");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("pcss.filterSamples"), std::string::npos) << r.err;
+}
+
+TEST(BenchCli, QuickReportOpensInChromiumWithChartsAndImageGrid) {
+  const std::string chromium = findChromium();
+  if (chromium.empty())
+    GTEST_SKIP() << "Chromium not found on PATH (Debian: apt-get install chromium, or scripts/install-deps); "
+                    "the report was not checked in a browser";
+  const std::string dir = freshDir("bench-quick");
+  const RunResult r = runPenumbra("bench --quick --no-cache --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const fs::path report = fs::path(dir) / "out" / "report.html";
+  ASSERT_TRUE(fs::exists(report));
+
+  const std::string flags = "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+                            "--disable-background-networking --disable-component-update --disable-sync "
+                            "--user-data-dir='" + dir + "/profile' ";
+  const std::string url = "file://" + report.string();
+  const std::string shot = dir + "/shot.png";
+  const std::string shotCmd = "'" + chromium + "' " + flags + "--screenshot='" + shot +
+                              "' --window-size=1280,2000 '" + url + "' > '" + dir + "/shot.log' 2>&1";
+  ASSERT_EQ(std::system(shotCmd.c_str()), 0) << slurp(dir + "/shot.log");
+  int w = 0, h = 0;
+  const std::vector<uint8_t> pixels = penumbra::readPng(shot, w, h);
+  ASSERT_EQ(w, 1280);
+  // Not a blank page: the charts and text leave many non-white pixels.
+  size_t ink = 0;
+  for (size_t i = 0; i + 3 < pixels.size(); i += 4)
+    if (pixels[i] < 200 || pixels[i + 1] < 200 || pixels[i + 2] < 200) ++ink;
+  EXPECT_GT(static_cast<double>(ink) / (static_cast<double>(w) * h), 0.02);
+
+  const std::string domCmd = "'" + chromium + "' " + flags + "--enable-logging=stderr --v=0 --dump-dom '" + url +
+                             "' > '" + dir + "/dom.html' 2> '" + dir + "/dom.log'";
+  ASSERT_EQ(std::system(domCmd.c_str()), 0) << slurp(dir + "/dom.log");
+  const std::string dom = slurp(dir + "/dom.html"), log = slurp(dir + "/dom.log");
+  // Chromium logs every console message as ":CONSOLE"; the page has no script, so any is an error.
+  EXPECT_EQ(log.find(":CONSOLE"), std::string::npos) << log;
+  const std::regex svg("<svg[^>]*class=\"chart\""), img("<img src=\"([^\"]+)\"");
+  const auto charts = std::distance(std::sregex_iterator(dom.begin(), dom.end(), svg), std::sregex_iterator());
+  EXPECT_GE(charts, 4) << "quality-vs-cost per scene and cost/error against light size";
+  EXPECT_NE(dom.find("class=\"grid\""), std::string::npos);
+  size_t images = 0;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), img); it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(fs::exists(report.parent_path() / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_GE(images, 3u * 2u) << "technique | reference | heatmap for at least two filters";
+}

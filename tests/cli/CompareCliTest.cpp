@@ -1,0 +1,30 @@
+#include "CliSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+using namespace penumbra::test;
+
+TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
+  const std::string dir = freshDir("compare");
+  const RunResult r = runPenumbra("compare --scene pen --size 96x64 --shadow-map 1024 --samples 16 --json --no-cache --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* k : {"scene", "filter", "projection", "rmse", "mae", "leak_pct", "overdark_pct", "penumbra_rmse",
+                        "approximation_rmse", "timings_ms", "reference_seconds"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["scene"], "pen");
+  EXPECT_EQ(j["filter"], "hard");
+  EXPECT_TRUE(j["timings_ms"].contains("visibility"));
+  EXPECT_GT(j["rmse"].get<double>(), 0.0);
+  EXPECT_LT(j["rmse"].get<double>(), 0.5);
+  for (const char* f : {"technique.png", "reference.png", "heatmap.png", "approximation.png", "sheet.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
+}
+
+TEST(CompareCli, BadSamplesIsAUsageError) {
+  const RunResult r = runPenumbra("compare --samples 0");
+  EXPECT_EQ(r.exitCode, 2);
+}

@@ -1,0 +1,255 @@
+// `penumbra view` under Xvfb: a script generated from the registry at run time switches through
+// every filter and every projection, takes a screenshot of the 3D view after each, and the
+// screenshots are checked here (not blank; different filters give different pictures). A second
+// script switches techniques for 1000 frames and the live GL object count must not grow.
+// Skipped, saying why, only where xvfb-run is missing (scripts/install-deps installs it).
+#include "CliSupport.h"
+
+#include <penumbra/ImageIO.h>
+#include <penumbra/Registry.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <unistd.h>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+// Not blank: at least this many distinct grey levels, and this standard deviation (0..255).
+constexpr int kMinGreyLevels = 24;
+constexpr double kMinGreyStdDev = 8.0;
+// Two pictures differ when at least this share of pixels differs by more than kPixelDeltaLevels
+// in some channel. The same technique renders the same picture (0 pixels); every filter pair on
+// `pen` with a 256² map differs in ≥ 0.3% of the view (hard vs second-depth, the closest pair:
+// the same depth test with and without a bias, which only a coarse map makes visible).
+constexpr int kPixelDeltaLevels = 8;
+constexpr double kMinDifferingShare = 0.001;
+
+bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+#define SKIP_WITHOUT_XVFB()                                                                              \
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed, so the viewer cannot open a window here: " \
+                                   "install the xvfb and xauth packages (scripts/install-deps)"
+
+/// Runs `penumbra view <args>` in a virtual X server.
+RunResult runViewer(const std::string& args, const std::string& dir) {
+  // -a takes the first free display from -n on; starting from a number that depends on the
+  // process keeps tests that CTest runs in parallel from racing for the same one.
+  const int firstDisplay = 100 + static_cast<int>(getpid() % 800);
+  return runPenumbra("view " + args, dir,
+                     "xvfb-run -a -n " + std::to_string(firstDisplay) + " -s '-screen 0 1280x1024x24'");
+}
+
+void writeScript(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+struct Grey {
+  int levels = 0;
+  double stdDev = 0.0;
+};
+
+Grey greyStats(const std::vector<uint8_t>& rgba) {
+  std::vector<bool> seen(256, false);
+  double sum = 0.0, sum2 = 0.0;
+  const size_t n = rgba.size() / 4;
+  for (size_t i = 0; i < n; ++i) {
+    const int g = (rgba[i * 4] + rgba[i * 4 + 1] + rgba[i * 4 + 2]) / 3;
+    seen[static_cast<size_t>(g)] = true;
+    sum += g;
+    sum2 += double(g) * g;
+  }
+  const double mean = sum / double(n);
+  return {static_cast<int>(std::count(seen.begin(), seen.end(), true)), std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean))};
+}
+
+double differingShare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  size_t differ = 0;
+  for (size_t i = 0; i + 3 < a.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a[i + c]) - int(b[i + c])) > kPixelDeltaLevels) {
+        ++differ;
+        break;
+      }
+  return double(differ) / double(a.size() / 4);
+}
+
+std::vector<int> glObjectCounts(const std::string& out) {
+  std::vector<int> counts;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("gl-objects ", 0) == 0) counts.push_back(std::stoi(line.substr(11)));
+  return counts;
+}
+
+}  // namespace
+
+TEST(ViewerCli, ScreenshotsOfEveryFilterAndProjectionAreNotBlankAndFiltersDiffer) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-techniques");
+  // pen: a spot light of radius 0.12 m over a leaning pencil, so hard, filtered and soft
+  // shadows must all look different; a coarse 256² map also separates the hard depth tests
+  // (biased or not). Projections are switched under the baseline filter.
+  std::string script = "scene pen\n";
+  for (const std::string& f : filterIds()) script += "filter " + f + "\nscreenshot filter-" + f + ".png\n";
+  script += "filter hard\n";
+  for (const std::string& p : projectionIds()) script += "projection " + p + "\nscreenshot projection-" + p + ".png\n";
+  writeScript(dir + "/techniques.txt", script);
+  const RunResult r = runViewer("--size 640x320 --shadow-map 256 --script techniques.txt", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  // A refused pair keeps the previous technique: its picture proves nothing, so say which.
+  std::map<std::string, std::string> refused;
+  const std::regex refusedLine("refused (filter|projection)=(\\S+): (.*)");
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    if (std::smatch m; std::regex_match(line, m, refusedLine)) refused[m[1].str() + "-" + m[2].str()] = m[3];
+
+  std::map<std::string, std::vector<uint8_t>> filters;
+  auto check = [&](const std::string& name) -> std::vector<uint8_t> {
+    int w = 0, h = 0;
+    std::vector<uint8_t> rgba = readPng(dir + "/" + name + ".png", w, h);
+    EXPECT_EQ(w, 320) << name;  // the 3D view: the window less the panels (half of 640)
+    EXPECT_EQ(h, 320) << name;
+    const Grey g = greyStats(rgba);
+    EXPECT_GE(g.levels, kMinGreyLevels) << name << " looks blank";
+    EXPECT_GE(g.stdDev, kMinGreyStdDev) << name << " looks blank";
+    return rgba;
+  };
+  for (const std::string& f : filterIds()) {
+    std::vector<uint8_t> img = check("filter-" + f);
+    if (refused.count("filter-" + f)) ADD_FAILURE() << "filter " << f << " was refused on pen/uniform: " << refused["filter-" + f];
+    else filters[f] = std::move(img);
+  }
+  for (const std::string& p : projectionIds()) {
+    check("projection-" + p);
+    EXPECT_FALSE(refused.count("projection-" + p)) << "projection " << p << " refused: " << refused["projection-" + p];
+  }
+  for (auto a = filters.begin(); a != filters.end(); ++a)
+    for (auto b = std::next(a); b != filters.end(); ++b) {
+      const double share = differingShare(a->second, b->second);
+      EXPECT_GE(share, kMinDifferingShare) << "filters " << a->first << " and " << b->first << " give the same picture";
+      std::printf("differing pixels %-12s vs %-12s %6.2f%%\n", a->first.c_str(), b->first.c_str(), 100.0 * share);
+    }
+}
+
+TEST(ViewerCli, NoGlObjectGrowthOver1000FramesOfTechniqueSwitching) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-objects");
+  // One frame per technique pair: the first cycle creates every program the later ones use
+  // (the shader cache keeps programs for the whole run, by design).
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const std::string& p : projectionIds())
+    for (const std::string& f : filterIds()) pairs.emplace_back(p, f);
+  auto step = [&](size_t i) {
+    const auto& [p, f] = pairs[i % pairs.size()];
+    return "projection " + p + "\nfilter " + f + "\nwait 1\n";
+  };
+  std::string script = "scene pen\ninset visibility\n";
+  for (size_t i = 0; i < pairs.size(); ++i) script += step(i);
+  script += "print gl-objects\n";
+  // At least 1000 frames, in whole cycles: the count depends on the technique shown (each owns
+  // its maps), so both counts are taken with the same one.
+  constexpr size_t kMinFrames = 1000;
+  const size_t kFrames = (kMinFrames + pairs.size() - 1) / pairs.size() * pairs.size();
+  for (size_t i = 0; i < kFrames; ++i) script += step(i);
+  script += "print gl-objects\n";
+  writeScript(dir + "/switch.txt", script);
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = runViewer("--size 160x120 --shadow-map 128 --script switch.txt", dir);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::vector<int> counts = glObjectCounts(r.out);
+  ASSERT_EQ(counts.size(), 2u) << r.out;
+  EXPECT_GT(counts[0], 0);
+  EXPECT_EQ(counts[1], counts[0]) << "live GL objects after the first cycle vs after " << kFrames << " more frames";
+  std::printf("gl objects after the first cycle %d, after %zu more frames %d (%zu technique pairs, %.1f s)\n", counts[0],
+              kFrames, counts[1], pairs.size(), seconds);
+}
+
+TEST(ViewerCli, ScriptMistakesAreUsageErrorsNamingTheLine) {
+  // The script is checked before a window opens: no X server needed.
+  const std::string dir = freshDir("viewer-script-errors");
+  writeScript(dir + "/bad.txt", "scene pen\nwait two\n");
+  RunResult r = runPenumbra("view --script bad.txt", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("bad.txt:2"), std::string::npos) << r.err;
+  writeScript(dir + "/bad2.txt", "\n# fine\nzoom 3\n");
+  r = runPenumbra("view --script bad2.txt", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("bad2.txt:3: unknown action 'zoom'"), std::string::npos) << r.err;
+  r = runPenumbra("view --script no-such-file.txt", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("no-such-file.txt"), std::string::npos) << r.err;
+}
+
+TEST(ViewerCli, UnknownFilterInAScriptStopsWithExit2) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-unknown");
+  writeScript(dir + "/s.txt", "filter blurry\n");
+  const RunResult r = runViewer("--size 160x120 --shadow-map 64 --script s.txt", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("s.txt:1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("blurry"), std::string::npos) << r.err;
+}
+
+TEST(ViewerCli, DebugViewsHeatmapAndSavedSettings) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-views");
+  writeScript(dir + "/s.txt",
+              "scene pen\nset light.size=0.2\nscreenshot shaded.png\nview shadow-map\nscreenshot map.png\n"
+              "view visibility\nscreenshot visibility.png\nview shaded\nheatmap 4\nwait-heatmap\nscreenshot heatmap.png\n"
+              "save saved.json\nscreenshot-window window.png\nview texel-density\nscreenshot density.png\n"
+              "projection csm\nview cascades\nscreenshot cascades.png\n");
+  const RunResult r = runViewer("--size 480x240 --shadow-map 512 --filter pcss --script s.txt", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("heatmap: RMSE"), std::string::npos) << r.out;
+  int w = 0, h = 0;
+  const auto shaded = readPng(dir + "/shaded.png", w, h);
+  for (const char* name : {"map", "visibility", "heatmap", "density", "cascades"}) {
+    const auto img = readPng(dir + "/" + name + ".png", w, h);
+    EXPECT_GE(greyStats(img).stdDev, kMinGreyStdDev) << name << " looks blank";
+    EXPECT_GE(differingShare(shaded, img), kMinDifferingShare) << name << " looks like the shaded view";
+  }
+  readPng(dir + "/window.png", w, h);
+  EXPECT_EQ(w, 480);
+  EXPECT_EQ(h, 240);
+  // The saved settings render as a scene of their own, with the technique and light size kept.
+  const RunResult render = runPenumbra("render --scene saved.json --size 64x32 --shadow-map 256 --out again.png", dir);
+  EXPECT_EQ(render.exitCode, 0) << render.err;
+  EXPECT_NE(render.out.find("--filter pcss"), std::string::npos) << render.out;
+  std::ifstream saved(dir + "/saved.json");
+  const std::string text((std::istreambuf_iterator<char>(saved)), {});
+  EXPECT_NE(text.find("\"size\": 0.2"), std::string::npos) << text;
+}
+
+TEST(ViewerCli, ThreeDViewShowsExactlyWhatRenderWrites) {
+  SKIP_WITHOUT_XVFB();
+  // With the panels hidden the view is the whole window: the display pass must pass the colour
+  // output through unchanged (no filtering, no gamma, no flip).
+  const std::string dir = freshDir("viewer-exact");
+  writeScript(dir + "/s.txt", "screenshot view.png\n");
+  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 512";
+  const RunResult v = runViewer(technique + " --hide-ui --script s.txt", dir);
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const RunResult r = runPenumbra("render " + technique + " --out render.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0, w2 = 0, h2 = 0;
+  const auto view = readPng(dir + "/view.png", w, h);
+  const auto render = readPng(dir + "/render.png", w2, h2);
+  ASSERT_EQ(w, w2);
+  ASSERT_EQ(h, h2);
+  size_t differing = 0;
+  for (size_t i = 0; i < view.size(); ++i) differing += view[i] != render[i];
+  EXPECT_EQ(differing, 0u) << "bytes that differ between the viewer's screenshot and penumbra render";
+}

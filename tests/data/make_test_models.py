@@ -1,0 +1,305 @@
+#!/usr/bin/env python3
+"""Writes the model-loader test data: the good models, the bad files and the fuzz seeds.
+
+    python3 tests/data/make_test_models.py        (from the repository root; deterministic)
+
+Outputs (all committed; rerun after editing this script):
+  models/alpha_quad.gltf   ground + alpha-masked quad (a 4x4 texture with holes) under a
+                           KHR_lights_punctual sun whose size is in the light's extras, + a camera
+  models/box.obj, box.mtl  a unit cube with a red Kd material
+  scenes/obj_and_gltf.json a scene file that places the OBJ and the glTF side by side
+  bad/*                    files every loader must reject with one clear error (docs/scenes.md)
+  fuzz/gltf/*, fuzz/scene/* seed corpora for the libFuzzer targets
+Only the standard library is used (PNG and GLB are written by hand).
+"""
+import base64
+import json
+import os
+import struct
+import zlib
+
+ROOT = os.path.dirname(os.path.abspath(__file__))
+
+# The alpha mask of alpha_quad.gltf, row 0 = the image's top row (glTF uv v = 0). 'X' = opaque,
+# '.' = a hole. Asymmetric under both flips, so a loader that flips rows or columns fails the test
+# (tests/gl/GltfTest.cpp holds the same pattern).
+MASK = ["X.XX",
+        "..X.",
+        "X...",
+        "XX.X"]
+QUAD_HALF_M = 1.0     # the masked quad spans x, z in [-1, 1] at height QUAD_HEIGHT_M
+QUAD_HEIGHT_M = 1.0
+GROUND_HALF_M = 3.0
+SUN_SIZE_RAD = 0.005  # extras.size of the sun: a small angular radius, sharp enough for probes
+
+
+def png(width, height, rgba_rows):
+    """RGBA8 PNG from rows of bytes (row 0 = top)."""
+    raw = b"".join(b"\x00" + bytes(row) for row in rgba_rows)
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def mask_png():
+    rows = []
+    for line in MASK:
+        row = []
+        for c in line:
+            row += [220, 40, 30, 255] if c == "X" else [0, 0, 0, 0]
+        rows.append(row)
+    return png(4, 4, rows)
+
+
+class Gltf:
+    """A minimal glTF 2.0 builder: one buffer, accessors appended as they are added."""
+
+    def __init__(self):
+        self.doc = {"asset": {"version": "2.0", "generator": "penumbra tests/data/make_test_models.py"},
+                    "buffers": [], "bufferViews": [], "accessors": [], "meshes": [], "nodes": [],
+                    "scenes": [{"nodes": []}], "scene": 0}
+        self.bin = bytearray()
+
+    def view(self, data):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        self.doc["bufferViews"].append({"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)})
+        self.bin += data
+        return len(self.doc["bufferViews"]) - 1
+
+    def accessor(self, fmt, values, kind, component):
+        flat = [x for v in values for x in (v if isinstance(v, (list, tuple)) else [v])]
+        view = self.view(struct.pack("<%d%s" % (len(flat), fmt), *flat))
+        a = {"bufferView": view, "componentType": component, "count": len(values), "type": kind}
+        if kind == "VEC3" and all(abs(x) < float("inf") for x in flat):  # NaN/inf are no JSON numbers
+            a["min"] = [min(v[i] for v in values) for i in range(3)]
+            a["max"] = [max(v[i] for v in values) for i in range(3)]
+        self.doc["accessors"].append(a)
+        return len(self.doc["accessors"]) - 1
+
+    def quad(self, half, height, material, name):
+        """A horizontal quad, normal +Y, uv (0,0) at (-half, -half) in x, z."""
+        pos = [(-half, height, -half), (half, height, -half), (half, height, half), (-half, height, half)]
+        uv = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        prim = {"attributes": {"POSITION": self.accessor("f", pos, "VEC3", 5126),
+                               "NORMAL": self.accessor("f", [(0.0, 1.0, 0.0)] * 4, "VEC3", 5126),
+                               "TEXCOORD_0": self.accessor("f", uv, "VEC2", 5126)},
+                "indices": self.accessor("H", [0, 2, 1, 0, 3, 2], "SCALAR", 5123), "material": material}
+        self.doc["meshes"].append({"name": name, "primitives": [prim]})
+        return len(self.doc["meshes"]) - 1
+
+    def node(self, **fields):
+        self.doc["nodes"].append(fields)
+        return len(self.doc["nodes"]) - 1
+
+    def finish_embedded(self):
+        self.doc["buffers"] = [{"byteLength": len(self.bin),
+                                "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(self.bin)).decode()}]
+        return json.dumps(self.doc, indent=1).encode()
+
+
+def alpha_quad_gltf():
+    g = Gltf()
+    g.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(mask_png()).decode()}]
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["materials"] = [
+        {"name": "ground", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0}},
+        {"name": "leaf mask", "alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True,
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}]
+    ground = g.quad(GROUND_HALF_M, 0.0, 0, "ground")
+    masked = g.quad(QUAD_HALF_M, QUAD_HEIGHT_M, 1, "masked quad")
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "intensity": 2.0, "color": [1.0, 0.97, 0.9],
+         "extras": {"size": SUN_SIZE_RAD}}]}}
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1, "zfar": 100.0}}]
+    # The sun shines straight down: local -Z turned onto -Y (-90° about X). The camera looks down
+    # 50° from (0, 5.5, 4.6) (local -Z tilted by -50° about X).
+    s50, c50 = -0.42261826, 0.90630779  # sin, cos of -25°
+    roots = [g.node(name="ground", mesh=ground), g.node(name="masked quad", mesh=masked),
+             g.node(name="sun", rotation=[-0.70710678, 0.0, 0.0, 0.70710678],
+                    extensions={"KHR_lights_punctual": {"light": 0}}),
+             g.node(name="camera", camera=0, translation=[0.0, 5.5, 4.6], rotation=[s50, 0.0, 0.0, c50])]
+    g.doc["scenes"][0]["nodes"] = roots
+    return g.finish_embedded()
+
+
+def glb(doc_bytes, bin_bytes=b"", version=2, length=None, json_type=0x4E4F534A):
+    doc_bytes += b" " * (-len(doc_bytes) % 4)
+    body = struct.pack("<II", len(doc_bytes), json_type) + doc_bytes
+    if bin_bytes:
+        bin_bytes += b"\x00" * (-len(bin_bytes) % 4)
+        body += struct.pack("<II", len(bin_bytes), 0x004E4942) + bin_bytes
+    total = 12 + len(body) if length is None else length
+    return struct.pack("<III", 0x46546C67, version, total) + body
+
+
+def triangle_gltf(positions=None, indices=(0, 1, 2), mutate=None):
+    """One triangle; `mutate(doc)` edits the document before it is written."""
+    g = Gltf()
+    pos = positions or [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+    prim = {"attributes": {"POSITION": g.accessor("f", pos, "VEC3", 5126)},
+            "indices": g.accessor("H", list(indices), "SCALAR", 5123)}
+    g.doc["meshes"].append({"primitives": [prim]})
+    g.doc["scenes"][0]["nodes"] = [g.node(mesh=0)]
+    if mutate:
+        mutate(g.doc)
+    return g, g.finish_embedded()
+
+
+def triangle_glb(mutate=None):
+    g, _ = triangle_gltf(mutate=mutate)
+    g.doc["buffers"] = [{"byteLength": len(g.bin)}]
+    return glb(json.dumps(g.doc).encode(), bytes(g.bin))
+
+
+def write(rel, data):
+    path = os.path.join(ROOT, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+BOX_OBJ = """# a unit cube, base on y = 0 (written by make_test_models.py)
+mtllib box.mtl
+o box
+v -0.5 0 -0.5
+v 0.5 0 -0.5
+v 0.5 0 0.5
+v -0.5 0 0.5
+v -0.5 1 -0.5
+v 0.5 1 -0.5
+v 0.5 1 0.5
+v -0.5 1 0.5
+usemtl red
+f 1 2 3 4
+f 5 8 7 6
+f 1 5 6 2
+f 2 6 7 3
+f 3 7 8 4
+f 4 8 5 1
+"""
+BOX_MTL = """newmtl red
+Kd 0.8 0.1 0.1
+Ns 32
+"""
+
+SCENE = {
+    "name": "obj and gltf",
+    "camera": {"position": [0, 5, 7], "target": [0, 0.5, 0], "fovYDeg": 50},
+    "lights": [{"type": "sun", "direction": [-0.5, -1, -0.3], "size": 0.005}],
+    "objects": [
+        {"name": "floor", "shape": "plane", "size": [12, 12], "castsShadow": False},
+        {"name": "box", "file": "../models/box.obj", "translate": [-2, 0, 0]},
+        {"name": "quad", "file": "../models/alpha_quad.gltf", "translate": [2, 0.01, 0], "scale": [0.5, 0.5, 0.5]},
+    ],
+}
+
+
+def bad_files():
+    """name → bytes. Every one must be rejected with exit 1 and a message naming it."""
+    out = {}
+    nan = float("nan")
+    out["nan_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (nan, 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
+    out["inf_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (float("inf"), 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
+    out["index_out_of_range.gltf"] = triangle_gltf(indices=(0, 1, 99))[1]
+    out["zero_triangles.gltf"] = triangle_gltf(mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=1))[1]
+    out["missing_buffer.gltf"] = triangle_gltf(mutate=lambda d: None)[1].replace(
+        b'"uri": "data:application/octet-stream;base64,', b'"uri": "no_such_file.bin", "x": "')
+
+    def cycle(d):
+        d["nodes"][0]["children"] = [1]
+        d["nodes"].append({"children": [0]})
+    out["recursive_nodes.gltf"] = triangle_gltf(mutate=cycle)[1]
+
+    def absurd_count(d):
+        d["accessors"][0]["count"] = 4000000000
+    out["absurd_count.gltf"] = triangle_gltf(mutate=absurd_count)[1]
+
+    def view_past_end(d):  # an image decoded from a view that runs past its buffer
+        d["bufferViews"].append({"buffer": 0, "byteOffset": 16, "byteLength": 1 << 30})
+        d["images"] = [{"bufferView": len(d["bufferViews"]) - 1, "mimeType": "image/png"}]
+    out["view_past_buffer.gltf"] = triangle_gltf(mutate=view_past_end)[1]
+
+    def huge_image(d):  # a valid PNG header that claims 10000 x 10000 texels (400 MB decoded)
+        header = mask_png()[:33]
+        header = header[:16] + struct.pack(">II", 10000, 10000) + header[24:29]
+        header = header[:29] + struct.pack(">I", zlib.crc32(header[12:29]) & 0xFFFFFFFF)
+        d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(header + mask_png()[33:]).decode()}]
+        d["textures"] = [{"source": 0}]
+        d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    out["huge_image.gltf"] = triangle_gltf(mutate=huge_image)[1]
+
+    def deep(d):
+        d["extras"] = "DEEP"
+    out["deep_json.gltf"] = triangle_gltf(mutate=deep)[1].replace(b'"DEEP"', b"[" * 100000 + b"]" * 100000)
+
+    def huge_scale(d):
+        d["nodes"][0]["scale"] = [1e30, 1e30, 1e30]
+    out["huge_coordinates.gltf"] = triangle_gltf(mutate=huge_scale)[1]
+
+    def sparse(d):
+        d["accessors"][0]["sparse"] = {"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
+                                       "values": {"bufferView": 0}}
+    out["sparse_accessor.gltf"] = triangle_gltf(mutate=sparse)[1]
+
+    def required_ext(d):
+        d["extensionsUsed"] = d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    out["required_extension.gltf"] = triangle_gltf(mutate=required_ext)[1]
+
+    def bad_light(d):
+        d["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "extras": {"size": -1}}]}}
+        d["nodes"][0]["extensions"] = {"KHR_lights_punctual": {"light": 0}}
+    out["bad_light_size.gltf"] = triangle_gltf(mutate=bad_light)[1]
+
+    def stride(d):
+        d["bufferViews"][0]["byteStride"] = 4
+    out["stride_too_small.gltf"] = triangle_gltf(mutate=stride)[1]
+
+    out["not_json.gltf"] = b'{"asset": {"version": "2.0"}, "meshes": [ {"primitives": '
+    out["empty.glb"] = b""
+    good_glb = triangle_glb()
+    out["truncated.glb"] = good_glb[: len(good_glb) // 2]
+    out["glb_version1.glb"] = glb(b'{"asset":{"version":"2.0"}}', version=1)
+    out["glb_chunk_too_long.glb"] = good_glb[:12] + struct.pack("<I", 1 << 30) + good_glb[16:]
+
+    out["index_out_of_range.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n"
+    out["inf_position.obj"] = "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"
+    out["zero_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n"
+    out["missing_mtl.obj"] = "mtllib no_such.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+
+    base = {"lights": [{"type": "sun"}], "objects": [{"shape": "plane"}]}
+    def scene(obj):
+        s = json.loads(json.dumps(base))
+        s["objects"].append(obj)
+        return json.dumps(s, indent=1)
+    out["scene_missing_model.json"] = scene({"file": "no_such_model.glb"})
+    out["scene_bad_model.json"] = scene({"file": "index_out_of_range.gltf", "translate": [1, 0, 0]})
+    out["scene_model_with_shape.json"] = scene({"file": "../models/box.obj", "shape": "box"})
+    out["scene_model_not_a_model.json"] = scene({"file": "scene_missing_model.json"})
+    return out
+
+
+def main():
+    write("models/alpha_quad.gltf", alpha_quad_gltf())
+    write("models/box.obj", BOX_OBJ)
+    write("models/box.mtl", BOX_MTL)
+    write("scenes/obj_and_gltf.json", json.dumps(SCENE, indent=1) + "\n")
+    for name, data in bad_files().items():
+        write("bad/" + name, data)
+    # Fuzz seeds: small valid files of each kind plus a few of the bad ones.
+    write("fuzz/gltf/triangle.gltf", triangle_gltf()[1])
+    write("fuzz/gltf/triangle.glb", triangle_glb())
+    write("fuzz/gltf/strip.gltf", triangle_gltf(indices=(0, 1, 2, 1), mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=5))[1])
+    write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
+    write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
+    write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
+    write("fuzz/scene/shapes.json", json.dumps({
+        "camera": {"position": [0, 2, 5]}, "lights": [{"type": "spot", "position": [0, 4, 0], "target": [0, 0, 0], "size": 0.1}],
+        "objects": [{"shape": "box", "size": [1, 2, 1], "rotateDeg": [0, 30, 0]}, {"shape": "sphere", "radius": 0.5}],
+        "shadow": {"filter": "hard", "mapSize": 512, "params": {"hard.bias": "slope"}}}))
+
+
+if __name__ == "__main__":
+    main()

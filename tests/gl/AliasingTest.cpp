@@ -1,0 +1,259 @@
+// The aliasing axis measured: texel density (screen pixels per shadow-map texel) on the city for
+// each projection at equal texel budgets, the measure itself against a closed form, the shimmer
+// of csm with and without stabilisation, PSM with the light behind the camera, and the debug
+// views of cascades and texel density.
+#include "GlFixture.h"
+#include "TestGeometry.h"
+
+#include "metrics/Shimmer.h"
+#include "metrics/TexelDensity.h"
+#include "shadows/projections/PerspectiveProjection.h"
+#include "shared/DensityRamp.h"
+#include "shared/Enums.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <set>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+struct Technique {
+  std::string projection;
+  int mapSize;
+  std::vector<std::pair<std::string, std::string>> params;
+};
+
+std::unique_ptr<Renderer> makeRenderer(const Scene& sceneIn, const Technique& t, const std::string& filter = "hard") {
+  Scene scene = sceneIn;
+  auto p = makeProjection(t.projection);
+  auto f = makeFilter(filter);
+  applyParams(t.params, scene, *p, *f);
+  auto r = std::make_unique<Renderer>(glContext());
+  r->setScene(scene);
+  r->setTechnique(std::move(p), std::move(f));
+  return r;
+}
+
+// Where a test may leave images for a person to look at (unset: nowhere).
+std::filesystem::path artifactDir() {
+  const char* dir = std::getenv("PENUMBRA_TEST_ARTIFACTS");
+  return dir ? std::filesystem::path(dir) : std::filesystem::path();
+}
+
+}  // namespace
+
+// The measure against a closed form: a camera looking straight down at a floor under a sun
+// straight overhead. A pixel at the image centre spans (2·H·tan(fov/2)/height)² m² of floor, a
+// texel (extent/mapSize)², so one texel covers their ratio in pixels.
+TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
+  Scene s;
+  s.name = "floor";
+  addObject(s, "floor", makePlane(20.0f, 20.0f), {0.7f, 0.7f, 0.7f});
+  addObject(s, "box", makeBox({1.0f, 1.0f, 1.0f}), {0.8f, 0.3f, 0.3f}, glm::translate(glm::mat4(1.0f), {3.0f, 0.5f, 3.0f}));
+  Light sun;
+  sun.direction = {0.0f, -1.0f, 0.0f};
+  s.lights.push_back(sun);
+  constexpr float kHeightM = 6.0f;
+  s.camera.position = {0.0f, kHeightM, 0.0f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.camera.up = {0.0f, 0.0f, -1.0f};
+  s.camera.fovYRad = 0.9f;
+  constexpr int kW = 160, kH = 120, kMap = 512;
+  auto r = makeRenderer(s, {"uniform", kMap, {}});
+  r->render({kW, kH, kMap});
+  const std::vector<float> d = computeTexelDensity(*r);
+  const ShadowView& v = r->frusta().views[0];
+  const float pixelM = 2.0f * kHeightM * std::tan(0.5f * s.camera.fovYRad) / static_cast<float>(kH);
+  const float texelArea = (v.extent.x / kMap) * (v.extent.y / kMap);
+  const float expected = texelArea / (pixelM * pixelM);
+  const float measured = d[static_cast<size_t>(kH / 2) * kW + kW / 2];
+  EXPECT_NEAR(measured, expected, 0.01f * expected) << "extent " << v.extent.x << " x " << v.extent.y;
+  // Double the map: a texel covers a quarter of the pixels.
+  r->render({kW, kH, 2 * kMap});
+  const float finer = computeTexelDensity(*r)[static_cast<size_t>(kH / 2) * kW + kW / 2];
+  const ShadowView& v2 = r->frusta().views[0];
+  EXPECT_NEAR(finer, (v2.extent.x / (2 * kMap)) * (v2.extent.y / (2 * kMap)) / (pixelM * pixelM), 0.01f * finer);
+  // Background pixels carry no value; statistics see only the floor and the box.
+  const TexelDensityStats st = texelDensityStats(d, r->readGBuffer(), s.camera.position);
+  EXPECT_GT(st.pixels, static_cast<size_t>(kW * kH) / 2);
+  EXPECT_NEAR(st.median, expected, 0.1f * expected);
+}
+
+// The table: city at 1280×720, equal texel budgets (uniform/psm/tsm one 2048² map, csm
+// four 1024² maps). Near-camera density (median screen pixels per texel within 20 m) must drop
+// at least 4× for csm and tsm, 2× for psm (whose light direction here, from the side and a
+// little behind, favours it).
+TEST(Aliasing, CityTexelDensityTable) {
+  const Scene city = makeBuiltinScene("city");
+  const std::vector<Technique> techniques = {
+      {"uniform", 2048, {}},
+      {"psm", 2048, {}},
+      {"tsm", 2048, {}},
+      {"csm", 1024, {{"csm.cascades", "4"}}},
+  };
+  std::map<std::string, TexelDensityStats> stats;
+  std::printf("\n  projection  map          median        p95   near_median  undersampled_pct\n");
+  for (const Technique& t : techniques) {
+    auto r = makeRenderer(city, t);
+    r->render({1280, 720, t.mapSize});
+    const std::vector<float> d = computeTexelDensity(*r);
+    const TexelDensityStats s = texelDensityStats(d, r->readGBuffer(), city.camera.position);
+    stats[t.projection] = s;
+    const std::string budget = t.projection == "csm" ? "4x1024^2" : "1x2048^2";
+    std::printf("  %-10s  %-9s %10.4f %10.3f %12.4f %12.1f\n", t.projection.c_str(), budget.c_str(), s.median, s.p95,
+                s.nearMedian, s.undersampledPct);
+    RecordProperty(t.projection + "_texel_density_near_median", fmt::format("{:.4f}", s.nearMedian));
+    ASSERT_GT(s.nearPixels, 10000u) << t.projection << ": the near set is the lower part of the image";
+    if (const std::filesystem::path dir = artifactDir(); !dir.empty()) {
+      const ColorImage heat = texelDensityHeatmap(d, 1280, 720);
+      writePng(dir / ("city-texel-density-" + t.projection + ".png"), heat.width, heat.height, heat.rgba);
+    }
+  }
+  const double uniform = stats["uniform"].nearMedian;
+  EXPECT_GT(stats["uniform"].undersampledPct, 50.0) << "uniform should under-sample most of the city";
+  EXPECT_LE(stats["csm"].nearMedian * 4.0, uniform);
+  EXPECT_LE(stats["tsm"].nearMedian * 4.0, uniform);
+  EXPECT_LE(stats["psm"].nearMedian * 2.0, uniform);
+}
+
+// visibilityAt evaluated at the G-buffer's own points gives the visibility image back: the
+// points mode is the same pass.
+TEST(Aliasing, VisibilityAtPointsMatchesTheVisibilityImage) {
+  const Scene scene = makeBuiltinScene("boxes");
+  for (const char* projection : {"uniform", "csm"}) {
+    auto r = makeRenderer(scene, {projection, 1024, {}});
+    r->render({96, 64, 1024});
+    const GBufferData g = r->readGBuffer();
+    const std::vector<float> image = r->readVisibility();
+    std::vector<SurfaceSample> points;
+    std::vector<float> expected;
+    for (int y = 0; y < g.height; ++y)
+      for (int x = 0; x < g.width; ++x) {
+        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(g.width) + static_cast<size_t>(x);
+        if (!g.covered(i)) continue;
+        points.push_back({glm::vec3(g.position[i]), glm::vec3(g.geoNormal[i]), {x, y}});
+        expected.push_back(image[i]);
+      }
+    ASSERT_GT(points.size(), 1000u);
+    const std::vector<float> v = r->visibilityAt(points);
+    ASSERT_EQ(v.size(), points.size());
+    size_t differ = 0, shadowed = 0;
+    for (size_t i = 0; i < v.size(); ++i) {
+      differ += std::abs(v[i] - expected[i]) > 1e-4f ? 1 : 0;
+      shadowed += v[i] < 0.5f ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 0u) << projection;
+    EXPECT_GT(shadowed, 50u) << projection;
+  }
+}
+
+// Stabilisation: over 50 small camera moves (sub-texel and a few texels, translation and turns)
+// fixed world points near shadow edges keep their visibility with csm's snapping, and flicker
+// without it.
+TEST(Aliasing, CsmStabilisationStopsShimmer) {
+  const Scene city = makeBuiltinScene("city");
+  ShimmerOptions o;
+  o.steps = 50;
+  const RenderOptions render{192, 108, 512};
+  double pct[2] = {0.0, 0.0};
+  for (int stabilize = 0; stabilize <= 1; ++stabilize) {
+    auto r = makeRenderer(city, {"csm", render.shadowMapSize, {{"csm.stabilize", stabilize ? "on" : "off"}}});
+    const ShimmerResult s = measureShimmer(*r, render, o);
+    std::printf("  csm.stabilize=%s: shimmer_pct %.4f over %zu edge points, %d steps of %.4f m texels\n",
+                stabilize ? "on" : "off", s.shimmerPct, s.edgePoints, s.steps, s.texelM);
+    RecordProperty(stabilize ? "shimmer_pct_on" : "shimmer_pct_off", fmt::format("{:.4f}", s.shimmerPct));
+    ASSERT_GT(s.edgePoints, 200u);
+    pct[stabilize] = s.shimmerPct;
+  }
+  EXPECT_LT(pct[1], 0.1);
+  EXPECT_GT(pct[0], 0.2);
+  EXPECT_GT(pct[0], 10.0 * std::max(pct[1], 0.01));
+}
+
+// PSM with the sun behind the camera: the light's post-perspective image converges on a point
+// beyond the far plane (the inverted case). Probe pixels deep inside and outside the boxes'
+// shadows (a CPU ray cast, robust 4 cm around) must come out shadowed and lit.
+TEST(Aliasing, PsmLightBehindCameraProbePixels) {
+  Scene scene = makeBuiltinScene("boxes");
+  const glm::vec3 fwd = scene.camera.forward();
+  scene.lights.front().direction = glm::normalize(glm::vec3(fwd.x, 0.0f, fwd.z) * 0.7f + glm::vec3(0.25f, -1.0f, 0.1f));
+  scene.lights.front().size = 0.0f;
+  ASSERT_EQ(psmLightCase(scene.camera, scene.light()), PsmLightCase::Behind);
+  constexpr int kSize = 256;
+  const RenderResult r = renderScene(scene, "psm", "hard", {{"hard.bias", "slope"}}, kSize, kSize, 2048);
+  ASSERT_TRUE(r.frusta.views.front().warped) << "psm fell back to an unwarped map";
+  CasterTriangles tris(scene);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<size_t> pick(0, r.visibility.size() - 1);
+  int shadowed = 0, lit = 0, wrong = 0;
+  for (int tries = 0; tries < 20000 && (shadowed < 150 || lit < 150); ++tries) {
+    const size_t i = pick(rng);
+    const glm::vec4 p = r.gbuffer.position[i];
+    if (p.w < 0.5f || std::abs(p.y) > 1e-3f) continue;  // floor pixels
+    const float occ = tris.robustOcclusion(scene, glm::vec3(p), {0, 1, 0}, 0.04f);
+    if (occ == 1.0f && shadowed < 150) {
+      ++shadowed;
+      wrong += r.visibility[i] > 0.05f ? 1 : 0;
+    } else if (occ == 0.0f && lit < 150) {
+      ++lit;
+      wrong += r.visibility[i] < 0.95f ? 1 : 0;
+    }
+  }
+  EXPECT_GE(shadowed, 50);
+  EXPECT_GE(lit, 100);
+  EXPECT_EQ(wrong, 0) << "of " << shadowed << " shadowed and " << lit << " lit probes";
+}
+
+// The debug views: cascade colours show one region per cascade; the texel-density view shows
+// the ramp colour of the measured density (the GLSL view and the CPU heatmap share one ramp).
+TEST(Aliasing, CascadeAndTexelDensityDebugViews) {
+  const Scene city = makeBuiltinScene("city");
+  auto r = makeRenderer(city, {"csm", 512, {}});
+  RenderOptions o{192, 108, 512};
+  o.debugView = PN_VIEW_CASCADES;
+  r->render(o);
+  const ColorImage cascades = r->readColor();
+  // Dominant channel of each pixel in the lower half: cascade 0 is red, cascade 1 green.
+  std::set<int> dominant;
+  for (int y = cascades.height / 2; y < cascades.height; ++y)
+    for (int x = 0; x < cascades.width; ++x) {
+      const uint8_t* c = &cascades.rgba[(static_cast<size_t>(y) * static_cast<size_t>(cascades.width) + static_cast<size_t>(x)) * 4];
+      if (c[0] > c[1] + 40 && c[0] > c[2] + 40) dominant.insert(0);
+      if (c[1] > c[0] + 40 && c[1] > c[2] + 40) dominant.insert(1);
+    }
+  EXPECT_EQ(dominant.size(), 2u) << "the ground near the camera spans the first two cascades";
+  if (const std::filesystem::path dir = artifactDir(); !dir.empty()) writePng(dir / "city-cascades.png", cascades.width, cascades.height, cascades.rgba);
+
+  o.debugView = PN_VIEW_TEXEL_DENSITY;
+  float density[2] = {0.0f, 0.0f};
+  int k = 0;
+  for (const char* projection : {"csm", "uniform"}) {
+    auto q = makeRenderer(city, {projection, 512, {}});
+    q->render(o);
+    const ColorImage heat = q->readColor();
+    const std::vector<float> d = computeTexelDensity(*q);
+    // A ground pixel near the bottom centre (row 1 from the bottom, GL order).
+    const int x = heat.width / 2, y = 1;
+    const float value = d[static_cast<size_t>(y) * static_cast<size_t>(heat.width) + static_cast<size_t>(x)];
+    ASSERT_GT(value, 0.0f) << projection;
+    density[k++] = value;
+    const uint8_t* c = &heat.rgba[(static_cast<size_t>(heat.height - 1 - y) * static_cast<size_t>(heat.width) + static_cast<size_t>(x)) * 4];
+    const glm::vec4 ramp = gpu::densityRampColor(std::log2(value));
+    // colour = shade · ramp: compare chromaticity (each channel over the largest).
+    const glm::vec3 got = glm::vec3(c[0], c[1], c[2]) / static_cast<float>(std::max({c[0], c[1], c[2]}));
+    const glm::vec3 want = glm::vec3(ramp) / std::max({ramp.x, ramp.y, ramp.z});
+    EXPECT_LT(glm::length(got - want), 0.05f) << projection << " density " << value;
+  }
+  EXPECT_GT(density[1], 8.0f * density[0]) << "uniform's texels near the camera are far larger than csm's";
+}

@@ -1,0 +1,154 @@
+// The bench's pure parts: sweep parsing and expansion, statistics, the Pareto front, CSV
+// quoting and the SVG charts (no GL).
+#include "report/BenchPlan.h"
+#include "report/BenchResults.h"
+#include "report/ResultsIO.h"
+#include "report/SvgChart.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace penumbra::report {
+namespace {
+
+TEST(BenchPlan, SweepParsesAndSpacesValuesEvenly) {
+  const Sweep s = parseSweep("light.size=0.02:0.2:4");
+  EXPECT_EQ(s.key, "light.size");
+  const ParamDesc numeric{"light.size", "", "", 0.0f, 0.0f, 10.0f, 0.0f};
+  const std::vector<float> v = s.values(numeric);
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_FLOAT_EQ(v[0], 0.02f);
+  EXPECT_FLOAT_EQ(v[1], 0.08f);
+  EXPECT_FLOAT_EQ(v[3], 0.2f);
+  // Integer parameters round and drop repeats: 1, 1.5, 2, 2.5, 3 → 1, 2, 3.
+  const ParamDesc integer{"x.n", "", "", 1.0f, 1.0f, 64.0f, 1.0f};
+  EXPECT_EQ(parseSweep("x.n=1:3:5").values(integer), (std::vector<float>{1.0f, 2.0f, 3.0f}));
+}
+
+TEST(BenchPlan, BadSweepsAreUsageErrors) {
+  for (const char* bad : {"light.size", "light.size=0.1:0.2", "light.size=a:0.2:3", "light.size=0.1:0.2:0",
+                          "=0:1:2", "light.size=0.1:0.2:3:4", "light.size=0.1:0.2:100000"}) {
+    try {
+      parseSweep(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Usage) << bad;
+    }
+  }
+}
+
+TEST(BenchPlan, SweepAppliesOnlyToTechniquesThatDeclareTheKey) {
+  const BenchPlan plan{.name = "custom", .scenes = {"boxes"}, .projections = {"uniform"}, .filters = {"hard", "pcf"},
+                       .sweeps = {parseSweep("pcf.radiusTexels=1:4:4"), parseSweep("light.size=0.01:0.03:2")}};
+  const std::vector<BenchConfig> configs = expandPlans({plan});
+  const auto count = [&](const std::string& filter) {
+    return std::count_if(configs.begin(), configs.end(), [&](const BenchConfig& c) { return c.filter == filter; });
+  };
+  EXPECT_EQ(count("hard"), 2);      // the light sweep only
+  EXPECT_EQ(count("pcf"), 4 * 2);   // both sweeps
+  // Grouped by light so one reference serves consecutive configurations.
+  for (size_t i = 1; i < configs.size(); ++i) {
+    const auto light = [](const BenchConfig& c) { return c.paramsText().substr(c.paramsText().find("light.size")); };
+    if (light(configs[i]) != light(configs[i - 1])) {
+      for (size_t j = i + 1; j < configs.size(); ++j) EXPECT_NE(light(configs[j]), light(configs[i - 1]));
+    }
+  }
+  // One grid row per filter.
+  EXPECT_EQ(std::count_if(configs.begin(), configs.end(), [](const BenchConfig& c) { return c.inGrid; }), 2);
+}
+
+TEST(BenchPlan, UnknownSweepKeysAndOutOfRangeValuesAreRefused) {
+  BenchPlan plan{.name = "custom", .scenes = {"boxes"}, .projections = {"uniform"}, .filters = {"hard"},
+                 .sweeps = {parseSweep("pcf.radiusTexels=1:4:4")}};
+  EXPECT_THROW(expandPlans({plan}), Error);  // no technique of the plan has it
+  plan.sweeps = {parseSweep("hard.slopeBias=-1:2:2")};
+  EXPECT_THROW(expandPlans({plan}), Error);  // below the parameter's minimum
+  plan.sweeps = {};
+  plan.scenes = {"no-such-scene"};
+  EXPECT_THROW(expandPlans({plan}), Error);
+}
+
+TEST(BenchPlan, DefaultRunCoversEveryFilterProjectionAndScene) {
+  BenchSettings settings;
+  const std::vector<BenchConfig> configs = expandPlans(defaultPlans(false, settings));
+  for (const std::string& f : filterIds())
+    for (const std::string& p : projectionIds())
+      EXPECT_TRUE(std::any_of(configs.begin(), configs.end(), [&](const BenchConfig& c) {
+        return c.filter == f && c.projection == p && c.scene == "city";
+      })) << f << " " << p;
+  BenchSettings quick;
+  EXPECT_LT(expandPlans(defaultPlans(true, quick)).size(), configs.size());
+  EXPECT_LT(quick.width * quick.height, settings.width * settings.height);
+}
+
+TEST(BenchStats, MedianAndPercentilesInterpolate) {
+  const std::vector<double> s = {5, 1, 4, 2, 3};  // sorted 1..5
+  const TimeStats t = timeStats(s);
+  EXPECT_DOUBLE_EQ(t.median, 3.0);
+  EXPECT_DOUBLE_EQ(t.p10, 1.4);  // position 0.4 between 1 and 2
+  EXPECT_DOUBLE_EQ(t.p90, 4.6);
+  const std::vector<double> one = {7};
+  EXPECT_DOUBLE_EQ(timeStats(one).p10, 7.0);
+  EXPECT_DOUBLE_EQ(timeStats({}).median, 0.0);
+}
+
+TEST(BenchStats, ParetoFrontKeepsOnlyUndominatedPoints) {
+  //                          0    1    2    3    4
+  const std::vector<double> x = {1.0, 2.0, 3.0, 2.5, 0.5};
+  const std::vector<double> y = {0.5, 0.3, 0.1, 0.4, 0.9};
+  // 3 is dominated by 1 (faster and better); the others trade time for error.
+  EXPECT_EQ(paretoFront(x, y), (std::vector<size_t>{4, 0, 1, 2}));
+}
+
+TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
+  BenchResults r;
+  r.machine.glRenderer = "llvmpipe (LLVM 15, 256 bits)";  // a comma: must be quoted
+  r.machine.clock = "glFinish+steady_clock";
+  BenchRow row;
+  row.config = {.plan = "custom", .scene = "boxes", .projection = "uniform", .filter = "hard",
+                .params = {{"hard.bias", "slope"}, {"light.size", "0.1"}}, .inGrid = false};
+  row.metrics.rmse = 0.1 + 0.2;  // 0.30000000000000004: needs all 17 digits
+  row.passes = {{"visibility", {1.5, 1.0, 2.0}}, {kTotalPass, {3.0, 2.0, 4.0}}};
+  r.rows.push_back(row);
+  const std::string csv = resultsCsv(r);
+  EXPECT_NE(csv.find("\"llvmpipe (LLVM 15, 256 bits)\""), std::string::npos) << csv;
+  EXPECT_NE(csv.find("hard.bias=slope;light.size=0.1"), std::string::npos);
+  EXPECT_NE(csv.find("0.30000000000000004"), std::string::npos);
+  EXPECT_NE(csv.find("visibility_ms_p90"), std::string::npos);
+  const nlohmann::json j = resultsJson(r);
+  EXPECT_EQ(j["rows"][0]["rmse"].get<double>(), 0.1 + 0.2);
+  EXPECT_EQ(j["rows"][0]["visibility_ms_median"].get<double>(), 1.5);
+}
+
+TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
+  const std::vector<double> lin = axisTicks(0.0, 0.13, false);
+  ASSERT_GE(lin.size(), 3u);
+  EXPECT_DOUBLE_EQ(lin[0], 0.0);
+  EXPECT_NEAR(lin[1] - lin[0], 0.02, 1e-12);
+  EXPECT_LE(lin.back(), 0.13);
+  EXPECT_EQ(axisTicks(0.3, 40.0, true), (std::vector<double>{0.5, 1, 2, 5, 10, 20}));
+  EXPECT_EQ(axisTicks(0.05, 5000.0, true), (std::vector<double>{0.1, 1, 10, 100, 1000}));
+}
+
+TEST(SvgChart, DrawsOneMarkerPerPointAndEscapesText) {
+  Chart c;
+  c.title = "a < b & c";
+  c.series.push_back({.color = "#123456", .marker = Marker::Square, .connect = true,
+                      .points = {{1, 2, 1.5, 2.5, "p1", true}, {2, 3, NAN, NAN, "p2", false}}});
+  c.legend.push_back({"hard", "#123456", Marker::Square, false, false});
+  const std::string svg = svgChart(c);
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("a &lt; b &amp; c"), std::string::npos);
+  size_t rects = 0;
+  for (size_t p = svg.find("<rect"); p != std::string::npos; p = svg.find("<rect", p + 1)) ++rects;
+  EXPECT_EQ(rects, 1u /* frame */ + 2u /* markers */ + 1u /* legend */);
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
+  EXPECT_NE(svg.find("<title>p1</title>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penumbra::report

@@ -1,0 +1,112 @@
+// Metrics on small synthetic images whose answers are worked out by hand.
+#include <penumbra/Error.h>
+#include <penumbra/Metrics.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+// Six pixels, every case once. Deltas V − V_ref: +0.3 leak, −0.4 over-dark, +0.05 and −0.08
+// (below the threshold either way), 0, +0.5 (masked out).
+const std::vector<float> kRef = {0.0f, 1.0f, 0.5f, 0.6f, 1.0f, 0.0f};
+const std::vector<float> kV = {0.3f, 0.6f, 0.55f, 0.52f, 1.0f, 0.5f};
+const std::vector<uint8_t> kMask = {1, 1, 1, 1, 1, 0};
+
+TEST(Metrics, KnownAnswersIncludingLeakAndOverDarkSplit) {
+  const VisibilityMetrics m = compareVisibility(kV, kRef, kMask);
+  EXPECT_EQ(m.pixels, 5u);
+  const double squares = 0.09 + 0.16 + 0.0025 + 0.0064 + 0.0;
+  EXPECT_NEAR(m.rmse, std::sqrt(squares / 5.0), 1e-6);
+  EXPECT_NEAR(m.mae, (0.3 + 0.4 + 0.05 + 0.08) / 5.0, 1e-6);
+  EXPECT_NEAR(m.bias, (0.3 - 0.4 + 0.05 - 0.08) / 5.0, 1e-6);
+  EXPECT_EQ(m.leakPixels, 1u);
+  EXPECT_EQ(m.overDarkPixels, 1u);
+  EXPECT_NEAR(m.leakPct, 20.0, 1e-9);
+  EXPECT_NEAR(m.overDarkPct, 20.0, 1e-9);
+  // Penumbra: V_ref 0.5 and 0.6 only (0 and 1 are outside (0.02, 0.98)).
+  EXPECT_EQ(m.penumbraPixels, 2u);
+  EXPECT_NEAR(m.penumbraRmse, std::sqrt((0.0025 + 0.0064) / 2.0), 1e-6);
+}
+
+TEST(Metrics, EmptyMaskMeansEveryPixelAndAllZeroMaskMeansNone) {
+  const VisibilityMetrics all = compareVisibility(kV, kRef, {});
+  EXPECT_EQ(all.pixels, 6u);
+  EXPECT_EQ(all.leakPixels, 2u);  // the +0.5 pixel now counts
+  const VisibilityMetrics none = compareVisibility(kV, kRef, std::vector<uint8_t>(6, 0));
+  EXPECT_EQ(none.pixels, 0u);
+  EXPECT_EQ(none.rmse, 0.0);  // zeros, not NaN
+  EXPECT_EQ(none.leakPct, 0.0);
+}
+
+TEST(Metrics, PenumbraBoundsAreStrict) {
+  const std::vector<float> ref = {0.02f, 0.98f, 0.03f};
+  const std::vector<float> v = {0.52f, 0.48f, 0.33f};
+  const VisibilityMetrics m = compareVisibility(v, ref, {});
+  EXPECT_EQ(m.penumbraPixels, 1u);
+  EXPECT_NEAR(m.penumbraRmse, 0.3, 1e-6);
+  EXPECT_NEAR(m.rmse, std::sqrt((0.25 + 0.25 + 0.09) / 3.0), 1e-6);
+}
+
+TEST(Metrics, SizeMismatchThrows) {
+  EXPECT_THROW(compareVisibility(kV, std::vector<float>(5), {}), Error);
+  EXPECT_THROW(compareVisibility(kV, kRef, std::vector<uint8_t>(3, 1)), Error);
+  EXPECT_THROW(errorHeatmap(kV, kRef, kMask, 4, 2), Error);
+}
+
+const uint8_t* pixelAt(const ColorImage& image, int x, int yTop) {
+  return &image.rgba[4 * (static_cast<size_t>(yTop) * static_cast<size_t>(image.width) + static_cast<size_t>(x))];
+}
+
+TEST(Metrics, HeatmapTintsLeaksAndOverDarkeningOnGrey) {
+  // 3×2, G-buffer order (row 0 = bottom). Bottom row: leak 0.5, over-dark 0.5, leak 0.1.
+  // Top row: exact, over-dark 0.5 but masked out, exact.
+  const std::vector<float> ref = {0.0f, 1.0f, 0.5f, 0.5f, 1.0f, 0.5f};
+  const std::vector<float> v = {0.5f, 0.5f, 0.6f, 0.5f, 0.5f, 0.5f};
+  const std::vector<uint8_t> mask = {1, 1, 1, 1, 0, 1};
+  const ColorImage h = errorHeatmap(v, ref, mask, 3, 2);
+  ASSERT_EQ(h.rgba.size(), 24u);
+  // Bottom row lands in the image's last row. Full scale 0.5: fully tinted.
+  EXPECT_EQ(pixelAt(h, 0, 1)[0], kLeakColor[0]);
+  EXPECT_EQ(pixelAt(h, 0, 1)[2], kLeakColor[2]);
+  EXPECT_EQ(pixelAt(h, 1, 1)[2], kOverDarkColor[2]);
+  EXPECT_EQ(pixelAt(h, 1, 1)[0], kOverDarkColor[0]);
+  // A small leak is a weaker tint: red above the grey, but less red than the full leak.
+  const uint8_t* small = pixelAt(h, 2, 1);
+  EXPECT_GT(small[0], small[1]);
+  EXPECT_LT(small[0] - small[1], pixelAt(h, 0, 1)[0] - pixelAt(h, 0, 1)[1]);
+  // No error, and masked-out error: pure grey (from V_ref: 0.5 → 40 + 0.6·127.5, 1 → 40 + 153).
+  for (int x = 0; x < 3; ++x) {
+    const uint8_t* p = pixelAt(h, x, 0);
+    EXPECT_EQ(p[0], p[1]);
+    EXPECT_EQ(p[1], p[2]);
+    EXPECT_EQ(p[3], 255);
+  }
+  EXPECT_EQ(pixelAt(h, 1, 0)[0], 193);
+  EXPECT_EQ(pixelAt(h, 0, 0)[0], 117);
+}
+
+TEST(Metrics, HeatmapUsesTheBaseImageForItsGrey) {
+  const std::vector<float> same = {0.5f, 0.5f};
+  ColorImage base{2, 1, {0, 0, 0, 255, 255, 255, 255, 255}};
+  const ColorImage h = errorHeatmap(same, same, {}, 2, 1, &base);
+  EXPECT_EQ(pixelAt(h, 0, 0)[0], 40);   // black → the grey floor
+  EXPECT_EQ(pixelAt(h, 1, 0)[0], 193);  // white → floor + contrast
+  ColorImage wrong{1, 1, {0, 0, 0, 255}};
+  EXPECT_THROW(errorHeatmap(same, same, {}, 2, 1, &wrong), Error);
+}
+
+TEST(Metrics, VisibilityImageIsLinearGreyFlippedToTopDown) {
+  const ColorImage image = visibilityImage(std::vector<float>{0.0f, 1.0f, 0.5f, 2.0f}, 2, 2);
+  EXPECT_EQ(pixelAt(image, 0, 1)[0], 0);    // bottom-left in, bottom-left out (last row)
+  EXPECT_EQ(pixelAt(image, 1, 1)[1], 255);
+  EXPECT_EQ(pixelAt(image, 0, 0)[2], 128);  // 0.5 → 127.5 rounds up
+  EXPECT_EQ(pixelAt(image, 1, 0)[0], 255);  // clamped
+  EXPECT_EQ(pixelAt(image, 1, 0)[3], 255);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,258 @@
+// Model files without GL: what the glTF and OBJ loaders read (hierarchy, strips, materials,
+// alpha masks, lights from KHR_lights_punctual with extras.size, cameras), the default light and
+// camera, the scene-file "file" hook, and one clear error for every file in tests/data/bad/.
+#include "scene/loaders/GltfLoader.h"
+#include "scene/loaders/ModelImport.h"
+#include "scene/loaders/ObjLoader.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/SceneIO.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+using namespace penumbra;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kData = PENUMBRA_TEST_DATA;
+// The alpha mask written by tests/data/make_test_models.py (row 0 = the image's top row).
+const char* const kMask[4] = {"X.XX", "..X.", "X...", "XX.X"};
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string gltfError(const std::string& json) {
+  return errorOf([&] {
+    loaders::loadGltfFromMemory({reinterpret_cast<const uint8_t*>(json.data()), json.size()}, "mem.gltf", "");
+  });
+}
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = static_cast<uint32_t>(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) v |= static_cast<uint32_t>(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) v |= bytes[i + 2];
+    for (size_t k = 0; k < 4; ++k) out += i + k <= bytes.size() ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// A glTF with one mesh of float positions and uint16 indices; `extra` adds to the primitive,
+// `nodes`/`roots` give the hierarchy, `top` adds top-level members.
+std::string meshGltf(const std::vector<glm::vec3>& positions, const std::vector<uint16_t>& indices, const std::string& extra,
+                     const std::string& nodes = R"([{"mesh": 0}])", const std::string& roots = "[0]", const std::string& top = "") {
+  std::vector<uint8_t> bytes(positions.size() * 12 + indices.size() * 2);
+  std::memcpy(bytes.data(), positions.data(), positions.size() * 12);
+  std::memcpy(bytes.data() + positions.size() * 12, indices.data(), indices.size() * 2);
+  return fmt::format(R"({{"asset": {{"version": "2.0"}}, {}
+    "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}],
+    "bufferViews": [{{"buffer": 0, "byteLength": {}}}, {{"buffer": 0, "byteOffset": {}, "byteLength": {}}}],
+    "accessors": [{{"bufferView": 0, "componentType": 5126, "count": {}, "type": "VEC3"}},
+                  {{"bufferView": 1, "componentType": 5123, "count": {}, "type": "SCALAR"}}],
+    "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1 {}}}]}}],
+    "nodes": {}, "scenes": [{{"nodes": {}}}]}})",
+                     top, bytes.size(), base64(bytes), positions.size() * 12, positions.size() * 12, indices.size() * 2,
+                     positions.size(), indices.size(), extra, nodes, roots);
+}
+
+loaders::Model loadText(const std::string& json) {
+  return loaders::loadGltfFromMemory({reinterpret_cast<const uint8_t*>(json.data()), json.size()}, "mem.gltf", "");
+}
+
+const std::vector<glm::vec3> kSquare = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+
+}  // namespace
+
+TEST(ModelLoader, AlphaQuadGltf) {
+  const loaders::Model m = loaders::loadModelFile(kData / "models/alpha_quad.gltf");
+  const Scene& s = m.scene;
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.triangleCount(), 4u);
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, LightType::Directional);
+  EXPECT_NEAR(s.lights[0].size, 0.005f, 1e-7f);              // extras.size
+  EXPECT_NEAR(s.lights[0].direction.y, -1.0f, 1e-5f);        // local -Z turned straight down
+  EXPECT_NEAR(s.lights[0].intensity, 2.0f, 1e-6f);
+  EXPECT_TRUE(m.hasCamera);
+  EXPECT_NEAR(s.camera.fovYRad, 0.9f, 1e-6f);
+  EXPECT_NEAR(glm::length(s.camera.forward() - glm::normalize(glm::vec3(0, -5.5f, -4.6f))), 0.0f, 0.01f);
+  const Object& quad = s.objects[1];
+  const Material& mat = s.materials[quad.material];
+  EXPECT_TRUE(mat.alphaMask);
+  EXPECT_FLOAT_EQ(mat.alphaCutoff, 0.5f);
+  ASSERT_GE(mat.baseColorTexture, 0);
+  const Image& im = s.images[static_cast<size_t>(mat.baseColorTexture)];
+  ASSERT_EQ(im.width, 4);
+  ASSERT_EQ(im.height, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      EXPECT_EQ(im.rgba[static_cast<size_t>(4 * (4 * y + x) + 3)], kMask[y][x] == 'X' ? 255 : 0) << x << "," << y;
+  // uv (0,0) sits at (-1, 1, -1): the image's top-left texel is over the quad's -x, -z corner.
+  const Mesh& mesh = s.meshes[quad.mesh];
+  for (const Vertex& v : mesh.vertices) {
+    EXPECT_NEAR(v.uv.x, (v.position.x + 1.0f) / 2.0f, 1e-6f);
+    EXPECT_NEAR(v.uv.y, (v.position.z + 1.0f) / 2.0f, 1e-6f);
+  }
+  EXPECT_FALSE(s.materials[s.objects[0].material].alphaMask);
+}
+
+TEST(ModelLoader, ObjWithMtlColours) {
+  const loaders::Model m = loaders::loadModelFile(kData / "models/box.obj");
+  EXPECT_EQ(m.scene.triangleCount(), 12u);  // six quads, fan-triangulated
+  ASSERT_EQ(m.scene.objects.size(), 1u);
+  const Material& mat = m.scene.materials[m.scene.objects[0].material];
+  EXPECT_EQ(mat.name, "red");
+  EXPECT_NEAR(mat.baseColor.x, 0.8f, 1e-6f);
+  EXPECT_NEAR(mat.baseColor.y, 0.1f, 1e-6f);
+  const Aabb b = m.scene.bounds();
+  EXPECT_NEAR(b.lo.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(b.hi.y, 1.0f, 1e-6f);
+  // Faces without vn get the flat normal, pointing out of the cube.
+  for (const Vertex& v : m.scene.meshes[0].vertices) EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+  EXPECT_FALSE(m.hasCamera);
+  EXPECT_TRUE(m.scene.lights.empty());
+}
+
+TEST(ModelLoader, ModelAsSceneGetsDefaultSunAndFramingCamera) {
+  const Scene s = loadScene((kData / "models/box.obj").string());
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, LightType::Directional);
+  EXPECT_LT(s.lights[0].direction.y, -0.5f);  // from above
+  EXPECT_FLOAT_EQ(s.lights[0].size, loaders::kDefaultSunAngularRadiusRad);
+  // Every corner of the model's box lies inside the camera's view at 16:9 and at 1:1.
+  const Aabb b = s.bounds();
+  for (float aspect : {16.0f / 9.0f, 1.0f}) {
+    const glm::mat4 clipFromWorld = s.camera.clipFromView(aspect) * s.camera.viewFromWorld();
+    for (const glm::vec3& c : b.corners()) {
+      const glm::vec4 clip = clipFromWorld * glm::vec4(c, 1.0f);
+      ASSERT_GT(clip.w, s.camera.nearM);
+      EXPECT_LE(std::abs(clip.x / clip.w), 1.0f) << aspect;
+      EXPECT_LE(std::abs(clip.y / clip.w), 1.0f) << aspect;
+    }
+  }
+}
+
+TEST(ModelLoader, SceneFilePlacesObjAndGltfSideBySide) {
+  const Scene s = loadScene((kData / "scenes/obj_and_gltf.json").string());
+  ASSERT_EQ(s.objects.size(), 4u);  // floor, box, the glTF's ground and masked quad
+  EXPECT_EQ(s.objects[1].name, "box/box");
+  EXPECT_EQ(s.objects[3].name, "quad/masked quad");
+  ASSERT_EQ(s.lights.size(), 1u);  // the scene file's own light; the glTF's sun is not taken
+  EXPECT_NEAR(s.lights[0].size, 0.005f, 1e-7f);
+  // The glTF is translated by (2, 0.01, 0) and scaled by 0.5: its masked quad spans x in [1.5, 2.5].
+  const Aabb quad = s.meshes[s.objects[3].mesh].bounds().transformed(s.objects[3].worldFromObject);
+  EXPECT_NEAR(quad.lo.x, 1.5f, 1e-5f);
+  EXPECT_NEAR(quad.hi.x, 2.5f, 1e-5f);
+  EXPECT_NEAR(quad.lo.y, 0.51f, 1e-5f);
+  const Material& mat = s.materials[s.objects[3].material];
+  ASSERT_TRUE(mat.alphaMask);
+  ASSERT_GE(mat.baseColorTexture, 0);
+  EXPECT_EQ(s.images[static_cast<size_t>(mat.baseColorTexture)].width, 4);
+  const Aabb box = s.meshes[s.objects[1].mesh].bounds().transformed(s.objects[1].worldFromObject);
+  EXPECT_NEAR(box.center().x, -2.0f, 1e-5f);
+}
+
+TEST(ModelLoader, StripsAndFansBecomeTriangleLists) {
+  // Strip (0 1 2 3) → (0 1 2) (1 3 2); fan (0 1 3 2) → (1 3 0) (3 2 0) (glTF 2.0 §3.7.2.1).
+  // Without NORMAL every triangle gets its own vertices, so the positions show the order.
+  const loaders::Model strip = loadText(meshGltf(kSquare, {0, 1, 2, 3}, R"(, "mode": 5)"));
+  const loaders::Model fan = loadText(meshGltf(kSquare, {0, 1, 3, 2}, R"(, "mode": 6)"));
+  const int stripOrder[6] = {0, 1, 2, 1, 3, 2}, fanOrder[6] = {1, 3, 0, 3, 2, 0};
+  for (const auto& [model, order] : {std::pair{&strip, stripOrder}, std::pair{&fan, fanOrder}}) {
+    const Mesh& m = model->scene.meshes.at(0);
+    ASSERT_EQ(m.triangleCount(), 2u);
+    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(m.vertices[m.indices[i]].position, kSquare[static_cast<size_t>(order[i])]) << i;
+    for (const Vertex& v : m.vertices) EXPECT_NEAR(v.normal.z, 1.0f, 1e-6f);  // one winding: every face toward +Z
+  }
+  // Lines and points draw nothing: a file with only those has zero triangles.
+  EXPECT_NE(gltfError(meshGltf(kSquare, {0, 1, 2, 3}, R"(, "mode": 1)")).find("no triangles"), std::string::npos);
+}
+
+TEST(ModelLoader, NodeTransformsCompose) {
+  // The root translates by (0, 2, 0), its child scales by 2: the square spans y in [2, 4].
+  const loaders::Model m = loadText(meshGltf(kSquare, {0, 1, 2, 1, 3, 2}, "",
+                                             R"([{"mesh": 0, "scale": [2, 2, 2]}, {"translation": [0, 2, 0], "children": [0]}])", "[1]"));
+  const Aabb b = m.scene.bounds();
+  EXPECT_NEAR(b.lo.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.y, 4.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.x, 2.0f, 1e-5f);
+  // A node under two parents breaks the tree rule and is refused rather than drawn twice.
+  const std::string twice = gltfError(meshGltf(kSquare, {0, 1, 2}, "", R"([{"mesh": 0}, {"children": [0]}, {"children": [0]}])", "[1, 2]"));
+  EXPECT_NE(twice.find("more than one parent"), std::string::npos) << twice;
+}
+
+TEST(ModelLoader, PunctualLightsAndTheirSize) {
+  const std::string lights = R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [
+      {"type": "spot", "intensity": 5, "spot": {"outerConeAngle": 0.5}, "extras": {"size": 0.25}},
+      {"type": "point", "extras": {"size": 0.1}}]}},)";
+  const std::string nodes = R"([{"mesh": 0},
+      {"translation": [0, 4, 0], "rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+      {"translation": [3, 0.5, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}}])";
+  const loaders::Model m = loadText(meshGltf(kSquare, {0, 1, 2, 1, 3, 2}, "", nodes, "[0, 1, 2]", lights));
+  ASSERT_EQ(m.scene.lights.size(), 2u);
+  const Light& spot = m.scene.lights[0];
+  EXPECT_EQ(spot.type, LightType::Spot);
+  EXPECT_NEAR(spot.size, 0.25f, 1e-7f);
+  EXPECT_NEAR(spot.coneAngleRad, 0.5f, 1e-6f);
+  EXPECT_NEAR(spot.position.y, 4.0f, 1e-6f);
+  EXPECT_NEAR(spot.direction.y, -1.0f, 1e-5f);
+  // The point light becomes a spot light aimed at the middle of the scene's bounds.
+  const Light& point = m.scene.lights[1];
+  EXPECT_EQ(point.type, LightType::Spot);
+  EXPECT_NEAR(point.size, 0.1f, 1e-7f);
+  const glm::vec3 toCenter = glm::normalize(m.scene.bounds().center() - point.position);
+  EXPECT_NEAR(glm::dot(point.direction, toCenter), 1.0f, 1e-5f);
+  // A sun's size is an angle: 0.7 rad is refused, naming the field.
+  const std::string bigSun = R"("extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "extras": {"size": 0.7}}]}},)";
+  const std::string e = gltfError(meshGltf(kSquare, {0, 1, 2}, "", R"([{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 0}}}])", "[0]", bigSun));
+  EXPECT_NE(e.find("lights[0].extras.size"), std::string::npos) << e;
+}
+
+TEST(ModelLoader, EveryBadFileGetsOneErrorNamingIt) {
+  size_t files = 0;
+  for (const fs::directory_entry& f : fs::directory_iterator(kData / "bad")) {
+    ++files;
+    const std::string e = errorOf([&] { loadScene(f.path().string()); });
+    ASSERT_FALSE(e.empty()) << f.path() << " was accepted";
+    EXPECT_NE(e.find(f.path().filename().string()), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+  }
+  EXPECT_GE(files, 15u);
+}
+
+TEST(ModelLoader, ErrorsNameTheProblem) {
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("index_out_of_range.gltf").find("index 99"), std::string::npos);
+  EXPECT_NE(err("nan_position.gltf").find("not finite"), std::string::npos);
+  EXPECT_NE(err("recursive_nodes.gltf").find("cycle"), std::string::npos);
+  EXPECT_NE(err("zero_triangles.gltf").find("no triangles"), std::string::npos);
+  EXPECT_NE(err("view_past_buffer.gltf").find("run past the end"), std::string::npos);
+  EXPECT_NE(err("deep_json.gltf").find("nests deeper"), std::string::npos);
+  EXPECT_NE(err("huge_image.gltf").find("10000x10000 texels"), std::string::npos);
+  EXPECT_NE(err("huge_coordinates.gltf").find("world-space"), std::string::npos);
+  EXPECT_NE(err("index_out_of_range.obj").find("vertex index 99"), std::string::npos);
+  EXPECT_NE(err("missing_mtl.obj").find("no_such.mtl"), std::string::npos);
+  EXPECT_NE(err("scene_bad_model.json").find("objects[1].file"), std::string::npos);
+  EXPECT_NE(err("missing_buffer.gltf").find("no_such_file.bin"), std::string::npos);
+  EXPECT_NE(err("bad_light_size.gltf").find("extras.size"), std::string::npos);
+  EXPECT_NE(err("empty.glb").find("empty"), std::string::npos);
+}

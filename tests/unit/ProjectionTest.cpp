@@ -1,0 +1,374 @@
+// Projections on the CPU: the practical split scheme, every projection mapping the visible part
+// of the camera frustum into its clip volume (warps included), csm's snapping, and that every
+// caster that can shadow a visible receiver lies inside the light's clip volume.
+#include "shadows/projections/CascadedProjection.h"
+#include "shadows/projections/LightSpace.h"
+#include "shadows/projections/PerspectiveProjection.h"
+#include "shadows/projections/TrapezoidalProjection.h"
+
+#include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <random>
+
+using namespace penumbra;
+
+namespace {
+
+constexpr float kAspect = 16.0f / 9.0f;
+constexpr int kMapSize = 1024;
+constexpr float kClipEps = 1e-3f;  // NDC units (a map of 1024 texels: half a texel)
+
+struct ClipCheck {
+  bool inside = true;
+  std::string what;
+};
+
+// Whether world point p lies in view v's clip volume: w > 0, NDC xy in [-1,1], the clip depth
+// and the stored linear depth in [0,1].
+ClipCheck insideClip(const ShadowView& v, const glm::vec3& p) {
+  const glm::vec4 c = v.clipFromWorld * glm::vec4(p, 1.0f);
+  const float depth = glm::dot(v.depthPlane, glm::vec4(p, 1.0f));
+  ClipCheck r;
+  if (!(c.w > 0.0f)) return {false, "w <= 0"};
+  const glm::vec3 ndc = glm::vec3(c) / c.w;
+  if (std::abs(ndc.x) > 1.0f + kClipEps || std::abs(ndc.y) > 1.0f + kClipEps) r = {false, "xy outside"};
+  if (ndc.z < -kClipEps || ndc.z > 1.0f + kClipEps) r = {false, "clip z outside"};
+  if (depth < -kClipEps || depth > 1.0f + kClipEps) r = {false, "linear depth outside"};
+  if (!r.inside) r.what += " at ndc (" + std::to_string(ndc.x) + ", " + std::to_string(ndc.y) + ", " + std::to_string(ndc.z) + ") depth " + std::to_string(depth);
+  return r;
+}
+
+// The body's vertices and random points inside it (convex combinations).
+std::vector<glm::vec3> samplesIn(const std::vector<glm::vec3>& body, int count, uint32_t seed) {
+  std::vector<glm::vec3> out = body;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < count && !body.empty(); ++i) {
+    glm::vec3 sum(0.0f);
+    float total = 0.0f;
+    for (const glm::vec3& p : body) {
+      const float w = std::pow(u(rng), 4.0f);  // skewed weights reach near the vertices too
+      sum += w * p;
+      total += w;
+    }
+    out.push_back(sum / total);
+  }
+  return out;
+}
+
+Scene sceneWithSun(const std::string& name, const glm::vec3& direction) {
+  Scene s = makeBuiltinScene(name);
+  s.lights.front().direction = glm::normalize(direction);
+  return s;
+}
+
+// The camera depth interval each view must cover: csm's slices (with the blend band before each
+// split), everything else the whole shadowed range.
+std::pair<float, float> viewDepthRange(const LightFrusta& f, size_t i, const Camera& cam, const Scene& scene) {
+  const float farM = std::max(shadowFarDistance(cam, scene), 2.0f * cam.nearM);
+  if (f.views.size() == 1) return {cam.nearM, farM};
+  const float a = i == 0 ? cam.nearM : f.views[i - 1].splitFarM - f.blendBandM;
+  const float b = i + 1 == f.views.size() ? std::min(f.views[i].splitFarM, farM) : f.views[i].splitFarM;
+  return {std::max(a, cam.nearM), b};
+}
+
+void expectFrustumInsideClip(const Scene& scene, const std::string& projection, const std::string& label) {
+  auto p = makeProjection(projection);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  ASSERT_FALSE(f.views.empty());
+  size_t checked = 0;
+  for (size_t i = 0; i < f.views.size(); ++i) {
+    const auto [a, b] = viewDepthRange(f, i, scene.camera, scene);
+    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, a, b, scene, scene.light());
+    if (body.empty()) continue;  // a cascade slice in front of the scene: nothing to cover
+    ++checked;
+    int outside = 0;
+    std::string first;
+    for (const glm::vec3& s : samplesIn(body, 400, 11)) {
+      const ClipCheck c = insideClip(f.views[i], s);
+      if (!c.inside && outside++ == 0) first = c.what;
+    }
+    EXPECT_EQ(outside, 0) << label << " " << projection << " view " << i << ": " << first;
+  }
+  EXPECT_GT(checked, 0u) << label << " " << projection;
+}
+
+}  // namespace
+
+TEST(Projection, PracticalSplitsBlendUniformAndLogarithmic) {
+  const float n = 0.1f, f = 1000.0f;
+  const int count = 4;
+  const std::vector<float> uni = practicalSplits(n, f, count, 0.0f);
+  const std::vector<float> log = practicalSplits(n, f, count, 1.0f);
+  const std::vector<float> mid = practicalSplits(n, f, count, 0.5f);
+  ASSERT_EQ(uni.size(), 5u);
+  EXPECT_FLOAT_EQ(uni.front(), n);
+  EXPECT_FLOAT_EQ(uni.back(), f);
+  EXPECT_FLOAT_EQ(log.back(), f);
+  for (int i = 1; i <= count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    EXPECT_NEAR(uni[k] - uni[k - 1], (f - n) / count, 1e-3f);                      // equal lengths
+    EXPECT_NEAR(log[k] / log[k - 1], std::pow(f / n, 1.0f / count), 1e-3f);         // equal ratios
+    EXPECT_NEAR(mid[k], 0.5f * (uni[k] + log[k]), 1e-3f * mid[k]);                  // the λ blend
+    EXPECT_GT(mid[k], mid[k - 1]);
+  }
+  EXPECT_NEAR(log[1], 0.1f * std::pow(1e4f, 0.25f), 1e-4f);  // 1 m: n·(f/n)^(1/4)
+}
+
+TEST(Projection, CsmViewsFollowTheSplits) {
+  const Scene scene = makeBuiltinScene("city");
+  auto p = makeProjection("csm");
+  p->setParam("csm.cascades", 4.0f);
+  p->setParam("csm.lambda", 0.9f);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  ASSERT_EQ(f.views.size(), 4u);
+  const float farM = stableFarDistance(shadowFarDistance(scene.camera, scene));
+  const std::vector<float> z = practicalSplits(scene.camera.nearM, farM, 4, 0.9f);
+  for (size_t i = 0; i < 4; ++i) EXPECT_FLOAT_EQ(f.views[i].splitFarM, z[i + 1]);
+  EXPECT_GT(f.blendBandM, 0.0f);
+  EXPECT_LE(f.blendBandM, 0.5f * (z[1] - z[0]));
+  // Finer cascades near the camera: each cascade's map covers more ground than the one before.
+  for (size_t i = 1; i < 4; ++i) EXPECT_GT(f.views[i].extent.x, 1.5f * f.views[i - 1].extent.x);
+}
+
+// The visible part of the frustum (frustum ∩ scene bounds) for the fits that cover it as a
+// whole. `uniform` fits each object's box clipped to the frustum instead, so empty space inside
+// the scene's bounds may fall outside it; its guarantee is tested on surface points below.
+TEST(Projection, EveryProjectionMapsTheVisibleFrustumIntoItsClipVolume) {
+  for (const std::string& projection : projectionIds()) {
+    if (projection == "uniform") continue;
+    expectFrustumInsideClip(makeBuiltinScene("boxes"), projection, "boxes");
+    expectFrustumInsideClip(makeBuiltinScene("city"), projection, "city");
+    expectFrustumInsideClip(makeBuiltinScene("pen"), projection, "pen (spot)");
+    expectFrustumInsideClip(makeBuiltinScene("fence"), projection, "fence");
+  }
+}
+
+TEST(Projection, WarpsMapTheFrustumIntoTheUnitCubeForEveryLightDirection) {
+  Scene city = makeBuiltinScene("city");
+  const glm::vec3 fwd = city.camera.forward();
+  const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0, 1, 0)));
+  // Light behind the camera, in front of it, from the side, from above, and grazing.
+  const std::vector<std::pair<std::string, glm::vec3>> lights = {
+      {"behind", fwd + glm::vec3(0, -0.6f, 0)},   {"in front", -fwd + glm::vec3(0, -0.6f, 0)},
+      {"side", right + glm::vec3(0, -0.4f, 0)},   {"overhead", glm::vec3(0.1f, -1.0f, 0.05f)},
+      {"low oblique", right + fwd + glm::vec3(0, -0.15f, 0)}};
+  for (const auto& [label, dir] : lights) {
+    const Scene s = sceneWithSun("city", dir);
+    for (const char* projection : {"psm", "tsm", "csm"}) expectFrustumInsideClip(s, projection, "city, sun " + label);
+    const Scene b = sceneWithSun("boxes", dir);
+    for (const char* projection : {"psm", "tsm"}) expectFrustumInsideClip(b, projection, "boxes, sun " + label);
+  }
+}
+
+TEST(Projection, PsmAndTsmWarpTheCityAndPsmClassifiesTheLight) {
+  const Scene city = makeBuiltinScene("city");
+  for (const char* id : {"psm", "tsm"}) {
+    auto p = makeProjection(id);
+    const LightFrusta f = p->computeFrusta(city.camera, kAspect, city.light(), city, 2048);
+    ASSERT_EQ(f.views.size(), 1u);
+    EXPECT_TRUE(f.views[0].warped) << id << " fell back to an unwarped map on the city";
+  }
+  Camera cam = city.camera;
+  Light sun = city.light();
+  sun.direction = glm::normalize(cam.forward() + glm::vec3(0, -0.5f, 0));
+  EXPECT_EQ(psmLightCase(cam, sun), PsmLightCase::Behind);
+  sun.direction = glm::normalize(-cam.forward() + glm::vec3(0, -0.5f, 0));
+  EXPECT_EQ(psmLightCase(cam, sun), PsmLightCase::InFront);
+  cam.target = cam.position + glm::vec3(0, 0, -1);
+  sun.direction = glm::vec3(0, -1, 0);
+  EXPECT_EQ(psmLightCase(cam, sun), PsmLightCase::Perpendicular);
+}
+
+TEST(Projection, TrapezoidRuleMapsTheFocusPointTo80Percent) {
+  const float lambda = 2.0f, delta = 0.3f, m = 0.8f;
+  const float eta = trapezoidApexDistance(lambda, delta, m);
+  ASSERT_GT(eta, 0.0f);
+  // The warp along the centre line: a point at distance a from the apex lands at y = A − B/a.
+  const glm::mat4 w = trapezoidWarp({0, -1}, {0, 1}, eta, lambda, -1.0f, 1.0f);
+  auto mapY = [&](float s) {  // s: distance past the top edge along u
+    const glm::vec4 c = w * glm::vec4(0.0f, -1.0f + eta + s, 0.0f, 1.0f);
+    return c.y / c.w;
+  };
+  EXPECT_NEAR(mapY(0.0f), -1.0f, 1e-5f);
+  EXPECT_NEAR(mapY(lambda), 1.0f, 1e-5f);
+  EXPECT_NEAR(0.5f * (mapY(delta) + 1.0f), m, 1e-5f);  // 80% of the way across the map
+  EXPECT_TRUE(std::isinf(trapezoidApexDistance(lambda, 0.9f * lambda, m)));
+}
+
+TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
+  const Scene scene = makeBuiltinScene("city");
+  auto p = makeProjection("csm");
+  const LightFrusta f0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const glm::mat4 worldFromLight = glm::inverse(f0.views[0].viewFromWorld);
+  const glm::vec3 lightX = glm::vec3(worldFromLight[0]), lightZ = glm::vec3(worldFromLight[2]);
+  for (size_t v = 0; v < f0.views.size(); ++v) {
+    const float texelM = f0.views[v].extent.x / static_cast<float>(kMapSize);
+    const float ndcPerTexel = 2.0f / static_cast<float>(kMapSize);
+    // Walk one texel along the light's x axis in 64 steps: the snapped matrix may change once
+    // (crossing a texel boundary), only in its translation, and then by exactly one texel.
+    int changes = 0;
+    glm::mat4 previous = f0.views[v].clipFromWorld;
+    for (int k = 1; k < 64; ++k) {
+      Camera c = scene.camera;
+      const glm::vec3 move = lightX * (texelM * static_cast<float>(k) / 64.0f);
+      c.position += move;
+      c.target += move;
+      const glm::mat4 m = p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[v].clipFromWorld;
+      if (m == previous) continue;
+      ++changes;
+      for (int col = 0; col < 3; ++col) EXPECT_EQ(m[col], previous[col]) << "view " << v << ": rotation/scale changed";
+      EXPECT_NEAR(std::abs(m[3].x - previous[3].x) / ndcPerTexel, 1.0f, 1e-2f) << "view " << v;
+      EXPECT_NEAR(m[3].y, previous[3].y, 1e-2f * ndcPerTexel) << "view " << v;
+      previous = m;
+    }
+    EXPECT_LE(changes, 1) << "view " << v;
+    // Moving along the light's own axis changes nothing at all.
+    Camera c = scene.camera;
+    c.position += lightZ * (3.7f * texelM);
+    c.target += lightZ * (3.7f * texelM);
+    EXPECT_EQ(p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[v].clipFromWorld, f0.views[v].clipFromWorld);
+  }
+  // Without stabilisation the same sub-texel moves change the matrix nearly every time.
+  p->setParam("csm.stabilize", 0.0f);
+  const LightFrusta u0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  int unstableChanges = 0;
+  for (int k = 1; k < 16; ++k) {
+    Camera c = scene.camera;
+    const glm::vec3 move = lightX * (0.01f * static_cast<float>(k));
+    c.position += move;
+    c.target += move;
+    if (p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[0].clipFromWorld != u0.views[0].clipFromWorld) ++unstableChanges;
+  }
+  EXPECT_GE(unstableChanges, 12);
+}
+
+namespace {
+
+// Points on the scene's triangles (area-weighted) that the camera frustum contains.
+std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint32_t seed) {
+  struct Tri { glm::vec3 a, b, c; };
+  std::vector<Tri> tris;
+  std::vector<float> cumulative;
+  float total = 0.0f;
+  const glm::mat4 clip = scene.camera.clipFromView(kAspect) * scene.camera.viewFromWorld();
+  const float farM = shadowFarDistance(scene.camera, scene);
+  for (const Object& o : scene.objects) {
+    const Mesh& m = scene.meshes[o.mesh];
+    for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+      Tri t{glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i]].position, 1.0f)),
+            glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i + 1]].position, 1.0f)),
+            glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i + 2]].position, 1.0f))};
+      total += 0.5f * glm::length(glm::cross(t.b - t.a, t.c - t.a));
+      tris.push_back(t);
+      cumulative.push_back(total);
+    }
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<glm::vec3> out;
+  for (int tries = 0; tries < count * 400 && static_cast<int>(out.size()) < count; ++tries) {
+    const size_t k = static_cast<size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * total) - cumulative.begin());
+    const Tri& t = tris[std::min(k, tris.size() - 1)];
+    float r1 = u(rng), r2 = u(rng);
+    if (r1 + r2 > 1.0f) { r1 = 1.0f - r1; r2 = 1.0f - r2; }
+    const glm::vec3 p = t.a + r1 * (t.b - t.a) + r2 * (t.c - t.a);
+    const glm::vec4 c = clip * glm::vec4(p, 1.0f);
+    const float depth = -(scene.camera.viewFromWorld() * glm::vec4(p, 1.0f)).z;
+    if (c.w <= 0.0f || depth > farM || depth < scene.camera.nearM) continue;
+    if (std::abs(c.x / c.w) > 1.0f || std::abs(c.y / c.w) > 1.0f) continue;
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Every caster-triangle hit between each receiver sample and the light must lie inside the view
+// that the receiver is looked up in (csm: its cascade and, in the blend band, the next one).
+void expectCastersInsideClip(const Scene& scene, const std::string& projection) {
+  auto p = makeProjection(projection);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  std::vector<glm::vec3> tri;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow) continue;
+    const Mesh& m = scene.meshes[o.mesh];
+    for (uint32_t i : m.indices) tri.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.vertices[i].position, 1.0f)));
+  }
+  const Light& light = scene.light();
+  const glm::mat4 view = scene.camera.viewFromWorld();
+  int hits = 0, outside = 0;
+  std::string first;
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, 1000, 5)) {
+    glm::vec3 dir = -glm::normalize(light.direction);
+    float tMax = 1e30f;
+    if (light.type == LightType::Spot) {
+      tMax = glm::length(light.position - r);
+      dir = (light.position - r) / tMax;
+    }
+    const float depth = -(view * glm::vec4(r, 1.0f)).z;
+    std::vector<size_t> views;
+    for (size_t i = 0; i < f.views.size(); ++i) {
+      const float a = i == 0 ? 0.0f : f.views[i - 1].splitFarM - f.blendBandM;
+      const float b = i + 1 == f.views.size() ? 1e30f : f.views[i].splitFarM;
+      if (depth >= a && depth <= b) views.push_back(i);
+    }
+    for (size_t i = 0; i + 2 < tri.size(); i += 3) {  // Möller–Trumbore, every hit
+      const glm::vec3 e1 = tri[i + 1] - tri[i], e2 = tri[i + 2] - tri[i], pv = glm::cross(dir, e2);
+      const float det = glm::dot(e1, pv);
+      if (std::abs(det) < 1e-12f) continue;
+      const glm::vec3 s = r - tri[i];
+      const float u = glm::dot(s, pv) / det;
+      if (u < 0.0f || u > 1.0f) continue;
+      const glm::vec3 q = glm::cross(s, e1);
+      const float v = glm::dot(dir, q) / det;
+      if (v < 0.0f || u + v > 1.0f) continue;
+      const float t = glm::dot(e2, q) / det;
+      if (t <= 1e-4f || t >= tMax) continue;
+      ++hits;
+      for (size_t vi : views) {
+        const ClipCheck c = insideClip(f.views[vi], r + dir * t);
+        if (!c.inside && outside++ == 0) first = "view " + std::to_string(vi) + ": " + c.what;
+      }
+    }
+  }
+  EXPECT_GT(hits, 10) << scene.name << ": the test needs casters between receivers and the light";
+  EXPECT_EQ(outside, 0) << scene.name << " " << projection << ": " << first;
+}
+
+}  // namespace
+
+TEST(Projection, UniformFrustumHoldsEveryCasterOfAVisibleReceiver) {
+  for (const char* name : {"boxes", "fence", "pen", "grazing"}) expectCastersInsideClip(makeBuiltinScene(name), "uniform");
+}
+
+TEST(Projection, LargeViewProjectionsHoldEveryCasterOfAVisibleReceiver) {
+  for (const char* projection : {"csm", "psm", "tsm"})
+    for (const char* name : {"boxes", "fence", "pen"}) expectCastersInsideClip(makeBuiltinScene(name), projection);
+}
+
+// A spot light hanging inside the visible region: in PPS it lies inside the body of receivers
+// and casters, so no projection from it can hold them all. PSM must notice and fall back to the
+// unwarped fit, which still covers the view.
+TEST(Projection, PsmFallsBackWhenTheWarpDegenerates) {
+  Scene scene = makeBuiltinScene("boxes");
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.0f, 0.9f, 0.8f};  // between the boxes, in front of the camera
+  spot.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
+  spot.coneAngleRad = 1.2f;
+  scene.lights = {spot};
+  const float farM = shadowFarDistance(scene.camera, scene);
+  const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene, spot);
+  const std::vector<glm::vec3> casters = casterExtrusion(body, spot, scene.casterBounds());
+  ASSERT_FALSE(body.empty());
+  EXPECT_TRUE(computePsmWarp(scene.camera, spot, body, casters, scene.bounds(), 1.0f, 0.0f).degenerate);
+  auto p = makeProjection("psm");
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, spot, scene, kMapSize);
+  ASSERT_EQ(f.views.size(), 1u);
+  EXPECT_FALSE(f.views[0].warped);
+  expectFrustumInsideClip(scene, "psm", "boxes, spot inside the view");
+}

@@ -1,0 +1,131 @@
+// "Save settings" (src/viewer/SceneWriter.h): what the viewer writes loads back as the same
+// scene: geometry, camera, light and technique.
+#include "viewer/SceneWriter.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace penumbra;
+using namespace penumbra::viewer;
+
+namespace {
+
+constexpr float kEpsM = 2e-3f;  // 7 significant digits on positions of a few metres, and rotations
+
+std::filesystem::path tempFile(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("penumbra-scenewriter-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+void expectSameBounds(const Aabb& a, const Aabb& b, const std::string& what) {
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(a.lo[i], b.lo[i], kEpsM) << what;
+    EXPECT_NEAR(a.hi[i], b.hi[i], kEpsM) << what;
+  }
+}
+
+}  // namespace
+
+TEST(SceneWriter, DecomposesTranslateRotateScale) {
+  const glm::mat4 m = glm::translate(glm::mat4(1), {1, 2, 3}) * glm::rotate(glm::mat4(1), glm::radians(30.0f), {0, 1, 0}) *
+                      glm::rotate(glm::mat4(1), glm::radians(-20.0f), {1, 0, 0}) *
+                      glm::rotate(glm::mat4(1), glm::radians(70.0f), {0, 0, 1}) * glm::scale(glm::mat4(1), {2, 0.5f, 1});
+  const Trs t = decomposeTransform(m);
+  EXPECT_NEAR(t.translate.z, 3.0f, 1e-5f);
+  EXPECT_NEAR(t.rotateDeg.x, -20.0f, 1e-3f);
+  EXPECT_NEAR(t.rotateDeg.y, 30.0f, 1e-3f);
+  EXPECT_NEAR(t.rotateDeg.z, 70.0f, 1e-3f);
+  EXPECT_NEAR(t.scale.x, 2.0f, 1e-5f);
+  EXPECT_NEAR(t.scale.y, 0.5f, 1e-5f);
+  glm::mat4 shear(1.0f);
+  shear[1][0] = 0.5f;
+  EXPECT_THROW(decomposeTransform(shear), Error);
+}
+
+TEST(SceneWriter, EveryBuiltinSceneRoundTrips) {
+  for (const std::string& name : builtinSceneNames()) {
+    Scene s = makeBuiltinScene(name);
+    s.camera.position += glm::vec3(0.5f, 0.25f, 0.0f);  // as moved in the viewer
+    s.lights.front().size *= 1.5f;
+    auto projection = makeProjection(projectionIds().back());
+    auto filter = makeFilter(filterIds().back());
+    const ParamDesc& d = filter->paramDescs().empty() ? projection->paramDescs().front() : filter->paramDescs().front();
+    Parameterized& owner = filter->paramDescs().empty() ? static_cast<Parameterized&>(*projection) : *filter;
+    const float changed = d.isChoice() ? d.max : d.min;  // a non-default value
+    owner.setParam(d.key, changed);
+
+    const auto path = tempFile(name + ".json");
+    saveSceneFile(path, s, *projection, *filter, 1024);
+    const Scene back = loadSceneFile(path);
+    ASSERT_EQ(back.objects.size(), s.objects.size()) << name;
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Object& a = s.objects[i];
+      const Object& b = back.objects[i];
+      EXPECT_EQ(a.name, b.name);
+      EXPECT_EQ(a.castsShadow, b.castsShadow) << a.name;
+      expectSameBounds(s.meshes[a.mesh].bounds().transformed(a.worldFromObject),
+                       back.meshes[b.mesh].bounds().transformed(b.worldFromObject), name + ": " + a.name);
+      EXPECT_NEAR(glm::length(s.materials[a.material].baseColor - back.materials[b.material].baseColor), 0.0f, 1e-5f);
+    }
+    EXPECT_NEAR(glm::length(back.camera.position - s.camera.position), 0.0f, kEpsM) << name;
+    EXPECT_NEAR(glm::length(back.camera.target - s.camera.target), 0.0f, kEpsM) << name;
+    EXPECT_NEAR(back.camera.fovYRad, s.camera.fovYRad, 1e-5f) << name;
+    const Light& la = s.lights.front();
+    const Light& lb = back.lights.front();
+    EXPECT_EQ(la.type, lb.type) << name;
+    EXPECT_NEAR(lb.size, la.size, 1e-6f) << name;
+    EXPECT_NEAR(glm::length(lb.direction - la.direction), 0.0f, 1e-5f) << name;
+    if (la.type == LightType::Spot) {
+      EXPECT_NEAR(glm::length(lb.position - la.position), 0.0f, kEpsM) << name;
+    }
+    EXPECT_EQ(back.shadow.projection, projection->id());
+    EXPECT_EQ(back.shadow.filter, filter->id());
+    EXPECT_EQ(back.shadow.mapSize, 1024);
+    bool found = false;
+    for (const auto& [key, value] : back.shadow.params)
+      if (key == d.key) {
+        found = true;
+        EXPECT_EQ(value, formatParamValue(d, changed)) << key;
+      }
+    EXPECT_TRUE(found) << d.key;
+  }
+}
+
+TEST(SceneWriter, FileScenesKeepTheirObjectsAsWritten) {
+  const auto src = tempFile("source.json");
+  std::ofstream(src) << R"({"name": "mine", "lights": [{"type": "sun", "direction": [0, -1, 0.2], "size": 0.01}],
+    "objects": [{"name": "floor", "shape": "plane", "size": [4, 4]},
+                {"name": "ball", "shape": "sphere", "radius": 0.3, "translate": [0, 1, 0]}]})";
+  Scene s = loadSceneFile(src);
+  s.lights.front().size = 0.04f;
+  auto projection = makeProjection("uniform");
+  auto filter = makeFilter("hard");
+  const std::string text = sceneFileText(s, *projection, *filter, 512);
+  EXPECT_NE(text.find("\"radius\": 0.3"), std::string::npos) << text;  // the original object, not a re-derived one
+  EXPECT_NE(text.find("\"size\": 0.04"), std::string::npos) << text;
+  const auto out = tempFile("saved.json");
+  saveSceneFile(out, s, *projection, *filter, 512);
+  EXPECT_NEAR(loadSceneFile(out).light().size, 0.04f, 1e-7f);
+}
+
+TEST(SceneWriter, MeshesWithoutAFileFormAreRefusedByName) {
+  Scene s = makeBuiltinScene("boxes");
+  s.meshes[s.objects[1].mesh].name = "teapot";
+  auto projection = makeProjection("uniform");
+  auto filter = makeFilter("hard");
+  try {
+    sceneFileText(s, *projection, *filter, 512);
+    ADD_FAILURE() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("teapot"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,65 @@
+// The viewer's script format (src/viewer/Script.h): what parses, and what fails with file:line.
+#include "viewer/Script.h"
+
+#include <penumbra/Error.h>
+
+#include <gtest/gtest.h>
+
+using namespace penumbra;
+using namespace penumbra::viewer;
+
+namespace {
+std::string errorOf(std::string_view text) {
+  try {
+    parseScript(text, "s.txt");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(ViewerScript, ParsesActionsSkippingCommentsAndBlankLines) {
+  const auto actions = parseScript(
+      "# a demo\n\nscene pen\n  filter   pcss   # soft\nset pcss.blockerSamples=32\ncamera orbit 30 20 4.5\n"
+      "light angles -40 35\nwait 3\nscreenshot out/a.png\nprint gl-objects\nheatmap\nheatmap 16\nquit\n",
+      "demo.txt");
+  ASSERT_EQ(actions.size(), 11u);
+  EXPECT_EQ(actions[0].verb, "scene");
+  EXPECT_EQ(actions[0].line, 3);
+  EXPECT_EQ(actions[1].verb, "filter");
+  ASSERT_EQ(actions[1].args.size(), 1u);
+  EXPECT_EQ(actions[1].args[0], "pcss");
+  EXPECT_EQ(actions[1].where, "demo.txt:4");
+  EXPECT_EQ(actions[3].args.size(), 4u);
+  EXPECT_FLOAT_EQ(scriptFloat(actions[3], 3), 4.5f);
+  EXPECT_EQ(scriptInt(actions[5], 0, 0, 10), 3);
+  EXPECT_EQ(actions[6].args[0], "out/a.png");
+}
+
+TEST(ViewerScript, MistakesNameTheLine) {
+  EXPECT_NE(errorOf("scene pen\nzoom 2\n").find("s.txt:2: unknown action 'zoom'"), std::string::npos);
+  EXPECT_NE(errorOf("wait\n").find("s.txt:1: wait: expected wait FRAMES"), std::string::npos);
+  EXPECT_NE(errorOf("wait -1\n").find("s.txt:1"), std::string::npos);
+  EXPECT_NE(errorOf("wait 1.5\n").find("not a whole number"), std::string::npos);
+  EXPECT_NE(errorOf("set pcss.blockerSamples\n").find("KEY=VALUE"), std::string::npos);
+  EXPECT_NE(errorOf("camera orbit 1 2\n").find("s.txt:1: camera"), std::string::npos);
+  EXPECT_NE(errorOf("camera spin 1 2 3\n").find("expected camera"), std::string::npos);
+  EXPECT_NE(errorOf("camera orbit a 2 3\n").find("'a' is not a number"), std::string::npos);
+  EXPECT_NE(errorOf("light direction 0 -1\n").find("s.txt:1: light"), std::string::npos);
+  EXPECT_NE(errorOf("ui maybe\n").find("on or off"), std::string::npos);
+  EXPECT_NE(errorOf("print everything\n").find("gl-objects"), std::string::npos);
+  EXPECT_NE(errorOf("screenshot a.png b.png\n").find("expected screenshot PATH"), std::string::npos);
+  EXPECT_EQ(errorOf("screenshot a.png\n"), "");
+}
+
+TEST(ViewerScript, HelpListsEveryAction) {
+  const std::string help = scriptHelp();
+  for (const char* verb : {"scene", "filter", "projection", "set", "camera", "light", "view", "inset", "wait", "screenshot",
+                           "screenshot-window", "print", "heatmap", "wait-heatmap", "reload", "save", "ui", "quit"})
+    EXPECT_TRUE(help.find(std::string("\n  ") + verb + " ") != std::string::npos ||
+                help.find(std::string("\n  ") + verb + "\n") != std::string::npos ||
+                help.rfind(std::string("  ") + verb + " ", 0) == 0)
+        << verb;
+}
