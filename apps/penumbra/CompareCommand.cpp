@@ -4,6 +4,8 @@
 #include "Common.h"
 
 #include "gl/Context.h"
+#include "metrics/Shimmer.h"
+#include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"
 
 #include <penumbra/Error.h>
@@ -19,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace penumbra::app {
 namespace {
@@ -73,6 +76,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     int samples = 256;
     std::string out = "compare";
     bool json = false, noCache = false;
+    int shimmer = 0;
   };
   auto o = std::make_shared<Options>();
   o->technique.size = "256x256";
@@ -84,6 +88,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ->capture_default_str();
   sub->add_flag("--json", o->json, "print one JSON object on stdout instead of the table");
   sub->add_flag("--no-cache", o->noCache, "recompute the reference even if a cached one exists");
+  sub->add_option("--shimmer", o->shimmer,
+                  "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
+      ->check(CLI::Range(1, 1000));
   commands.push_back({sub, [o] {
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
@@ -93,6 +100,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     renderer.render(s.render);  // warm-up: the first frame includes shader compilation
     renderer.render(s.render);
     const GBufferData gbuffer = renderer.readGBuffer();
+    // Aliasing: screen pixels covered by one shadow-map texel, per pixel.
+    const std::vector<float> density = computeTexelDensity(renderer);
+    const TexelDensityStats densityStats = texelDensityStats(density, gbuffer, s.scene.camera.position);
 
     ReferenceOptions ro;
     ro.samples = o->samples;
@@ -108,11 +118,19 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     const ColorImage &technique = cmp.technique, &reference = cmp.reference, &heat = cmp.heatmap;
     const ColorImage approx = approximationImage(ref);
     const ColorImage all = sheet({&technique, &reference, &heat, &approx});
+    const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
-                                    {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all}})
+                                    {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
+                                    {"texel-density.png", &densityImage}})
       writePng(dir / name, img->width, img->height, img->rgba);
 
-    const PassTimings& t = renderer.timings();
+    const PassTimings t = renderer.timings();
+    std::optional<ShimmerResult> shimmer;
+    if (o->shimmer > 0) {
+      ShimmerOptions so;
+      so.steps = o->shimmer;
+      shimmer = measureShimmer(renderer, s.render, so);
+    }
     const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
     if (o->json) {
       nlohmann::json j;
@@ -129,6 +147,15 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["overdark_pct"] = m.overDarkPct;
       j["penumbra_rmse"] = m.penumbraRmse;
       j["approximation_rmse"] = approximationRmse;
+      j["texel_density_median"] = densityStats.median;
+      j["texel_density_p95"] = densityStats.p95;
+      j["texel_density_near_median"] = densityStats.nearMedian;
+      j["undersampled_pct"] = densityStats.undersampledPct;
+      if (shimmer) {
+        j["shimmer_pct"] = shimmer->shimmerPct;
+        j["shimmer_edge_points"] = shimmer->edgePoints;
+        j["shimmer_steps"] = shimmer->steps;
+      }
       j["pixels"] = m.pixels;
       j["timings_ms"] = nlohmann::json::object();
       for (const auto& [pass, ms] : t.ms) j["timings_ms"][pass] = ms;
@@ -146,6 +173,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
                 "  pixels          %8zu\n",
                 m.rmse, m.mae, m.leakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+    std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
+                densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
+    if (shimmer)
+      std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
+                  shimmer->steps);
     std::printf("  times (%s on %s):\n", t.clock.c_str(), context.info().renderer.c_str());
     for (const auto& [pass, ms] : t.ms) std::printf("    %-12s %8.2f ms\n", pass.c_str(), ms);
     std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", ref.samplesPerPixel, ref.traceSeconds,

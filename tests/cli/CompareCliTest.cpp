@@ -13,7 +13,8 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* k : {"scene", "filter", "projection", "rmse", "mae", "leak_pct", "overdark_pct", "penumbra_rmse",
-                        "approximation_rmse", "timings_ms", "reference_seconds"})
+                        "approximation_rmse", "timings_ms", "reference_seconds", "texel_density_median",
+                        "texel_density_p95", "texel_density_near_median", "undersampled_pct"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["scene"], "pen");
   EXPECT_EQ(j["filter"], "hard");
@@ -22,6 +23,16 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
   EXPECT_LT(j["rmse"].get<double>(), 0.5);
   for (const char* f : {"technique.png", "reference.png", "heatmap.png", "approximation.png", "sheet.png"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
+}
+
+TEST(CompareCli, ShimmerReportsAPercentage) {
+  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 96x64 --shadow-map 512 --samples 4 --shimmer 5 --json --out imgs");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("shimmer_pct"));
+  EXPECT_GE(j["shimmer_pct"].get<double>(), 0.0);
+  EXPECT_LE(j["shimmer_pct"].get<double>(), 100.0);
+  EXPECT_EQ(j["shimmer_steps"], 5);
 }
 
 TEST(CompareCli, BadSamplesIsAUsageError) {
