@@ -57,7 +57,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--sweep", o->sweeps,
                   "key=from:to:count, repeatable: run each technique that has the parameter at count values "
                   "(light.size applies to all; e.g. pcss.filterSamples=8:64:4)");
-  sub->add_option("--frames", o->frames, "timed frames per configuration (default 5; --quick 3)")->check(CLI::Range(1, 1000));
+  sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
   sub->add_option("--size", o->size, "image size WxH (default 256x144; --quick 96x64)");
   sub->add_option("--shadow-map", o->shadowMap, "shadow-map texels per side (default 1024; --quick 512)")->check(CLI::Range(16, 16384));
@@ -90,7 +90,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     settings.useCache = !o->noCache;
     const std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
 
-    gl::HeadlessContext context({.debug = false, .verbose = o->verbose});
+    gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
     const report::SetupFactory factory = [](const report::BenchConfig& c) {
       TechniqueOptions t;
       t.scene = c.scene;

@@ -36,13 +36,6 @@ std::optional<ParamDesc> findDesc(std::string_view key, const Projection& projec
 
 bool isLightKey(std::string_view key) { return key.starts_with("light."); }
 
-// The swept value of light.size in `params`, or -1 (the scene's own) when it is not swept.
-float lightSizeOf(const BenchConfig& c) {
-  for (const auto& [k, v] : c.params)
-    if (k == "light.size") return std::stof(v);
-  return -1.0f;
-}
-
 }  // namespace
 
 std::vector<float> Sweep::values(const ParamDesc& desc) const {
@@ -148,13 +141,13 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
     if (it == best.end() || rank(out[i]) < rank(out[it->second])) best[key] = i;
   }
   for (const auto& [key, i] : best) out[i].inGrid = true;
-  // One scene upload and one reference per scene and light: group by scene, then light size.
+  // One scene upload per scene: group by scene, keeping plan order inside (the runner keeps the
+  // scene's references for every light in memory). A technique's sweep values stay adjacent, so
+  // the points of one curve are timed close together: slow drifts in the machine's load bend a
+  // curve less than they would if each light size were run as a separate block.
   auto sceneIndex = [&](const std::string& s) { return std::find(sceneOrder.begin(), sceneOrder.end(), s) - sceneOrder.begin(); };
-  std::stable_sort(out.begin(), out.end(), [&](const BenchConfig& a, const BenchConfig& b) {
-    const auto sa = sceneIndex(a.scene), sb = sceneIndex(b.scene);
-    if (sa != sb) return sa < sb;
-    return lightSizeOf(a) < lightSizeOf(b);
-  });
+  std::stable_sort(out.begin(), out.end(),
+                   [&](const BenchConfig& a, const BenchConfig& b) { return sceneIndex(a.scene) < sceneIndex(b.scene); });
   return out;
 }
 

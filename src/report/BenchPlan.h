@@ -53,7 +53,9 @@ struct BenchSettings {
   int width = 256, height = 144;  ///< image size (pixels)
   int shadowMapSize = 1024;       ///< texels per side of each shadow map
   int warmupFrames = 1;           ///< untimed frames first: the first one compiles the shaders
-  int timedFrames = 5;            ///< timed frames per configuration (median and spread over them)
+  /// Timed frames per configuration (median and spread over them). Nine keeps the median steady
+  /// on a loaded machine (llvmpipe shares the CPU with everything else) at ~1 s per configuration.
+  int timedFrames = 9;
   /// A configuration stops after this many seconds of timed frames (at least one frame is
   /// always timed): a technique that is very slow on this machine does not hold up the run.
   double maxSecondsPerConfig = 4.0;
@@ -62,8 +64,9 @@ struct BenchSettings {
   int microRepetitions = 5;       ///< timed repetitions of each micro-benchmark
 };
 
-/// Every configuration of the plans, in run order (grouped by scene, then light, so that a
-/// scene is uploaded and its reference traced once). One configuration per scene and filter is
+/// Every configuration of the plans, in run order: grouped by scene (one upload; one reference
+/// per light of the scene), in plan order within a scene, so a technique's swept values run one
+/// after the other. One configuration per scene and filter is
 /// marked inGrid: the first with the scene's own projection and no swept value (else the
 /// closest to that). Throws a usage Error for an unknown scene or id, a sweep
 /// whose key no technique of its plan declares, or swept values outside the parameter's range.

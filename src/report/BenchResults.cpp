@@ -47,6 +47,13 @@ std::vector<std::string> BenchResults::passNames() const {
   return names;
 }
 
+double loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double load = -1.0;
+  if (!(in >> load)) return -1.0;
+  return load;
+}
+
 MachineInfo describeMachine() {
   MachineInfo m;
   std::ifstream cpuinfo("/proc/cpuinfo");
@@ -59,6 +66,7 @@ MachineInfo describeMachine() {
   utsname u{};
   if (uname(&u) == 0) m.os = fmt::format("{} {} {}", u.sysname, u.release, u.machine);
   m.hardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+  m.loadStart = loadAverage();
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
   char text[32] = {};

@@ -64,6 +64,9 @@ struct MachineInfo {
   std::string glRenderer, glVersion, glVendor, clock;  ///< clock: PassTimings::clock
   std::string cpu, os;
   int hardwareThreads = 0;
+  /// 1-minute load average (/proc/loadavg) when the run began and ended; -1 where unknown. Other
+  /// work on the machine inflates times and makes them drift during a run.
+  double loadStart = -1.0, loadEnd = -1.0;
   std::string date;     ///< UTC, ISO 8601
   std::string command;  ///< the command line of the run
 };
@@ -80,8 +83,10 @@ struct BenchResults {
   std::vector<std::string> passNames() const;
 };
 
-/// Fills cpu, os, hardwareThreads and date (not the GL fields or the command).
+/// Fills cpu, os, hardwareThreads, date and loadStart (not the GL fields or the command).
 MachineInfo describeMachine();
+/// The 1-minute load average, or -1 where /proc/loadavg cannot be read.
+double loadAverage();
 
 /// Indices of the rows on the Pareto front of (x, y), both minimised: no other point is at
 /// least as good in both and better in one. Ascending x.

@@ -161,6 +161,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   }
   results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, context.info().softwareRenderer);
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+  results.machine.loadEnd = loadAverage();
   return results;
 }
 

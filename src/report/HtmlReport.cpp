@@ -23,7 +23,7 @@ td small { color: #777; }
 .charts { display: flex; flex-wrap: wrap; gap: 12px; } figure { margin: 0; width: 600px; } figcaption { font-size: 13px; }
 .grid td, .grid th { text-align: center; } .grid img { display: block; image-rendering: pixelated; }
 .note { color: #555; } .front { font-weight: bold; } .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: middle; }
-code { background: #f4f4f4; padding: 1px 4px; }
+code { background: #f4f4f4; padding: 1px 4px; } .wide { overflow-x: auto; } td.why { white-space: pre-wrap; max-width: 640px; } td.wrap { white-space: normal; }
 )";
 
 std::string esc(std::string_view s) { return escapeXml(s); }
@@ -62,9 +62,10 @@ std::string header(const BenchResults& r) {
       "<p>Each configuration: {} warm-up frame(s) (the first compiles the shaders), then up to {} timed frames "
       "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}², "
       "reference {} light samples per pixel (Embree). Clock: <b>{}</b> on <b>{}</b>; compare times only as ratios "
-      "within one run.</p>\n",
+      "within one run. Load average {:.2f} at the start, {:.2f} at the end, on {} hardware threads: other work on "
+      "the machine inflates times and makes them drift.</p>\n",
       s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height, s.shadowMapSize, s.referenceSamples,
-      esc(m.clock), esc(m.glRenderer));
+      esc(m.clock), esc(m.glRenderer), m.loadStart, m.loadEnd, m.hardwareThreads);
   h += "<p class=\"note\">Contents: <a href=\"#quality\">1. quality vs cost</a> · <a href=\"#light\">2. cost vs light "
        "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
   return h;
@@ -96,8 +97,10 @@ std::string lightSection(const BenchResults& r) {
     return h + "<p class=\"note\">This run swept no light size; add <code>--sweep light.size=0.02:0.2:5</code>.</p>\n";
   h += "<p>The lecture's claim: PCSS's blocker search and filter grow with the penumbra (the light size), so its cost "
        "grows; the pre-filtered methods (vssm, msm-soft: one summed-area-table lookup per region) and the distance "
-       "field (sdf) pay the same whatever the size. Every technique run at two or more light sizes is drawn; bars are "
-       "the p10–p90 spread over the timed frames.</p>\n";
+       "field (sdf) pay the same whatever the size. Note that with fixed tap counts (pcss.blockerSamples, "
+       "pcss.filterSamples) PCSS does the same arithmetic at every size: only the spread of its taps over the map grows, "
+       "and whether that costs time depends on the machine's texture caches. Every technique run at two or more light "
+       "sizes in one plan is drawn; bars are the p10–p90 spread over the timed frames.</p>\n";
   for (const LightSizeCharts& l : charts) h += "<div class=\"charts\">" + svgChart(l.cost) + svgChart(l.error) + "</div>\n";
   return h;
 }
@@ -139,8 +142,8 @@ std::string microTable(const BenchResults& r) {
     std::string ratio = "—";
     for (const MicroResult& b : r.micro)
       if (!m.baseline.empty() && b.name == m.baseline && b.ms.median > 0)
-        ratio = fmt::format("{:.2f} × ({})", m.ms.median / b.ms.median, esc(b.name));
-    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
+        ratio = fmt::format("<span title=\"{}\">{:.1f} ×</span>", esc(b.name), m.ms.median / b.ms.median);
+    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
                      esc(m.description), ms(m.ms), ratio);
   }
   return h + "</table>\n";
@@ -152,6 +155,8 @@ std::string ratioTable(const BenchResults& r) {
   std::vector<std::string> passes = r.passNames();
   std::erase_if(passes, techniqueIndependent);
   for (const auto& [num, den] : kCostRatioPairs) {
+    std::string pairRows;
+    std::vector<std::vector<double>> ratios(passes.size());  // per pass, over the pair's rows
     for (const BenchRow& a : r.rows) {
       if (a.config.filter != num || !techniqueParams(a).empty()) continue;
       for (const BenchRow& b : r.rows) {
@@ -159,15 +164,23 @@ std::string ratioTable(const BenchResults& r) {
             lightParams(b) != lightParams(a) || !techniqueParams(b).empty())
           continue;
         const std::string light = lightParams(a).empty() ? "scene's own" : lightParams(a);
-        rows += fmt::format("<tr><td class=\"l\">{} / {}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>",
-                            num, den, esc(a.config.scene), esc(a.config.projection), esc(light));
-        for (const std::string& p : passes) {
-          const double x = a.time(p).median, y = b.time(p).median;
-          rows += y > 0 ? fmt::format("<td>{:.2f}</td>", x / y) : "<td>—</td>";
+        pairRows += fmt::format("<tr><td class=\"l\">{} / {}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>",
+                                num, den, esc(a.config.scene), esc(a.config.projection), esc(light));
+        for (size_t i = 0; i < passes.size(); ++i) {
+          const double x = a.time(passes[i]).median, y = b.time(passes[i]).median;
+          if (y > 0) ratios[i].push_back(x / y);
+          pairRows += y > 0 ? fmt::format("<td>{:.2f}</td>", x / y) : "<td>—</td>";
         }
-        rows += "</tr>\n";
+        pairRows += "</tr>\n";
       }
     }
+    if (pairRows.empty()) continue;
+    // The pair's summary first: the median ratio over every scene, projection and light.
+    rows += fmt::format("<tr class=\"front\"><td class=\"l\">{} / {}</td><td class=\"l\" colspan=\"3\">median of all "
+                        "rows below</td>", num, den);
+    for (const std::vector<double>& v : ratios)
+      rows += v.empty() ? "<td>—</td>" : fmt::format("<td>{:.2f}</td>", timeStats(v).median);
+    rows += "</tr>\n" + pairRows;
   }
   if (rows.empty()) {
     std::string names;
@@ -192,7 +205,7 @@ std::string resultsTables(const BenchResults& r) {
     std::stable_sort(rows.begin(), rows.end(), [](const BenchRow* a, const BenchRow* b) {
       return a->time(kCostPass).median < b->time(kCostPass).median;
     });
-    h += "<h4>" + esc(scene) + "</h4>\n<table><tr><th class=\"l\">filter</th><th class=\"l\">projection</th>"
+    h += "<h4>" + esc(scene) + "</h4>\n<div class=\"wide\"><table><tr><th class=\"l\">filter</th><th class=\"l\">projection</th>"
          "<th class=\"l\">params</th><th>light size</th><th>frames</th>";
     for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
     h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>over-dark %</th></tr>\n";
@@ -204,7 +217,7 @@ std::string resultsTables(const BenchResults& r) {
       h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n", row->metrics.rmse,
                        row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.overDarkPct);
     }
-    h += "</table>\n";
+    h += "</table></div>\n";
   }
   return h;
 }
@@ -216,7 +229,7 @@ std::string skippedTable(const BenchResults& r) {
        "<th class=\"l\">params</th><th class=\"l\">why</th></tr>\n";
   for (const SkippedConfig& k : r.skipped)
     h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
-                     "<td class=\"l\">{}: {}</td></tr>\n",
+                     "<td class=\"l why\">{}: {}</td></tr>\n",
                      esc(k.config.scene), esc(k.config.projection), esc(k.config.filter), esc(k.config.paramsText()),
                      k.failed ? "<b>failed</b>" : "refused", esc(k.reason));
   return h + "</table>\n";
@@ -228,6 +241,7 @@ std::string machineTable(const BenchResults& r) {
   for (const auto& [k, v] : std::vector<std::pair<const char*, std::string>>{
            {"GL_RENDERER", m.glRenderer}, {"GL_VERSION", m.glVersion}, {"GL_VENDOR", m.glVendor},
            {"clock", m.clock}, {"CPU", m.cpu}, {"hardware threads", std::to_string(m.hardwareThreads)},
+           {"load average (1 min), start → end", fmt::format("{:.2f} → {:.2f}", m.loadStart, m.loadEnd)},
            {"OS", m.os}, {"date (UTC)", m.date}, {"command", m.command}})
     h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", k, esc(v));
   return h + "</table>\n";

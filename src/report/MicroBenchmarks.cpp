@@ -4,10 +4,13 @@
 #include "gl/Objects.h"
 #include "render/MipBuilder.h"
 #include "render/PassTimer.h"
+#include "render/SatBuilder.h"
+#include "shader/ShaderLibrary.h"
 
 #include <fmt/format.h>
 
 #include <functional>
+#include <memory>
 
 namespace penumbra::report {
 namespace {
@@ -20,42 +23,80 @@ struct MicroBenchmark {
   std::function<std::function<void()>(int mapSize)> prepare;
 };
 
-gl::Texture filled(const char* label, GLenum format, int size, int levels, GLenum clearFormat, GLenum clearType) {
-  gl::Texture t(label, {GL_TEXTURE_2D, format, size, size, 1, levels});
-  const uint32_t pattern[4] = {0x3F000000u, 0x3E800000u, 0u, 0u};  // 0.5, 0.25 as floats; any bits for uints
+gl::Texture filled(const char* label, GLenum target, GLenum format, int size, int levels, GLenum clearFormat,
+                   GLenum clearType) {
+  gl::Texture t(label, {target, format, size, size, 1, levels});
+  const float pattern[4] = {0.5f, 0.25f, 0.0f, 0.0f};  // any value: the cost does not depend on it
   glClearTexImage(t.id(), 0, clearFormat, clearType, pattern);
   return t;
 }
 
-// A plain copy of a texture in the moment-SAT layout (RGBA32UI: two 64-bit sums per texel) and
-// the box-filter mip chain of VSM's RG32F moments, on the same texel count.
+// A plain copy of every level 0 texel of `t` into a twin texture of the same format and layers.
+std::function<void()> copyOf(std::shared_ptr<const gl::Texture> t) {
+  auto twin = std::make_shared<gl::Texture>("micro copy target", t->desc());
+  return [t, twin] {
+    glCopyImageSubData(t->id(), t->desc().target, 0, 0, 0, 0, twin->id(), twin->desc().target, 0, 0, 0, 0,
+                       t->width(), t->height(), t->layers());
+  };
+}
+
+// The summed-area table of `moments` depth powers (vssm: 2, msm-soft: 4) of one mapSize² view,
+// built from an R32F depth layer, and a plain copy of that very table (RGBA32UI, 16 B per texel
+// and moment pair).
+struct SatFixture {
+  ShaderLibrary shaders;
+  gl::Texture depth;
+  SatBuilder sat;
+  SatFixture(int n, int moments)
+      : depth(filled("micro sat depth", GL_TEXTURE_2D_ARRAY, GL_R32F, n, 1, GL_RED, GL_FLOAT)) {
+    sat.build(shaders, depth, moments);  // also compiles the scan programs
+  }
+};
+
+MicroBenchmark satBuild(const char* name, const char* baseline, int moments) {
+  return {name, baseline,
+          [moments](int n) {
+            return fmt::format("SatBuilder::build: the summed-area table of {} depth moments of a {}x{} R32F map", moments, n, n);
+          },
+          [moments](int n) -> std::function<void()> {
+            auto f = std::make_shared<SatFixture>(n, moments);
+            return [f, moments] { f->sat.build(f->shaders, f->depth, moments); };
+          }};
+}
+
+MicroBenchmark satCopy(const char* name, int moments) {
+  return {name, "",
+          [moments](int n) {
+            return fmt::format("glCopyImageSubData of that table ({} moments: {}x{} RGBA32UI, {} layer(s))", moments, n, n,
+                               moments / 2);
+          },
+          [moments](int n) -> std::function<void()> {
+            auto f = std::make_shared<SatFixture>(n, moments);
+            // The table lives in the fixture: share its ownership with the copy.
+            return copyOf(std::shared_ptr<const gl::Texture>(f, &f->sat.table()));
+          }};
+}
+
+// VSM's mip chain of RG32F moments and the summed-area tables of vssm (2 moments) and msm-soft
+// (4 moments), each after a plain copy of the same texture.
 const std::vector<MicroBenchmark>& microBenchmarks() {
   static const std::vector<MicroBenchmark> list = {
-      {"copy RGBA32UI", "",
-       [](int n) { return fmt::format("glCopyImageSubData of a {0}x{0} RGBA32UI texture (a moment SAT's layout, 16 B/texel)", n); },
-       [](int n) -> std::function<void()> {
-         auto src = std::make_shared<gl::Texture>(filled("micro copy source", GL_RGBA32UI, n, 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT));
-         auto dst = std::make_shared<gl::Texture>("micro copy target", gl::TextureDesc{GL_TEXTURE_2D, GL_RGBA32UI, n, n, 1, 1});
-         return [src, dst, n] {
-           glCopyImageSubData(src->id(), GL_TEXTURE_2D, 0, 0, 0, 0, dst->id(), GL_TEXTURE_2D, 0, 0, 0, 0, n, n, 1);
-         };
-       }},
       {"copy RG32F", "",
-       [](int n) { return fmt::format("glCopyImageSubData of a {0}x{0} RG32F texture (VSM moments, 8 B/texel)", n); },
+       [](int n) { return fmt::format("glCopyImageSubData of a {0}x{0} RG32F texture (VSM moments, level 0)", n); },
        [](int n) -> std::function<void()> {
-         auto src = std::make_shared<gl::Texture>(filled("micro copy source", GL_RG32F, n, 1, GL_RG, GL_FLOAT));
-         auto dst = std::make_shared<gl::Texture>("micro copy target", gl::TextureDesc{GL_TEXTURE_2D, GL_RG32F, n, n, 1, 1});
-         return [src, dst, n] {
-           glCopyImageSubData(src->id(), GL_TEXTURE_2D, 0, 0, 0, 0, dst->id(), GL_TEXTURE_2D, 0, 0, 0, 0, n, n, 1);
-         };
+         return copyOf(std::make_shared<gl::Texture>(filled("micro copy source", GL_TEXTURE_2D, GL_RG32F, n, 1, GL_RG, GL_FLOAT)));
        }},
       {"mip chain RG32F", "copy RG32F",
        [](int n) { return fmt::format("MipBuilder::build: the full box-filter chain of a {0}x{0} RG32F texture", n); },
        [](int n) -> std::function<void()> {
          constexpr int kFullChain = 0;
-         auto t = std::make_shared<gl::Texture>(filled("micro mip chain", GL_RG32F, n, kFullChain, GL_RG, GL_FLOAT));
+         auto t = std::make_shared<gl::Texture>(filled("micro mip chain", GL_TEXTURE_2D, GL_RG32F, n, kFullChain, GL_RG, GL_FLOAT));
          return [t] { MipBuilder::build(*t); };
        }},
+      satCopy("copy SAT table, 2 moments", 2),
+      satBuild("SAT build, 2 moments", "copy SAT table, 2 moments", 2),
+      satCopy("copy SAT table, 4 moments", 4),
+      satBuild("SAT build, 4 moments", "copy SAT table, 4 moments", 4),
   };
   return list;
 }

@@ -12,6 +12,8 @@ namespace penumbra::report {
 namespace {
 
 constexpr Marker kMarkers[] = {Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond};
+// Projection legend entries show the marker only: in a grey no filter colour uses (paletteColor).
+constexpr const char* kProjectionLegendColor = "#777";
 
 template <class T>
 size_t indexIn(const std::vector<T>& list, const T& value) {
@@ -34,7 +36,7 @@ std::vector<LegendEntry> legendFor(const BenchResults& results, const std::vecto
     if (filters.contains(f)) legend.push_back({f, filterColor(f), Marker::Circle, false, false});
   if (projections)
     for (const std::string& p : projectionIds())
-      if (projs.contains(p)) legend.push_back({"▸ " + p, "#777", projectionMarker(p), false, false});
+      if (projs.contains(p)) legend.push_back({"▸ " + p, kProjectionLegendColor, projectionMarker(p), false, false});
   return legend;
 }
 
@@ -119,16 +121,18 @@ std::vector<QualityCostChart> qualityCostCharts(const BenchResults& results) {
 }
 
 std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
-  // Technique = scene, projection, filter and its non-light parameters; light size varies.
+  // Technique = scene, projection, filter and its non-light parameters; light size varies. One
+  // curve per plan: its points ran one after the other (BenchPlan.h), so they share the
+  // machine's load; a point from another plan (the matrix's own light) may not.
   struct Key {
-    std::string scene, projection, filter, params;
+    std::string plan, scene, projection, filter, params;
     auto operator<=>(const Key&) const = default;
   };
   std::map<Key, std::vector<size_t>> groups;
   std::vector<Key> order;
   for (size_t i = 0; i < results.rows.size(); ++i) {
     const BenchRow& r = results.rows[i];
-    const Key k{r.config.scene, r.config.projection, r.config.filter, techniqueParams(r)};
+    const Key k{r.config.plan, r.config.scene, r.config.projection, r.config.filter, techniqueParams(r)};
     if (!groups.contains(k)) order.push_back(k);
     groups[k].push_back(i);
   }

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <string>
+
 namespace penumbra::report {
 namespace {
 
@@ -43,8 +45,10 @@ std::vector<std::string> tableColumns(const BenchResults& results) {
 std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   const VisibilityMetrics& m = r.metrics;
   auto num = [](auto v) { return Cell(static_cast<double>(v)); };
+  // A float as the double its shortest text names (0.12f → 0.12, not 0.11999999731779099).
+  auto numFloat = [](float v) { return Cell(std::stod(fmt::format("{}", v))); };
   std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
-                             r.config.paramsText(), num(r.lightSize), num(r.width), num(r.height),
+                             r.config.paramsText(), numFloat(r.lightSize), num(r.width), num(r.height),
                              num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
                              num(m.leakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
   for (const std::string& pass : results.passNames()) {
@@ -86,7 +90,8 @@ nlohmann::json resultsJson(const BenchResults& results) {
   j["version"] = kFormatVersion;
   j["machine"] = {{"gl_renderer", m.glRenderer}, {"gl_version", m.glVersion}, {"gl_vendor", m.glVendor},
                   {"clock", m.clock},           {"cpu", m.cpu},              {"os", m.os},
-                  {"hardware_threads", m.hardwareThreads}, {"date", m.date}, {"command", m.command}};
+                  {"hardware_threads", m.hardwareThreads}, {"load_start", m.loadStart}, {"load_end", m.loadEnd},
+                  {"date", m.date}, {"command", m.command}};
   j["settings"] = {{"width", s.width},
                    {"height", s.height},
                    {"shadow_map", s.shadowMapSize},

@@ -118,8 +118,9 @@ std::vector<double> axisTicks(double lo, double hi, bool log, int target) {
 }
 
 std::string paletteColor(size_t index) {
+  // No grey: the legend draws projection markers in grey.
   static const char* const kColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
-                                        "#000000", "#8C564B", "#7F7F7F", "#BCBD22", "#17BECF", "#9467BD"};
+                                        "#000000", "#8C564B", "#6A3D9A", "#BCBD22", "#17BECF", "#FB9A99"};
   return kColors[index % std::size(kColors)];
 }
 

@@ -50,13 +50,11 @@ TEST(BenchPlan, SweepAppliesOnlyToTechniquesThatDeclareTheKey) {
   };
   EXPECT_EQ(count("hard"), 2);      // the light sweep only
   EXPECT_EQ(count("pcf"), 4 * 2);   // both sweeps
-  // Grouped by light so one reference serves consecutive configurations.
-  for (size_t i = 1; i < configs.size(); ++i) {
-    const auto light = [](const BenchConfig& c) { return c.paramsText().substr(c.paramsText().find("light.size")); };
-    if (light(configs[i]) != light(configs[i - 1])) {
-      for (size_t j = i + 1; j < configs.size(); ++j) EXPECT_NE(light(configs[j]), light(configs[i - 1]));
-    }
-  }
+  // A technique's swept values run one after the other (one curve, timed close together).
+  const auto isPcf = [](const BenchConfig& c) { return c.filter == "pcf"; };
+  const auto first = std::find_if(configs.begin(), configs.end(), isPcf);
+  const auto last = std::find_if(configs.rbegin(), configs.rend(), isPcf).base();
+  EXPECT_EQ(last - first, 8);
   // One grid row per filter.
   EXPECT_EQ(std::count_if(configs.begin(), configs.end(), [](const BenchConfig& c) { return c.inGrid; }), 2);
 }
@@ -70,6 +68,21 @@ TEST(BenchPlan, UnknownSweepKeysAndOutOfRangeValuesAreRefused) {
   plan.sweeps = {};
   plan.scenes = {"no-such-scene"};
   EXPECT_THROW(expandPlans({plan}), Error);
+}
+
+TEST(BenchPlan, ConfigurationsOfOneSceneAreContiguous) {
+  const BenchPlan a{.name = "a", .scenes = {"boxes", "pen"}, .projections = {"uniform"}, .filters = {"hard"}, .sweeps = {}};
+  const BenchPlan b{.name = "b", .scenes = {"pen", "boxes"}, .projections = {"uniform"}, .filters = {"pcf"},
+                    .sweeps = {parseSweep("light.size=0.01:0.03:3")}};
+  const std::vector<BenchConfig> configs = expandPlans({a, b});
+  ASSERT_EQ(configs.size(), 2u + 6u);
+  std::vector<std::string> scenes;
+  for (const BenchConfig& c : configs)
+    if (scenes.empty() || scenes.back() != c.scene) scenes.push_back(c.scene);
+  EXPECT_EQ(scenes, (std::vector<std::string>{"boxes", "pen"}));
+  EXPECT_EQ(configs[0].plan, "a");  // plan order inside a scene
+  EXPECT_EQ(configs[1].params, (std::vector<std::pair<std::string, std::string>>{{"light.size", "0.01"}}));
+  EXPECT_EQ(configs[2].params, (std::vector<std::pair<std::string, std::string>>{{"light.size", "0.02"}}));
 }
 
 TEST(BenchPlan, DefaultRunCoversEveryFilterProjectionAndScene) {
@@ -112,6 +125,7 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   row.config = {.plan = "custom", .scene = "boxes", .projection = "uniform", .filter = "hard",
                 .params = {{"hard.bias", "slope"}, {"light.size", "0.1"}}, .inGrid = false};
   row.metrics.rmse = 0.1 + 0.2;  // 0.30000000000000004: needs all 17 digits
+  row.lightSize = 0.12f;         // written as 0.12, the float's shortest text
   row.passes = {{"visibility", {1.5, 1.0, 2.0}}, {kTotalPass, {3.0, 2.0, 4.0}}};
   r.rows.push_back(row);
   const std::string csv = resultsCsv(r);
@@ -122,6 +136,7 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   const nlohmann::json j = resultsJson(r);
   EXPECT_EQ(j["rows"][0]["rmse"].get<double>(), 0.1 + 0.2);
   EXPECT_EQ(j["rows"][0]["visibility_ms_median"].get<double>(), 1.5);
+  EXPECT_EQ(j["rows"][0]["light_size"].get<double>(), 0.12);
 }
 
 TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
