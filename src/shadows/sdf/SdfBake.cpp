@@ -212,17 +212,22 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 
-SdfVolume gridForTriangles(const std::vector<glm::vec3>& triangles, int resolution) {
+/// The grid around `volume` (dims 0 when it is empty); voxelM is set from the sheets' bounds
+/// then, so that epsilons and offsets in voxels keep a scale.
+SdfVolume gridForTriangles(const CasterTriangles& casters, int resolution) {
   PN_CHECK(resolution >= kMinResolution && resolution <= kMaxResolution,
            fmt::format("sdf: resolution {} is outside {}..{}", resolution, kMinResolution, kMaxResolution));
   SdfVolume v;
-  if (triangles.empty()) return v;
+  v.sheets = casters.sheets;
+  const std::vector<glm::vec3>& sized = casters.volume.empty() ? casters.sheets : casters.volume;
+  if (sized.empty()) return v;
   Aabb bounds;
-  for (const glm::vec3& p : triangles) bounds.extend(p);
+  for (const glm::vec3& p : sized) bounds.extend(p);
   const glm::vec3 extent = bounds.size();
   const float longest = std::max({extent.x, extent.y, extent.z});
   PN_CHECK(longest > 0.0f, "sdf: the shadow casters have zero extent");
   v.voxelM = longest / static_cast<float>(resolution - 2 * kPadVoxels);
+  if (casters.volume.empty()) return v;
   for (int a = 0; a < 3; ++a) {
     // ceil with a little tolerance, so the longest axis gets exactly `resolution` voxels.
     const int inner = std::max(1, static_cast<int>(std::ceil(extent[a] / v.voxelM - 1e-3f)));
@@ -230,6 +235,23 @@ SdfVolume gridForTriangles(const std::vector<glm::vec3>& triangles, int resoluti
   }
   v.lo = bounds.center() - 0.5f * glm::vec3(v.dims) * v.voxelM;
   return v;
+}
+
+/// True when every vertex of the triangles lies in one plane (within kSheetFlatness of their size).
+bool isFlat(const std::vector<glm::vec3>& triangles) {
+  Aabb bounds;
+  glm::vec3 normal(0.0f);
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    bounds.extend(triangles[t]);
+    const glm::vec3 n = glm::cross(triangles[t + 1] - triangles[t], triangles[t + 2] - triangles[t]);
+    if (glm::dot(n, n) > glm::dot(normal, normal)) normal = n;  // the largest triangle's plane
+  }
+  if (glm::dot(normal, normal) <= 0.0f) return false;
+  normal = glm::normalize(normal);
+  const float tolerance = kSheetFlatness * glm::length(bounds.size()) + std::numeric_limits<float>::min();
+  for (const glm::vec3& p : triangles)
+    if (std::abs(glm::dot(p - triangles[0], normal)) > tolerance) return false;
+  return true;
 }
 
 /// Six inside votes per voxel from the grid lines along each axis (see SdfBake.h).
@@ -331,22 +353,41 @@ glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, const g
   return a + ab * (vb * inv) + ac * (vc * inv);
 }
 
-std::vector<glm::vec3> casterTriangles(const Scene& scene) {
-  std::vector<glm::vec3> triangles;
-  triangles.reserve(3 * scene.triangleCount());
-  for (const Object& object : scene.objects) {
-    if (!object.castsShadow) continue;
-    const Mesh& mesh = scene.meshes[object.mesh];
-    for (uint32_t index : mesh.indices)
-      triangles.push_back(glm::vec3(object.worldFromObject * glm::vec4(mesh.vertices[index].position, 1.0f)));
+CasterTriangles casterTriangles(const Scene& scene) {
+  CasterTriangles out;
+  out.volume.reserve(3 * scene.triangleCount());
+  std::vector<glm::vec3> object;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow) continue;
+    const Mesh& mesh = scene.meshes[o.mesh];
+    object.clear();
+    for (uint32_t index : mesh.indices) object.push_back(glm::vec3(o.worldFromObject * glm::vec4(mesh.vertices[index].position, 1.0f)));
+    const bool sheet = !object.empty() && out.sheets.size() + object.size() <= 3 * static_cast<size_t>(kMaxSheetTriangles) && isFlat(object);
+    std::vector<glm::vec3>& into = sheet ? out.sheets : out.volume;
+    into.insert(into.end(), object.begin(), object.end());
   }
-  return triangles;
+  return out;
 }
 
 SdfVolume gridFor(const Scene& scene, int resolution) { return gridForTriangles(casterTriangles(scene), resolution); }
 
+Aabb SdfVolume::gridCasterBounds() const {
+  Aabb b;
+  if (!hasGrid()) return b;
+  const glm::vec3 pad(static_cast<float>(kPadVoxels) * voxelM);
+  b.extend(lo + pad);
+  b.extend(hi() - pad);
+  return b;
+}
+
+Aabb SdfVolume::casterBounds() const {
+  Aabb b = gridCasterBounds();
+  for (const glm::vec3& p : sheets) b.extend(p);
+  return b;
+}
+
 float SdfVolume::sample(const glm::vec3& ws) const {
-  PN_ASSERT(!empty());
+  PN_ASSERT(hasGrid());
   // Texel space: voxel centres at integers, as GL_LINEAR places them at (i + 0.5) / dims.
   const glm::vec3 u = (ws - lo) / voxelM - 0.5f;
   const glm::vec3 base = glm::floor(u);
@@ -361,11 +402,33 @@ float SdfVolume::sample(const glm::vec3& ws) const {
   return result;
 }
 
+float SdfVolume::distance(const glm::vec3& ws) const {
+  float d = kInfinity;
+  if (hasGrid()) {
+    const glm::vec3 q = glm::clamp(ws, lo, hi());
+    d = sample(q);
+    if (q != ws) {
+      // Two lower bounds: the grid's nearest point less the way there (1-Lipschitz), and the
+      // distance to the box the grid's casters lie in.
+      const Aabb inner = gridCasterBounds();
+      d = std::max(d - glm::length(ws - q), glm::length(glm::max(glm::max(inner.lo - ws, ws - inner.hi), 0.0f)));
+    }
+  }
+  for (size_t t = 0; t + 2 < sheets.size(); t += 3) d = std::min(d, triangleDistance(ws, sheets[t], sheets[t + 1], sheets[t + 2]));
+  return d;
+}
+
+float triangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  return glm::length(p - closestPointOnTriangle(p, a, b, c));
+}
+
 SdfVolume bake(const Scene& scene, const BakeOptions& options) {
   const Clock::time_point start = Clock::now();
-  const std::vector<glm::vec3> triangles = casterTriangles(scene);
-  SdfVolume grid = gridForTriangles(triangles, options.resolution);
-  if (triangles.empty()) return grid;
+  const CasterTriangles casters = casterTriangles(scene);
+  SdfVolume grid = gridForTriangles(casters, options.resolution);
+  grid.stats.triangles = (casters.volume.size() + casters.sheets.size()) / 3;
+  if (!grid.hasGrid()) return grid;
+  const std::vector<glm::vec3>& triangles = casters.volume;
   const size_t voxels = static_cast<size_t>(grid.dims.x) * static_cast<size_t>(grid.dims.y) * static_cast<size_t>(grid.dims.z);
   grid.distances.assign(voxels, 0.0f);
 
@@ -383,13 +446,12 @@ SdfVolume bake(const Scene& scene, const BakeOptions& options) {
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double signSeconds = std::chrono::duration<double>(signed_ - start).count();
   grid.stats.seconds = grid.stats.bakeSeconds = seconds;
-  grid.stats.triangles = triangles.size() / 3;
   grid.stats.gridBytes = voxels * sizeof(float);
   grid.stats.scratchBytes = votes.size() + triangles.size() * sizeof(glm::vec3) + bvh.peakBytes();
   if (options.verbose || seconds > kReportBakeSeconds)
-    std::fputs(fmt::format("sdf: baked {}x{}x{} voxels ({:.2f} mm) over {} triangles in {:.2f} s (signs {:.2f} s); "
+    std::fputs(fmt::format("sdf: baked {}x{}x{} voxels ({:.2f} mm) over {} triangles (+ {} in sheets) in {:.2f} s (signs {:.2f} s); "
                            "grid {:.1f} MiB, transient {:.1f} MiB (Embree BVH {:.1f} MiB)\n",
-                           grid.dims.x, grid.dims.y, grid.dims.z, grid.voxelM * 1000.0f, grid.stats.triangles, seconds,
+                           grid.dims.x, grid.dims.y, grid.dims.z, grid.voxelM * 1000.0f, triangles.size() / 3, casters.sheets.size() / 3, seconds,
                            signSeconds, static_cast<double>(grid.stats.gridBytes) / kMiB,
                            static_cast<double>(grid.stats.scratchBytes) / kMiB,
                            static_cast<double>(bvh.peakBytes()) / kMiB)

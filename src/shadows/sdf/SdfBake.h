@@ -10,7 +10,13 @@
 //    sheet (a floor plane, a single quad) is never "inside" from more than one direction, so it
 //    gets positive distance on both sides: a zero-thickness occluder, which the march still
 //    stops at (distance → 0).
+//  - Open flat sheets (a caster object whose triangles all lie in one plane: floors, ground
+//    quads) are kept out of the grid, up to kMaxSheetTriangles in all: the shader measures the
+//    exact distance to their triangles instead. A 24 m floor would otherwise stretch the grid
+//    and leave the objects standing on it a voxel or two thick.
 //  - Alpha-masked materials are treated as solid (the field has no holes).
+#include "shadows/sdf/sdf.shared.h"
+
 #include <penumbra/Math.h>
 #include <penumbra/Scene.h>
 
@@ -25,7 +31,7 @@ namespace penumbra::sdf {
 
 /// Version of the bake's maths; part of every cache key. Bump it whenever a change to the code
 /// changes the numbers it produces, so that stale cache files are never read.
-inline constexpr uint32_t kSdfCodeVersion = 1;
+inline constexpr uint32_t kSdfCodeVersion = 2;
 /// Grid resolution limits: voxels along the grid's longest axis.
 inline constexpr int kDefaultResolution = 128;
 inline constexpr int kMinResolution = 8;
@@ -33,6 +39,10 @@ inline constexpr int kMaxResolution = 512;
 /// Empty voxels around the casters' bounds on every side, so that trilinear samples next to the
 /// outermost caster still interpolate real distances and the march can enter the grid in free space.
 inline constexpr int kPadVoxels = 2;
+/// Flat sheets measured analytically, in triangles over all sheets (the uniform block's room).
+inline constexpr int kMaxSheetTriangles = PN_SDF_MAX_SHEET_TRIANGLES;
+/// A caster is flat when every vertex lies within this fraction of its size from its plane.
+inline constexpr float kSheetFlatness = 1e-5f;
 /// A bake slower than this prints its summary line even when not verbose (s).
 inline constexpr double kReportBakeSeconds = 2.0;
 
@@ -61,35 +71,51 @@ struct BakeStats {
   uint64_t cacheKey = 0;
 };
 
-/// Signed distance (m) at voxel centres lo + (ijk + 0.5)·voxelM; < 0 inside a caster.
-/// Storage order: x fastest, then y, then z (the order glTexImage3D reads).
+/// The baked field: signed distance (m) at voxel centres lo + (ijk + 0.5)·voxelM, < 0 inside a
+/// caster, plus the flat sheets that the shader measures exactly. Grid storage order: x fastest,
+/// then y, then z (the order glTexImage3D reads). Either part may be empty.
 struct SdfVolume {
-  glm::ivec3 dims{0};
+  glm::ivec3 dims{0};  ///< 0 when every caster is a sheet
   glm::vec3 lo{0.0f};  ///< the grid's min corner (m)
   float voxelM = 0.0f; ///< edge of one cubic voxel (m)
   std::vector<float> distances;
+  std::vector<glm::vec3> sheets;  ///< world-space triangles of the flat sheets, three vertices each
   BakeStats stats;
 
-  bool empty() const { return distances.empty(); }  ///< the scene has no shadow casters
+  bool hasGrid() const { return dims.x > 0; }
+  bool empty() const { return !hasGrid() && sheets.empty(); }  ///< the scene has no shadow casters
   glm::vec3 size() const { return glm::vec3(dims) * voxelM; }
   glm::vec3 hi() const { return lo + size(); }
+  /// The box the grid's casters lie in: the grid without its padding.
+  Aabb gridCasterBounds() const;
+  /// Every caster (grid and sheets): nothing occludes outside it.
+  Aabb casterBounds() const;
   size_t index(int i, int j, int k) const {
     return static_cast<size_t>(i) + static_cast<size_t>(dims.x) * (static_cast<size_t>(j) + static_cast<size_t>(dims.y) * static_cast<size_t>(k));
   }
   float at(int i, int j, int k) const { return distances[index(i, j, k)]; }
   glm::vec3 voxelCenter(int i, int j, int k) const { return lo + (glm::vec3(i, j, k) + 0.5f) * voxelM; }
-  /// Trilinear interpolation with clamp-to-edge, like the GPU's sampler3D: the value the
-  /// shader sees at ws. Meaningful inside [lo, hi].
+  /// Trilinear interpolation with clamp-to-edge, like the GPU's sampler3D: the grid's value at
+  /// ws. Meaningful inside [lo, hi].
   float sample(const glm::vec3& ws) const;
+  /// What the shader marches: the grid's sample inside the grid; outside it the larger of two
+  /// lower bounds, sample(nearest grid point q) − |ws − q| and the distance to
+  /// gridCasterBounds(); and the exact distance to the sheets. The smallest of these.
+  float distance(const glm::vec3& ws) const;
 };
 
-/// The world-space triangles of the scene's shadow casters (objects with castsShadow), three
-/// vertices each: what the field measures distance to, and what the reference ray-traces.
-std::vector<glm::vec3> casterTriangles(const Scene& scene);
+/// Unsigned distance from p to triangle abc (m).
+float triangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
-/// The grid a bake of `scene` at `resolution` would use (dims, lo, voxelM; no distances):
-/// cubic voxels, kPadVoxels of padding around the casters' world bounds. dims = 0 when the scene
-/// has no shadow-casting triangles.
+/// The world-space triangles of the scene's shadow casters (objects with castsShadow), three
+/// vertices each, split into those baked into the grid and the flat sheets (see above).
+struct CasterTriangles {
+  std::vector<glm::vec3> volume, sheets;
+};
+CasterTriangles casterTriangles(const Scene& scene);
+
+/// The grid a bake of `scene` at `resolution` would use (dims, lo, voxelM, sheets; no
+/// distances): cubic voxels, kPadVoxels of padding around the bounds of the grid's casters.
 SdfVolume gridFor(const Scene& scene, int resolution);
 
 /// Hash of the casters' world-space triangles, the resolution and kSdfCodeVersion: equal keys

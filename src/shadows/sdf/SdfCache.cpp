@@ -28,7 +28,8 @@ namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'P', 'N', 'S', 'D', 'F', 'B', 'I', 'N'};
 
-// Fixed-size header; the payload follows: dims.x·dims.y·dims.z floats (x fastest). Native
+// Fixed-size header; the payload follows: dims.x·dims.y·dims.z floats (x fastest), then the
+// sheets' vertices (3 floats each, three vertices per triangle). Native
 // (little-endian) order: the cache is local to one machine.
 struct Header {
   char magic[8];
@@ -40,8 +41,10 @@ struct Header {
   uint64_t triangles;
   double bakeSeconds;
   uint64_t payloadHash;
+  uint32_t sheetTriangles;
+  uint32_t reserved;  // 0; keeps the size a multiple of 8 without compiler padding
 };
-static_assert(sizeof(Header) == 72, "the header has no padding: every byte is written");
+static_assert(sizeof(Header) == 80, "the header has no padding: every byte is written");
 
 std::atomic<unsigned> gTempCounter{0};
 
@@ -58,12 +61,16 @@ std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
   std::memcpy(&header, file.data(), sizeof(Header));
   if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.codeVersion != kSdfCodeVersion || header.key != key)
     return std::nullopt;
+  const bool noGrid = header.dims[0] == 0 && header.dims[1] == 0 && header.dims[2] == 0;
   for (int32_t d : header.dims)
-    if (d < 1 || d > 4 * kMaxResolution) return std::nullopt;
+    if (!noGrid && (d < 1 || d > 4 * kMaxResolution)) return std::nullopt;
+  if (header.sheetTriangles > static_cast<uint32_t>(kMaxSheetTriangles)) return std::nullopt;
   const size_t voxels = voxelCount(header.dims);
-  if (file.size() != sizeof(Header) + voxels * sizeof(float)) return std::nullopt;
+  const size_t sheetVertices = 3 * static_cast<size_t>(header.sheetTriangles);
+  const size_t payload = voxels * sizeof(float) + sheetVertices * sizeof(glm::vec3);
+  if (file.size() != sizeof(Header) + payload) return std::nullopt;
   reference::Hasher hash;
-  hash.bytes(file.data() + sizeof(Header), voxels * sizeof(float));
+  hash.bytes(file.data() + sizeof(Header), payload);
   if (hash.digest() != header.payloadHash || !(header.voxelM > 0.0f)) return std::nullopt;
 
   SdfVolume v;
@@ -72,6 +79,8 @@ std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
   v.voxelM = header.voxelM;
   v.distances.resize(voxels);
   std::memcpy(v.distances.data(), file.data() + sizeof(Header), voxels * sizeof(float));
+  v.sheets.resize(sheetVertices);
+  std::memcpy(v.sheets.data(), file.data() + sizeof(Header) + voxels * sizeof(float), sheetVertices * sizeof(glm::vec3));
   v.stats.bakeSeconds = header.bakeSeconds;
   v.stats.triangles = header.triangles;
   v.stats.gridBytes = voxels * sizeof(float);
@@ -92,8 +101,12 @@ void store(const fs::path& path, const SdfVolume& v) {
   header.voxelM = v.voxelM;
   header.triangles = v.stats.triangles;
   header.bakeSeconds = v.stats.bakeSeconds;
+  header.sheetTriangles = static_cast<uint32_t>(v.sheets.size() / 3);
   reference::Hasher hash;
-  hash.bytes(v.distances.data(), v.distances.size() * sizeof(float));
+  std::vector<char> payload(v.distances.size() * sizeof(float) + v.sheets.size() * sizeof(glm::vec3));
+  std::memcpy(payload.data(), v.distances.data(), v.distances.size() * sizeof(float));
+  std::memcpy(payload.data() + v.distances.size() * sizeof(float), v.sheets.data(), v.sheets.size() * sizeof(glm::vec3));
+  hash.bytes(payload.data(), payload.size());
   header.payloadHash = hash.digest();
 
   // Unique per process and call: two runs that store the same key never share a temporary.
@@ -101,7 +114,7 @@ void store(const fs::path& path, const SdfVolume& v) {
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(&header), sizeof(header));
-    out.write(reinterpret_cast<const char*>(v.distances.data()), static_cast<std::streamsize>(v.distances.size() * sizeof(float)));
+    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
     out.close();
     if (!out) {
       std::error_code ignored;
@@ -126,8 +139,9 @@ uint64_t cacheKey(const Scene& scene, int resolution) {
   hash.value(kSdfCodeVersion);
   hash.value(resolution);
   hash.value(kPadVoxels);
-  const std::vector<glm::vec3> triangles = casterTriangles(scene);
-  hash.array(std::span<const glm::vec3>(triangles));
+  const CasterTriangles casters = casterTriangles(scene);
+  hash.array(std::span<const glm::vec3>(casters.volume));
+  hash.array(std::span<const glm::vec3>(casters.sheets));
   return hash.digest();
 }
 
@@ -150,7 +164,7 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
                        dir.string(), error ? error.message() : "not a directory"));
   SdfVolume v = bake(scene, options);
   v.stats.cacheKey = key;
-  if (!v.empty()) store(path, v);
+  if (!v.empty()) store(path, v);  // a scene without casters costs nothing to "bake"
   return v;
 }
 

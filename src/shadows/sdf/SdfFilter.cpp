@@ -32,9 +32,10 @@ constexpr ParamDesc kParams[] = {
     {"sdf.epsilon", "Epsilon", "hit distance and smallest step, in voxels: a sample closer than this to a caster ends the march in "
      "shadow (outer mode)", 0.1f, 0.001f, 2.0f, 0.0f},
     {"sdf.startOffset", "Start offset", "the march starts this many voxels off the receiver along its geometric normal, out of "
-     "the field's blur around its own surface", 1.0f, 0.0f, 8.0f, 0.0f},
+     "the field's blur around its own surface; larger values lift the start over nearby casters (leaks at contacts)",
+     0.25f, 0.0f, 8.0f, 0.0f},
     {"sdf.estimator", "Estimator", "classic: k·d/t at each sample; improved: at the closest approach estimated from the previous "
-     "sample's distance (Aaltonen 2018), less banding", PN_SDF_ESTIMATOR_IMPROVED, 0, 1, 1, kEstimators},
+     "sample's distance (Aaltonen 2018), less banding", PN_SDF_ESTIMATOR_CLASSIC, 0, 1, 1, kEstimators},
     {"sdf.penumbra", "Penumbra", "outer: V = min(k·d/t, 1), the penumbra grows outward from the hard shadow; centered: the "
      "march goes on through casters (d < 0) and V is the visible part of a disc light at that angle, half inside, half outside",
      PN_SDF_PENUMBRA_CENTERED, 0, 1, 1, kPenumbrae},
@@ -52,17 +53,20 @@ void SdfFilter::renderShadowMaps(FrameContext& frame) {
   if (mHaveField && key == mKey) return;
   sdf::BakeOptions options;
   options.resolution = resolution;
-  upload(sdf::loadOrBake(frame.scene(), options));
+  setField(sdf::loadOrBake(frame.scene(), options));
   mKey = key;
-  mHaveField = true;
 }
 
-void SdfFilter::upload(const sdf::SdfVolume& volume) {
+void SdfFilter::setField(const sdf::SdfVolume& volume) {
+  mHaveField = true;
+  ++mUploads;
+  mKey = 0;
   mGrid = volume;
   mGrid.distances.clear();
   mGrid.distances.shrink_to_fit();
-  // An empty scene still binds a valid 1³ texture; the shader returns V = 1 without reading it.
-  const glm::ivec3 dims = volume.empty() ? glm::ivec3(1) : volume.dims;
+  // Without a grid (no casters, or only sheets) a valid 1³ texture stays bound; the shader does
+  // not read it then.
+  const glm::ivec3 dims = volume.hasGrid() ? volume.dims : glm::ivec3(1);
   GLint max3d = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
   PN_CHECK(dims.x <= max3d && dims.y <= max3d && dims.z <= max3d,
@@ -72,21 +76,41 @@ void SdfFilter::upload(const sdf::SdfVolume& volume) {
   mField.setSampling(GL_LINEAR, GL_LINEAR);
   mSlice = gl::Texture("sdf middle z slice", {GL_TEXTURE_2D, GL_R32F, dims.x, dims.y, 1, 1});
   mSlice.setSampling(GL_NEAREST, GL_NEAREST);
-  const float empty = 0.0f;
-  const float* data = volume.empty() ? &empty : volume.distances.data();
+  const float none = 0.0f;
+  const float* data = volume.hasGrid() ? volume.distances.data() : &none;
   glTextureSubImage3D(mField.id(), 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED, GL_FLOAT, data);
   const size_t slice = static_cast<size_t>(dims.z / 2) * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y);
-  glTextureSubImage2D(mSlice.id(), 0, 0, 0, dims.x, dims.y, GL_RED, GL_FLOAT, volume.empty() ? data : data + slice);
+  glTextureSubImage2D(mSlice.id(), 0, 0, 0, dims.x, dims.y, GL_RED, GL_FLOAT, volume.hasGrid() ? data + slice : data);
+}
+
+gpu::SdfUniforms SdfFilter::uniforms() const {
+  gpu::SdfUniforms u{};
+  u.gridLo = glm::vec4(mGrid.lo, mGrid.voxelM);
+  u.gridSize = glm::vec4(mGrid.size(), mGrid.hasGrid() ? 1.0f : 0.0f);
+  const Aabb gridCasters = mGrid.gridCasterBounds();
+  if (mGrid.hasGrid()) {
+    u.gridCasterLo = glm::vec4(gridCasters.lo, 0.0f);
+    u.gridCasterHi = glm::vec4(gridCasters.hi, 0.0f);
+  }
+  if (!mGrid.empty()) {
+    // Padded like the grid: a sheet's bounds are flat, and a ray must be able to cross them.
+    const glm::vec3 pad(static_cast<float>(sdf::kPadVoxels) * mGrid.voxelM);
+    const Aabb casters = mGrid.casterBounds();
+    u.castersLo = glm::vec4(casters.lo - pad, 0.0f);
+    u.castersHi = glm::vec4(casters.hi + pad, 0.0f);
+  }
+  u.march = glm::vec4(param("sdf.k"), param("sdf.epsilon"), param("sdf.startOffset"), kPointLightK);
+  u.mode = glm::ivec4(paramInt("sdf.maxSteps"), paramInt("sdf.kMode"), paramInt("sdf.estimator"), paramInt("sdf.penumbra"));
+  const size_t sheetTriangles = mGrid.sheets.size() / 3;
+  PN_ASSERT(sheetTriangles <= static_cast<size_t>(PN_SDF_MAX_SHEET_TRIANGLES));
+  u.sheetInfo = glm::ivec4(static_cast<int>(sheetTriangles), 0, 0, 0);
+  for (size_t i = 0; i < mGrid.sheets.size(); ++i) u.sheetVertices[i] = glm::vec4(mGrid.sheets[i], 1.0f);
+  return u;
 }
 
 void SdfFilter::computeVisibility(FrameContext& frame) {
   PN_ASSERT(mHaveField);
-  gpu::SdfUniforms u{};
-  u.gridLo = glm::vec4(mGrid.lo, mGrid.voxelM);
-  u.gridSize = glm::vec4(mGrid.size(), mGrid.dims.x > 0 ? 1.0f : 0.0f);  // dims 0: no casters
-  u.march = glm::vec4(param("sdf.k"), param("sdf.epsilon"), param("sdf.startOffset"), kPointLightK);
-  u.mode = glm::ivec4(paramInt("sdf.maxSteps"), paramInt("sdf.kMode"), paramInt("sdf.estimator"), paramInt("sdf.penumbra"));
-  frame.setFilterBlock(u);
+  frame.setFilterBlock(uniforms());
   mField.bindUnit(PN_TEX_FILTER0);
   frame.dispatchScreen(frame.visibilityProgram("shadows/sdf/sdf.glsl"));
 }

@@ -4,6 +4,7 @@
 // (baked once per scene, cached on disk); the visibility pass marches it toward the light.
 #include "gl/Objects.h"
 #include "shadows/sdf/SdfBake.h"
+#include "shadows/sdf/sdf.shared.h"
 
 #include <penumbra/Filter.h>
 
@@ -25,16 +26,23 @@ public:
   /// "sdf-slice": the field's middle z slice (m), as a 2D texture.
   std::vector<DebugImage> debugImages() const override;
 
-  /// The grid on the GPU: dims (0 = no casters), lo, voxel, bake stats; its distances are not
-  /// kept on the CPU.
-  const sdf::SdfVolume& grid() const { return mGrid; }
+  /// The field on the GPU: grid dims (0 = none), lo, voxel, sheets, bake stats; the grid's
+  /// distances are not kept on the CPU.
+  const sdf::SdfVolume& field() const { return mGrid; }
+  const gl::Texture& fieldTexture() const { return mField; }
+  /// Uploads `volume` as the field (what renderShadowMaps does after loading or baking). For
+  /// tests and tools: the next frame still checks the scene's key and replaces it.
+  void setField(const sdf::SdfVolume& volume);
+  /// How many fields were uploaded so far (one per scene: the per-frame check is a hash).
+  int fieldUploads() const { return mUploads; }
+  /// The visibility pass's uniform block for the current field and parameters.
+  gpu::SdfUniforms uniforms() const;
 
 private:
-  void upload(const sdf::SdfVolume& volume);
-
   sdf::SdfVolume mGrid;
   uint64_t mKey = 0;
   bool mHaveField = false;
+  int mUploads = 0;
   gl::Texture mField, mSlice;
 };
 

@@ -14,17 +14,27 @@
 #define PN_SDF_PENUMBRA_OUTER 0     // V = min(k d / t, 1): the penumbra lies outside the hard shadow
 #define PN_SDF_PENUMBRA_CENTERED 1  // the march goes on inside casters (d < 0); V = smoothstep(-1, 1, min k d / t)
 
+// Flat caster sheets (floors) measured exactly in the shader, in triangles (SdfBake.h)
+#define PN_SDF_MAX_SHEET_TRIANGLES 16
+
 PN_GPU_BEGIN
 
 struct SdfUniforms {
-  vec4 gridLo;    // xyz: world min corner of the grid (m); w: voxel edge (m)
-  vec4 gridSize;  // xyz: world extent of the grid (m); w: 1 when there is a field, 0 = no casters (V = 1)
-  vec4 march;     // x: k (manual); y: epsilon (voxels); z: start offset (voxels); w: largest k (light mode)
-  ivec4 mode;     // x: max steps; y: PN_SDF_K_*; z: PN_SDF_ESTIMATOR_*; w: PN_SDF_PENUMBRA_*
+  vec4 gridLo;        // xyz: world min corner of the grid (m); w: voxel edge (m)
+  vec4 gridSize;      // xyz: world extent of the grid (m); w: 1 when there is a grid, 0 = only sheets or nothing
+  vec4 gridCasterLo;  // xyz: the grid's casters' bounds (the grid less its padding): outside the grid,
+  vec4 gridCasterHi;  //      the distance to this box bounds the distance to them from below
+  vec4 castersLo;     // xyz: bounds of every caster (grid and sheets): the march never leaves them
+  vec4 castersHi;
+  vec4 march;         // x: k (manual); y: epsilon (voxels); z: start offset (voxels); w: largest k (light mode)
+  ivec4 mode;         // x: max steps; y: PN_SDF_K_*; z: PN_SDF_ESTIMATOR_*; w: PN_SDF_PENUMBRA_*
+  ivec4 sheetInfo;    // x: sheet triangles in use (0 = no casters at all when gridSize.w = 0); yzw: unused
+  vec4 sheetVertices[3 * PN_SDF_MAX_SHEET_TRIANGLES];  // xyz: world-space vertices (m), three per triangle
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::SdfUniforms) == 4 * 16, "std140 size of SdfUniforms");
+static_assert(sizeof(penumbra::gpu::SdfUniforms) == (9 + 3 * PN_SDF_MAX_SHEET_TRIANGLES) * 16, "std140 size of SdfUniforms");
+static_assert(offsetof(penumbra::gpu::SdfUniforms, sheetVertices) == 9 * 16, "std140 offset of sheetVertices");
 #endif
