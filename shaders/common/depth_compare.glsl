@@ -1,8 +1,9 @@
 #pragma once
-// Depth comparisons shared by the shadow-map filters: the receiver's slope-scaled bias, the
-// test itself, and percentage-closer filtering (Reeves, Salesin & Cook 1987): the RESULTS of
-// many tests around the receiver are averaged, never the stored depths (averaging depths and
-// testing once would still give 0 or 1). Depths are linear light depths in [0,1]; 1 = lit.
+// Depth comparisons shared by the shadow-map filters: the receiver's bias (its tangent plane
+// continued to every tap, plus a slope-scaled margin), the test itself, and percentage-closer
+// filtering (Reeves, Salesin & Cook 1987): the RESULTS of many tests around the receiver are
+// averaged, never the stored depths (averaging depths and testing once would still give 0 or
+// 1). Depths are linear light depths in [0,1]; 1 = lit.
 // With PN_HARDWARE_COMPARE defined (prelude), every tap is the hardware's bilinear 2×2
 // comparison (sampler2DArrayShadow): the map must then be bound with a comparison sampler.
 #include "common/sampling.glsl"
@@ -30,26 +31,26 @@ ivec3 mapTexel(sampler2DArray map, vec2 uv, int layer) {
   return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), layer);
 }
 
-// What a filter compares: the receiver in its map and how much its depth is lowered per tap.
+// What a filter compares: the receiver in its map, as a plane, and its bias.
 struct ComparisonReceiver {
-  vec2 uv;             // map coordinates
-  int layer;           // map layer = shadow view
-  float depth;         // linear light depth in [0,1]
-  float bias;          // subtracted for every tap (linear depth)
-  float biasPerTexel;  // subtracted per texel of a tap's distance from uv: the receiver's tilt
+  vec2 uv;          // map coordinates
+  int layer;        // map layer = shadow view
+  float depth;      // linear light depth in [0,1] at uv
+  vec2 depthPerUv;  // the receiver plane's depth gradient in the map (linear depth per uv)
+  float bias;       // subtracted for every tap (linear depth)
 };
 
 // Beyond this tangent of the angle to the light (~84 degrees, as slopeTangent clamps) a bias
 // would push through casters; steeper receivers keep this much and may show acne.
 const float kMaxReceiverTangent = 10.0;
 
-// Linear depth change per texel of the receiver's tangent plane along its steepest direction in
-// the map of `view`: the plane is stepped one texel's width along two tangents and both steps
-// projected, which gives depth as a function of map uv. Exact for orthographic, perspective and
-// warped views alike. (For a spot light, depth is measured along the light's axis, not along the
-// ray, so a surface facing the light head-on can still change depth from texel to texel; the
-// angle to the ray, slopeTangent, would miss that.) Bounded by kMaxReceiverTangent.
-float receiverDepthSlope(int view, SurfacePoint s) {
+// The receiver's tangent plane as depth over map uv (Isidoro 2006, "receiver plane depth bias"):
+// the plane is stepped one texel's width along two tangents and both steps projected into the
+// map. Exact for orthographic, perspective and warped views alike. (For a spot light depth is
+// measured along the light's axis, not along the ray, so a surface facing the light head-on
+// can still change depth from texel to texel; the angle to the ray, slopeTangent, misses that.)
+// The gradient's length is bounded by kMaxReceiverTangent texels of slope per texel.
+vec2 receiverDepthGradient(int view, SurfacePoint s) {
   vec3 n = s.geoNormal;
   vec3 t1 = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
   vec3 t2 = cross(n, t1);
@@ -57,32 +58,31 @@ float receiverDepthSlope(int view, SurfacePoint s) {
   vec3 c0 = shadowCoord(view, s.ws);
   vec3 d1 = shadowCoord(view, s.ws + stepM * t1) - c0;
   vec3 d2 = shadowCoord(view, s.ws + stepM * t2) - c0;
-  float maxSlope = slopeDepthOffset(view, s.ws, kMaxReceiverTangent, 1.0);
   mat2 uvFromPlane = mat2(d1.xy, d2.xy);  // plane coordinates → map uv
-  if (determinant(uvFromPlane) == 0.0) return maxSlope;  // seen edge-on from the light
+  if (determinant(uvFromPlane) == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
   vec2 depthPerUv = vec2(d1.z, d2.z) * inverse(uvFromPlane);
-  return min(length(depthPerUv) / shadowMapSize(), maxSlope);
+  float maxPerUv = slopeDepthOffset(view, s.ws, kMaxReceiverTangent, 1.0) * shadowMapSize();
+  float len = length(depthPerUv);
+  return len > maxPerUv ? depthPerUv * (maxPerUv / len) : depthPerUv;
 }
 
-// Receiver at shadow coordinate `coord` of `view`: constant + slopeTexels texels of its depth
-// slope (the slope-scaled bias), growing by one texel of slope per texel of tap distance (a
-// tilted receiver plane is up to that much closer to the light there; without it a wide kernel
-// shadows its own receiver).
+// Receiver at shadow coordinate `coord` of `view`. Each tap compares the receiver's own plane
+// at the tap (so a wide kernel on a tilted receiver neither shadows the receiver nor, on the
+// side away from the light, over-biases past real blockers), lowered by constantBias plus
+// slopeTexels texels of the plane's steepest slope: the slope-scaled bias, which covers the
+// map's flat texels (a stored depth is exact only at its texel's centre).
 ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, float constantBias, float slopeTexels) {
-  float slope = receiverDepthSlope(view, s);
   ComparisonReceiver r;
   r.uv = coord.xy;
   r.layer = view;
   r.depth = coord.z;
-  r.bias = constantBias + slopeTexels * slope;
-  r.biasPerTexel = slope;
+  r.depthPerUv = receiverDepthGradient(view, s);
+  r.bias = constantBias + slopeTexels * length(r.depthPerUv) / shadowMapSize();
   return r;
 }
 
-// The receiver's depth for a tap offsetUv away from it.
-float tapDepth(ComparisonReceiver r, vec2 offsetUv, vec2 mapSize) {
-  return r.depth - r.bias - r.biasPerTexel * length(offsetUv * mapSize);
-}
+// The receiver's depth at a tap offsetUv away from it, biased.
+float tapDepth(ComparisonReceiver r, vec2 offsetUv) { return r.depth + dot(r.depthPerUv, offsetUv) - r.bias; }
 
 // One comparison at uv: the nearest texel's stored depth …
 float comparisonTap(sampler2DArray map, vec2 uv, int layer, float depth) {
@@ -95,12 +95,11 @@ float comparisonTap(sampler2DArrayShadow map, vec2 uv, int layer, float depth) {
 
 // Percentage-closer filtering over a (2·halfSide + 1)² grid spanning ±radiusUv on each axis.
 float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int halfSide) {
-  vec2 size = vec2(textureSize(map, 0).xy);
   int taps = boxTapCount(halfSide);
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) {
     vec2 offset = boxTap(i, halfSide) * radiusUv;
-    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset, size));
+    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
   }
   return lit / float(taps);
 }
@@ -108,12 +107,11 @@ float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radi
 // Percentage-closer filtering over the first `taps` points of the rotated Poisson disk of
 // radius radiusUv (per axis).
 float percentageCloserPoisson(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int taps, mat2 rotation) {
-  vec2 size = vec2(textureSize(map, 0).xy);
   int n = clamp(taps, 1, kPoissonDiskSize);
   float lit = 0.0;
   for (int i = 0; i < n; ++i) {
     vec2 offset = poissonTap(i, rotation) * radiusUv;
-    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset, size));
+    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
   }
   return lit / float(n);
 }

@@ -48,3 +48,23 @@ void widenFootprint(float minUV, inout vec2 dUVdx, inout vec2 dUVdy) {
   dUVdx = lx > 1e-12 ? dUVdx * max(1.0, minUV / lx) : vec2(minUV, 0.0);
   dUVdy = ly > 1e-12 ? dUVdy * max(1.0, minUV / ly) : vec2(0.0, minUV);
 }
+
+// Filtered lookup over the footprint (dUVdx, dUVdy): anisotropic filtering done in the shader, as
+// up to maxTaps trilinear taps spread along the footprint's long axis, each with the short axis's
+// width. The same on every driver; with GL_TEXTURE_MAX_ANISOTROPY > 1, Mesa llvmpipe 22.3
+// ignores textureGrad's explicit gradients (it filtered a step edge as if the footprint were one
+// texel at any width), so hardware anisotropy cannot be used here (docs/vsm.md).
+vec4 textureFootprint(sampler2DArray s, vec3 uvLayer, vec2 dUVdx, vec2 dUVdy, int maxTaps) {
+  float lx = length(dUVdx), ly = length(dUVdy);
+  vec2 major = lx >= ly ? dUVdx : dUVdy;
+  vec2 minor = lx >= ly ? dUVdy : dUVdx;
+  float ratio = max(lx, ly) / max(min(lx, ly), 1e-12);
+  int taps = clamp(int(ceil(ratio - 1e-3)), 1, maxTaps);
+  vec2 tapGrad = major / float(taps);
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < taps; ++i) {
+    float offset = (float(i) + 0.5) / float(taps) - 0.5;
+    sum += textureGrad(s, uvLayer + vec3(major * offset, 0.0), tapGrad, minor);
+  }
+  return sum / float(taps);
+}

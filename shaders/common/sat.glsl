@@ -1,28 +1,41 @@
 #pragma once
 // Summed-area tables of depth moments (SatBuilder, passes/sat_scan.comp.glsl): O(1) box means.
 // Precision strategy: every moment z^k (z = linear depth in [0, 1]) is stored as a fixed-point
-// integer q = round(z^k · 2^31) and summed in 64-bit unsigned integers (two 32-bit words with
-// carry). Integer sums are exact and independent of the order of the parallel scan; a 2048² map
+// integer q_k ≈ z^k · 2^31 (q_1 = round(z · 2^31), q_{k+1} = round(q_k · q_1 / 2^31): within
+// k · 2^-32 of z^k) and summed in 64-bit unsigned integers (native uint64_t where the driver
+// has GL_ARB_gpu_shader_int64, else two 32-bit words with carry). Integer sums are exact and independent of the order of the parallel scan; a 2048² map
 // sums to at most 2^22 · 2^31 = 2^53, which converts to double without rounding. Box sums are
 // taken in double, so mean and variance carry no cancellation error beyond the 2^-32 rounding of
-// each input value.
+// each input value (k · 2^-32 for z^k).
 // Layout: an RGBA32UI 2D array; layer view·pairs + k holds moments 2k+1 and 2k+2 as
 // (lo, hi, lo, hi) words of the inclusive prefix sum S(x, y) = sum over x' <= x, y' <= y.
 
 #define PN_SAT_FRACTION_BITS 31
 const double kSatFixedOne = 2147483648.0LF;  // 2^PN_SAT_FRACTION_BITS
 
+#ifdef PN_NATIVE_INT64  // defined by a shader that enabled GL_ARB_gpu_shader_int64 at its top
+uvec2 add64(uvec2 a, uvec2 b) { return unpackUint2x32(packUint2x32(a) + packUint2x32(b)); }
+#else
 uvec2 add64(uvec2 a, uvec2 b) {
   uint carry;
   uint lo = uaddCarry(a.x, b.x, carry);
   return uvec2(lo, a.y + b.y + carry);
 }
+#endif
 uvec4 add64x2(uvec4 a, uvec4 b) { return uvec4(add64(a.xy, b.xy), add64(a.zw, b.zw)); }
 
 double u64ToDouble(uvec2 v) { return double(v.y) * 4294967296.0LF + double(v.x); }
 
-// Fixed-point value of a moment in [0, 1].
-uvec2 toFixed64(double m) { return uvec2(uint(m * kSatFixedOne + 0.5LF), 0u); }
+// Fixed-point depth: round(z · 2^31) for z in [0, 1] (float scaling by 2^31 is exact).
+uint depthToFixed(float z) { return uint(round(clamp(z, 0.0, 1.0) * 2147483648.0)); }
+
+// The product of two fixed-point values, rounded back to 31 fraction bits: (a·b + 2^30) >> 31.
+uint fixedMul(uint a, uint b) {
+  uint hi, lo, carry;
+  umulExtended(a, b, hi, lo);
+  lo = uaddCarry(lo, 1u << 30, carry);
+  return ((hi + carry) << 1) | (lo >> 31);
+}
 
 // The table at texel corner c (in texels, 0..size): the sum over texels x < c.x, y < c.y.
 dvec2 satCorner(usampler2DArray sat, ivec2 c, int layer) {
@@ -42,17 +55,29 @@ dvec2 satCornerBilinear(usampler2DArray sat, vec2 p, int layer) {
 }
 
 // Mean of the two moments of pair layer `layer` over the box [lo, hi] (continuous texel
-// coordinates, clamped to the map). The box is at least one texel wide on each side.
+// coordinates, clipped to the map).
 dvec2 satBoxMean(usampler2DArray sat, vec2 lo, vec2 hi, int layer) {
+  // Boxes narrower than a texel grow about their centre; the box is then clipped to the map
+  // (the coordinates themselves are used as given: recentring would round them).
   vec2 size = vec2(textureSize(sat, 0).xy);
-  vec2 c = clamp(0.5 * (lo + hi), vec2(0.5), size - 0.5);
-  vec2 half_ = clamp(0.5 * (hi - lo), vec2(0.5), 0.5 * size);
-  lo = max(c - half_, vec2(0.0));
-  hi = min(c + half_, size);
+  vec2 grow = 0.5 * max(vec2(1.0) - (hi - lo), vec2(0.0));
+  lo = clamp(lo - grow, vec2(0.0), size - 0.5);
+  hi = clamp(hi + grow, lo + 0.5, size);
   dvec2 sum = satCornerBilinear(sat, hi, layer) - satCornerBilinear(sat, vec2(lo.x, hi.y), layer) -
               satCornerBilinear(sat, vec2(hi.x, lo.y), layer) + satCornerBilinear(sat, lo, layer);
   double area = double(hi.x - lo.x) * double(hi.y - lo.y);
   return sum / (area * kSatFixedOne);
+}
+
+// The box with its edges moved to the nearest texel corners (at least one texel): 4 fetches
+// instead of 16, for lookups that tolerate half a texel of error per edge (blocker searches).
+dvec2 satBoxMeanSnapped(usampler2DArray sat, vec2 lo, vec2 hi, int layer) {
+  ivec2 size = textureSize(sat, 0).xy;
+  ivec2 l = clamp(ivec2(round(lo)), ivec2(0), size - 1);
+  ivec2 h = clamp(ivec2(round(hi)), l + 1, size);
+  dvec2 sum = satCorner(sat, h, layer) - satCorner(sat, ivec2(l.x, h.y), layer) - satCorner(sat, ivec2(h.x, l.y), layer) +
+              satCorner(sat, l, layer);
+  return sum / (double(h.x - l.x) * double(h.y - l.y) * kSatFixedOne);
 }
 
 // Exact box sums over whole texels [lo, hi] (inclusive texel indices): the test's entry point.
@@ -62,3 +87,7 @@ dvec2 satTexelRectMean(usampler2DArray sat, ivec2 lo, ivec2 hi, int layer) {
   double area = double(hi.x - lo.x + 1) * double(hi.y - lo.y + 1);
   return sum / (area * kSatFixedOne);
 }
+
+// Mean and variance of depth from box means of (z, z^2). The subtraction is done in double, so a
+// flat region gives 0 rather than float noise; the variance is never negative.
+vec2 satMeanVariance(dvec2 m) { return vec2(float(m.x), float(max(m.y - m.x * m.x, 0.0LF))); }

@@ -8,6 +8,10 @@
 // Every element is read once and written once per axis. Sums are 64-bit fixed point (sat.glsl).
 // Defines: SAT_AXIS 0 = rows, reading linear depth from s_depth and forming the moments; 1 =
 // columns, in place on i_sat. SAT_PAIRS: moment pairs per texel (1: z, z^2; 2: z..z^4).
+#extension GL_ARB_gpu_shader_int64 : enable
+#ifdef GL_ARB_gpu_shader_int64
+#define PN_NATIVE_INT64 1  // 64-bit additions in hardware words where the driver has them
+#endif
 #include "shared/Bindings.h"
 #include "common/sat.glsl"
 
@@ -46,16 +50,14 @@ void main() {
       int pos = base + tid * SAT_PER_THREAD + e;
       bool inside = lineValid && pos < lineLength;
 #if SAT_AXIS == 0
-      double z = inside ? double(texelFetch(s_depth, texelOf(line, pos, view), 0).r) : 0.0LF;
-      z = clamp(z, 0.0LF, 1.0LF);
-      double zk = z;
+      uint z = inside ? depthToFixed(texelFetch(s_depth, texelOf(line, pos, view), 0).r) : 0u;
+      uint zk = z;  // z^(2p+1) in fixed point
 #endif
       for (int p = 0; p < SAT_PAIRS; ++p) {
 #if SAT_AXIS == 0
-        double a = zk;
-        double b = zk * z;
-        zk = b * z;
-        uvec4 v = uvec4(toFixed64(a), toFixed64(b));
+        uint zk1 = fixedMul(zk, z);
+        uvec4 v = uvec4(zk, 0u, zk1, 0u);
+        zk = fixedMul(zk1, z);
 #else
         uvec4 v = inside ? imageLoad(i_sat, texelOf(line, pos, view * SAT_PAIRS + p)) : uvec4(0u);
 #endif

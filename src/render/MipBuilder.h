@@ -2,6 +2,8 @@
 // Mip chains of moment maps (vsm, msm, vssm with source=mip): the driver's box-filter
 // downsampling (glGenerateTextureMipmap; moments average linearly, so a box chain is exactly a
 // chain of region means) and the sampling state that reads them as filtered regions.
+// Anisotropy is done in the shader (common/footprint.glsl: textureFootprint), not by the
+// sampler: identical on every driver.
 #include "gl/Objects.h"
 
 namespace penumbra {
@@ -10,12 +12,8 @@ class MipBuilder {
 public:
   /// Rebuilds levels 1.. of every layer of `texture` from level 0.
   static void build(const gl::Texture& texture);
-  /// Trilinear filtering with up to `maxAnisotropy` (1 = isotropic) taps along the footprint's
-  /// long axis, clamped to what the driver offers (1 without anisotropic filtering). Returns the
-  /// value applied.
-  static float setTrilinearAnisotropic(const gl::Texture& texture, float maxAnisotropy);
-  /// The driver's largest anisotropy (1 when anisotropic filtering is not available).
-  static float maxSupportedAnisotropy();
+  /// Trilinear filtering, isotropic (the sampler's anisotropy set to 1).
+  static void setTrilinear(const gl::Texture& texture);
 };
 
 }  // namespace penumbra

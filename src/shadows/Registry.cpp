@@ -6,7 +6,10 @@
 #include "shadows/filters/PcfFilter.h"
 #include "shadows/filters/PcssFilter.h"
 #include "shadows/filters/SecondDepthFilter.h"
+#include "shadows/filters/MsmFilter.h"
+#include "shadows/filters/MsmSoftFilter.h"
 #include "shadows/filters/VsmFilter.h"
+#include "shadows/filters/VssmFilter.h"
 #include "shadows/projections/CascadedProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
@@ -44,6 +47,9 @@ const std::vector<Entry<Filter>>& filters() {
       {"second-depth", [] { return std::make_unique<SecondDepthFilter>(); }},
       {"sdf", [] { return std::make_unique<SdfFilter>(); }},
       {"vsm", [] { return std::make_unique<VsmFilter>(); }},
+      {"vssm", [] { return std::make_unique<VssmFilter>(); }},
+      {"msm", [] { return std::make_unique<MsmFilter>(); }},
+      {"msm-soft", [] { return std::make_unique<MsmSoftFilter>(); }},
   };
   return list;
 }

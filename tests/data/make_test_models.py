@@ -278,6 +278,8 @@ def bad_files():
     out["scene_bad_model.json"] = scene({"file": "index_out_of_range.gltf", "translate": [1, 0, 0]})
     out["scene_model_with_shape.json"] = scene({"file": "../models/box.obj", "shape": "box"})
     out["scene_model_not_a_model.json"] = scene({"file": "scene_missing_model.json"})
+    out["scene_number_overflow.json"] = scene({"shape": "box", "translate": [0, 0, 0]}).replace("[\n    0,", "[\n    1e999,", 1)
+    out["scene_huge_translate.json"] = scene({"shape": "box", "translate": [1e20, 0, 0]})
     return out
 
 
@@ -295,6 +297,7 @@ def main():
     write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
     write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
+    write("fuzz/scene/number_overflow.json", bad_files()["scene_number_overflow.json"])  # found by fuzzing
     write("fuzz/scene/shapes.json", json.dumps({
         "camera": {"position": [0, 2, 5]}, "lights": [{"type": "spot", "position": [0, 4, 0], "target": [0, 0, 0], "size": 0.1}],
         "objects": [{"shape": "box", "size": [1, 2, 1], "rotateDeg": [0, 30, 0]}, {"shape": "sphere", "radius": 0.5}],

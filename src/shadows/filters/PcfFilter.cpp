@@ -23,7 +23,7 @@ constexpr ParamDesc kParams[] = {
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
      0.0002f, 0.0f, 0.05f, 0.0f},
-    {"pcf.slopeBias", "Slope bias", "slope-scaled offset at the kernel's centre in texels × tan(angle to the light); it grows by one texel of slope per texel of tap distance",
+    {"pcf.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 

@@ -26,14 +26,13 @@ int patternTapCount(int taps) {
 // the receiver (the same biased test as the filter, so the receiver never blocks itself).
 // False when there is none: the receiver is fully lit.
 bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
-  vec2 size = vec2(textureSize(s_depthMap, 0).xy);
   int taps = patternTapCount(u_pcss.config.x);
   float sum = 0.0;
   int blockers = 0;
   for (int i = 0; i < taps; ++i) {
     vec2 offset = patternTap(i, u_pcss.config.x, rotation) * radiusUv;
     float stored = texelFetch(s_depthMap, mapTexel(s_depthMap, r.uv + offset, r.layer), 0).r;
-    if (compareDepth(tapDepth(r, offset, size), stored) == 0.0) {
+    if (compareDepth(tapDepth(r, offset), stored) == 0.0) {
       sum += stored;
       ++blockers;
     }
@@ -52,11 +51,11 @@ float shadowVisibility(SurfacePoint s) {
   vec2 maxRadiusUv = vec2(u_pcss.params.w * texelUv);
   mat2 rotation = pixelRotation(s.pixel);
 
-  vec2 searchUv = min(blockerSearchRadiusUv(view, r.depth, lightSize), maxRadiusUv);
+  vec2 searchUv = min(blockerSearchRadiusUv(view, s.ws, lightSize), maxRadiusUv);
   float blockerDepth;
   if (!averageBlockerDepth(r, searchUv, rotation, blockerDepth)) return 1.0;
 
-  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, r.depth, blockerDepth, lightSize),
+  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize),
                         vec2(u_pcss.params.z * texelUv), maxRadiusUv);
   if (u_pcss.config.z == PN_KERNEL_BOX)
     return percentageCloserBox(s_compareMap, r, radiusUv, boxHalfSideForTaps(u_pcss.config.y));

@@ -1,6 +1,6 @@
 // vsm: variance shadow maps (Donnelly & Lauritzen 2006). The map stores (z, z^2) of linear light
 // depth in 32-bit floats, so it can be filtered like a colour texture: a mip chain sampled
-// trilinearly and anisotropically over the pixel's footprint (widened to vsm.filterTexels) gives
+// trilinearly, with anisotropic taps, over the pixel's footprint (widened to vsm.filterTexels) gives
 // the mean and variance of the depths under it, and Chebyshev's one-tailed bound gives the lit
 // fraction. Exact for one planar occluder over a planar receiver; where occluders at different
 // depths overlap in the footprint the bound is too bright ("light bleeding"), which the optional
@@ -19,7 +19,7 @@ float shadowVisibility(SurfacePoint s) {
   vec2 dx, dy;
   shadowFootprint(view, s, coord.xy, dx, dy);
   widenFootprint(u_vsm.params.z / shadowMapSize(), dx, dy);
-  vec2 moments = textureGrad(s_moments, vec3(coord.xy, float(view)), dx, dy).rg;
+  vec2 moments = textureFootprint(s_moments, vec3(coord.xy, float(view)), dx, dy, u_vsm.mode.x).rg;
   vec2 mv = meanVariance(moments, u_vsm.params.x);
   return reduceLightBleeding(chebyshevUpperBound(mv.x, mv.y, coord.z), u_vsm.params.y);
 }

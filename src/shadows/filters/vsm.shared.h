@@ -7,10 +7,11 @@ PN_GPU_BEGIN
 struct VsmUniforms {
   vec4 params;  // x: minimum variance (linear depth^2), y: light-bleeding reduction amount [0, 1),
                 // z: minimum filter width (texels), w: unused
+  ivec4 mode;   // x: maximum anisotropic taps along the footprint's long axis; yzw: unused
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::VsmUniforms) == 16, "std140 size of VsmUniforms");
+static_assert(sizeof(penumbra::gpu::VsmUniforms) == 32, "std140 size of VsmUniforms");
 #endif

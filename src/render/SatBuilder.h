@@ -1,0 +1,26 @@
+#pragma once
+// Summed-area tables of depth moments (vssm, msm-soft): two compute dispatches, a work-efficient
+// shared-memory scan of every row then of every column (passes/sat_scan.comp.glsl), in exact
+// 64-bit fixed point (common/sat.glsl states the precision strategy). Any box mean of z, z² (and
+// z³, z⁴) is then four corner reads: O(1) whatever the box's size.
+#include "gl/Objects.h"
+
+namespace penumbra {
+
+class ShaderLibrary;
+
+class SatBuilder {
+public:
+  /// Builds the tables of the first `momentCount` (2 or 4) powers of the linear depth found in
+  /// channel r of every layer of `depth` (a 2D array texture: a depth map or a float map).
+  void build(ShaderLibrary& shaders, const gl::Texture& depth, int momentCount);
+  /// RGBA32UI 2D array, layer view·pairs() + k: moments 2k+1, 2k+2 as 64-bit (lo, hi) words.
+  const gl::Texture& table() const { return mTable; }
+  int pairs() const { return mPairs; }
+
+private:
+  gl::Texture mTable;
+  int mPairs = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,26 @@
+#pragma once
+// msm: moment shadow maps — four depth moments (32-bit float or 16-bit quantised), a mip chain,
+// the Hamburger 4MSM lower bound (docs/msm.md).
+#include "render/ShadowMaps.h"
+
+#include <penumbra/Filter.h>
+
+namespace penumbra {
+
+class MsmFilter final : public Filter {
+public:
+  MsmFilter();
+  std::string_view id() const override { return "msm"; }
+  std::string_view description() const override {
+    return "moment shadow maps: 4 moments (float32 or 16-bit quantised) in a mip chain, Hamburger 4MSM bound";
+  }
+  void renderShadowMaps(FrameContext& frame) override;
+  void prefilter(FrameContext& frame) override;
+  void computeVisibility(FrameContext& frame) override;
+  std::vector<DebugImage> debugImages() const override;
+
+private:
+  ShadowMapArray mMaps;
+};
+
+}  // namespace penumbra

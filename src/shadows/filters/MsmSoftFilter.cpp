@@ -1,0 +1,46 @@
+#include "shadows/filters/MsmSoftFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/filters/msm_soft.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+constexpr ParamDesc kParams[] = {
+    {"msm-soft.bias", "Moment bias", "α: the moments are mixed with those of a spread distribution, b' = (1-α) b + α·0.5; keeps the solve stable, lightens shadows by up to α/2",
+     3e-5f, 0.0f, 0.05f, 0.0f},
+    {"msm-soft.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
+     0.0f, 0.0f, 0.05f, 0.0f},
+    {"msm-soft.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
+     1.0f, 0.5f, 16.0f, 0.0f},
+    {"msm-soft.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
+     512.0f, 1.0f, 4096.0f, 0.0f},
+};
+
+constexpr int kMoments = 4;
+
+}  // namespace
+
+MsmSoftFilter::MsmSoftFilter() : Filter(kParams) {}
+
+void MsmSoftFilter::renderShadowMaps(FrameContext& frame) {
+  // Linear depth only: the SAT build forms the four moments itself, in exact fixed point.
+  mMaps.ensure("msm-soft depth", frame.mapSize(), frame.viewCount());
+  frame.renderViews(mMaps, frame.shadowProgram());
+}
+
+void MsmSoftFilter::prefilter(FrameContext& frame) { mSat.build(frame.shaders(), mMaps.depth(), kMoments); }
+
+void MsmSoftFilter::computeVisibility(FrameContext& frame) {
+  gpu::MsmSoftUniforms u{};
+  u.params = glm::vec4(param("msm-soft.bias"), param("msm-soft.depthBias"), param("msm-soft.minRadiusTexels"),
+                       param("msm-soft.maxRadiusTexels"));
+  frame.setFilterBlock(u);
+  mSat.table().bindUnit(PN_TEX_FILTER0);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl"));
+}
+
+std::vector<DebugImage> MsmSoftFilter::debugImages() const { return {{"msm-soft-depth", &mMaps.depth()}}; }
+
+}  // namespace penumbra

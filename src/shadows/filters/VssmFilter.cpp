@@ -1,0 +1,76 @@
+#include "shadows/filters/VssmFilter.h"
+
+#include "render/FrameContext.h"
+#include "render/MipBuilder.h"
+#include "shadows/filters/vssm.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+constexpr std::string_view kSourceNames[] = {"sat", "mip"};
+static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames follows the PN_VSSM_SOURCE_* order");
+
+constexpr ParamDesc kParams[] = {
+    {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)",
+     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames},
+    {"vssm.minVariance", "Min variance", "floor of the variance, in linear depth² units: keeps flat receivers from shadowing themselves",
+     1e-5f, 0.0f, 1e-2f, 0.0f},
+    {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
+     0.0f, 0.0f, 0.95f, 0.0f},
+    {"vssm.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
+     1.0f, 0.5f, 16.0f, 0.0f},
+    {"vssm.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
+     512.0f, 1.0f, 4096.0f, 0.0f},
+    {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
+     4.0f, 1.0f, 16.0f, 1.0f},
+};
+
+}  // namespace
+
+VssmFilter::VssmFilter() : Filter(kParams) {}
+
+bool VssmFilter::fromSat() const { return paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
+
+void VssmFilter::renderShadowMaps(FrameContext& frame) {
+  if (fromSat()) {
+    // Linear depth only: the SAT build forms z and z² itself, in exact fixed point.
+    mMaps.ensure("vssm depth", frame.mapSize(), frame.viewCount());
+    frame.renderViews(mMaps, frame.shadowProgram());
+  } else {
+    constexpr int kFullMipChain = 0;
+    mMaps.ensure("vssm moments", frame.mapSize(), frame.viewCount(), GL_RG32F, kFullMipChain);
+    const ShaderDefines defines = ShaderDefines().set("PN_MOMENT_COUNT", 2).set("PN_MOMENT_SLOPE_VARIANCE");
+    frame.renderViews(mMaps, frame.shadowProgram("passes/moments.frag.glsl", defines), glm::vec4(1.0f));
+  }
+}
+
+void VssmFilter::prefilter(FrameContext& frame) {
+  if (fromSat())
+    mSat.build(frame.shaders(), mMaps.depth(), 2);
+  else
+    MipBuilder::build(mMaps.color());
+}
+
+void VssmFilter::computeVisibility(FrameContext& frame) {
+  gpu::VssmUniforms u{};
+  u.params = glm::vec4(param("vssm.minVariance"), param("vssm.bleedReduction"), param("vssm.minRadiusTexels"),
+                       param("vssm.maxRadiusTexels"));
+  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), 0, 0, 0);
+  frame.setFilterBlock(u);
+  if (fromSat()) {
+    mSat.table().bindUnit(PN_TEX_FILTER0);
+  } else {
+    MipBuilder::setTrilinear(mMaps.color());
+    mMaps.color().bindUnit(PN_TEX_FILTER0);
+  }
+  const ShaderDefines defines = ShaderDefines().set("PN_VSSM_SOURCE", paramInt("vssm.source"));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
+}
+
+std::vector<DebugImage> VssmFilter::debugImages() const {
+  if (fromSat()) return {{"vssm-depth", &mMaps.depth()}};
+  return {{"vssm-moments", &mMaps.color()}};
+}
+
+}  // namespace penumbra

@@ -1,0 +1,29 @@
+#pragma once
+// vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
+// of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
+#include "render/SatBuilder.h"
+#include "render/ShadowMaps.h"
+
+#include <penumbra/Filter.h>
+
+namespace penumbra {
+
+class VssmFilter final : public Filter {
+public:
+  VssmFilter();
+  std::string_view id() const override { return "vssm"; }
+  std::string_view description() const override {
+    return "variance soft shadows: O(1) blocker search + Chebyshev filter from a (z, z^2) SAT or mip chain";
+  }
+  void renderShadowMaps(FrameContext& frame) override;
+  void prefilter(FrameContext& frame) override;
+  void computeVisibility(FrameContext& frame) override;
+  std::vector<DebugImage> debugImages() const override;
+
+private:
+  bool fromSat() const;
+  ShadowMapArray mMaps;
+  SatBuilder mSat;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,16 @@
+#pragma once
+// The msm filter's uniform block, declared once for C++ and GLSL.
+#include "shared/Cpp.h"
+
+PN_GPU_BEGIN
+
+struct MsmUniforms {
+  vec4 params;  // x: moment bias α, y: depth bias (linear depth), z: minimum filter width (texels), w: unused
+  ivec4 mode;   // x: maximum anisotropic taps, y: 1 = moments stored in the 16-bit basis, zw: unused
+};
+
+PN_GPU_END
+
+#ifdef __cplusplus
+static_assert(sizeof(penumbra::gpu::MsmUniforms) == 32, "std140 size of MsmUniforms");
+#endif

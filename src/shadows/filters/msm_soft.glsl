@@ -1,0 +1,50 @@
+// msm-soft: moment soft shadows (after Peters et al. 2016, "Moment Soft Shadow Mapping"). VSSM's
+// O(1) structure with four moments: box means of (z, z², z³, z⁴) from a summed-area table, exact
+// in 64-bit fixed point (common/sat.glsl). (1) Blocker search: over the PCSS search region
+// (common/penumbra.glsl), the three-point distribution with these moments that has a point at the
+// receiver depth t; its points in front of t are the blockers and their weighted mean depth is
+// z_occ (our simplification of the paper's estimate: no z_unocc = t assumption is needed);
+// (2) penumbra width from z_occ by similar triangles; (3) visibility = 1 − the Hamburger 4MSM
+// bound over the penumbra-sized box. Linear light depth per view. Artifacts: far less bleeding
+// than vssm; the bound's slack still lightens the inside of overlapping penumbrae.
+#include "common/moments.glsl"
+#include "common/penumbra.glsl"
+#include "common/sat.glsl"
+#include "common/visibility.glsl"
+#include "shadows/filters/msm_soft.shared.h"
+
+layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u_msmSoft; };
+layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;  // two pair layers per view
+
+// Below this blocker fraction the region holds no blocker worth a penumbra: fully lit.
+const float kMinBlockerFraction = 0.01;
+
+// Biased box means of (z, z², z³, z⁴) over half-size radiusUv around uv in `view`. `exact`: a
+// box with fractional edges (the filter); otherwise edges snap to whole texels (the blocker
+// search: 8 texel fetches instead of 32).
+vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, bool exact) {
+  vec2 size = vec2(shadowMapSize());
+  vec2 lo = (uv - radiusUv) * size, hi = (uv + radiusUv) * size;
+  vec4 b = exact ? vec4(vec2(satBoxMean(s_sat, lo, hi, 2 * view)), vec2(satBoxMean(s_sat, lo, hi, 2 * view + 1)))
+                 : vec4(vec2(satBoxMeanSnapped(s_sat, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(s_sat, lo, hi, 2 * view + 1)));
+  return biasMoments(b, u_msmSoft.params.x);
+}
+
+float shadowVisibility(SurfacePoint s) {
+  int view = selectShadowView(s.ws);
+  vec3 coord = shadowCoord(view, s.ws);
+  if (!insideMap(coord)) return 1.0;
+  float lightSize = u_frame.lightRadiance.w;
+  float t = coord.z - u_msmSoft.params.y;
+  float texelUv = 1.0 / shadowMapSize();
+  vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);
+
+  // (1) Moment-based blocker search.
+  vec2 searchUv = clamp(blockerSearchRadiusUv(view, s.ws, lightSize), minRadiusUv, maxRadiusUv);
+  vec2 blocker = momentBlockerDepth(regionMoments(view, coord.xy, searchUv, false), t);
+  if (blocker.y < kMinBlockerFraction) return 1.0;
+
+  // (2) Penumbra; (3) filtering over it.
+  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blocker.x, lightSize), minRadiusUv, maxRadiusUv);
+  return 1.0 - hamburgerShadowIntensity(regionMoments(view, coord.xy, radiusUv, true), t);
+}

@@ -1,0 +1,65 @@
+// vssm: variance soft shadow maps (Yang et al. 2010). PCSS's three steps with no loop over texels:
+// (1) blocker search: the mean μ and variance σ² of depth over the search region (common/
+// penumbra.glsl) in O(1); Chebyshev gives the unoccluded fraction P ≈ P(z >= t), and the region's
+// mean splits as μ = P·z_unocc + (1 − P)·z_occ with z_unocc assumed = t, the receiver's depth,
+// so z_occ = (μ − P·t) / (1 − P); (2) penumbra width from z_occ by similar triangles, as PCSS;
+// (3) visibility = Chebyshev over the penumbra-sized box. Moments come from a summed-area table
+// of (z, z²) (source=sat: exact boxes) or from the mip chain of vsm (source=mip: trilinear boxes,
+// approximate). Linear light depth per view. Artifacts: vsm's light bleeding; z_unocc = t makes
+// blockers look farther than they are when the region mixes receiver and far geometry.
+#include "common/chebyshev.glsl"
+#include "common/footprint.glsl"
+#include "common/penumbra.glsl"
+#include "common/sat.glsl"
+#include "shadows/filters/vssm.shared.h"
+
+layout(std140, binding = PN_UBO_FILTER) uniform VssmBlock { VssmUniforms u_vssm; };
+// PN_VSSM_SOURCE (a define): where region moments come from.
+#if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
+layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;
+#else
+layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
+#endif
+
+// Above this unoccluded fraction the region has no blocker worth a penumbra: fully lit. It also
+// keeps 1 − P away from 0 in the blocker-depth division.
+const float kUnoccludedLit = 0.99;
+
+// Mean and floored variance of depth over the box of half-size radiusUv around uv in `view`.
+// `exact`: a box with fractional edges (the filter); otherwise edges may snap to whole texels
+// (the blocker search, which only needs a rough blocker depth: 4 texel fetches instead of 16).
+vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, bool exact) {
+#if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
+  vec2 size = vec2(shadowMapSize());
+  vec2 lo = (uv - radiusUv) * size, hi = (uv + radiusUv) * size;
+  vec2 m = satMeanVariance(exact ? satBoxMean(s_sat, lo, hi, view) : satBoxMeanSnapped(s_sat, lo, hi, view));
+  return vec2(m.x, max(m.y, u_vssm.params.x));
+#else
+  // The box as a footprint: trilinear taps at the level whose texels match its short side.
+  vec2 moments = textureFootprint(s_moments, vec3(uv, float(view)), vec2(2.0 * radiusUv.x, 0.0),
+                                  vec2(0.0, 2.0 * radiusUv.y), u_vssm.mode.x).rg;
+  return meanVariance(moments, u_vssm.params.x);
+#endif
+}
+
+float shadowVisibility(SurfacePoint s) {
+  int view = selectShadowView(s.ws);
+  vec3 coord = shadowCoord(view, s.ws);
+  if (!insideMap(coord)) return 1.0;
+  float lightSize = u_frame.lightRadiance.w;
+  float t = coord.z;
+  float texelUv = 1.0 / shadowMapSize();
+  vec2 minRadiusUv = vec2(u_vssm.params.z * texelUv), maxRadiusUv = vec2(u_vssm.params.w * texelUv);
+
+  // (1) Blocker search.
+  vec2 searchUv = clamp(blockerSearchRadiusUv(view, s.ws, lightSize), minRadiusUv, maxRadiusUv);
+  vec2 region = regionMeanVariance(view, coord.xy, searchUv, false);
+  float unoccluded = chebyshevUpperBound(region.x, region.y, t);
+  if (unoccluded > kUnoccludedLit) return 1.0;
+  float blockerDepth = clamp((region.x - unoccluded * t) / (1.0 - unoccluded), 0.0, t);
+
+  // (2) Penumbra; (3) filtering over it.
+  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize), minRadiusUv, maxRadiusUv);
+  vec2 filtered = regionMeanVariance(view, coord.xy, radiusUv, true);
+  return reduceLightBleeding(chebyshevUpperBound(filtered.x, filtered.y, t), u_vssm.params.y);
+}

@@ -1,0 +1,21 @@
+#pragma once
+// The vssm filter's uniform block, declared once for C++ and GLSL.
+#include "shared/Cpp.h"
+
+PN_GPU_BEGIN
+
+struct VssmUniforms {
+  vec4 params;  // x: minimum variance (linear depth^2), y: light-bleeding reduction [0, 1),
+                // z: minimum filter radius (texels), w: maximum search/filter radius (texels)
+  ivec4 mode;   // x: maximum anisotropic taps (source=mip), yzw: unused
+};
+
+PN_GPU_END
+
+// vssm.source, compiled in as PN_VSSM_SOURCE
+#define PN_VSSM_SOURCE_SAT 0
+#define PN_VSSM_SOURCE_MIP 1
+
+#ifdef __cplusplus
+static_assert(sizeof(penumbra::gpu::VssmUniforms) == 32, "std140 size of VssmUniforms");
+#endif
