@@ -32,6 +32,13 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
+std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s) {
+  auto renderer = std::make_unique<Renderer>(context);
+  renderer->setScene(s.scene);
+  renderer->setTechnique(std::move(s.projection), std::move(s.filter));
+  return renderer;
+}
+
 Setup makeSetup(const TechniqueOptions& o) {
   Setup s;
   s.scene = loadScene(o.scene);

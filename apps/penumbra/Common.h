@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace penumbra::gl { class Context; }
+
 namespace penumbra::app {
 
 struct TechniqueOptions {
@@ -35,6 +37,9 @@ struct Setup {
 /// Loads the scene, makes the technique, applies the scene's params then --set (usage errors
 /// for anything unknown or out of range).
 Setup makeSetup(const TechniqueOptions& o);
+
+/// A renderer with the setup's scene and technique (which it takes over from `s`).
+std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

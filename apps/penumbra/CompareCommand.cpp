@@ -94,9 +94,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   commands.push_back({sub, [o] {
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
-    Renderer renderer(context);
-    renderer.setScene(s.scene);
-    renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+    const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
+    Renderer& renderer = *rendererPtr;
     renderer.render(s.render);  // warm-up: the first frame includes shader compilation
     renderer.render(s.render);
     const GBufferData gbuffer = renderer.readGBuffer();

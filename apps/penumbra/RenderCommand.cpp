@@ -26,9 +26,8 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   commands.push_back({sub, [o] {
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
-    Renderer renderer(context);
-    renderer.setScene(s.scene);
-    renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+    const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
+    Renderer& renderer = *rendererPtr;
     renderer.render(s.render);
     const ColorImage color = renderer.readColor();
     writePng(o->out, color.width, color.height, color.rgba);

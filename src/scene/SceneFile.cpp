@@ -56,7 +56,8 @@ public:
     if (!v.is_array() || v.size() != N) fail(key, fmt::format("expected an array of {} numbers", N));
     glm::vec<N, float> r;
     for (int i = 0; i < N; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(key, fmt::format("expected an array of {} numbers", N));
+      // Checked as a float: 1e300 is a finite double but no float.
+      if (!v[i].is_number() || !std::isfinite(v[i].get<float>())) fail(key, fmt::format("expected an array of {} numbers", N));
       r[i] = v[i].get<float>();
     }
     return r;
@@ -145,7 +146,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
   Json j;
   try {
     j = Json::parse(in);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
     throw Error(fmt::format("{}: not valid JSON: {}", file, e.what()));
   }
   Reader top(j, file, "");
@@ -225,6 +226,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     sh.finish();
   }
   top.finish();
+  loaders::checkSceneLimits(s, file);  // totals and world coordinates, as for model files
   s.validate();
   return s;
 }
