@@ -65,6 +65,8 @@ public:
     mPointVisibility = visibility;
     mPointCount = count;
   }
+  /// True in points mode: there is no screen, so per-pixel debug outputs are left alone.
+  bool pointsMode() const { return mPoints != nullptr; }
   /// Runs `program` over a width × height grid in groups of `group`².
   static void dispatch2D(const gl::Program& program, int width, int height, int group);
 

@@ -51,10 +51,15 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   mMaps.depth().bindUnit(PN_TEX_FILTER1);
   if (hardware) mCompare.bind(PN_TEX_FILTER1);
+  mPenumbraDebug.bind(frame);
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER1);
 }
 
-std::vector<DebugImage> PcssFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+std::vector<DebugImage> PcssFilter::debugImages() const {
+  std::vector<DebugImage> out = {{"shadow-map", &mMaps.depth()}};
+  for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
+  return out;
+}
 
 }  // namespace penumbra

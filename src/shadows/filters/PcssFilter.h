@@ -1,6 +1,7 @@
 #pragma once
 // pcss: percentage-closer soft shadows — blocker search, penumbra estimate, PCF (pcss.glsl).
 #include "render/ShadowMaps.h"
+#include "shadows/PenumbraDebugImages.h"
 #include "shadows/filters/PcfFilter.h"
 
 #include <penumbra/Filter.h>
@@ -16,11 +17,13 @@ public:
   }
   void renderShadowMaps(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
+  /// "shadow-map", then "blocker-depth" and "penumbra-width-m" (PenumbraDebugImages.h).
   std::vector<DebugImage> debugImages() const override;
 
 private:
   ShadowMapArray mMaps;
   ComparisonSampler mCompare;
+  PenumbraDebugImages mPenumbraDebug;
 };
 
 }  // namespace penumbra

@@ -64,13 +64,19 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
     MipBuilder::setTrilinear(mMaps.color());
     mMaps.color().bindUnit(PN_TEX_FILTER0);
   }
+  mPenumbraDebug.bind(frame);
   const ShaderDefines defines = ShaderDefines().set("PN_VSSM_SOURCE", paramInt("vssm.source"));
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
-  if (fromSat()) return {{"vssm-depth", &mMaps.depth()}};
-  return {{"vssm-moments", &mMaps.color()}};
+  std::vector<DebugImage> out;
+  if (fromSat())
+    out.push_back({"vssm-depth", &mMaps.depth()});
+  else
+    out.push_back({"vssm-moments", &mMaps.color()});
+  for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
+  return out;
 }
 
 }  // namespace penumbra

@@ -3,6 +3,7 @@
 // of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
 #include "render/SatBuilder.h"
 #include "render/ShadowMaps.h"
+#include "shadows/PenumbraDebugImages.h"
 
 #include <penumbra/Filter.h>
 
@@ -18,12 +19,14 @@ public:
   void renderShadowMaps(FrameContext& frame) override;
   void prefilter(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
+  /// The depth map or moments, then "blocker-depth" and "penumbra-width-m" (PenumbraDebugImages.h).
   std::vector<DebugImage> debugImages() const override;
 
 private:
   bool fromSat() const;
   ShadowMapArray mMaps;
   SatBuilder mSat;
+  PenumbraDebugImages mPenumbraDebug;
 };
 
 }  // namespace penumbra

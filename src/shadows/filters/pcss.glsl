@@ -8,6 +8,7 @@
 // depths get one penumbra; noise from the rotated Poisson taps; cost grows with the taps only.
 #include "common/depth_compare.glsl"
 #include "common/penumbra.glsl"
+#include "common/penumbra_debug.glsl"
 #include "shadows/filters/pcss.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform PcssBlock { PcssUniforms u_pcss; };
@@ -44,7 +45,10 @@ bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) return 1.0;
+  if (!insideMap(coord)) {
+    recordNoBlocker(s);
+    return 1.0;
+  }
   float lightSize = u_frame.lightRadiance.w;
   ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcss.params.x, u_pcss.params.y);
   float texelUv = 1.0 / shadowMapSize();
@@ -53,7 +57,11 @@ float shadowVisibility(SurfacePoint s) {
 
   vec2 searchUv = min(blockerSearchRadiusUv(view, s.ws, lightSize), maxRadiusUv);
   float blockerDepth;
-  if (!averageBlockerDepth(r, searchUv, rotation, blockerDepth)) return 1.0;
+  if (!averageBlockerDepth(r, searchUv, rotation, blockerDepth)) {
+    recordNoBlocker(s);
+    return 1.0;
+  }
+  recordPenumbra(s, view, blockerDepth, lightSize);
 
   vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize),
                         vec2(u_pcss.params.z * texelUv), maxRadiusUv);

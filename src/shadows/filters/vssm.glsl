@@ -10,6 +10,7 @@
 #include "common/chebyshev.glsl"
 #include "common/footprint.glsl"
 #include "common/penumbra.glsl"
+#include "common/penumbra_debug.glsl"
 #include "common/sat.glsl"
 #include "shadows/filters/vssm.shared.h"
 
@@ -45,7 +46,10 @@ vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, bool exact) {
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) return 1.0;
+  if (!insideMap(coord)) {
+    recordNoBlocker(s);
+    return 1.0;
+  }
   float lightSize = u_frame.lightRadiance.w;
   float t = coord.z;
   float texelUv = 1.0 / shadowMapSize();
@@ -55,8 +59,12 @@ float shadowVisibility(SurfacePoint s) {
   vec2 searchUv = clamp(blockerSearchRadiusUv(view, s.ws, lightSize), minRadiusUv, maxRadiusUv);
   vec2 region = regionMeanVariance(view, coord.xy, searchUv, false);
   float unoccluded = chebyshevUpperBound(region.x, region.y, t);
-  if (unoccluded > kUnoccludedLit) return 1.0;
+  if (unoccluded > kUnoccludedLit) {
+    recordNoBlocker(s);
+    return 1.0;
+  }
   float blockerDepth = clamp((region.x - unoccluded * t) / (1.0 - unoccluded), 0.0, t);
+  recordPenumbra(s, view, blockerDepth, lightSize);
 
   // (2) Penumbra; (3) filtering over it.
   vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize), minRadiusUv, maxRadiusUv);
