@@ -1,7 +1,7 @@
 // pcf: percentage-closer filtering (Reeves, Salesin & Cook 1987). Around the receiver's texel,
 // many depth comparisons are made and their 0/1 results averaged, giving a fractional V that
 // anti-aliases the shadow's edge. The kernel is a box grid or a Poisson disk rotated per pixel,
-// of a fixed radius in texels: the edge is equally soft everywhere, so this is not a physical
+// of a fixed radius in texels (of the finest cascade; held in metres across cascades): the edge is equally soft everywhere, so this is not a physical
 // penumbra (pcss sizes the kernel from the light). Linear light depth, spot and sun alike.
 // Artifacts: banding (box) or noise (Poisson) at large radii; a wide kernel on a tilted
 // receiver needs a bias growing with tap distance, which detaches contact shadows a little.
@@ -16,8 +16,14 @@ float shadowVisibility(SurfacePoint s) {
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
   ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcf.params.y, u_pcf.params.z);
+  // The radius is in texels of view 0 (the finest cascade) and held in metres across the other
+  // views, so the blur does not widen at every cascade split (one view: the ratio is 1).
   float radiusTexels = u_pcf.params.x;
   vec2 radiusUv = vec2(radiusTexels / shadowMapSize());
+  if (view != 0) {
+    radiusUv *= shadowMetresPerUv(0, s.ws) / shadowMetresPerUv(view, s.ws);
+    radiusTexels = max(radiusUv.x, radiusUv.y) * shadowMapSize();
+  }
   if (u_pcf.config.x == PN_KERNEL_BOX) return percentageCloserBox(s_shadowMap, r, radiusUv, int(ceil(radiusTexels)));
   return percentageCloserPoisson(s_shadowMap, r, radiusUv, u_pcf.config.y, pixelRotation(s.pixel));
 }
