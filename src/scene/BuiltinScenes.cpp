@@ -107,7 +107,10 @@ Scene makeFence() {
 Scene makeGrazing() {
   Scene s;
   s.name = "grazing";
-  addObject(s, "floor", makePlane(40.0f, 40.0f), kFloorColor);
+  // The plane is the top of a 0.2 m slab: a closed mesh, so second-depth has a second layer to
+  // take the midpoint with (an open plane leaves it only its one-layer fallback).
+  constexpr float kSlabM = 0.2f;
+  addObject(s, "floor", makeBox({40.0f, kSlabM, 40.0f}), kFloorColor, translate({0.0f, -0.5f * kSlabM, 0.0f}));
   addObject(s, "box", makeBox({1.0f, 1.0f, 1.0f}), {0.8f, 0.35f, 0.3f}, translate({0.0f, 0.5f, 0.0f}));
   constexpr float kElevationDeg = 10.0f;  // 80 degrees from the plane's normal
   const float e = glm::radians(kElevationDeg);
@@ -223,7 +226,7 @@ Scene makeBuiltinScene(std::string_view name) {
       return s;
     }
   const std::string known = joinNames(builtinSceneNames());
-  throw usageError(fmt::format("unknown scene '{}' (built-in scenes: {}; or give a .json file)", name, known));
+  throw usageError(fmt::format("unknown scene '{}' (built-in scenes: {}; or give a scene .json file or a .gltf, .glb or .obj model)", name, known));
 }
 
 }  // namespace penumbra
