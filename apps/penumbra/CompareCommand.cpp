@@ -26,32 +26,6 @@
 namespace penumbra::app {
 namespace {
 
-// Signed split-approximation error as colour: grey where the split is exact, red where it is too
-// bright, blue where it is too dark; full colour at `fullScale` (in units of outgoing radiance).
-ColorImage approximationImage(const ReferenceResult& ref) {
-  ColorImage img;
-  img.width = ref.width;
-  img.height = ref.height;
-  const size_t n = static_cast<size_t>(ref.width) * static_cast<size_t>(ref.height);
-  float fullScale = 1e-6f;
-  for (size_t i = 0; i < n; ++i) {
-    const glm::vec3& e = ref.approximationError[i];
-    fullScale = std::max(fullScale, std::abs(e.x + e.y + e.z) / 3.0f);
-  }
-  std::vector<uint8_t> raw(n * 4);
-  constexpr float kGrey = 96.0f;
-  for (size_t i = 0; i < n; ++i) {
-    const glm::vec3& e = ref.approximationError[i];
-    const float s = std::clamp((e.x + e.y + e.z) / 3.0f / fullScale, -1.0f, 1.0f);
-    const float a = std::abs(s);
-    const uint8_t* tint = s > 0 ? kLeakColor : kOverDarkColor;
-    for (int c = 0; c < 3; ++c) raw[i * 4 + static_cast<size_t>(c)] = static_cast<uint8_t>(kGrey * (1 - a) + tint[c] * a);
-    raw[i * 4 + 3] = 255;
-  }
-  img.rgba = flipRows<uint8_t>(raw, img.width, img.height, 4);
-  return img;
-}
-
 // The four images in a 2 × 2 sheet.
 ColorImage sheet(const std::vector<const ColorImage*>& images) {
   const int w = images[0]->width, h = images[0]->height;
@@ -115,7 +89,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
 
     const std::filesystem::path dir(o->out);
     const ColorImage &technique = cmp.technique, &reference = cmp.reference, &heat = cmp.heatmap;
-    const ColorImage approx = approximationImage(ref);
+    // The split model's own error in units of V, on the reference's grey, full colour at
+    // kApproximationFullScaleV (docs/reference.md).
+    constexpr float kApproximationFullScaleV = 0.1f;
+    const ColorImage approx = errorHeatmap(ref.visibility, ref.visibilityCosWeighted, ref.litMask, ref.width, ref.height,
+                                           nullptr, HeatmapOptions{kApproximationFullScaleV});
     const ColorImage all = sheet({&technique, &reference, &heat, &approx});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
@@ -144,6 +122,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["mae"] = m.mae;
       j["leak_pct"] = m.leakPct;
       j["overdark_pct"] = m.overDarkPct;
+      j["umbra_leak_pct"] = m.umbraLeakPct;
       j["penumbra_rmse"] = m.penumbraRmse;
       j["approximation_rmse"] = approximationRmse;
       j["texel_density_median"] = densityStats.median;
@@ -168,10 +147,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n", s.scene.name.c_str(),
                 projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height, s.render.shadowMapSize, s.scene.light().size);
-    std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f\n  over-dark %%     %8.3f\n"
+    std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f  (inside the reference's umbra: %.3f)\n"
+                "  over-dark %%     %8.3f\n"
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
                 "  pixels          %8zu\n",
-                m.rmse, m.mae, m.leakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+                m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
     if (shimmer)

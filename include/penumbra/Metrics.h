@@ -26,9 +26,13 @@ struct VisibilityMetrics {
   double bias = 0.0;          ///< mean (V − V_ref): > 0 = too bright on average
   double leakPct = 0.0;       ///< % of pixels with V − V_ref > kLeakThresholdV
   double overDarkPct = 0.0;   ///< % of pixels with V_ref − V > kLeakThresholdV
+  /// % of pixels that leak inside the reference's umbra (V_ref <= kPenumbraLowV): light where no
+  /// part of the light is visible. Separates light bleeding (variance methods' overlapping
+  /// occluders) from an edge that is merely too sharp or too soft, which leaks at V_ref > 0.
+  double umbraLeakPct = 0.0;
   double penumbraRmse = 0.0;  ///< RMSE over penumbra pixels only (0 when there are none)
   size_t pixels = 0;          ///< pixels in the mask
-  size_t leakPixels = 0, overDarkPixels = 0, penumbraPixels = 0;
+  size_t leakPixels = 0, overDarkPixels = 0, penumbraPixels = 0, umbraLeakPixels = 0;
 };
 
 /// Compares V with V_ref where mask ≠ 0 (ReferenceResult::litMask). An empty mask means every

@@ -24,7 +24,10 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
     sum += delta;
     sumAbs += std::abs(delta);
     sumSquares += delta * delta;
-    if (delta > kLeakThresholdV) ++m.leakPixels;
+    if (delta > kLeakThresholdV) {
+      ++m.leakPixels;
+      if (vRef[i] <= kPenumbraLowV) ++m.umbraLeakPixels;
+    }
     if (-delta > kLeakThresholdV) ++m.overDarkPixels;
     if (vRef[i] > kPenumbraLowV && vRef[i] < kPenumbraHighV) {
       ++m.penumbraPixels;
@@ -38,6 +41,7 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
   m.bias = sum / n;
   m.leakPct = 100.0 * static_cast<double>(m.leakPixels) / n;
   m.overDarkPct = 100.0 * static_cast<double>(m.overDarkPixels) / n;
+  m.umbraLeakPct = 100.0 * static_cast<double>(m.umbraLeakPixels) / n;
   if (m.penumbraPixels > 0) m.penumbraRmse = std::sqrt(penumbraSquares / static_cast<double>(m.penumbraPixels));
   return m;
 }

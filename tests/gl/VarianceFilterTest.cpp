@@ -190,8 +190,8 @@ TEST(VarianceFilters, FenceLeaksAgainstReference) {
     if (ref.visibility.empty()) ref = traceReference(scene, r.gbuffer);
     results.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, ref.litMask));
   }
-  std::printf("fence %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s\n", kW, kH, kMapSize,
-              ref.samplesPerPixel, results[0].second.pixels, "filter", "leak %", "dark %", "RMSE");
+  std::printf("fence %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s %8s\n", kW, kH, kMapSize,
+              ref.samplesPerPixel, results[0].second.pixels, "filter", "leak %", "umbra %", "dark %", "RMSE");
   auto get = [&](const std::string& name) {
     for (const auto& [n, m] : results)
       if (n == name) return m;
@@ -199,7 +199,7 @@ TEST(VarianceFilters, FenceLeaksAgainstReference) {
     return VisibilityMetrics{};
   };
   for (const auto& [name, m] : results)
-    std::printf("  %-16s %8.3f %8.3f %8.4f\n", name.c_str(), m.leakPct, m.overDarkPct, m.rmse);
+    std::printf("  %-16s %8.3f %8.3f %8.3f %8.4f\n", name.c_str(), m.leakPct, m.umbraLeakPct, m.overDarkPct, m.rmse);
   ASSERT_GT(get("vsm").leakPct, 0.0);
   ASSERT_GT(get("vssm sat").leakPct, 0.0);
   // Four moments remove the bleeding: msm-soft keeps at most this share of vssm's leaks

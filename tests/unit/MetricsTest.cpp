@@ -27,6 +27,9 @@ TEST(Metrics, KnownAnswersIncludingLeakAndOverDarkSplit) {
   EXPECT_EQ(m.overDarkPixels, 1u);
   EXPECT_NEAR(m.leakPct, 20.0, 1e-9);
   EXPECT_NEAR(m.overDarkPct, 20.0, 1e-9);
+  // The one leak is at V_ref = 0: inside the umbra.
+  EXPECT_EQ(m.umbraLeakPixels, 1u);
+  EXPECT_NEAR(m.umbraLeakPct, 20.0, 1e-9);
   // Penumbra: V_ref 0.5 and 0.6 only (0 and 1 are outside (0.02, 0.98)).
   EXPECT_EQ(m.penumbraPixels, 2u);
   EXPECT_NEAR(m.penumbraRmse, std::sqrt((0.0025 + 0.0064) / 2.0), 1e-6);
@@ -40,6 +43,16 @@ TEST(Metrics, EmptyMaskMeansEveryPixelAndAllZeroMaskMeansNone) {
   EXPECT_EQ(none.pixels, 0u);
   EXPECT_EQ(none.rmse, 0.0);  // zeros, not NaN
   EXPECT_EQ(none.leakPct, 0.0);
+}
+
+TEST(Metrics, UmbraLeaksAreLeaksWhereTheReferenceIsAtMostPenumbraLow) {
+  // Leaks (ΔV = +0.3) at V_ref 0, 0.02 (umbra, bound included), 0.03 and 0.5 (penumbra).
+  const std::vector<float> ref = {0.0f, 0.02f, 0.03f, 0.5f};
+  const std::vector<float> v = {0.3f, 0.32f, 0.33f, 0.8f};
+  const VisibilityMetrics m = compareVisibility(v, ref, {});
+  EXPECT_EQ(m.leakPixels, 4u);
+  EXPECT_EQ(m.umbraLeakPixels, 2u);
+  EXPECT_NEAR(m.umbraLeakPct, 50.0, 1e-9);
 }
 
 TEST(Metrics, PenumbraBoundsAreStrict) {
