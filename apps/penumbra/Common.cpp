@@ -9,7 +9,7 @@
 namespace penumbra::app {
 
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
-  app.add_option("--scene", o.scene, "built-in scene name or scene .json file (penumbra list shows the names)")
+  app.add_option("--scene", o.scene, "built-in scene name (penumbra list shows them), scene .json file, or model file (.gltf, .glb, .obj)")
       ->capture_default_str();
   app.add_option("--filter", o.filter, "shadow filter id (default: the scene's own, else hard)");
   app.add_option("--projection", o.projection, "light projection id (default: the scene's own, else uniform)");

@@ -50,6 +50,10 @@ struct Object {
   bool castsShadow = true;
 };
 
+/// Largest angular radius of a sun (rad): beyond it the cone of directions is no longer a
+/// "distant light" and the reference's cone sampling degenerates.
+inline constexpr float kMaxSunAngularRadiusRad = 0.5f;
+
 enum class LightType { Directional, Spot };
 
 struct Light {

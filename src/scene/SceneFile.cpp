@@ -129,7 +129,7 @@ Light readLight(Reader& r) {
     l.coneAngleRad = glm::radians(r.number("coneAngleDeg", glm::degrees(l.coneAngleRad), 1.0f, 85.0f));
     l.size = r.number("size", 0.0f, 0.0f, 100.0f);
   } else {
-    l.size = r.number("size", 0.0f, 0.0f, 0.5f);
+    l.size = r.number("size", 0.0f, 0.0f, kMaxSunAngularRadiusRad);
   }
   l.color = r.vec<3>("color", l.color);
   l.intensity = r.number("intensity", l.intensity, 0.0f, 1e6f);

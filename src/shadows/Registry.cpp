@@ -82,6 +82,9 @@ void applyParams(const std::vector<std::pair<std::string, std::string>>& setting
     if (key == "light.size") {
       const float v = parseParamValue(sceneParamDescs()[0], value);
       PN_CHECK(!scene.lights.empty(), "light.size: the scene has no light");
+      if (scene.lights.front().type == LightType::Directional && v > kMaxSunAngularRadiusRad)
+        throw usageError(fmt::format("light.size={}: the light is a sun, whose size is an angular radius in rad, at most {}",
+                                     value, kMaxSunAngularRadiusRad));
       scene.lights.front().size = v;
     } else if (projection.hasParam(key)) {
       projection.setParam(key, std::string_view(value));

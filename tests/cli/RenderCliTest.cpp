@@ -55,6 +55,9 @@ TEST(RenderCli, BadSetIsAUsageError) {
   r = runPenumbra("render --set hard.slopeBias=99");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("out of range"), std::string::npos) << r.err;
+  r = runPenumbra("render --set light.size=5");  // boxes has a sun: its size is an angle, <= 0.5 rad
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("sun"), std::string::npos) << r.err;
   r = runPenumbra("render --size 10by10");
   EXPECT_EQ(r.exitCode, 2);
   r = runPenumbra("render --no-such-option");
@@ -82,7 +85,7 @@ TEST(RenderCli, VisibilityExrAndDump) {
 }
 
 TEST(RenderCli, HelpOnEverySubcommand) {
-  for (const char* sub : {"", "render", "list"}) {
+  for (const char* sub : {"", "render", "compare", "view", "bench", "list"}) {
     const RunResult r = runPenumbra(std::string(sub) + " --help");
     EXPECT_EQ(r.exitCode, 0) << sub;
     EXPECT_NE(r.out.find("--"), std::string::npos) << sub;
