@@ -84,6 +84,20 @@ TEST(RenderCli, VisibilityExrAndDump) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/d/" + f)) << f;
 }
 
+// The distance field's bake reports its time and memory; a second run reads the cache silently.
+TEST(RenderCli, SdfBakePrintsTimeAndMemoryOnce) {
+  const std::string cache = freshDir("sdf-cache");
+  const std::string env = "PENUMBRA_CACHE='" + cache + "'";
+  RunResult r = runPenumbra("render --scene pen --filter sdf --size 64x48 --out a.png", cache, env);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("sdf: baked"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" s "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("MiB"), std::string::npos) << r.err;
+  r = runPenumbra("render --scene pen --filter sdf --size 64x48 --out b.png", cache, env);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("sdf: baked"), std::string::npos) << r.err;
+}
+
 TEST(RenderCli, HelpOnEverySubcommand) {
   for (const char* sub : {"", "render", "compare", "view", "bench", "list"}) {
     const RunResult r = runPenumbra(std::string(sub) + " --help");

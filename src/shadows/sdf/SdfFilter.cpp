@@ -53,6 +53,7 @@ void SdfFilter::renderShadowMaps(FrameContext& frame) {
   if (mHaveField && key == mKey) return;
   sdf::BakeOptions options;
   options.resolution = resolution;
+  options.verbose = true;  // every bake reports its time and memory on stderr; a cache hit is silent
   setField(sdf::loadOrBake(frame.scene(), options));
   mKey = key;
 }
