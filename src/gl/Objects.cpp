@@ -3,6 +3,7 @@
 #include <penumbra/Error.h>
 
 #include <atomic>
+#include <initializer_list>
 #include <fmt/format.h>
 
 namespace penumbra::gl {
@@ -82,6 +83,21 @@ void Texture::bindImage(GLuint unit, GLenum access, int level) const {
 void Texture::read(GLenum format, GLenum type, void* out, size_t bytes, int level) const {
   glGetTextureImage(mId, level, format, type, static_cast<GLsizei>(bytes), out);
 }
+
+// ---- Sampler ----------------------------------------------------------------------------
+Sampler::Sampler(std::string_view name, const SamplerDesc& desc) {
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  adopt(id);
+  label(GL_SAMPLER, id, name);
+  glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(desc.minFilter));
+  glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(desc.magFilter));
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glSamplerParameteri(id, wrap, static_cast<GLint>(desc.wrap));
+  glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, desc.compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+void Sampler::destroy() { glDeleteSamplers(1, &mId); --gLiveObjects; }
 
 // ---- Framebuffer ------------------------------------------------------------------------
 Framebuffer::Framebuffer(std::string_view name) {

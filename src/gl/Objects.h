@@ -87,6 +87,30 @@ private:
   TextureDesc mDesc;
 };
 
+/// Sampling state kept apart from any texture: bound to a unit with glBindSampler, it overrides
+/// the state of whatever texture is bound there, which itself stays as other passes expect.
+struct SamplerDesc {
+  GLenum minFilter = GL_LINEAR;    ///< GL_TEXTURE_MIN_FILTER
+  GLenum magFilter = GL_LINEAR;    ///< GL_TEXTURE_MAG_FILTER
+  GLenum wrap = GL_CLAMP_TO_EDGE;  ///< S, T and R
+  bool compare = false;            ///< hardware depth comparison (sampler*Shadow): lit when ref <= stored
+};
+
+class Sampler final : public Handle {
+public:
+  Sampler() = default;
+  Sampler(std::string_view label, const SamplerDesc& desc);
+  ~Sampler() { reset(); }
+  Sampler(Sampler&&) = default;
+  Sampler& operator=(Sampler&&) = default;
+  void bindUnit(GLuint unit) const { glBindSampler(unit, mId); }
+  /// Back to the bound texture's own sampling state.
+  static void unbindUnit(GLuint unit) { glBindSampler(unit, 0); }
+
+private:
+  void destroy() override;
+};
+
 class Framebuffer final : public Handle {
 public:
   Framebuffer() = default;

@@ -9,6 +9,7 @@
 #include <set>
 #include <span>
 #include <sstream>
+#include <utility>
 
 namespace penumbra {
 namespace detail {
@@ -136,22 +137,38 @@ std::vector<std::string> ShaderLibrary::keys() const {
 
 namespace {
 
-GLuint compileStage(GLenum stage, const std::vector<std::string>& keys, const ShaderDefines& defines,
-                    const SourceReader& read, const std::string& label) {
+// A shader object lives only until its program is linked, so it is not a gl:: wrapper counted by
+// gl::liveObjectCount; this guard deletes it on every path: success, compile or link errors, and
+// exceptions in between.
+class ShaderObject {
+public:
+  explicit ShaderObject(GLenum stage) : mId(glCreateShader(stage)) {}
+  ~ShaderObject() { if (mId) glDeleteShader(mId); }
+  ShaderObject(ShaderObject&& o) noexcept : mId(std::exchange(o.mId, 0)) {}
+  ShaderObject& operator=(ShaderObject&&) = delete;
+  ShaderObject(const ShaderObject&) = delete;
+  ShaderObject& operator=(const ShaderObject&) = delete;
+  GLuint id() const { return mId; }
+
+private:
+  GLuint mId = 0;
+};
+
+ShaderObject compileStage(GLenum stage, const std::vector<std::string>& keys, const ShaderDefines& defines,
+                          const SourceReader& read, const std::string& label) {
   ExpandedSource src = expandIncludes(keys, read);
   const std::string text = "#version 450 core\n" + defines.prelude() + src.text;
-  const GLuint shader = glCreateShader(stage);
+  ShaderObject shader(stage);
   const char* ptr = text.c_str();
-  glShaderSource(shader, 1, &ptr, nullptr);
-  glCompileShader(shader);
+  glShaderSource(shader.id(), 1, &ptr, nullptr);
+  glCompileShader(shader.id());
   GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (!ok) {
     GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
+    glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
     throw Error(fmt::format("shader '{}' failed to compile:\n{}", label, remapShaderLog(log.c_str(), src.files)));
   }
   return shader;
@@ -161,20 +178,15 @@ GLuint compileStage(GLenum stage, const std::vector<std::string>& keys, const Sh
 
 gl::Program ShaderLibrary::build(const ProgramDesc& desc) const {
   const SourceReader read = [this](std::string_view key) { return source(key); };
-  std::vector<GLuint> shaders;
-  try {
-    if (!desc.compute.empty()) shaders.push_back(compileStage(GL_COMPUTE_SHADER, desc.compute, desc.defines, read, desc.label));
-    if (!desc.vertex.empty()) shaders.push_back(compileStage(GL_VERTEX_SHADER, desc.vertex, desc.defines, read, desc.label));
-    if (!desc.fragment.empty()) shaders.push_back(compileStage(GL_FRAGMENT_SHADER, desc.fragment, desc.defines, read, desc.label));
-  } catch (...) {
-    for (GLuint s : shaders) glDeleteShader(s);
-    throw;
-  }
+  std::vector<ShaderObject> shaders;  // deleted when this returns or throws
+  if (!desc.compute.empty()) shaders.push_back(compileStage(GL_COMPUTE_SHADER, desc.compute, desc.defines, read, desc.label));
+  if (!desc.vertex.empty()) shaders.push_back(compileStage(GL_VERTEX_SHADER, desc.vertex, desc.defines, read, desc.label));
+  if (!desc.fragment.empty()) shaders.push_back(compileStage(GL_FRAGMENT_SHADER, desc.fragment, desc.defines, read, desc.label));
   PN_CHECK(!shaders.empty(), fmt::format("program '{}' has no stages", desc.label));
   const GLuint program = glCreateProgram();
-  for (GLuint s : shaders) glAttachShader(program, s);
+  for (const ShaderObject& s : shaders) glAttachShader(program, s.id());
   glLinkProgram(program);
-  for (GLuint s : shaders) { glDetachShader(program, s); glDeleteShader(s); }
+  for (const ShaderObject& s : shaders) glDetachShader(program, s.id());
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {

@@ -55,18 +55,8 @@ std::string displayProblem(const gl::Texture& t) {
 
 DebugDisplay::DebugDisplay(ShaderLibrary& shaders)
     : mShaders(shaders), mBlock("viewer display block", sizeof(gpu::ViewerDisplayUniforms)),
-      mRange("viewer display range", 2 * sizeof(uint32_t)), mVao("viewer fullscreen") {
-  glCreateSamplers(1, &mSampler);
-  glSamplerParameteri(mSampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-  glSamplerParameteri(mSampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glSamplerParameteri(mSampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(mSampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(mSampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(mSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  glObjectLabel(GL_SAMPLER, mSampler, -1, "viewer display sampler");
-}
-
-DebugDisplay::~DebugDisplay() { glDeleteSamplers(1, &mSampler); }
+      mRange("viewer display range", 2 * sizeof(uint32_t)), mVao("viewer fullscreen"),
+      mSampler("viewer display sampler", {.minFilter = GL_NEAREST_MIPMAP_NEAREST, .magFilter = GL_NEAREST}) {}
 
 glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, const glm::ivec4& area) {
   const std::string problem = displayProblem(texture);
@@ -89,7 +79,7 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   mBlock.bindBase(GL_UNIFORM_BUFFER, PN_VIEWER_UBO_DISPLAY);
   mRange.bindBase(GL_SHADER_STORAGE_BUFFER, PN_VIEWER_SSBO_RANGE);
   texture.bindUnit(PN_VIEWER_TEX_SOURCE);
-  glBindSampler(PN_VIEWER_TEX_SOURCE, mSampler);
+  mSampler.bindUnit(PN_VIEWER_TEX_SOURCE);
 
   ShaderDefines defines;
   defines.set("PN_VIEWER_SOURCE", sourceKind(d.target));
@@ -122,7 +112,7 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   glBindVertexArray(mVao.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
-  glBindSampler(PN_VIEWER_TEX_SOURCE, 0);
+  gl::Sampler::unbindUnit(PN_VIEWER_TEX_SOURCE);
   gl::throwIfGlError("the viewer's display pass");
 
   if (!s.autoRange) return {s.lo, s.hi};

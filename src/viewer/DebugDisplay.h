@@ -29,7 +29,6 @@ std::string displayProblem(const gl::Texture& texture);
 class DebugDisplay {
 public:
   explicit DebugDisplay(ShaderLibrary& shaders);
-  ~DebugDisplay();
   DebugDisplay(const DebugDisplay&) = delete;
   DebugDisplay& operator=(const DebugDisplay&) = delete;
 
@@ -42,7 +41,7 @@ private:
   ShaderLibrary& mShaders;
   gl::Buffer mBlock, mRange;
   gl::VertexArray mVao;
-  GLuint mSampler = 0;  // nearest, no depth compare: shows stored values, whatever the texture's own state
+  gl::Sampler mSampler;  // nearest, no depth compare: shows stored values, whatever the texture's own state
 };
 
 /// Reads a region of the default framebuffer's back buffer as an image (row 0 = top).

@@ -29,23 +29,13 @@ constexpr ParamDesc kParams[] = {
 
 }  // namespace
 
-ComparisonSampler::~ComparisonSampler() {
-  if (mId) glDeleteSamplers(1, &mId);
-}
-
 void ComparisonSampler::bind(GLuint unit) {
-  if (!mId) {
-    glCreateSamplers(1, &mId);
-    constexpr std::string_view kLabel = "hardware depth comparison";
-    glObjectLabel(GL_SAMPLER, mId, static_cast<GLsizei>(kLabel.size()), kLabel.data());
-    glSamplerParameteri(mId, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glSamplerParameteri(mId, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    glSamplerParameteri(mId, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(mId, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-      glSamplerParameteri(mId, wrap, GL_CLAMP_TO_EDGE);
+  if (!mSampler) {
+    gl::SamplerDesc desc;
+    desc.compare = true;  // bilinear, clamp to edge: the hardware's 2x2 comparison
+    mSampler = gl::Sampler("hardware depth comparison", desc);
   }
-  glBindSampler(unit, mId);
+  mSampler.bindUnit(unit);
 }
 
 PcfFilter::PcfFilter() : Filter(kParams) {}

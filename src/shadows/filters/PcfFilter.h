@@ -1,5 +1,6 @@
 #pragma once
 // pcf: percentage-closer filtering with a box or Poisson kernel of fixed radius (pcf.glsl).
+#include "gl/Objects.h"
 #include "render/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
@@ -16,18 +17,14 @@ inline constexpr std::string_view kOffOn[] = {"off", "on"};
 /// A GL sampler object that turns on hardware depth comparison (sampler2DArrayShadow: lit when
 /// ref ≤ stored) with bilinear filtering, bound over a depth texture's unit for one dispatch:
 /// the texture's own state (raw depths, nearest) stays as other passes expect. Created on first
-/// use, so filters can be made without a GL context.
+/// use, so filters can be made without a GL context; a gl::Sampler, so gl::liveObjectCount sees it.
 class ComparisonSampler {
 public:
-  ComparisonSampler() = default;
-  ~ComparisonSampler();
-  ComparisonSampler(const ComparisonSampler&) = delete;
-  ComparisonSampler& operator=(const ComparisonSampler&) = delete;
   void bind(GLuint unit);
-  static void unbind(GLuint unit) { glBindSampler(unit, 0); }
+  static void unbind(GLuint unit) { gl::Sampler::unbindUnit(unit); }
 
 private:
-  GLuint mId = 0;
+  gl::Sampler mSampler;
 };
 
 class PcfFilter final : public Filter {
