@@ -1,13 +1,21 @@
-// Summed-area table build (SatBuilder): one dispatch scans every row, a second every column, in
-// place. Each work group scans SAT_LINES lines (rows or columns) with SAT_THREADS threads per line,
-// in chunks of SAT_THREADS · SAT_PER_THREAD elements:
-//   1. each thread loads SAT_PER_THREAD consecutive elements and scans them serially (registers);
-//   2. the threads' totals are scanned in shared memory with the work-efficient up-sweep /
-//      down-sweep (Blelloch) exclusive scan: 2(T - 1) additions for T threads, 2 log2 T barriers;
-//   3. each thread adds its exclusive offset and the running total of earlier chunks and stores.
-// Every element is read once and written once per axis. Sums are 64-bit fixed point (sat.glsl).
-// Defines: SAT_AXIS 0 = rows, reading linear depth from s_depth and forming the moments; 1 =
-// columns, in place on i_sat. SAT_PAIRS: moment pairs per texel (1: z, z^2; 2: z..z^4).
+// Summed-area table build (SatBuilder): a two-level scan over horizontal bands of SAT_BAND rows.
+// S(x, y) = C(x, y0) + B(x, y), where C(x, y0) is the table's value just above the band (the sum
+// of every texel above the band with x' <= x) and B the band's own 2D prefix sum. Three dispatches:
+//   SAT_PASS 0, one thread per column and band: the band's column totals (reads the map once);
+//   SAT_PASS 1, one thread per column: an exclusive scan of those totals down the bands, in place,
+//     so each band gets, per column, the sum of the texels above it (its "top carry");
+//   SAT_PASS 2, one work group per band and view: SAT_THREADS threads, each owning SAT_PER_THREAD
+//     adjacent columns of a chunk of SAT_THREADS * SAT_PER_THREAD columns, walk the band in blocks
+//     of SAT_ROWS rows. Per block: (a) each thread adds the rows to its running column sums
+//     (seeded with the top carry) and scans them serially along the row, keeping only the segment
+//     total; (b) SAT_ROWS threads scan one row's SAT_THREADS segment totals each (exclusive, from
+//     the row's carry out of earlier chunks) in shared memory; (c) each thread re-reads its texels
+//     (cache-resident), repeats (a) from its segment offset and stores S. Everything is linear in
+//     the texel count (work-efficient); 3 barriers per block.
+// Traffic per texel: the map is read by pass 0 and pass 2 (twice there, the second from cache),
+// the table written once (16 B per pair), the carries 4 * 16 B per pair per SAT_BAND texels.
+// Sums are exact 64-bit fixed point (sat.glsl). SAT_PAIRS: moment pairs per texel (1: z, z^2;
+// 2: z..z^4), layer view * SAT_PAIRS + p of i_sat.
 #extension GL_ARB_gpu_shader_int64 : enable
 #ifdef GL_ARB_gpu_shader_int64
 #define PN_NATIVE_INT64 1  // 64-bit additions in hardware words where the driver has them
@@ -15,98 +23,125 @@
 #include "shared/Bindings.h"
 #include "common/sat.glsl"
 
-layout(local_size_x = SAT_LINES, local_size_y = SAT_THREADS) in;
+layout(local_size_x = SAT_THREADS) in;
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_depth;
-layout(binding = PN_IMG_AUX0, rgba32ui) uniform uimage2DArray i_sat;
+layout(binding = PN_IMG_AUX0, rgba32ui) uniform writeonly uimage2DArray i_sat;
+// Per view, band, column and pair: the band's column total (pass 0), then its top carry (pass 1).
+layout(std430, binding = PN_SSBO_AUX) buffer SatCarry { uvec4 b_carry[]; };
 
-shared uvec4 s_scan[SAT_PAIRS][SAT_THREADS][SAT_LINES];
-shared uvec4 s_chunkTotal[SAT_PAIRS][SAT_LINES];
-
-const int kChunk = SAT_THREADS * SAT_PER_THREAD;
-
-ivec3 texelOf(int line, int pos, int layer) {
-  return SAT_AXIS == 0 ? ivec3(pos, line, layer) : ivec3(line, pos, layer);
-}
-
-void main() {
-  ivec2 size = imageSize(i_sat).xy;
-  int l = int(gl_LocalInvocationID.x);
-  int tid = int(gl_LocalInvocationID.y);
-  int line = int(gl_WorkGroupID.x) * SAT_LINES + l;
-  int view = int(gl_WorkGroupID.z);
-  int lineCount = SAT_AXIS == 0 ? size.y : size.x;
-  int lineLength = SAT_AXIS == 0 ? size.x : size.y;
-  bool lineValid = line < lineCount;  // no early return: every thread must reach the barriers
-
-  uvec4 carry[SAT_PAIRS];
-  for (int p = 0; p < SAT_PAIRS; ++p) carry[p] = uvec4(0u);
-
-  for (int base = 0; base < lineLength; base += kChunk) {
-    // 1. Serial inclusive scan of this thread's elements.
-    uvec4 prefix[SAT_PER_THREAD][SAT_PAIRS];
-    uvec4 run[SAT_PAIRS];
-    for (int p = 0; p < SAT_PAIRS; ++p) run[p] = uvec4(0u);
-    for (int e = 0; e < SAT_PER_THREAD; ++e) {
-      int pos = base + tid * SAT_PER_THREAD + e;
-      bool inside = lineValid && pos < lineLength;
-#if SAT_AXIS == 0
-      uint z = inside ? depthToFixed(texelFetch(s_depth, texelOf(line, pos, view), 0).r) : 0u;
-      uint zk = z;  // z^(2p+1) in fixed point
-#endif
-      for (int p = 0; p < SAT_PAIRS; ++p) {
-#if SAT_AXIS == 0
-        uint zk1 = fixedMul(zk, z);
-        uvec4 v = uvec4(zk, 0u, zk1, 0u);
-        zk = fixedMul(zk1, z);
-#else
-        uvec4 v = inside ? imageLoad(i_sat, texelOf(line, pos, view * SAT_PAIRS + p)) : uvec4(0u);
-#endif
-        run[p] = add64x2(run[p], v);
-        prefix[e][p] = run[p];
-      }
-    }
-    for (int p = 0; p < SAT_PAIRS; ++p) s_scan[p][tid][l] = run[p];
-    memoryBarrierShared();
-    barrier();
-
-    // 2. Blelloch exclusive scan of the SAT_THREADS totals: up-sweep builds partial sums in a
-    // balanced tree, down-sweep distributes them back as exclusive prefixes.
-    for (int d = 1; d < SAT_THREADS; d <<= 1) {
-      if (((tid + 1) & (2 * d - 1)) == 0)
-        for (int p = 0; p < SAT_PAIRS; ++p) s_scan[p][tid][l] = add64x2(s_scan[p][tid][l], s_scan[p][tid - d][l]);
-      memoryBarrierShared();
-      barrier();
-    }
-    if (tid == SAT_THREADS - 1) {
-      for (int p = 0; p < SAT_PAIRS; ++p) {
-        s_chunkTotal[p][l] = s_scan[p][tid][l];
-        s_scan[p][tid][l] = uvec4(0u);
-      }
-    }
-    memoryBarrierShared();
-    barrier();
-    for (int d = SAT_THREADS / 2; d >= 1; d >>= 1) {
-      if (((tid + 1) & (2 * d - 1)) == 0) {
-        for (int p = 0; p < SAT_PAIRS; ++p) {
-          uvec4 left = s_scan[p][tid - d][l];
-          s_scan[p][tid - d][l] = s_scan[p][tid][l];
-          s_scan[p][tid][l] = add64x2(s_scan[p][tid][l], left);
-        }
-      }
-      memoryBarrierShared();
-      barrier();
-    }
-
-    // 3. Offsets: earlier chunks (carry) + earlier threads of this chunk.
-    for (int p = 0; p < SAT_PAIRS; ++p) {
-      uvec4 offset = add64x2(carry[p], s_scan[p][tid][l]);
-      for (int e = 0; e < SAT_PER_THREAD; ++e) {
-        int pos = base + tid * SAT_PER_THREAD + e;
-        if (lineValid && pos < lineLength) imageStore(i_sat, texelOf(line, pos, view * SAT_PAIRS + p), add64x2(offset, prefix[e][p]));
-      }
-      carry[p] = add64x2(carry[p], s_chunkTotal[p][l]);
-    }
-    memoryBarrierShared();
-    barrier();  // the next chunk overwrites s_scan and s_chunkTotal
+// The fixed-point moments z^(2p+1), z^(2p+2) of one texel as (lo, hi, lo, hi) words.
+void momentsOf(float depth, out uvec4 v[SAT_PAIRS]) {
+  uint z = depthToFixed(depth), zk = z;
+  for (int p = 0; p < SAT_PAIRS; ++p) {
+    uint zk1 = fixedMul(zk, z);
+    v[p] = uvec4(zk, 0u, zk1, 0u);
+    zk = fixedMul(zk1, z);
   }
 }
+
+int bandCount(ivec2 size) { return (size.y + SAT_BAND - 1) / SAT_BAND; }
+int carryIndex(ivec2 size, int view, int band, int x, int p) {
+  return ((view * bandCount(size) + band) * size.x + x) * SAT_PAIRS + p;
+}
+
+#if SAT_PASS == 0
+void main() {
+  ivec2 size = textureSize(s_depth, 0).xy;
+  int x = int(gl_GlobalInvocationID.x), band = int(gl_WorkGroupID.y), view = int(gl_WorkGroupID.z);
+  if (x >= size.x) return;  // no barriers in this pass
+  uvec4 sum[SAT_PAIRS];
+  for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = uvec4(0u);
+  for (int y = band * SAT_BAND; y < min(band * SAT_BAND + SAT_BAND, size.y); ++y) {
+    uvec4 v[SAT_PAIRS];
+    momentsOf(texelFetch(s_depth, ivec3(x, y, view), 0).r, v);
+    for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = add64x2(sum[p], v[p]);
+  }
+  for (int p = 0; p < SAT_PAIRS; ++p) b_carry[carryIndex(size, view, band, x, p)] = sum[p];
+}
+
+#elif SAT_PASS == 1
+void main() {
+  ivec2 size = textureSize(s_depth, 0).xy;
+  int x = int(gl_GlobalInvocationID.x), view = int(gl_WorkGroupID.z);
+  if (x >= size.x) return;
+  for (int p = 0; p < SAT_PAIRS; ++p) {
+    uvec4 above = uvec4(0u);
+    for (int band = 0; band < bandCount(size); ++band) {
+      int i = carryIndex(size, view, band, x, p);
+      uvec4 total = b_carry[i];
+      b_carry[i] = above;
+      above = add64x2(above, total);
+    }
+  }
+}
+
+#else
+// (b)'s data: per block row, each thread's segment total, then its exclusive offset.
+shared uvec4 s_segment[SAT_PAIRS][SAT_ROWS][SAT_THREADS];
+// Per band row: the row's sum over the chunks already done (columns x' < the chunk's start).
+shared uvec4 s_rowCarry[SAT_PAIRS][SAT_BAND];
+
+void main() {
+  ivec2 size = textureSize(s_depth, 0).xy;
+  int tid = int(gl_LocalInvocationID.x), band = int(gl_WorkGroupID.y), view = int(gl_WorkGroupID.z);
+  int y0 = band * SAT_BAND;
+  for (int i = tid; i < SAT_PAIRS * SAT_BAND; i += SAT_THREADS) s_rowCarry[i / SAT_BAND][i % SAT_BAND] = uvec4(0u);
+  for (int x0 = 0; x0 < size.x; x0 += SAT_THREADS * SAT_PER_THREAD) {
+    int xs = x0 + tid * SAT_PER_THREAD;  // this thread's first column
+    uvec4 column[SAT_PER_THREAD][SAT_PAIRS];  // sum over rows y' <= the current row (whole map)
+    for (int c = 0; c < SAT_PER_THREAD; ++c)
+      for (int p = 0; p < SAT_PAIRS; ++p)
+        column[c][p] = xs + c < size.x ? b_carry[carryIndex(size, view, band, xs + c, p)] : uvec4(0u);
+    for (int r0 = 0; r0 < SAT_BAND; r0 += SAT_ROWS) {
+      // (a) Segment totals of SAT_ROWS rows.
+      uvec4 blockStart[SAT_PER_THREAD][SAT_PAIRS] = column;
+      for (int r = 0; r < SAT_ROWS; ++r) {
+        int y = y0 + r0 + r;
+        uvec4 run[SAT_PAIRS];
+        for (int p = 0; p < SAT_PAIRS; ++p) run[p] = uvec4(0u);
+        for (int c = 0; c < SAT_PER_THREAD; ++c) {
+          uvec4 v[SAT_PAIRS];
+          momentsOf(xs + c < size.x && y < size.y ? texelFetch(s_depth, ivec3(xs + c, y, view), 0).r : 0.0, v);
+          for (int p = 0; p < SAT_PAIRS; ++p) {
+            column[c][p] = add64x2(column[c][p], v[p]);
+            run[p] = add64x2(run[p], column[c][p]);
+          }
+        }
+        for (int p = 0; p < SAT_PAIRS; ++p) s_segment[p][r][tid] = run[p];
+      }
+      barrier();
+      // (b) One thread per row: exclusive scan of the row's segment totals, from its carry.
+      if (tid < SAT_ROWS) {
+        for (int p = 0; p < SAT_PAIRS; ++p) {
+          uvec4 offset = s_rowCarry[p][r0 + tid];
+          for (int t = 0; t < SAT_THREADS; ++t) {
+            uvec4 total = s_segment[p][tid][t];
+            s_segment[p][tid][t] = offset;
+            offset = add64x2(offset, total);
+          }
+          s_rowCarry[p][r0 + tid] = offset;
+        }
+      }
+      barrier();
+      // (c) The same walk from each segment's offset, storing S.
+      column = blockStart;
+      for (int r = 0; r < SAT_ROWS; ++r) {
+        int y = y0 + r0 + r;
+        uvec4 run[SAT_PAIRS];
+        for (int p = 0; p < SAT_PAIRS; ++p) run[p] = s_segment[p][r][tid];
+        for (int c = 0; c < SAT_PER_THREAD; ++c) {
+          bool inside = xs + c < size.x && y < size.y;
+          uvec4 v[SAT_PAIRS];
+          momentsOf(inside ? texelFetch(s_depth, ivec3(xs + c, y, view), 0).r : 0.0, v);
+          for (int p = 0; p < SAT_PAIRS; ++p) {
+            column[c][p] = add64x2(column[c][p], v[p]);
+            run[p] = add64x2(run[p], column[c][p]);
+            if (inside) imageStore(i_sat, ivec3(xs + c, y, view * SAT_PAIRS + p), run[p]);
+          }
+        }
+      }
+      barrier();  // the next block overwrites s_segment
+    }
+  }
+}
+#endif

@@ -10,27 +10,39 @@
 namespace penumbra {
 namespace {
 
-// Work-group shapes (sat_scan.comp.glsl): 8 neighbouring lines per group (adjacent threads read
-// adjacent texels in the column pass), 8 threads per line, 32 texels per thread, so a chunk is
-// 256 texels and the shared-memory scan takes 6 barriers. 64-thread groups; on llvmpipe, which
-// runs a group's threads as 8-wide SIMD coroutines switched at every barrier, one line per
-// group with 64 threads was 10x slower (the lanes then walk one row instead of eight).
+// Work-group shape (sat_scan.comp.glsl). Bands of 32 rows: the carries cost 4 · 16 B per pair
+// per 32 texels (2 B/texel) and a 2048² map still gives 64 groups per view. 64 threads of 4
+// columns (chunks of 256 columns), blocks of 16 rows for one moment pair (8 for two, to stay in
+// the 32 KiB of shared memory GL guarantees): on llvmpipe (8-wide SIMD, a group's lanes switched
+// at each barrier) this measured fastest among threads 32/64, columns 4/8/16, rows 4/8/16, bands
+// 16/32.
 struct ScanShape {
-  int lines, threads, perThread;
+  int band, pairRows, threads, perThread;  // pairRows: block rows · moment pairs
+  constexpr int rows(int pairs) const { return pairRows / pairs; }
+  constexpr int sharedBytes(int pairs) const { return pairs * (rows(pairs) * threads + band) * 16; }
 };
-constexpr ScanShape kScanShape{8, 8, 32};
+constexpr ScanShape kScanShape{32, 16, 64, 4};
+constexpr int kMinSharedBytes = 32768;  // GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's required minimum
+static_assert(kScanShape.band % kScanShape.rows(1) == 0 && kScanShape.band % kScanShape.rows(2) == 0 &&
+              kScanShape.rows(1) <= kScanShape.threads);
+static_assert(kScanShape.sharedBytes(1) <= kMinSharedBytes && kScanShape.sharedBytes(2) <= kMinSharedBytes);
+
+enum ScanPass { kBandTotals = 0, kBandCarries = 1, kBandScan = 2 };
 
 // Fixed-point sums (common/sat.glsl) hold size² · 2^31 in 64 bits.
 constexpr int kMaxSatSide = 65536;
+constexpr size_t kPairBytes = 16;  // two 64-bit sums: one RGBA32UI texel, one uvec4 carry
 
-const gl::Program& scanProgram(ShaderLibrary& shaders, int axis, int pairs, const ScanShape& shape) {
+const gl::Program& scanProgram(ShaderLibrary& shaders, ScanPass pass, int pairs) {
   ProgramDesc d;
-  d.label = fmt::format("sat scan axis {} pairs {}", axis, pairs);
+  d.label = fmt::format("sat scan pass {} pairs {}", static_cast<int>(pass), pairs);
   d.compute = {"passes/sat_scan.comp.glsl"};
-  d.defines.set("SAT_AXIS", axis).set("SAT_PAIRS", pairs).set("SAT_LINES", shape.lines)
-      .set("SAT_THREADS", shape.threads).set("SAT_PER_THREAD", shape.perThread);
+  d.defines.set("SAT_PASS", static_cast<int>(pass)).set("SAT_PAIRS", pairs).set("SAT_BAND", kScanShape.band)
+      .set("SAT_ROWS", kScanShape.rows(pairs)).set("SAT_THREADS", kScanShape.threads).set("SAT_PER_THREAD", kScanShape.perThread);
   return shaders.program(d);
 }
+
+GLuint groups(int n, int per) { return static_cast<GLuint>((n + per - 1) / per); }
 
 }  // namespace
 
@@ -46,16 +58,29 @@ void SatBuilder::build(ShaderLibrary& shaders, const gl::Texture& depth, int mom
   }
   mPairs = pairs;
 
+  const int bands = (h + kScanShape.band - 1) / kScanShape.band;
+  const size_t carryBytes = static_cast<size_t>(views) * static_cast<size_t>(bands) * static_cast<size_t>(w) *
+                            static_cast<size_t>(pairs) * kPairBytes;
+  if (!mCarry || mCarry.size() < carryBytes) mCarry = gl::Buffer("summed-area table band carries", carryBytes);
+
   depth.bindUnit(PN_TEX_FILTER0);
-  mTable.bindImage(PN_IMG_AUX0, GL_READ_WRITE);
-  const gl::Program& rows = scanProgram(shaders, 0, pairs, kScanShape);
-  rows.use();
-  glDispatchCompute(static_cast<GLuint>((h + kScanShape.lines - 1) / kScanShape.lines), 1, static_cast<GLuint>(views));
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  const gl::Program& columns = scanProgram(shaders, 1, pairs, kScanShape);
-  columns.use();
-  glDispatchCompute(static_cast<GLuint>((w + kScanShape.lines - 1) / kScanShape.lines), 1, static_cast<GLuint>(views));
+  mTable.bindImage(PN_IMG_AUX0, GL_WRITE_ONLY);
+  mCarry.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
+  scanProgram(shaders, kBandTotals, pairs).use();
+  glDispatchCompute(groups(w, kScanShape.threads), static_cast<GLuint>(bands), static_cast<GLuint>(views));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  scanProgram(shaders, kBandCarries, pairs).use();
+  glDispatchCompute(groups(w, kScanShape.threads), 1, static_cast<GLuint>(views));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  scanProgram(shaders, kBandScan, pairs).use();
+  glDispatchCompute(1, static_cast<GLuint>(bands), static_cast<GLuint>(views));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+double SatBuilder::trafficBytesPerTexel(int momentCount, int height) {
+  const int bands = (height + kScanShape.band - 1) / kScanShape.band;
+  const double pairBytes = static_cast<double>(momentCount / 2) * static_cast<double>(kPairBytes);
+  return 2.0 * sizeof(float) + pairBytes + 4.0 * pairBytes * bands / height;
 }
 
 }  // namespace penumbra
