@@ -3,6 +3,8 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
+
 namespace penumbra {
 namespace {
 
@@ -92,7 +94,9 @@ Mesh makeSphere(float radius, int slices, int stacks) {
   std::vector<glm::vec2> nrm;
   for (int i = 0; i <= stacks; ++i) {
     const float phi = glm::pi<float>() * (1.0f - static_cast<float>(i) / static_cast<float>(stacks));  // from the bottom
-    const float r = std::sin(phi), y = std::cos(phi);
+    // sin(pi) is -8.7e-8 in float: clamped, the bottom pole is one point instead of a tiny
+    // mirrored ring whose sliver triangles wind clockwise.
+    const float r = std::max(0.0f, std::sin(phi)), y = std::cos(phi);
     pos.push_back({radius * r, radius * y, static_cast<float>(i) / static_cast<float>(stacks), 0});
     nrm.push_back({r, y});
   }

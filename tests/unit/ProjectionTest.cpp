@@ -287,28 +287,54 @@ std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint
   return out;
 }
 
-// Every caster-triangle hit between each receiver sample and the light must lie inside the view
-// that the receiver is looked up in (csm: its cascade and, in the blend band, the next one).
-void expectCastersInsideClip(const Scene& scene, const std::string& projection) {
-  auto p = makeProjection(projection);
-  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+// World-space triangles (three points each) of the scene's shadow casters.
+std::vector<glm::vec3> casterTriangles(const Scene& scene) {
   std::vector<glm::vec3> tri;
   for (const Object& o : scene.objects) {
     if (!o.castsShadow) continue;
     const Mesh& m = scene.meshes[o.mesh];
     for (uint32_t i : m.indices) tri.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.vertices[i].position, 1.0f)));
   }
-  const Light& light = scene.light();
+  return tri;
+}
+
+// Every point where a caster triangle crosses the segment from receiver r to the light (the
+// points that can shadow r; Möller–Trumbore, every hit).
+std::vector<glm::vec3> occluderHits(const std::vector<glm::vec3>& tri, const Light& light, const glm::vec3& r) {
+  glm::vec3 dir = -glm::normalize(light.direction);
+  float tMax = 1e30f;
+  if (light.type == LightType::Spot) {
+    tMax = glm::length(light.position - r);
+    dir = (light.position - r) / tMax;
+  }
+  std::vector<glm::vec3> hits;
+  for (size_t i = 0; i + 2 < tri.size(); i += 3) {
+    const glm::vec3 e1 = tri[i + 1] - tri[i], e2 = tri[i + 2] - tri[i], pv = glm::cross(dir, e2);
+    const float det = glm::dot(e1, pv);
+    if (std::abs(det) < 1e-12f) continue;
+    const glm::vec3 s = r - tri[i];
+    const float u = glm::dot(s, pv) / det;
+    if (u < 0.0f || u > 1.0f) continue;
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(dir, q) / det;
+    if (v < 0.0f || u + v > 1.0f) continue;
+    const float t = glm::dot(e2, q) / det;
+    if (t <= 1e-4f || t >= tMax) continue;
+    hits.push_back(r + dir * t);
+  }
+  return hits;
+}
+
+// Every caster-triangle hit between each receiver sample and the light must lie inside the view
+// that the receiver is looked up in (csm: its cascade and, in the blend band, the next one).
+void expectCastersInsideClip(const Scene& scene, const std::string& projection) {
+  auto p = makeProjection(projection);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const std::vector<glm::vec3> tri = casterTriangles(scene);
   const glm::mat4 view = scene.camera.viewFromWorld();
   int hits = 0, outside = 0;
   std::string first;
   for (const glm::vec3& r : visibleSurfaceSamples(scene, 1000, 5)) {
-    glm::vec3 dir = -glm::normalize(light.direction);
-    float tMax = 1e30f;
-    if (light.type == LightType::Spot) {
-      tMax = glm::length(light.position - r);
-      dir = (light.position - r) / tMax;
-    }
     const float depth = -(view * glm::vec4(r, 1.0f)).z;
     std::vector<size_t> views;
     for (size_t i = 0; i < f.views.size(); ++i) {
@@ -316,21 +342,10 @@ void expectCastersInsideClip(const Scene& scene, const std::string& projection) 
       const float b = i + 1 == f.views.size() ? 1e30f : f.views[i].splitFarM;
       if (depth >= a && depth <= b) views.push_back(i);
     }
-    for (size_t i = 0; i + 2 < tri.size(); i += 3) {  // Möller–Trumbore, every hit
-      const glm::vec3 e1 = tri[i + 1] - tri[i], e2 = tri[i + 2] - tri[i], pv = glm::cross(dir, e2);
-      const float det = glm::dot(e1, pv);
-      if (std::abs(det) < 1e-12f) continue;
-      const glm::vec3 s = r - tri[i];
-      const float u = glm::dot(s, pv) / det;
-      if (u < 0.0f || u > 1.0f) continue;
-      const glm::vec3 q = glm::cross(s, e1);
-      const float v = glm::dot(dir, q) / det;
-      if (v < 0.0f || u + v > 1.0f) continue;
-      const float t = glm::dot(e2, q) / det;
-      if (t <= 1e-4f || t >= tMax) continue;
+    for (const glm::vec3& hit : occluderHits(tri, scene.light(), r)) {
       ++hits;
       for (size_t vi : views) {
-        const ClipCheck c = insideClip(f.views[vi], r + dir * t);
+        const ClipCheck c = insideClip(f.views[vi], hit);
         if (!c.inside && outside++ == 0) first = "view " + std::to_string(vi) + ": " + c.what;
       }
     }
@@ -371,4 +386,84 @@ TEST(Projection, PsmFallsBackWhenTheWarpDegenerates) {
   ASSERT_EQ(f.views.size(), 1u);
   EXPECT_FALSE(f.views[0].warped);
   expectFrustumInsideClip(scene, "psm", "boxes, spot inside the view");
+}
+
+namespace {
+
+// What a single light view must hold, measured in that view's light space from the scene
+// itself: the visible receivers (surface samples inside the camera frustum) and every caster
+// point between one of them and the light.
+struct NeededFit {
+  glm::vec2 extent{0.0f};  ///< as ShadowView::extent: metres (ortho) or 2·tan(half angle) (perspective)
+  float nearM = 1e30f, farM = 0.0f;
+};
+
+NeededFit measureNeededFit(const Scene& scene, const ShadowView& v) {
+  const std::vector<glm::vec3> tri = casterTriangles(scene);
+  NeededFit n;
+  Aabb xy;
+  float widestTan = 0.0f;
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, 4000, 17)) {
+    const glm::vec3 ls = glm::vec3(v.viewFromWorld * glm::vec4(r, 1.0f));
+    xy.extend(ls);
+    const float tanR = std::max(std::abs(ls.x), std::abs(ls.y)) / -ls.z;
+    if (v.perspective && !(ls.z < 0.0f && tanR <= std::tan(scene.light().coneAngleRad))) continue;  // unlit: no shadow needed
+    widestTan = std::max(widestTan, std::max(std::abs(ls.x), std::abs(ls.y)) / -ls.z);
+    n.nearM = std::min(n.nearM, -ls.z);
+    n.farM = std::max(n.farM, -ls.z);
+    for (const glm::vec3& hit : occluderHits(tri, scene.light(), r))
+      n.nearM = std::min(n.nearM, -(v.viewFromWorld * glm::vec4(hit, 1.0f)).z);
+  }
+  n.extent = v.perspective ? glm::vec2(2.0f * widestTan) : glm::vec2(xy.size());
+  return n;
+}
+
+// A small box and ball on a 60 m ground, seen from close by: a fit to the whole world would be
+// tens of times too large.
+Scene smallCornerOfALargeWorld() {
+  Scene s;
+  s.name = "custom: small corner of a large world";
+  addObject(s, "ground", makePlane(60.0f, 60.0f), {0.6f, 0.6f, 0.6f});
+  addObject(s, "box", makeBox({0.6f, 0.6f, 0.6f}), {0.8f, 0.3f, 0.3f}, glm::translate(glm::mat4(1.0f), {-8.0f, 0.3f, -5.0f}));
+  addObject(s, "ball", makeSphere(0.3f), {0.3f, 0.3f, 0.8f}, glm::translate(glm::mat4(1.0f), {-7.0f, 0.3f, -5.5f}));
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+  s.lights = {sun};
+  s.camera.position = {-7.0f, 4.0f, -3.0f};
+  s.camera.target = {-7.5f, 0.3f, -5.2f};
+  return s;
+}
+
+}  // namespace
+
+// "Tight": the uniform fit is not much larger than what the scene itself says it must hold (the
+// visible receivers and the caster points between them and the light, sampled). The slack covers
+// object boxes against their surfaces, the margin texels and sampling; a fit to the whole scene
+// (or, before the fit clipped boxes to the frustum itself, to the frustum's bounding box) fails.
+TEST(Projection, UniformFitIsTight) {
+  constexpr float kExtentSlack = 1.10f;  // ortho metres or spot 2·tan(half angle), per axis
+  constexpr float kDepthSlack = 1.40f;   // far − near; a spot's far comes from box corners
+  std::vector<Scene> scenes = {makeBuiltinScene("boxes"), makeBuiltinScene("grazing"), makeBuiltinScene("fence"),
+                               makeBuiltinScene("pen"), smallCornerOfALargeWorld()};
+  for (const Scene& scene : scenes) {
+    auto p = makeProjection("uniform");
+    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize).views.at(0);
+    const NeededFit need = measureNeededFit(scene, v);
+    ASSERT_GT(need.farM, need.nearM) << scene.name;
+    const glm::vec2 extentRatio = v.extent / need.extent;
+    const float depthRatio = (v.farM - v.nearM) / (need.farM - need.nearM);
+    std::printf("%-38s extent %.3f x %.3f / needed %.3f x %.3f = %.3f x %.3f; depth [%.3f, %.3f] / needed [%.3f, %.3f] = %.3f\n",
+                scene.name.c_str(), v.extent.x, v.extent.y, need.extent.x, need.extent.y, extentRatio.x, extentRatio.y,
+                v.nearM, v.farM, need.nearM, need.farM, depthRatio);
+    EXPECT_LE(extentRatio.x, kExtentSlack) << scene.name;
+    EXPECT_LE(extentRatio.y, kExtentSlack) << scene.name;
+    EXPECT_LE(depthRatio, kDepthSlack) << scene.name;
+    // The measure can fail: a frustum around the whole scene would exceed one of the slacks.
+    const Aabb world = scene.bounds().transformed(v.viewFromWorld);
+    const float worldDepthRatio = world.size().z / (need.farM - need.nearM);
+    const glm::vec2 worldExtentRatio = v.perspective ? glm::vec2(0.0f) : glm::vec2(world.size()) / need.extent;
+    EXPECT_TRUE(worldDepthRatio > kDepthSlack || std::max(worldExtentRatio.x, worldExtentRatio.y) > kExtentSlack)
+        << scene.name << ": the whole scene is no larger than the fit; pick a scene where tightness matters";
+  }
 }

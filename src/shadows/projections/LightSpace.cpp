@@ -46,22 +46,6 @@ glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float fa
   return plane;
 }
 
-Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
-                                  const Scene& scene) {
-  Aabb frustumWs;
-  for (const glm::vec3& c : frustumCorners(camera, aspect, camera.nearM, shadowFarDistance(camera, scene))) frustumWs.extend(c);
-  Aabb out;
-  for (const Aabb& b : objectBounds(scene)) {
-    Aabb clipped;
-    clipped.lo = glm::max(b.lo, frustumWs.lo);
-    clipped.hi = glm::min(b.hi, frustumWs.hi);
-    if (clipped.empty()) continue;
-    out.extend(clipped.transformed(lightFromWorld));
-  }
-  return out;
-}
-
-
 // ---- Convex bodies -------------------------------------------------------------------------
 
 namespace {
@@ -83,6 +67,39 @@ std::vector<HalfSpace> pyramidInView(double tx, double ty, double nearM, double 
 }
 
 }  // namespace
+
+Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
+                                  const Scene& scene) {
+  // Each object's box clipped to the camera frustum itself (not to the frustum's bounding box,
+  // which for a camera looking down on a large ground covers most of the ground).
+  const std::vector<HalfSpace> frustum = frustumHalfSpaces(camera, aspect, camera.nearM, shadowFarDistance(camera, scene));
+  Aabb out;
+  for (const Aabb& b : objectBounds(scene)) {
+    for (const glm::vec3& p : clipBoxToConvex(b, frustum)) out.extend(glm::vec3(lightFromWorld * glm::vec4(p, 1.0f)));
+  }
+  return out;
+}
+
+std::vector<glm::vec3> clipBoxToConvex(const Aabb& box, std::span<const HalfSpace> convex) {
+  if (box.empty()) return {};
+  // A flat box (a plane) has no volume for convexVertices: give it a millimetre of thickness.
+  constexpr float kFlatPadM = 1e-3f;
+  Aabb padded = box;
+  padded.lo -= glm::vec3(kFlatPadM);
+  padded.hi += glm::vec3(kFlatPadM);
+  std::vector<HalfSpace> hs(convex.begin(), convex.end());
+  const std::vector<HalfSpace> sides = boxHalfSpaces(padded);
+  hs.insert(hs.end(), sides.begin(), sides.end());
+  return convexVertices(hs);
+}
+
+std::vector<HalfSpace> lightRectHalfSpaces(const glm::mat4& lightFromWorld, const glm::vec2& lo, const glm::vec2& hi) {
+  return toWorld({{{1, 0, 0}, -lo.x}, {{-1, 0, 0}, hi.x}, {{0, 1, 0}, -lo.y}, {{0, -1, 0}, hi.y}}, lightFromWorld);
+}
+
+std::vector<HalfSpace> lightPyramidHalfSpaces(const glm::mat4& lightFromWorld, float tanHalf, float nearM, float farM) {
+  return toWorld(pyramidInView(tanHalf, tanHalf, nearM, farM), lightFromWorld);
+}
 
 std::vector<HalfSpace> frustumHalfSpaces(const Camera& camera, float aspect, float nearM, float farM) {
   const double ty = std::tan(0.5 * static_cast<double>(camera.fovYRad)), tx = ty * static_cast<double>(aspect);

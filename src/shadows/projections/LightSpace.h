@@ -26,7 +26,7 @@ std::vector<Aabb> objectBounds(const Scene& scene);
 glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float farM);
 
 /// Bounds in light view space of the receivers the camera can see: each object's box clipped to
-/// the camera frustum's box (both in light space). Empty if nothing is visible.
+/// the camera frustum (between its near plane and shadowFarDistance). Empty if nothing is visible.
 Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
                                   const Scene& scene);
 
@@ -50,6 +50,18 @@ std::vector<HalfSpace> spotHalfSpaces(const Light& light, float nearM);
 /// Vertices of the bounded convex polyhedron where all half-spaces hold (every triple of planes
 /// meeting at a point inside the rest). Empty when the intersection is empty or degenerate.
 std::vector<glm::vec3> convexVertices(std::span<const HalfSpace> halfSpaces);
+
+/// Vertices of `box` (world, padded by a millimetre so flat boxes keep a volume) ∩ the convex
+/// region `convex`; empty when they do not meet.
+std::vector<glm::vec3> clipBoxToConvex(const Aabb& box, std::span<const HalfSpace> convex);
+
+/// The prism lo.x <= x <= hi.x, lo.y <= y <= hi.y of a light view space (unbounded along the
+/// light's axis), as 4 world half-spaces: what an orthographic map of that rectangle covers.
+std::vector<HalfSpace> lightRectHalfSpaces(const glm::mat4& lightFromWorld, const glm::vec2& lo, const glm::vec2& hi);
+
+/// The square pyramid |x|, |y| <= tanHalf·depth, nearM <= depth <= farM of a perspective light
+/// view (depth = -z), as 6 world half-spaces.
+std::vector<HalfSpace> lightPyramidHalfSpaces(const glm::mat4& lightFromWorld, float tanHalf, float nearM, float farM);
 
 /// The region whose receivers can show in the image between camera depths nearM and farM: the
 /// camera frustum ∩ the scene's bounds (∩ the spot pyramid for a spot light), as the vertices of

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace penumbra {
 namespace {
@@ -17,16 +18,17 @@ constexpr float kMinNearM = 0.01f;          // a spot map's nearest near plane
 constexpr float kMinNearFractionOfFar = 1e-3f;
 constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
 
-// Depth range (distance along the light axis, metres) of casters whose light-space box overlaps
-// the receivers' xy rectangle (orthographic) or angular footprint (perspective, via `overlaps`).
-template <class Overlaps>
-float nearestCasterDistance(const Scene& scene, const glm::mat4& lightFromWorld, float fallback, Overlaps overlaps) {
+// Distance along the light axis (metres) of the nearest point of any caster's box inside
+// `region` (the part of the light's view that holds the receivers' shadows): a caster's whole
+// box, e.g. a large ground's, would reach far beyond it. `fallback` if no caster is inside.
+float nearestCasterDistance(const Scene& scene, const glm::mat4& lightFromWorld, float fallback,
+                            std::span<const HalfSpace> region) {
   float nearest = fallback;
   const std::vector<Aabb> bounds = objectBounds(scene);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     if (!scene.objects[i].castsShadow) continue;
-    const Aabb ls = bounds[i].transformed(lightFromWorld);
-    if (overlaps(ls)) nearest = std::min(nearest, -ls.hi.z);
+    for (const glm::vec3& p : clipBoxToConvex(bounds[i], region))
+      nearest = std::min(nearest, -(lightFromWorld * glm::vec4(p, 1.0f)).z);
   }
   return nearest;
 }
@@ -51,9 +53,8 @@ LightFrusta UniformProjection::computeFrusta(const Camera& camera, float aspect,
     const glm::vec2 pad = size * marginFraction;
     const glm::vec2 lo = glm::vec2(recv.lo) - pad, hi = glm::vec2(recv.hi) + pad;
     const float farM = -recv.lo.z;
-    float nearM = nearestCasterDistance(scene, v.viewFromWorld, -recv.hi.z, [&](const Aabb& ls) {
-      return ls.hi.x >= lo.x && ls.lo.x <= hi.x && ls.hi.y >= lo.y && ls.lo.y <= hi.y;
-    });
+    // Casters count only inside the map's prism: their part that can shadow the receivers.
+    float nearM = nearestCasterDistance(scene, v.viewFromWorld, -recv.hi.z, lightRectHalfSpaces(v.viewFromWorld, lo, hi));
     const float pad_z = (farM - nearM) * kDepthPaddingFraction + 1e-4f;
     nearM -= pad_z;
     v.nearM = nearM;
@@ -81,12 +82,9 @@ LightFrusta UniformProjection::computeFrusta(const Camera& camera, float aspect,
     constexpr float kMaxHalfAngleRad = 1.5f;  // ~86 degrees: beyond, the map's texels degenerate
     halfAngle = std::min(halfAngle * (1.0f + 2.0f * marginFraction), kMaxHalfAngleRad);
     const float tanHalf = std::tan(halfAngle);
-    float nearM = nearestCasterDistance(scene, v.viewFromWorld, farM, [&](const Aabb& ls) {
-      // Overlap with the pyramid: conservative test against the box's nearest depth.
-      const float d = std::max(-ls.hi.z, kMinNearM);
-      const float reach = tanHalf * std::max(-ls.lo.z, d);
-      return ls.lo.z < -kMinNearM && ls.hi.x >= -reach && ls.lo.x <= reach && ls.hi.y >= -reach && ls.lo.y <= reach && d <= farM;
-    });
+    // The nearest point of any caster's box inside the light's pyramid up to the receivers.
+    float nearM = nearestCasterDistance(scene, v.viewFromWorld, farM,
+                                        lightPyramidHalfSpaces(v.viewFromWorld, tanHalf, kMinNearM, farM));
     nearM = std::max({nearM * (1.0f - kDepthPaddingFraction), kMinNearM, farM * kMinNearFractionOfFar});
     v.nearM = nearM;
     v.farM = farM * (1.0f + kDepthPaddingFraction);
