@@ -43,9 +43,14 @@ std::string glString(GLenum name) {
 void throwIfGlError(const char* where) {
   std::string pending;
   pending.swap(tPendingError);
-  if (pending.empty()) {
+  // The callback does not clear GL's error flags: drain them all, or the next check would
+  // report this error again. GL keeps at most one flag per error code (8 codes in 4.5); the
+  // bound also stops a lost context that keeps answering GL_CONTEXT_LOST.
+  constexpr int kMaxErrorFlags = 8;
+  for (int i = 0; i < kMaxErrorFlags; ++i) {
     const GLenum e = glGetError();
-    if (e != GL_NO_ERROR) pending = fmt::format("glGetError 0x{:04x}", e);
+    if (e == GL_NO_ERROR) break;
+    if (pending.empty()) pending = fmt::format("glGetError 0x{:04x}", e);
   }
   if (!pending.empty()) throw Error(fmt::format("OpenGL error in {}: {}", where, pending));
 }
@@ -89,16 +94,16 @@ bool hasExtension(const char* list, const char* name) {
   return false;
 }
 
-// Tries to make a 4.5 core context current on `display`; returns it or EGL_NO_CONTEXT with a
-// reason appended to `why`.
-EGLContext tryCreate(EGLDisplay display, const std::string& name, std::string& why) {
+// Tries to make a 4.5 core context current on `display`; returns it, or EGL_NO_CONTEXT with
+// the reason recorded in `attempts` under `name`.
+EGLContext tryCreate(EGLDisplay display, const std::string& name, std::vector<PlatformAttempt>& attempts) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(display, &major, &minor)) {
-    why += fmt::format("; {}: eglInitialize failed (0x{:x})", name, eglGetError());
+    attempts.push_back({name, fmt::format("eglInitialize failed (0x{:x})", eglGetError())});
     return EGL_NO_CONTEXT;
   }
   if (!eglBindAPI(EGL_OPENGL_API)) {
-    why += fmt::format("; {}: no desktop OpenGL API", name);
+    attempts.push_back({name, "no desktop OpenGL API"});
     eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
@@ -108,7 +113,7 @@ EGLContext tryCreate(EGLDisplay display, const std::string& name, std::string& w
     const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
     EGLint count = 0;
     if (!eglChooseConfig(display, attribs, &config, 1, &count) || count == 0) {
-      why += fmt::format("; {}: no OpenGL-renderable config", name);
+      attempts.push_back({name, "no OpenGL-renderable config"});
       eglTerminate(display);
       return EGL_NO_CONTEXT;
     }
@@ -118,12 +123,12 @@ EGLContext tryCreate(EGLDisplay display, const std::string& name, std::string& w
                                    EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
   if (context == EGL_NO_CONTEXT) {
-    why += fmt::format("; {}: no OpenGL 4.5 core context (0x{:x})", name, eglGetError());
+    attempts.push_back({name, fmt::format("no OpenGL 4.5 core context (0x{:x})", eglGetError())});
     eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-    why += fmt::format("; {}: eglMakeCurrent without a surface failed (0x{:x})", name, eglGetError());
+    attempts.push_back({name, fmt::format("eglMakeCurrent without a surface failed (0x{:x})", eglGetError())});
     eglDestroyContext(display, context);
     eglTerminate(display);
     return EGL_NO_CONTEXT;
@@ -133,42 +138,67 @@ EGLContext tryCreate(EGLDisplay display, const std::string& name, std::string& w
 
 }  // namespace
 
+std::string headlessContextError(const std::vector<PlatformAttempt>& attempts) {
+  std::string tried;
+  for (const char* platform : kHeadlessPlatforms) {
+    // Attempts under this platform's name, or a numbered one of it ("EGL device 0").
+    std::string reasons;
+    for (const PlatformAttempt& a : attempts) {
+      if (a.platform.rfind(platform, 0) != 0) continue;
+      if (!reasons.empty()) reasons += "; ";
+      reasons += a.platform == platform ? a.why : fmt::format("#{}: {}", a.platform.substr(std::strlen(platform) + 1), a.why);
+    }
+    if (!tried.empty()) tried += ", ";
+    tried += fmt::format("{} ({})", platform, reasons.empty() ? "not tried" : reasons);
+  }
+  return fmt::format("could not create a headless OpenGL 4.5 core context; tried {}; {}", tried, kHowToGetLlvmpipe);
+}
+
 HeadlessContext::HeadlessContext(const ContextOptions& options) : mImpl(std::make_unique<Impl>()) {
-  std::string why;
+  std::vector<PlatformAttempt> attempts;
   const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!clientExts) {
     throw Error(fmt::format("no EGL library could be loaded; {}", kHowToGetLlvmpipe));
   }
   // 1. Mesa's surfaceless platform (llvmpipe, or Mesa GPU drivers).
+  const std::string surfaceless = kHeadlessPlatforms[0];
   if (hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) {
-      EGLContext c = tryCreate(d, "EGL surfaceless", why);
-      if (c != EGL_NO_CONTEXT) { mImpl->display = d; mImpl->context = c; mImpl->platform = "EGL surfaceless"; }
+      EGLContext c = tryCreate(d, surfaceless, attempts);
+      if (c != EGL_NO_CONTEXT) { mImpl->display = d; mImpl->context = c; mImpl->platform = surfaceless; }
     } else {
-      why += "; EGL surfaceless: no display";
+      attempts.push_back({surfaceless, "no display"});
     }
   } else {
-    why += "; EGL surfaceless: extension EGL_MESA_platform_surfaceless missing";
+    attempts.push_back({surfaceless, "extension EGL_MESA_platform_surfaceless missing"});
   }
   // 2. The EGL device platform (NVIDIA's driver exposes its GPUs this way).
-  if (mImpl->context == EGL_NO_CONTEXT && hasExtension(clientExts, "EGL_EXT_platform_device")) {
-    EGLDeviceEXT devices[16];
-    EGLint count = 0;
-    if (eglQueryDevicesEXT(16, devices, &count)) {
+  const std::string device = kHeadlessPlatforms[1];
+  if (mImpl->context == EGL_NO_CONTEXT) {
+    if (!hasExtension(clientExts, "EGL_EXT_platform_device")) {
+      attempts.push_back({device, "extension EGL_EXT_platform_device missing"});
+    } else {
+      EGLDeviceEXT devices[16];
+      EGLint count = 0;
+      if (!eglQueryDevicesEXT(16, devices, &count)) {
+        attempts.push_back({device, fmt::format("eglQueryDevicesEXT failed (0x{:x})", eglGetError())});
+      } else if (count == 0) {
+        attempts.push_back({device, "no devices"});
+      }
       for (EGLint i = 0; i < count && mImpl->context == EGL_NO_CONTEXT; ++i) {
+        const std::string name = fmt::format("{} {}", device, i);
         EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-        if (d == EGL_NO_DISPLAY) continue;
-        const std::string name = fmt::format("EGL device {}", i);
-        EGLContext c = tryCreate(d, name, why);
+        if (d == EGL_NO_DISPLAY) {
+          attempts.push_back({name, "no display"});
+          continue;
+        }
+        EGLContext c = tryCreate(d, name, attempts);
         if (c != EGL_NO_CONTEXT) { mImpl->display = d; mImpl->context = c; mImpl->platform = name; }
       }
     }
-    if (count == 0) why += "; EGL device: no devices";
   }
-  if (mImpl->context == EGL_NO_CONTEXT)
-    throw Error(fmt::format("could not create a headless OpenGL 4.5 core context (tried{}); {}",
-                            why.empty() ? " nothing" : why.substr(1), kHowToGetLlvmpipe));
+  if (mImpl->context == EGL_NO_CONTEXT) throw Error(headlessContextError(attempts));
   initialiseCurrent(options, mImpl->platform);
 }
 

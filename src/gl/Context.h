@@ -3,6 +3,7 @@
 // EGL device platform for NVIDIA GPUs) and windowed through GLFW (the viewer).
 #include <memory>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -32,6 +33,21 @@ struct ContextOptions {
 /// Throws penumbra::Error if the debug callback recorded a GL error (or glGetError reports one)
 /// since the last call. The renderer calls it after every pass.
 void throwIfGlError(const char* where);
+
+/// One headless platform that HeadlessContext tried and why it gave no context.
+struct PlatformAttempt {
+  std::string platform;  ///< "EGL surfaceless", "EGL device", "EGL device 0", ...
+  std::string why;       ///< e.g. "extension EGL_EXT_platform_device missing"
+};
+
+/// The platforms HeadlessContext tries, in order: Mesa's surfaceless platform (llvmpipe), then
+/// the EGL device platform (NVIDIA GPUs).
+inline constexpr const char* kHeadlessPlatforms[] = {"EGL surfaceless", "EGL device"};
+
+/// The one-line error when no headless context could be made: every platform of
+/// kHeadlessPlatforms with why it failed (from `attempts`; "not tried" if none is recorded),
+/// then how to get Mesa's llvmpipe.
+std::string headlessContextError(const std::vector<PlatformAttempt>& attempts);
 
 /// Base of both kinds: reads GlInfo, sets Penumbra's global GL state (reversed-Z clip control).
 class Context {

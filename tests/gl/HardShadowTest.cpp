@@ -130,3 +130,20 @@ TEST(HardShadow, UnbiasedMapAgreesOnSpotLights) {
   for (size_t i : probes.lit) wrong += r.visibility[i] < 0.95f;
   EXPECT_EQ(wrong, 0u);
 }
+
+// Normal-offset bias (hard.bias=normal): the receiver moves along its normal before the lookup,
+// so the grazing plane loses its acne like with slope bias and the box's shadow still touches it.
+TEST(HardShadow, NormalOffsetBiasRemovesAcneAndKeepsContact) {
+  const Scene scene = makeBuiltinScene("grazing");
+  const RenderResult normal = renderScene(scene, "uniform", "hard", {{"hard.bias", "normal"}}, kSize, kSize, 2048);
+  const double acneNormal = acneFraction(scene, normal);
+  Scene contact = scene;
+  contact.camera.position = {2.6f, 1.6f, 2.2f};
+  contact.camera.target = {0.9f, 0.0f, 0.0f};
+  const double gapNormal = contactGapTexels(contact, {{"hard.bias", "normal"}});
+  RecordProperty("acne_normal_pct", std::to_string(100.0 * acneNormal));
+  RecordProperty("contact_gap_normal_texels", std::to_string(gapNormal));
+  std::printf("grazing, bias=normal: acne %.3f%%, contact gap %.2f texels\n", 100.0 * acneNormal, gapNormal);
+  EXPECT_LE(acneNormal, 0.005);
+  EXPECT_LE(gapNormal, 2.0);
+}
