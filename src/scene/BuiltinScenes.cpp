@@ -102,7 +102,7 @@ Scene makeFence() {
   return s;
 }
 
-// A large plane lit at 80 degrees from its normal with a box resting on it: acne and
+// A large plane (the top of a slab) lit at 80 degrees from its normal with a box resting on it: acne and
 // peter-panning.
 Scene makeGrazing() {
   Scene s;
@@ -198,7 +198,7 @@ const std::vector<Builtin>& builtins() {
       {"boxes", "boxes and spheres on a plane under the sun (the default)", makeBoxes},
       {"pen", "a pencil leaning on the floor under a spherical spot light: contact-hardening penumbra", makePen},
       {"fence", "rows of thin slats before a wall: overlapping occluders, variance light leaks", makeFence},
-      {"grazing", "a plane lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},
+      {"grazing", "a large plane (a slab's top) lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},
       {"city", "a 640 m city under a low sun, seen from eye height: perspective aliasing (csm/psm/tsm)", makeCity},
   };
   return list;

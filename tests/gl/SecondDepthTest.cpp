@@ -24,8 +24,9 @@ constexpr float kAcneV = 0.5f;       // an unoccluded pixel darker than this is 
 
 bool onFloor(const glm::vec4& p) { return p.w > 0.5f && std::abs(p.y) < kFloorEpsM; }
 
-// Makes the floor a shadow caster (it may or may not be one in the built-in scene): a single
-// plane is an open mesh, so every floor texel exercises second-depth's single-layer fallback.
+// Makes the floor a shadow caster (it may or may not be one in the built-in scene). On `grazing`
+// the floor is a closed slab, so its texels take the midpoint of two layers; on `pen` and `boxes`
+// it is an open plane, so its texels exercise second-depth's single-layer fallback.
 void floorCasts(Scene& scene) {
   for (Object& o : scene.objects)
     if (o.name == "floor") o.castsShadow = true;
