@@ -8,12 +8,11 @@ namespace penumbra {
 void PenumbraDebugImages::bind(const FrameContext& frame) {
   if (frame.pointsMode()) return;
   const glm::ivec2 size = frame.screen();
-  if (size != mSize || !mBlockerDepth) {
+  if (!mBlockerDepth || mBlockerDepth.width() != size.x || mBlockerDepth.height() != size.y) {
     mBlockerDepth = gl::Texture("blocker depth (linear light depth)", {GL_TEXTURE_2D, GL_R32F, size.x, size.y, 1, 1});
     mPenumbraWidth = gl::Texture("penumbra width (m)", {GL_TEXTURE_2D, GL_R32F, size.x, size.y, 1, 1});
     mBlockerDepth.setSampling(GL_NEAREST, GL_NEAREST);
     mPenumbraWidth.setSampling(GL_NEAREST, GL_NEAREST);
-    mSize = size;
   }
   const float none = PN_PENUMBRA_DEBUG_NONE;
   glClearTexImage(mBlockerDepth.id(), 0, GL_RED, GL_FLOAT, &none);

@@ -27,7 +27,6 @@ public:
 
 private:
   gl::Texture mBlockerDepth, mPenumbraWidth;
-  glm::ivec2 mSize{0};
 };
 
 }  // namespace penumbra

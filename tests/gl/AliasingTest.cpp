@@ -34,15 +34,8 @@ struct Technique {
   std::vector<std::pair<std::string, std::string>> params;
 };
 
-std::unique_ptr<Renderer> makeRenderer(const Scene& sceneIn, const Technique& t, const std::string& filter = "hard") {
-  Scene scene = sceneIn;
-  auto p = makeProjection(t.projection);
-  auto f = makeFilter(filter);
-  applyParams(t.params, scene, *p, *f);
-  auto r = std::make_unique<Renderer>(glContext());
-  r->setScene(scene);
-  r->setTechnique(std::move(p), std::move(f));
-  return r;
+std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const Technique& t, const std::string& filter = "hard") {
+  return makeTestRenderer(scene, t.projection, filter, t.params);
 }
 
 // Where a test may leave images for a person to look at (unset: nowhere).

@@ -9,16 +9,22 @@ gl::HeadlessContext& glContext() {
   return *context;
 }
 
-RenderResult renderScene(const Scene& sceneIn, const std::string& projection, const std::string& filter,
-                         const std::vector<std::pair<std::string, std::string>>& params, int width, int height,
-                         int mapSize) {
+std::unique_ptr<Renderer> makeTestRenderer(const Scene& sceneIn, const std::string& projection,
+                                           const std::string& filter, const Params& params) {
   Scene scene = sceneIn;
   auto p = makeProjection(projection);
   auto f = makeFilter(filter);
   applyParams(params, scene, *p, *f);
-  Renderer renderer(glContext());
-  renderer.setScene(scene);
-  renderer.setTechnique(std::move(p), std::move(f));
+  auto renderer = std::make_unique<Renderer>(glContext());
+  renderer->setScene(scene);
+  renderer->setTechnique(std::move(p), std::move(f));
+  return renderer;
+}
+
+RenderResult renderScene(const Scene& scene, const std::string& projection, const std::string& filter,
+                         const Params& params, int width, int height, int mapSize) {
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, projection, filter, params);
+  Renderer& renderer = *owned;
   RenderOptions o;
   o.width = width;
   o.height = height;

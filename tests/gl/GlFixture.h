@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,10 +27,17 @@ struct RenderResult {
   float at(int x, int y) const { return visibility[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; }
 };
 
+/// "key=value" settings of a projection, a filter or the scene (light.size).
+using Params = std::vector<std::pair<std::string, std::string>>;
+
+/// A renderer holding `scene` (with the scene-level settings applied) and the technique, ready
+/// to render: for tests that need more than renderScene reads back.
+std::unique_ptr<Renderer> makeTestRenderer(const Scene& scene, const std::string& projection, const std::string& filter,
+                                           const Params& params = {});
+
 /// Renders `scene` with the given technique and "key=value" settings.
 RenderResult renderScene(const Scene& scene, const std::string& projection, const std::string& filter,
-                         const std::vector<std::pair<std::string, std::string>>& params, int width, int height,
-                         int mapSize);
+                         const Params& params, int width, int height, int mapSize);
 
 /// Projects a world point to pixel coordinates (x right, y up) of a width × height image.
 glm::ivec2 projectToPixel(const Scene& scene, const glm::vec3& ws, int width, int height);

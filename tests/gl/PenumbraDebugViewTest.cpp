@@ -46,9 +46,8 @@ const gl::Texture* findImage(const Renderer& r, const std::string& name) {
 }
 
 Frame renderPen(const std::string& filter) {
-  Renderer renderer(glContext());
-  renderer.setScene(makeBuiltinScene("pen"));
-  renderer.setTechnique(makeProjection("uniform"), makeFilter(filter));
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter);
+  Renderer& renderer = *owned;
   RenderOptions o;
   o.width = kWidth;
   o.height = kHeight;
@@ -170,9 +169,8 @@ TEST(PenumbraDebugView, VssmBlockerDepthAndPenumbraWidthOnPen) { checkPen("vssm"
 // The images follow the screen size; frames at one size create no GL object.
 TEST(PenumbraDebugView, ImagesFollowResizeWithoutGlObjectGrowth) {
   for (const std::string filter : {"pcss", "vssm"}) {
-    Renderer renderer(glContext());
-    renderer.setScene(makeBuiltinScene("pen"));
-    renderer.setTechnique(makeProjection("uniform"), makeFilter(filter));
+    const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter);
+    Renderer& renderer = *owned;
     RenderOptions o;
     o.width = 96;
     o.height = 64;

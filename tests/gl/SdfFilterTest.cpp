@@ -96,7 +96,6 @@ void main() {
   EXPECT_LE(worst, toleranceM);
 }
 
-using Params = std::vector<std::pair<std::string, std::string>>;
 
 TEST(SdfFilter, PenAgainstReferenceKSweepAndLightSize) {
   const Scene scene = loadScene("pen");
@@ -192,9 +191,8 @@ TEST(SdfFilter, LightSizeDrivesKOnlyInLightMode) {
 TEST(SdfFilter, FieldIsUploadedOncePerScene) {
   glContext();
   Scene scene = loadScene("pen");
-  Renderer renderer(glContext());
-  renderer.setScene(scene);
-  renderer.setTechnique(makeProjection("uniform"), makeFilter("sdf"));
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", "sdf");
+  Renderer& renderer = *owned;
   auto& filter = dynamic_cast<SdfFilter&>(renderer.filter());
   RenderOptions o;
   o.width = 64;

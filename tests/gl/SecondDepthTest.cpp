@@ -165,9 +165,8 @@ TEST(SecondDepth, OpenMeshRendersAndStillCasts) {
 TEST(SecondDepth, MapStoresTheMidpointOfTwoPeeledLayers) {
   Scene scene = makeBuiltinScene("boxes");  // closed boxes and spheres: two layers where they are
   floorCasts(scene);
-  Renderer renderer(glContext());
-  renderer.setScene(scene);
-  renderer.setTechnique(makeProjection("uniform"), makeFilter("second-depth"));
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", "second-depth");
+  Renderer& renderer = *owned;
   RenderOptions o;
   o.width = o.height = 64;
   o.shadowMapSize = 512;

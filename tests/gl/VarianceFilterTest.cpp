@@ -27,7 +27,6 @@ using namespace penumbra::test;
 
 namespace {
 
-using Params = std::vector<std::pair<std::string, std::string>>;
 
 struct Variant {
   std::string name, filter;
@@ -243,12 +242,8 @@ namespace {
 // disturbed by other work on a shared CPU, where llvmpipe runs).
 double minVisibilityMs(Scene scene, const std::string& filter, const Params& params, int mapSize) {
   constexpr int kWarmUp = 2, kFrames = 9;
-  auto p = makeProjection("uniform");
-  auto f = makeFilter(filter);
-  applyParams(params, scene, *p, *f);
-  Renderer renderer(glContext());
-  renderer.setScene(scene);
-  renderer.setTechnique(std::move(p), std::move(f));
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", filter, params);
+  Renderer& renderer = *owned;
   RenderOptions o;
   o.width = 320;
   o.height = 180;

@@ -17,10 +17,7 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
-  vec2 dx, dy;
-  shadowFootprint(view, s, coord.xy, dx, dy);
-  widenFootprint(u_msm.params.z / shadowMapSize(), dx, dy);
-  vec4 b = textureFootprint(s_moments, vec3(coord.xy, float(view)), dx, dy, u_msm.mode.x);
+  vec4 b = momentsOverFootprint(s_moments, view, s, coord.xy, u_msm.params.z, u_msm.mode.x);
   if (u_msm.mode.y != 0) b = dequantizeMoments16(b);
   return 1.0 - hamburgerShadowIntensity(biasMoments(b, u_msm.params.x), coord.z - u_msm.params.y);
 }

@@ -16,10 +16,7 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
-  vec2 dx, dy;
-  shadowFootprint(view, s, coord.xy, dx, dy);
-  widenFootprint(u_vsm.params.z / shadowMapSize(), dx, dy);
-  vec2 moments = textureFootprint(s_moments, vec3(coord.xy, float(view)), dx, dy, u_vsm.mode.x).rg;
+  vec2 moments = momentsOverFootprint(s_moments, view, s, coord.xy, u_vsm.params.z, u_vsm.mode.x).rg;
   vec2 mv = meanVariance(moments, u_vsm.params.x);
   return reduceLightBleeding(chebyshevUpperBound(mv.x, mv.y, coord.z), u_vsm.params.y);
 }
