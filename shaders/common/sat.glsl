@@ -7,8 +7,13 @@
 // sums to at most 2^22 · 2^31 = 2^53, which converts to double without rounding. Box sums are
 // taken in double, so mean and variance carry no cancellation error beyond the 2^-32 rounding of
 // each input value (k · 2^-32 for z^k).
-// Layout: an RGBA32UI 2D array; layer view·pairs + k holds moments 2k+1 and 2k+2 as
+// Layout: a storage buffer (binding PN_SSBO_SAT) of uvec4, one per texel and layer, row-major
+// layers of size.x · size.y (satIndex); layer view·pairs + k holds moments 2k+1 and 2k+2 as
 // (lo, hi, lo, hi) words of the inclusive prefix sum S(x, y) = sum over x' <= x, y' <= y.
+// Readers include this file and get the buffer read-only; the builder defines PN_SAT_WRITER and
+// declares it write-only itself.
+
+#include "shared/Bindings.h"
 
 #define PN_SAT_FRACTION_BITS 31
 const double kSatFixedOne = 2147483648.0LF;  // 2^PN_SAT_FRACTION_BITS
@@ -37,56 +42,60 @@ uint fixedMul(uint a, uint b) {
   return ((hi + carry) << 1) | (lo >> 31);
 }
 
+int satIndex(ivec2 size, int layer, ivec2 texel) { return (layer * size.y + texel.y) * size.x + texel.x; }
+
+#ifndef PN_SAT_WRITER
+layout(std430, binding = PN_SSBO_SAT) readonly buffer SatTable { uvec4 b_sat[]; };
+
 // The table at texel corner c (in texels, 0..size): the sum over texels x < c.x, y < c.y.
-dvec2 satCorner(usampler2DArray sat, ivec2 c, int layer) {
+dvec2 satCorner(ivec2 size, ivec2 c, int layer) {
   if (c.x <= 0 || c.y <= 0) return dvec2(0.0LF);
-  uvec4 v = texelFetch(sat, ivec3(c - 1, layer), 0);
+  uvec4 v = b_sat[satIndex(size, layer, c - 1)];
   return dvec2(u64ToDouble(v.xy), u64ToDouble(v.zw));
 }
 
 // The table at a continuous corner position p (texels): bilinear in the corner grid, which is the
 // exact integral of the piecewise-constant map over [0, p.x] x [0, p.y].
-dvec2 satCornerBilinear(usampler2DArray sat, vec2 p, int layer) {
-  ivec2 i = clamp(ivec2(floor(p)), ivec2(0), textureSize(sat, 0).xy - 1);  // p.x = size: i = size-1, fx = 1
+dvec2 satCornerBilinear(ivec2 size, vec2 p, int layer) {
+  ivec2 i = clamp(ivec2(floor(p)), ivec2(0), size - 1);  // p.x = size: i = size-1, fx = 1
   double fx = double(p.x - float(i.x)), fy = double(p.y - float(i.y));
-  dvec2 s00 = satCorner(sat, i, layer), s10 = satCorner(sat, i + ivec2(1, 0), layer);
-  dvec2 s01 = satCorner(sat, i + ivec2(0, 1), layer), s11 = satCorner(sat, i + ivec2(1, 1), layer);
+  dvec2 s00 = satCorner(size, i, layer), s10 = satCorner(size, i + ivec2(1, 0), layer);
+  dvec2 s01 = satCorner(size, i + ivec2(0, 1), layer), s11 = satCorner(size, i + ivec2(1, 1), layer);
   return mix(mix(s00, s10, fx), mix(s01, s11, fx), fy);
 }
 
-// Mean of the two moments of pair layer `layer` over the box [lo, hi] (continuous texel
-// coordinates, clipped to the map).
-dvec2 satBoxMean(usampler2DArray sat, vec2 lo, vec2 hi, int layer) {
+// Mean of the two moments of pair layer `layer` of a size.x · size.y table over the box [lo, hi]
+// (continuous texel coordinates, clipped to the map).
+dvec2 satBoxMean(ivec2 size, vec2 lo, vec2 hi, int layer) {
   // Boxes narrower than a texel grow about their centre; the box is then clipped to the map
   // (the coordinates themselves are used as given: recentring would round them).
-  vec2 size = vec2(textureSize(sat, 0).xy);
   vec2 grow = 0.5 * max(vec2(1.0) - (hi - lo), vec2(0.0));
-  lo = clamp(lo - grow, vec2(0.0), size - 0.5);
-  hi = clamp(hi + grow, lo + 0.5, size);
-  dvec2 sum = satCornerBilinear(sat, hi, layer) - satCornerBilinear(sat, vec2(lo.x, hi.y), layer) -
-              satCornerBilinear(sat, vec2(hi.x, lo.y), layer) + satCornerBilinear(sat, lo, layer);
+  lo = clamp(lo - grow, vec2(0.0), vec2(size) - 0.5);
+  hi = clamp(hi + grow, lo + 0.5, vec2(size));
+  dvec2 sum = satCornerBilinear(size, hi, layer) - satCornerBilinear(size, vec2(lo.x, hi.y), layer) -
+              satCornerBilinear(size, vec2(hi.x, lo.y), layer) + satCornerBilinear(size, lo, layer);
   double area = double(hi.x - lo.x) * double(hi.y - lo.y);
   return sum / (area * kSatFixedOne);
 }
 
 // The box with its edges moved to the nearest texel corners (at least one texel): 4 fetches
 // instead of 16, for lookups that tolerate half a texel of error per edge (blocker searches).
-dvec2 satBoxMeanSnapped(usampler2DArray sat, vec2 lo, vec2 hi, int layer) {
-  ivec2 size = textureSize(sat, 0).xy;
+dvec2 satBoxMeanSnapped(ivec2 size, vec2 lo, vec2 hi, int layer) {
   ivec2 l = clamp(ivec2(round(lo)), ivec2(0), size - 1);
   ivec2 h = clamp(ivec2(round(hi)), l + 1, size);
-  dvec2 sum = satCorner(sat, h, layer) - satCorner(sat, ivec2(l.x, h.y), layer) - satCorner(sat, ivec2(h.x, l.y), layer) +
-              satCorner(sat, l, layer);
+  dvec2 sum = satCorner(size, h, layer) - satCorner(size, ivec2(l.x, h.y), layer) -
+              satCorner(size, ivec2(h.x, l.y), layer) + satCorner(size, l, layer);
   return sum / (double(h.x - l.x) * double(h.y - l.y) * kSatFixedOne);
 }
 
 // Exact box sums over whole texels [lo, hi] (inclusive texel indices): the test's entry point.
-dvec2 satTexelRectMean(usampler2DArray sat, ivec2 lo, ivec2 hi, int layer) {
-  dvec2 sum = satCorner(sat, hi + 1, layer) - satCorner(sat, ivec2(lo.x, hi.y + 1), layer) -
-              satCorner(sat, ivec2(hi.x + 1, lo.y), layer) + satCorner(sat, lo, layer);
+dvec2 satTexelRectMean(ivec2 size, ivec2 lo, ivec2 hi, int layer) {
+  dvec2 sum = satCorner(size, hi + 1, layer) - satCorner(size, ivec2(lo.x, hi.y + 1), layer) -
+              satCorner(size, ivec2(hi.x + 1, lo.y), layer) + satCorner(size, lo, layer);
   double area = double(hi.x - lo.x + 1) * double(hi.y - lo.y + 1);
   return sum / (area * kSatFixedOne);
 }
+#endif  // PN_SAT_WRITER
 
 // Mean and variance of depth from box means of (z, z^2). The subtraction is done in double, so a
 // flat region gives 0 rather than float noise; the variance is never negative.

@@ -7,34 +7,56 @@
 //   SAT_PASS 2, one work group per band and view: SAT_THREADS threads, each owning SAT_PER_THREAD
 //     adjacent columns of a chunk of SAT_THREADS * SAT_PER_THREAD columns, walk the band in blocks
 //     of SAT_ROWS rows. Per block: (a) each thread adds the rows to its running column sums
-//     (seeded with the top carry) and scans them serially along the row, keeping only the segment
-//     total; (b) SAT_ROWS threads scan one row's SAT_THREADS segment totals each (exclusive, from
-//     the row's carry out of earlier chunks) in shared memory; (c) each thread re-reads its texels
-//     (cache-resident), repeats (a) from its segment offset and stores S. Everything is linear in
-//     the texel count (work-efficient); 3 barriers per block.
-// Traffic per texel: the map is read by pass 0 and pass 2 (twice there, the second from cache),
-// the table written once (16 B per pair), the carries 4 * 16 B per pair per SAT_BAND texels.
-// Sums are exact 64-bit fixed point (sat.glsl). SAT_PAIRS: moment pairs per texel (1: z, z^2;
-// 2: z..z^4), layer view * SAT_PAIRS + p of i_sat.
+//     (seeded with the top carry), scans them serially along the row and keeps those partial sums
+//     in registers; (b) SAT_ROWS threads scan one row's SAT_THREADS segment totals each
+//     (exclusive, from the row's carry out of earlier chunks) in shared memory; (c) each thread
+//     stores S = its segment's offset + its partial sums. Everything is linear in the texel count
+//     (work-efficient); 3 barriers per block.
+// Traffic per texel: the map is read by pass 0 and pass 2 (4 B each), the table written once (16 B
+// per pair), the carries 4 * 16 B per pair per SAT_BAND texels. The table is a storage buffer
+// (common/sat.glsl gives its layout): a plain store, where an RGBA32UI imageStore measured more
+// than the rest of the pass on llvmpipe. Sums are exact 64-bit fixed point (sat.glsl). SAT_PAIRS:
+// moment pairs per texel (1: z, z^2; 2: z..z^4), table layer view * SAT_PAIRS + p.
 #extension GL_ARB_gpu_shader_int64 : enable
 #ifdef GL_ARB_gpu_shader_int64
 #define PN_NATIVE_INT64 1  // 64-bit additions in hardware words where the driver has them
 #endif
+#define PN_SAT_WRITER 1  // this shader declares the table buffer itself, write-only
 #include "shared/Bindings.h"
 #include "common/sat.glsl"
 
 layout(local_size_x = SAT_THREADS) in;
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_depth;
-layout(binding = PN_IMG_AUX0, rgba32ui) uniform writeonly uimage2DArray i_sat;
+layout(std430, binding = PN_SSBO_SAT) writeonly buffer SatTable { uvec4 b_sat[]; };
 // Per view, band, column and pair: the band's column total (pass 0), then its top carry (pass 1).
 layout(std430, binding = PN_SSBO_AUX) buffer SatCarry { uvec4 b_carry[]; };
 
-// The fixed-point moments z^(2p+1), z^(2p+2) of one texel as (lo, hi, lo, hi) words.
-void momentsOf(float depth, out uvec4 v[SAT_PAIRS]) {
+// Running sums of one moment pair: native 64-bit words where the driver has them, else
+// (lo, hi, lo, hi) 32-bit words with carries. Stored (carries, table) as (lo, hi, lo, hi).
+#ifdef PN_NATIVE_INT64
+#define Sum u64vec2
+Sum sumZero() { return u64vec2(0ul); }
+Sum sumAdd(Sum a, Sum b) { return a + b; }
+uvec4 sumWords(Sum s) { return uvec4(unpackUint2x32(s.x), unpackUint2x32(s.y)); }
+Sum sumOfWords(uvec4 w) { return u64vec2(packUint2x32(w.xy), packUint2x32(w.zw)); }
+#else
+#define Sum uvec4
+Sum sumZero() { return uvec4(0u); }
+Sum sumAdd(Sum a, Sum b) { return add64x2(a, b); }
+uvec4 sumWords(Sum s) { return s; }
+Sum sumOfWords(uvec4 w) { return w; }
+#endif
+
+// The fixed-point moments z^(2p+1), z^(2p+2) of one texel.
+void momentsOf(float depth, out Sum v[SAT_PAIRS]) {
   uint z = depthToFixed(depth), zk = z;
   for (int p = 0; p < SAT_PAIRS; ++p) {
     uint zk1 = fixedMul(zk, z);
+#ifdef PN_NATIVE_INT64
+    v[p] = u64vec2(zk, zk1);
+#else
     v[p] = uvec4(zk, 0u, zk1, 0u);
+#endif
     zk = fixedMul(zk1, z);
   }
 }
@@ -49,14 +71,14 @@ void main() {
   ivec2 size = textureSize(s_depth, 0).xy;
   int x = int(gl_GlobalInvocationID.x), band = int(gl_WorkGroupID.y), view = int(gl_WorkGroupID.z);
   if (x >= size.x) return;  // no barriers in this pass
-  uvec4 sum[SAT_PAIRS];
-  for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = uvec4(0u);
+  Sum sum[SAT_PAIRS];
+  for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = sumZero();
   for (int y = band * SAT_BAND; y < min(band * SAT_BAND + SAT_BAND, size.y); ++y) {
-    uvec4 v[SAT_PAIRS];
+    Sum v[SAT_PAIRS];
     momentsOf(texelFetch(s_depth, ivec3(x, y, view), 0).r, v);
-    for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = add64x2(sum[p], v[p]);
+    for (int p = 0; p < SAT_PAIRS; ++p) sum[p] = sumAdd(sum[p], v[p]);
   }
-  for (int p = 0; p < SAT_PAIRS; ++p) b_carry[carryIndex(size, view, band, x, p)] = sum[p];
+  for (int p = 0; p < SAT_PAIRS; ++p) b_carry[carryIndex(size, view, band, x, p)] = sumWords(sum[p]);
 }
 
 #elif SAT_PASS == 1
@@ -65,46 +87,47 @@ void main() {
   int x = int(gl_GlobalInvocationID.x), view = int(gl_WorkGroupID.z);
   if (x >= size.x) return;
   for (int p = 0; p < SAT_PAIRS; ++p) {
-    uvec4 above = uvec4(0u);
+    Sum above = sumZero();
     for (int band = 0; band < bandCount(size); ++band) {
       int i = carryIndex(size, view, band, x, p);
-      uvec4 total = b_carry[i];
-      b_carry[i] = above;
-      above = add64x2(above, total);
+      Sum total = sumOfWords(b_carry[i]);
+      b_carry[i] = sumWords(above);
+      above = sumAdd(above, total);
     }
   }
 }
 
 #else
 // (b)'s data: per block row, each thread's segment total, then its exclusive offset.
-shared uvec4 s_segment[SAT_PAIRS][SAT_ROWS][SAT_THREADS];
+shared Sum s_segment[SAT_PAIRS][SAT_ROWS][SAT_THREADS];
 // Per band row: the row's sum over the chunks already done (columns x' < the chunk's start).
-shared uvec4 s_rowCarry[SAT_PAIRS][SAT_BAND];
+shared Sum s_rowCarry[SAT_PAIRS][SAT_BAND];
 
 void main() {
   ivec2 size = textureSize(s_depth, 0).xy;
   int tid = int(gl_LocalInvocationID.x), band = int(gl_WorkGroupID.y), view = int(gl_WorkGroupID.z);
   int y0 = band * SAT_BAND;
-  for (int i = tid; i < SAT_PAIRS * SAT_BAND; i += SAT_THREADS) s_rowCarry[i / SAT_BAND][i % SAT_BAND] = uvec4(0u);
+  for (int i = tid; i < SAT_PAIRS * SAT_BAND; i += SAT_THREADS) s_rowCarry[i / SAT_BAND][i % SAT_BAND] = sumZero();
   for (int x0 = 0; x0 < size.x; x0 += SAT_THREADS * SAT_PER_THREAD) {
     int xs = x0 + tid * SAT_PER_THREAD;  // this thread's first column
-    uvec4 column[SAT_PER_THREAD][SAT_PAIRS];  // sum over rows y' <= the current row (whole map)
+    Sum column[SAT_PER_THREAD][SAT_PAIRS];  // sum over rows y' <= the current row (whole map)
     for (int c = 0; c < SAT_PER_THREAD; ++c)
       for (int p = 0; p < SAT_PAIRS; ++p)
-        column[c][p] = xs + c < size.x ? b_carry[carryIndex(size, view, band, xs + c, p)] : uvec4(0u);
+        column[c][p] = xs + c < size.x ? sumOfWords(b_carry[carryIndex(size, view, band, xs + c, p)]) : sumZero();
     for (int r0 = 0; r0 < SAT_BAND; r0 += SAT_ROWS) {
       // (a) Segment totals of SAT_ROWS rows.
-      uvec4 blockStart[SAT_PER_THREAD][SAT_PAIRS] = column;
+      Sum partial[SAT_ROWS][SAT_PER_THREAD][SAT_PAIRS];
       for (int r = 0; r < SAT_ROWS; ++r) {
         int y = y0 + r0 + r;
-        uvec4 run[SAT_PAIRS];
-        for (int p = 0; p < SAT_PAIRS; ++p) run[p] = uvec4(0u);
+        Sum run[SAT_PAIRS];
+        for (int p = 0; p < SAT_PAIRS; ++p) run[p] = sumZero();
         for (int c = 0; c < SAT_PER_THREAD; ++c) {
-          uvec4 v[SAT_PAIRS];
+          Sum v[SAT_PAIRS];
           momentsOf(xs + c < size.x && y < size.y ? texelFetch(s_depth, ivec3(xs + c, y, view), 0).r : 0.0, v);
           for (int p = 0; p < SAT_PAIRS; ++p) {
-            column[c][p] = add64x2(column[c][p], v[p]);
-            run[p] = add64x2(run[p], column[c][p]);
+            column[c][p] = sumAdd(column[c][p], v[p]);
+            run[p] = sumAdd(run[p], column[c][p]);
+            partial[r][c][p] = run[p];
           }
         }
         for (int p = 0; p < SAT_PAIRS; ++p) s_segment[p][r][tid] = run[p];
@@ -113,31 +136,23 @@ void main() {
       // (b) One thread per row: exclusive scan of the row's segment totals, from its carry.
       if (tid < SAT_ROWS) {
         for (int p = 0; p < SAT_PAIRS; ++p) {
-          uvec4 offset = s_rowCarry[p][r0 + tid];
+          Sum offset = s_rowCarry[p][r0 + tid];
           for (int t = 0; t < SAT_THREADS; ++t) {
-            uvec4 total = s_segment[p][tid][t];
+            Sum total = s_segment[p][tid][t];
             s_segment[p][tid][t] = offset;
-            offset = add64x2(offset, total);
+            offset = sumAdd(offset, total);
           }
           s_rowCarry[p][r0 + tid] = offset;
         }
       }
       barrier();
-      // (c) The same walk from each segment's offset, storing S.
-      column = blockStart;
+      // (c) Each stored S is the segment's offset plus (a)'s running sum.
       for (int r = 0; r < SAT_ROWS; ++r) {
         int y = y0 + r0 + r;
-        uvec4 run[SAT_PAIRS];
-        for (int p = 0; p < SAT_PAIRS; ++p) run[p] = s_segment[p][r][tid];
-        for (int c = 0; c < SAT_PER_THREAD; ++c) {
-          bool inside = xs + c < size.x && y < size.y;
-          uvec4 v[SAT_PAIRS];
-          momentsOf(inside ? texelFetch(s_depth, ivec3(xs + c, y, view), 0).r : 0.0, v);
-          for (int p = 0; p < SAT_PAIRS; ++p) {
-            column[c][p] = add64x2(column[c][p], v[p]);
-            run[p] = add64x2(run[p], column[c][p]);
-            if (inside) imageStore(i_sat, ivec3(xs + c, y, view * SAT_PAIRS + p), run[p]);
-          }
+        for (int p = 0; p < SAT_PAIRS; ++p) {
+          Sum offset = s_segment[p][r][tid];
+          for (int c = 0; c < SAT_PER_THREAD; ++c)
+            if (xs + c < size.x && y < size.y) b_sat[satIndex(size, view * SAT_PAIRS + p, ivec2(xs + c, y))] = sumWords(sumAdd(offset, partial[r][c][p]));
         }
       }
       barrier();  // the next block overwrites s_segment

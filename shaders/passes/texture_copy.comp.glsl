@@ -1,20 +1,26 @@
 // A plain copy of level 0 of a texture array into a twin, one imageLoad and one imageStore per
 // texel and nothing else: the bandwidth floor that the bench's micro-benchmarks set the prefilter
-// builders against (report/MicroBenchmarks.cpp). COPY_FORMAT: rg32f, rgba32f or rgba32ui
-// (COPY_UINT 1 for the integer one).
+// builders against (report/MicroBenchmarks.cpp). COPY_FORMAT: rg32f or rgba32f. COPY_BUFFER 1 instead copies a storage buffer of uvec4 (a
+// summed-area table, common/sat.glsl) into another, one load and one store per element.
 #include "shared/Bindings.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-#if COPY_UINT
-layout(binding = PN_IMG_AUX0, COPY_FORMAT) uniform readonly uimage2DArray i_in;
-layout(binding = PN_IMG_AUX1, COPY_FORMAT) uniform writeonly uimage2DArray i_out;
+#if COPY_BUFFER
+layout(local_size_x = 64) in;
+layout(std430, binding = PN_SSBO_AUX) readonly buffer CopyIn { uvec4 b_in[]; };
+layout(std430, binding = PN_SSBO_SAT) writeonly buffer CopyOut { uvec4 b_out[]; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i < uint(b_in.length())) b_out[i] = b_in[i];
+}
 #else
+layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = PN_IMG_AUX0, COPY_FORMAT) uniform readonly image2DArray i_in;
 layout(binding = PN_IMG_AUX1, COPY_FORMAT) uniform writeonly image2DArray i_out;
-#endif
 
 void main() {
   ivec3 p = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(p.xy, imageSize(i_in).xy))) return;
   imageStore(i_out, p, imageLoad(i_in, p));
 }
+#endif

@@ -29,17 +29,17 @@ constexpr const char* kQueryMain = R"(
 #include "common/sat.glsl"
 #include "shared/Bindings.h"
 layout(local_size_x = 64) in;
-layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;
 layout(std430, binding = PN_SSBO_AUX) readonly buffer Boxes { vec4 b_boxes[]; };
 layout(std430, binding = PN_SSBO_TEST) writeonly buffer Results { vec4 o_results[]; };
 layout(location = 0) uniform int u_count;
 layout(location = 1) uniform int u_integerCount;
+layout(location = 2) uniform ivec2 u_size;
 void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= u_count) return;
   vec4 b = b_boxes[i];
-  dvec2 m = i < u_integerCount ? satTexelRectMean(s_sat, ivec2(b.xy), ivec2(b.zw), 0)
-                               : satBoxMean(s_sat, b.xy, b.zw, 0);
+  dvec2 m = i < u_integerCount ? satTexelRectMean(u_size, ivec2(b.xy), ivec2(b.zw), 0)
+                               : satBoxMean(u_size, b.xy, b.zw, 0);
   o_results[i] = vec4(satMeanVariance(m), float(m.y), 0.0);
 }
 )";
@@ -123,7 +123,7 @@ TEST(Sat, RandomRectanglesMatchDoubleSums) {
   ShaderLibrary shaders;
   SatBuilder sat;
   sat.build(shaders, depths, 2);
-  ASSERT_EQ(sat.table().layers(), 1);
+  ASSERT_EQ(sat.layers(), 1);
 
   // Whole-texel rectangles: the corners of the map, single texels, full rows/columns, the whole
   // map, then random ones (log-uniform sides, so small and large boxes are both common).
@@ -151,9 +151,10 @@ TEST(Sat, RandomRectanglesMatchDoubleSums) {
   gl::Buffer out("sat test results", boxes.size() * sizeof(glm::vec4));
   in.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
   out.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_TEST);
-  sat.table().bindUnit(PN_TEX_FILTER0);
+  sat.bindTable();
   glProgramUniform1i(query.id(), 0, static_cast<GLint>(boxes.size()));
   glProgramUniform1i(query.id(), 1, kIntegerRects);
+  glProgramUniform2i(query.id(), 2, sat.width(), sat.height());
   query.use();
   glDispatchCompute(static_cast<GLuint>((boxes.size() + 63) / 64), 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -197,21 +198,22 @@ TEST(Sat, FourMomentsFillTheSecondPair) {
   ShaderLibrary shaders;
   SatBuilder sat;
   sat.build(shaders, depths, 4);
-  ASSERT_EQ(sat.table().layers(), 2);
+  ASSERT_EQ(sat.layers(), 2);
   const gl::Program query = compileProbe("sat moments", R"(
 #include "common/sat.glsl"
 #include "shared/Bindings.h"
 layout(local_size_x = 1) in;
-layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;
 layout(std430, binding = PN_SSBO_TEST) writeonly buffer Results { vec4 o_moments; };
+layout(location = 0) uniform ivec2 u_size;
 void main() {
-  o_moments = vec4(vec2(satBoxMean(s_sat, vec2(100.25, 7.5), vec2(290.0, 300.0), 0)),
-                   vec2(satBoxMean(s_sat, vec2(100.25, 7.5), vec2(290.0, 300.0), 1)));
+  o_moments = vec4(vec2(satBoxMean(u_size, vec2(100.25, 7.5), vec2(290.0, 300.0), 0)),
+                   vec2(satBoxMean(u_size, vec2(100.25, 7.5), vec2(290.0, 300.0), 1)));
 }
 )");
   gl::Buffer out("sat moments", sizeof(glm::vec4));
   out.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_TEST);
-  sat.table().bindUnit(PN_TEX_FILTER0);
+  sat.bindTable();
+  glProgramUniform2i(query.id(), 0, sat.width(), sat.height());
   query.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -235,7 +237,8 @@ TEST(Sat, BitExactAgainstSerialIntegerSums) {
   SatBuilder sat;
   sat.build(shaders, depths, 4);
   std::vector<uint32_t> got(static_cast<size_t>(kW) * kH * 2 * 4);
-  glGetTextureImage(sat.table().id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(got.size() * 4), got.data());
+  ASSERT_EQ(sat.table().size(), got.size() * sizeof(uint32_t));
+  sat.table().download(got.data(), got.size() * sizeof(uint32_t));
   // common/sat.glsl's depthToFixed and fixedMul, on the CPU.
   auto fixedMul = [](uint64_t a, uint64_t b) { return (a * b + (uint64_t{1} << 30)) >> 31; };
   std::vector<uint64_t> column(static_cast<size_t>(kW) * 4, 0);

@@ -37,7 +37,7 @@ void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   u.params = glm::vec4(param("msm-soft.bias"), param("msm-soft.depthBias"), param("msm-soft.minRadiusTexels"),
                        param("msm-soft.maxRadiusTexels"));
   frame.setFilterBlock(u);
-  mSat.table().bindUnit(PN_TEX_FILTER0);
+  mSat.bindTable();
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl"));
 }
 

@@ -59,7 +59,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   u.mode = glm::ivec4(paramInt("vssm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   if (fromSat()) {
-    mSat.table().bindUnit(PN_TEX_FILTER0);
+    mSat.bindTable();
   } else {
     MipBuilder::setTrilinear(mMaps.color());
     mMaps.color().bindUnit(PN_TEX_FILTER0);

@@ -14,7 +14,7 @@
 #include "shadows/filters/msm_soft.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u_msmSoft; };
-layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;  // two pair layers per view
+// The SAT is common/sat.glsl's storage buffer: two pair layers per view.
 
 // Below this blocker fraction the region holds no blocker worth a penumbra: fully lit.
 const float kMinBlockerFraction = 0.01;
@@ -23,10 +23,10 @@ const float kMinBlockerFraction = 0.01;
 // box with fractional edges (the filter); otherwise edges snap to whole texels (the blocker
 // search: 8 texel fetches instead of 32).
 vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, bool exact) {
-  vec2 size = vec2(shadowMapSize());
-  vec2 lo = (uv - radiusUv) * size, hi = (uv + radiusUv) * size;
-  vec4 b = exact ? vec4(vec2(satBoxMean(s_sat, lo, hi, 2 * view)), vec2(satBoxMean(s_sat, lo, hi, 2 * view + 1)))
-                 : vec4(vec2(satBoxMeanSnapped(s_sat, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(s_sat, lo, hi, 2 * view + 1)));
+  ivec2 size = ivec2(shadowMapSize());
+  vec2 lo = (uv - radiusUv) * vec2(size), hi = (uv + radiusUv) * vec2(size);
+  vec4 b = exact ? vec4(vec2(satBoxMean(size, lo, hi, 2 * view)), vec2(satBoxMean(size, lo, hi, 2 * view + 1)))
+                 : vec4(vec2(satBoxMeanSnapped(size, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(size, lo, hi, 2 * view + 1)));
   return biasMoments(b, u_msmSoft.params.x);
 }
 

@@ -16,9 +16,8 @@
 
 layout(std140, binding = PN_UBO_FILTER) uniform VssmBlock { VssmUniforms u_vssm; };
 // PN_VSSM_SOURCE (a define): where region moments come from.
-#if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
-layout(binding = PN_TEX_FILTER0) uniform usampler2DArray s_sat;
-#else
+// The SAT (source=sat) is common/sat.glsl's storage buffer.
+#if PN_VSSM_SOURCE != PN_VSSM_SOURCE_SAT
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
 #endif
 
@@ -31,9 +30,9 @@ const float kUnoccludedLit = 0.99;
 // (the blocker search, which only needs a rough blocker depth: 4 texel fetches instead of 16).
 vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, bool exact) {
 #if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
-  vec2 size = vec2(shadowMapSize());
-  vec2 lo = (uv - radiusUv) * size, hi = (uv + radiusUv) * size;
-  vec2 m = satMeanVariance(exact ? satBoxMean(s_sat, lo, hi, view) : satBoxMeanSnapped(s_sat, lo, hi, view));
+  ivec2 size = ivec2(shadowMapSize());
+  vec2 lo = (uv - radiusUv) * vec2(size), hi = (uv + radiusUv) * vec2(size);
+  vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
   return vec2(m.x, max(m.y, u_vssm.params.x));
 #else
   // The box as a footprint: trilinear taps at the level whose texels match its short side.
