@@ -14,9 +14,9 @@ namespace {
 // per 32 texels (2 B/texel) and a 2048² map still gives 64 groups per view. 64 threads of 4
 // columns (chunks of 256 columns), blocks of 4 rows for one moment pair (2 for two). On llvmpipe
 // (8-wide SIMD, a group's lanes switched at each barrier, a block's partial sums kept in per-lane
-// arrays in memory) small blocks won: the build of a 2048² (z, z²) map measured 1.5–1.9× a copy
-// with 4-row blocks, 1.5–2.1× with 8 and 1.9–2.3× with 16 (5 processes each); 128 threads or 8
-// columns were no better, 2 columns or 64-row bands worse.
+// arrays in memory) small blocks won: before the map was read by gathers, the build of a 2048²
+// (z, z²) map measured 1.5–1.9× a copy with 4-row blocks, 1.5–2.1× with 8 and 1.9–2.3× with 16
+// (5 processes each); 128 threads or 8 columns were no better, 2 columns or 64-row bands worse.
 struct ScanShape {
   int band, pairRows, threads, perThread;  // pairRows: block rows · moment pairs
   constexpr int rows(int pairs) const { return pairRows / pairs; }
@@ -26,6 +26,8 @@ constexpr ScanShape kScanShape{32, 4, 64, 4};
 constexpr int kMinSharedBytes = 32768;  // GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's required minimum
 static_assert(kScanShape.band % kScanShape.rows(1) == 0 && kScanShape.band % kScanShape.rows(2) == 0 &&
               kScanShape.rows(1) <= kScanShape.threads);
+static_assert(kScanShape.band % 2 == 0 && kScanShape.rows(2) % 2 == 0 && kScanShape.perThread % 2 == 0,
+              "the scan reads the map in 2x2 gathers");
 static_assert(kScanShape.sharedBytes(1) <= kMinSharedBytes && kScanShape.sharedBytes(2) <= kMinSharedBytes);
 
 enum ScanPass { kBandTotals = 0, kBandCarries = 1, kBandScan = 2 };
@@ -69,7 +71,7 @@ void SatBuilder::build(ShaderLibrary& shaders, const gl::Texture& depth, int mom
   bindTable();
   mCarry.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
   scanProgram(shaders, kBandTotals, pairs).use();
-  glDispatchCompute(groups(w, kScanShape.threads), static_cast<GLuint>(bands), static_cast<GLuint>(views));
+  glDispatchCompute(groups(w, kScanShape.threads * kScanShape.perThread), static_cast<GLuint>(bands), static_cast<GLuint>(views));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   scanProgram(shaders, kBandCarries, pairs).use();
   glDispatchCompute(groups(w, kScanShape.threads), 1, static_cast<GLuint>(views));
