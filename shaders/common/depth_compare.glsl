@@ -84,6 +84,16 @@ ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, floa
 // The receiver's depth at a tap offsetUv away from it, biased.
 float tapDepth(ComparisonReceiver r, vec2 offsetUv) { return r.depth + dot(r.depthPerUv, offsetUv) - r.bias; }
 
+// A tap's offset with the tap kept inside the map (its outermost texel centres). A tap past the
+// edge would read the edge texel (clamp to edge) but compare it with the receiver's plane
+// continued past the edge: a false blocker wherever that plane deepens outward, i.e. a shadow
+// line along the map's edge on a lit floor. Moved onto the edge, plane and map agree again.
+// mapSize: the map's texels per side (textureSize).
+vec2 tapInsideMap(ComparisonReceiver r, vec2 offsetUv, ivec2 mapSize) {
+  vec2 halfTexelUv = 0.5 / vec2(mapSize);
+  return clamp(r.uv + offsetUv, halfTexelUv, 1.0 - halfTexelUv) - r.uv;
+}
+
 // One comparison at uv: the nearest texel's stored depth …
 float comparisonTap(sampler2DArray map, vec2 uv, int layer, float depth) {
   return compareDepth(depth, texelFetch(map, mapTexel(map, uv, layer), 0).r);
@@ -96,9 +106,10 @@ float comparisonTap(sampler2DArrayShadow map, vec2 uv, int layer, float depth) {
 // Percentage-closer filtering over a (2·halfSide + 1)² grid spanning ±radiusUv on each axis.
 float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int halfSide) {
   int taps = boxTapCount(halfSide);
+  ivec2 mapSize = textureSize(map, 0).xy;
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) {
-    vec2 offset = boxTap(i, halfSide) * radiusUv;
+    vec2 offset = tapInsideMap(r, boxTap(i, halfSide) * radiusUv, mapSize);
     lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
   }
   return lit / float(taps);
@@ -108,9 +119,10 @@ float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radi
 // radius radiusUv (per axis).
 float percentageCloserPoisson(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int taps, mat2 rotation) {
   int n = clamp(taps, 1, kPoissonDiskSize);
+  ivec2 mapSize = textureSize(map, 0).xy;
   float lit = 0.0;
   for (int i = 0; i < n; ++i) {
-    vec2 offset = poissonTap(i, rotation) * radiusUv;
+    vec2 offset = tapInsideMap(r, poissonTap(i, rotation) * radiusUv, mapSize);
     lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
   }
   return lit / float(n);

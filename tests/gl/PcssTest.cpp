@@ -154,6 +154,45 @@ TEST(Pcss, BeatsEveryFixedRadiusPcfOnPen) {
   }
 }
 
+// The uniform fit ends `pen`'s spot map inside the visible floor, and that floor deepens toward
+// the map's far edge. Kernel taps past the edge read the edge texel (clamp to edge) and used to be
+// compared with the receiver's plane continued past the edge: a false blocker, i.e. a grey line
+// along the edge (pcf box r=16: V = 0.56) and a blocker-search hit with a 0 m penumbra (pcss).
+// Taps are now kept inside the map, so floor far from the pencil's shadow is lit everywhere.
+TEST(Pcss, NoFalseShadowAlongTheMapEdge) {
+  const Scene scene = makeBuiltinScene("pen");
+  constexpr int kWidth = 256, kHeight = 144;
+  constexpr float kClearM = 0.3f;  // from the shadow's axis: far beyond any kernel or penumbra here
+  const glm::vec2 axis = penShadowAxis(scene);
+  for (const auto& [filter, params] : std::vector<std::pair<std::string, Params>>{
+           {"pcf", {{"pcf.kernel", "box"}, {"pcf.radiusTexels", "16"}}},
+           {"pcf", {{"pcf.kernel", "poisson"}, {"pcf.radiusTexels", "16"}}},
+           {"pcf", {{"pcf.kernel", "poisson"}, {"pcf.radiusTexels", "16"}, {"pcf.hardwareCompare", "on"}}},
+           {"pcss", {}},
+           {"pcss", {{"pcss.pattern", "box"}}}}) {
+    const RenderResult r = renderScene(scene, "uniform", filter, params, kWidth, kHeight, kMapSize);
+    size_t floor = 0, dark = 0;
+    float darkest = 1.0f;
+    for (size_t i = 0; i < r.visibility.size(); ++i) {
+      const glm::vec4& p = r.gbuffer.position[i];
+      if (p.w < 0.5f || std::abs(p.y) > kFloorEpsM) continue;
+      const glm::vec2 xz(p.x, p.z);
+      const float along = glm::dot(xz, axis);
+      const float fromAxisM = along > 0.0f ? std::abs(glm::dot(xz, glm::vec2(-axis.y, axis.x))) : glm::length(xz);
+      if (fromAxisM < kClearM) continue;
+      ++floor;
+      if (r.visibility[i] < 0.99f) ++dark;
+      darkest = std::min(darkest, r.visibility[i]);
+    }
+    std::string name = filter;
+    for (const auto& [key, value] : params) name += fmt::format(" {}={}", key, value);
+    std::printf("pen %s: %zu of %zu floor pixels clear of the shadow below V=0.99 (darkest %.3f)\n", name.c_str(), dark,
+                floor, darkest);
+    EXPECT_GT(floor, 10000u);
+    EXPECT_EQ(dark, 0u) << name;
+  }
+}
+
 TEST(Pcss, SunPenumbraFollowsTheAngularRadius) {
   // An orthographic view: the penumbra widens with the sun's angular radius as the reference's.
   const Scene scene = makeBuiltinScene("grazing");  // a long shadow: its penumbra widens along it

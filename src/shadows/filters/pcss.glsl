@@ -28,10 +28,11 @@ int patternTapCount(int taps) {
 // False when there is none: the receiver is fully lit.
 bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
   int taps = patternTapCount(u_pcss.config.x);
+  ivec2 mapSize = textureSize(s_depthMap, 0).xy;
   float sum = 0.0;
   int blockers = 0;
   for (int i = 0; i < taps; ++i) {
-    vec2 offset = patternTap(i, u_pcss.config.x, rotation) * radiusUv;
+    vec2 offset = tapInsideMap(r, patternTap(i, u_pcss.config.x, rotation) * radiusUv, mapSize);
     float stored = texelFetch(s_depthMap, mapTexel(s_depthMap, r.uv + offset, r.layer), 0).r;
     if (compareDepth(tapDepth(r, offset), stored) == 0.0) {
       sum += stored;
