@@ -103,6 +103,16 @@ float comparisonTap(sampler2DArrayShadow map, vec2 uv, int layer, float depth) {
   return texture(map, vec4(uv, float(layer), depth));
 }
 
+// The receiver's map coordinate moved onto the outermost texel centres, its depth carried along
+// its own plane: for lookups that average boxes of the map around the receiver (vssm, msm-soft),
+// which within half a texel of the edge would otherwise centre on a texel that is not there.
+vec3 coordInsideMap(int view, SurfacePoint s, vec3 coord, ivec2 mapSize) {
+  vec2 halfTexelUv = 0.5 / vec2(mapSize);
+  vec2 inside = clamp(coord.xy, halfTexelUv, 1.0 - halfTexelUv);
+  if (inside == coord.xy) return coord;
+  return vec3(inside, coord.z + dot(receiverDepthGradient(view, s), inside - coord.xy));
+}
+
 // Percentage-closer filtering over a (2·halfSide + 1)² grid spanning ±radiusUv on each axis.
 float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int halfSide) {
   int taps = boxTapCount(halfSide);

@@ -64,6 +64,16 @@ dvec2 satCornerBilinear(ivec2 size, vec2 p, int layer) {
   return mix(mix(s00, s10, fx), mix(s01, s11, fx), fy);
 }
 
+// The box of half-size halfSize (texels) around centre, shrunk about its centre where it would
+// cross the map's edge (at least half a texel each way). Clipped on one side only, a box is no
+// longer centred on the receiver, and on a tilted receiver its mean depth then differs from the
+// receiver's own: a false blocker along the map's edge.
+void satCentredBox(ivec2 size, vec2 centre, vec2 halfSize, out vec2 lo, out vec2 hi) {
+  vec2 h = max(min(halfSize, min(centre, vec2(size) - centre)), vec2(0.5));
+  lo = centre - h;
+  hi = centre + h;
+}
+
 // Mean of the two moments of pair layer `layer` of a size.x · size.y table over the box [lo, hi]
 // (continuous texel coordinates, clipped to the map).
 dvec2 satBoxMean(ivec2 size, vec2 lo, vec2 hi, int layer) {

@@ -7,6 +7,7 @@
 // (2) penumbra width from z_occ by similar triangles; (3) visibility = 1 − the Hamburger 4MSM
 // bound over the penumbra-sized box. Linear light depth per view. Artifacts: far less bleeding
 // than vssm; the bound's slack still lightens the inside of overlapping penumbrae.
+#include "common/depth_compare.glsl"
 #include "common/moments.glsl"
 #include "common/penumbra.glsl"
 #include "common/sat.glsl"
@@ -24,7 +25,8 @@ const float kMinBlockerFraction = 0.01;
 // search: 8 texel fetches instead of 32).
 vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, bool exact) {
   ivec2 size = ivec2(shadowMapSize());
-  vec2 lo = (uv - radiusUv) * vec2(size), hi = (uv + radiusUv) * vec2(size);
+  vec2 lo, hi;
+  satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
   vec4 b = exact ? vec4(vec2(satBoxMean(size, lo, hi, 2 * view)), vec2(satBoxMean(size, lo, hi, 2 * view + 1)))
                  : vec4(vec2(satBoxMeanSnapped(size, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(size, lo, hi, 2 * view + 1)));
   return biasMoments(b, u_msmSoft.params.x);
@@ -34,6 +36,7 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
+  coord = coordInsideMap(view, s, coord, ivec2(shadowMapSize()));
   float lightSize = u_frame.lightRadiance.w;
   float t = coord.z - u_msmSoft.params.y;
   float texelUv = 1.0 / shadowMapSize();

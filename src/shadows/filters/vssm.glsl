@@ -7,6 +7,7 @@
 // of (z, z²) (source=sat: exact boxes) or from the mip chain of vsm (source=mip: trilinear boxes,
 // approximate). Linear light depth per view. Artifacts: vsm's light bleeding; z_unocc = t makes
 // blockers look farther than they are when the region mixes receiver and far geometry.
+#include "common/depth_compare.glsl"
 #include "common/chebyshev.glsl"
 #include "common/footprint.glsl"
 #include "common/penumbra.glsl"
@@ -31,7 +32,8 @@ const float kUnoccludedLit = 0.99;
 vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, bool exact) {
 #if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
   ivec2 size = ivec2(shadowMapSize());
-  vec2 lo = (uv - radiusUv) * vec2(size), hi = (uv + radiusUv) * vec2(size);
+  vec2 lo, hi;
+  satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
   vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
   return vec2(m.x, max(m.y, u_vssm.params.x));
 #else
@@ -49,6 +51,7 @@ float shadowVisibility(SurfacePoint s) {
     recordNoBlocker(s);
     return 1.0;
   }
+  coord = coordInsideMap(view, s, coord, ivec2(shadowMapSize()));
   float lightSize = u_frame.lightRadiance.w;
   float t = coord.z;
   float texelUv = 1.0 / shadowMapSize();
