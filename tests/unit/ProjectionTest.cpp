@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace penumbra;
@@ -199,6 +200,32 @@ TEST(Projection, TrapezoidRuleMapsTheFocusPointTo80Percent) {
   EXPECT_NEAR(mapY(lambda), 1.0f, 1e-5f);
   EXPECT_NEAR(0.5f * (mapY(delta) + 1.0f), m, 1e-5f);  // 80% of the way across the map
   EXPECT_TRUE(std::isinf(trapezoidApexDistance(lambda, 0.9f * lambda, m)));
+}
+
+// The trapezoid spends the map on the receivers: its top and base edges touch their region and
+// its sides are tangents to it, so the body spans the whole map both ways, less the margins. The
+// margin along the centre line once grew with the apex distance: with the apex far away (little
+// or no warp, `grazing`) the body filled 5 % of the map's height and shadows came out 11× blockier.
+TEST(Projection, TrapezoidFillsTheMap) {
+  constexpr float kMinSpanNdc = 1.9f;  // of 2; the margins take 2 · 2 texels of 1024
+  for (const char* name : {"grazing", "boxes", "fence", "city"}) {
+    const Scene scene = makeBuiltinScene(name);
+    auto p = makeProjection("tsm");
+    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize).views.at(0);
+    const float farM = std::max(shadowFarDistance(scene.camera, scene), 2.0f * scene.camera.nearM);
+    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene, scene.light());
+    ASSERT_FALSE(body.empty()) << name;
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& q : body) {
+      const glm::vec4 c = v.clipFromWorld * glm::vec4(q, 1.0f);
+      ASSERT_GT(c.w, 0.0f) << name;
+      lo = glm::min(lo, glm::vec2(c) / c.w);
+      hi = glm::max(hi, glm::vec2(c) / c.w);
+    }
+    std::printf("%-8s tsm: the receivers span %.3f x %.3f of the map's 2 x 2 (NDC)\n", name, hi.x - lo.x, hi.y - lo.y);
+    EXPECT_GE(hi.x - lo.x, kMinSpanNdc) << name;
+    EXPECT_GE(hi.y - lo.y, kMinSpanNdc) << name;
+  }
 }
 
 TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {

@@ -114,8 +114,14 @@ LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float asp
   const float widen = (tMax - tMin) * marginFraction + 1e-6f;
   tMin -= widen;
   tMax += widen;
-  // The margin along u: the top edge moves toward the apex, the base away from it.
-  const float etaMargin = eta * (1.0f - marginFraction), lambdaMargin = lambda * (1.0f + marginFraction) + eta * marginFraction;
+  // The margin along u: the top edge moves toward the apex, the base away from it, each by
+  // marginFraction of the map measured in warped y = A − B/a (dy/da = B/a², B = 2η(η+λ)/λ):
+  // Δ = 2·marginFraction / (dy/da) at a = η and at a = η + λ. Both tend to marginFraction·λ as the
+  // apex recedes (no warp); a margin proportional to η instead grew with it (at the apex clamp of
+  // 1e4·λ the base edge landed 40λ away and the scene filled a sliver of the map).
+  const float topMargin = marginFraction * lambda * eta / (eta + lambda);
+  const float baseMargin = marginFraction * lambda * (eta + lambda) / eta;
+  const float etaMargin = eta - topMargin, lambdaMargin = lambda + topMargin + baseMargin;
 
   ShadowView& w = f.views.front();
   w.clipFromWorld = trapezoidWarp(q, u, etaMargin, lambdaMargin, tMin, tMax) * base.clipFromWorld;
