@@ -1,8 +1,10 @@
 #pragma once
-// Image files. Every writer writes to a temporary name in the same folder and renames, so a
-// failed run never leaves a half-written file. Errors throw penumbra::Error naming the file.
+// Image and other output files. Every writer writes to a temporary name in the same folder
+// (unique per process and call) and renames, so a failed or concurrent run never leaves a
+// half-written file. Errors throw penumbra::Error naming the file.
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <span>
 #include <string_view>
 #include <algorithm>
@@ -33,5 +35,8 @@ std::vector<T> flipRows(std::span<const T> pixels, int width, int height, int ch
 
 /// Writes text to a file atomically (temporary name, then rename).
 void writeTextFile(const std::filesystem::path& path, std::string_view text);
+/// Writes the byte blocks one after another to a file atomically (e.g. a cache's header, then
+/// its payload).
+void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks);
 
 }  // namespace penumbra

@@ -3,17 +3,16 @@
 #include "reference/Hash.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
 
 #include <fmt/format.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <span>
 #include <system_error>
-#include <unistd.h>
 #include <vector>
 
 namespace penumbra {
@@ -65,8 +64,6 @@ const char* take(const char* in, std::vector<T>& values, size_t count) {
   std::memcpy(values.data(), in, count * sizeof(T));
   return in + count * sizeof(T);
 }
-
-std::atomic<unsigned> gTempCounter{0};
 
 }  // namespace
 
@@ -143,27 +140,8 @@ void storeCachedResult(const fs::path& dir, const ReferenceResult& result) {
   header.payloadHash = hash.digest();
 
   const fs::path path = cacheFilePath(dir, result.cacheKey);
-  // Unique per process and call: two runs that store the same key never share a temporary.
-  const fs::path temp = fs::path(path).concat(fmt::format(".tmp.{}.{}", getpid(), gTempCounter.fetch_add(1)));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
-    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      throw Error(fmt::format("reference cache: cannot write '{}'", temp.string()));
-    }
-  }
-  std::error_code error;
-  fs::rename(temp, path, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw Error(fmt::format("reference cache: cannot rename '{}' to '{}' ({})", temp.string(), path.string(),
-                            error.message()));
-  }
+  writeBinaryFile(path, {std::span<const char>(reinterpret_cast<const char*>(&header), sizeof(header)),
+                         std::span<const char>(payload.data(), payload.size())});
 }
 
 }  // namespace penumbra::reference

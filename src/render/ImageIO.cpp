@@ -18,15 +18,20 @@
 #include <stb_image_write.h>
 #pragma GCC diagnostic pop
 
+#include <atomic>
 #include <fstream>
 #include <system_error>
+#include <unistd.h>
 
 namespace penumbra {
 namespace {
 
+std::atomic<unsigned> gTemporaryCounter{0};
+
+// Unique per process and call: two runs (or threads) writing the same file never share one.
 std::filesystem::path temporaryFor(const std::filesystem::path& path) {
   std::filesystem::path tmp = path;
-  tmp += fmt::format(".tmp{}", static_cast<unsigned>(std::hash<std::string>{}(path.string()) & 0xffffu));
+  tmp += fmt::format(".tmp.{}.{}", getpid(), gTemporaryCounter.fetch_add(1));
   return tmp;
 }
 
@@ -112,12 +117,21 @@ std::vector<float> readExr(const std::filesystem::path& path, int& width, int& h
 }
 
 void writeTextFile(const std::filesystem::path& path, std::string_view text) {
+  writeBinaryFile(path, {std::span<const char>(text.data(), text.size())});
+}
+
+void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks) {
   ensureParent(path);
   const std::filesystem::path tmp = temporaryFor(path);
   {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw Error(fmt::format("{}: cannot write", path.string()));
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    for (std::span<const char> b : blocks) out.write(b.data(), static_cast<std::streamsize>(b.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw Error(fmt::format("{}: cannot write", path.string()));
+    }
   }
   commit(tmp, path);
 }

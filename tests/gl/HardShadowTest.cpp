@@ -11,29 +11,9 @@ using namespace penumbra::test;
 namespace {
 
 constexpr int kSize = 256;
-constexpr float kFloorEpsM = 1e-3f;  // G-buffer positions on the floor have y ≈ 0
-
-bool onFloor(const glm::vec4& p) { return p.w > 0.5f && std::abs(p.y) < kFloorEpsM; }
-
-struct Probes {
-  std::vector<size_t> shadowed, lit;
-};
-
-// Floor pixels that are robustly in or out of the hard shadow (same answer 4 cm around them).
-Probes floorProbes(const Scene& scene, const GBufferData& g, int count, float jitterM) {
-  CasterTriangles tris(scene);
-  Probes out;
-  std::mt19937 rng(7);
-  std::uniform_int_distribution<size_t> pick(0, g.position.size() - 1);
-  const size_t perKind = static_cast<size_t>(count) / 2;
-  for (int tries = 0; tries < count * 40 && (out.shadowed.size() < perKind || out.lit.size() < perKind); ++tries) {
-    const size_t i = pick(rng);
-    if (!onFloor(g.position[i])) continue;
-    const float occ = tris.robustOcclusion(scene, glm::vec3(g.position[i]), {0, 1, 0}, jitterM);
-    if (occ == 1.0f && out.shadowed.size() < perKind) out.shadowed.push_back(i);
-    else if (occ == 0.0f && out.lit.size() < perKind) out.lit.push_back(i);
-  }
-  return out;
+// Floor pixels robustly in or out of the hard shadow: count/2 of each kind.
+FloorProbes hardProbes(const Scene& scene, const GBufferData& g, int count, float jitterM) {
+  return floorProbes(scene, g, static_cast<size_t>(count) / 2, jitterM, 7, count * 40);
 }
 
 }  // namespace
@@ -41,7 +21,7 @@ Probes floorProbes(const Scene& scene, const GBufferData& g, int count, float ji
 TEST(HardShadow, BoxesProbePixels) {
   const Scene scene = makeBuiltinScene("boxes");
   const RenderResult r = renderScene(scene, "uniform", "hard", {{"light.size", "0"}, {"hard.bias", "slope"}}, kSize, kSize, 2048);
-  const Probes probes = floorProbes(scene, r.gbuffer, 400, 0.04f);
+  const FloorProbes probes = hardProbes(scene, r.gbuffer, 400, 0.04f);
   ASSERT_GT(probes.shadowed.size(), 20u);
   ASSERT_GT(probes.lit.size(), 20u);
   for (size_t i : probes.shadowed) EXPECT_LT(r.visibility[i], 0.05f) << "pixel " << i << " should be shadowed";
@@ -122,7 +102,7 @@ TEST(HardShadow, UnbiasedMapAgreesOnSpotLights) {
   // A spot-lit scene: probes on the floor under the pencil are in shadow, far ones lit.
   Scene scene = makeBuiltinScene("pen");
   const RenderResult r = renderScene(scene, "uniform", "hard", {{"light.size", "0"}}, kSize, kSize, 1024);
-  const Probes probes = floorProbes(scene, r.gbuffer, 200, 0.01f);
+  const FloorProbes probes = hardProbes(scene, r.gbuffer, 200, 0.01f);
   ASSERT_GT(probes.shadowed.size(), 5u);
   ASSERT_GT(probes.lit.size(), 20u);
   size_t wrong = 0;

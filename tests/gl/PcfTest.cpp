@@ -117,10 +117,7 @@ TEST(PcfGlsl, HardwareComparisonSamplerAtTexelCentresGivesTheSameAverage) {
 namespace {
 
 constexpr int kWidth = 256, kHeight = 160, kMapSize = 1024;
-constexpr float kFloorEpsM = 1e-3f;  // G-buffer positions on the floor have y ≈ 0
 constexpr float kPenumbraLow = 0.02f, kPenumbraHigh = 0.98f;
-
-bool onFloor(const glm::vec4& p) { return p.w > 0.5f && std::abs(p.y) < kFloorEpsM; }
 
 size_t fractionalPixels(const RenderResult& r) {
   size_t n = 0;

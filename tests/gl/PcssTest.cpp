@@ -3,6 +3,7 @@
 // (orthographic view) the penumbra follows the angular radius. Also the benchmark note: the
 // visibility pass time as the light grows ×8, next to PCF at a fixed radius.
 #include "GlFixture.h"
+#include "TestGeometry.h"
 
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
@@ -20,7 +21,6 @@ using namespace penumbra::test;
 namespace {
 
 constexpr int kMapSize = 1024;
-constexpr float kFloorEpsM = 1e-3f;  // G-buffer positions on the floor have y ≈ 0
 constexpr int kReferenceSamples = 256;
 
 ReferenceResult traceReference(const Scene& scene, const GBufferData& g) {
@@ -62,7 +62,7 @@ double penumbraWidthM(std::span<const float> v, const GBufferData& g, std::span<
   const glm::vec2 across(-axis.y, axis.x);
   for (size_t i = 0; i < v.size(); ++i) {
     const glm::vec4& p = g.position[i];
-    if (!mask[i] || p.w < 0.5f || std::abs(p.y) > kFloorEpsM) continue;
+    if (!mask[i] || !onFloor(p)) continue;
     const glm::vec2 xz(p.x, p.z);
     if (std::abs(glm::dot(xz, axis) - alongM) > kBandHalfM) continue;
     const int b = static_cast<int>(std::floor((glm::dot(xz, across) + kHalfSpanM) / kBinM));
@@ -180,7 +180,7 @@ TEST(MapEdge, NoFalseShadowOnTheLitFloor) {
     float darkest = 1.0f;
     for (size_t i = 0; i < r.visibility.size(); ++i) {
       const glm::vec4& p = r.gbuffer.position[i];
-      if (p.w < 0.5f || std::abs(p.y) > kFloorEpsM) continue;
+      if (!onFloor(p)) continue;
       const glm::vec2 xz(p.x, p.z);
       const float along = glm::dot(xz, axis);
       const float fromAxisM = along > 0.0f ? std::abs(glm::dot(xz, glm::vec2(-axis.y, axis.x))) : glm::length(xz);

@@ -19,10 +19,7 @@ using namespace penumbra::test;
 namespace {
 
 constexpr int kSize = 256, kMapSize = 1024;
-constexpr float kFloorEpsM = 1e-3f;  // G-buffer positions on the floor have y ≈ 0
 constexpr float kAcneV = 0.5f;       // an unoccluded pixel darker than this is acne
-
-bool onFloor(const glm::vec4& p) { return p.w > 0.5f && std::abs(p.y) < kFloorEpsM; }
 
 // Makes the floor a shadow caster (it may or may not be one in the built-in scene). On `grazing`
 // the floor is a closed slab, so its texels take the midpoint of two layers; on `pen` and `boxes`

@@ -1,5 +1,8 @@
 #include "TestGeometry.h"
 
+#include <cmath>
+#include <random>
+
 namespace penumbra::test {
 
 CasterTriangles::CasterTriangles(const Scene& scene) {
@@ -53,6 +56,27 @@ float CasterTriangles::robustOcclusion(const Scene& scene, const glm::vec3& orig
     hits += blocked(p, dir, 0.0f, tMax) ? 1 : 0;
   }
   return hits == static_cast<int>(offsets.size()) ? 1.0f : hits == 0 ? 0.0f : 0.5f;
+}
+
+bool onFloor(const glm::vec4& p) {
+  constexpr float kFloorEpsM = 1e-3f;
+  return p.w > 0.5f && std::abs(p.y) < kFloorEpsM;
+}
+
+FloorProbes floorProbes(const Scene& scene, const GBufferData& g, size_t perKind, float jitterM, uint32_t seed,
+                        int maxTries) {
+  CasterTriangles tris(scene);
+  FloorProbes out;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<size_t> pick(0, g.position.size() - 1);
+  for (int tries = 0; tries < maxTries && (out.shadowed.size() < perKind || out.lit.size() < perKind); ++tries) {
+    const size_t i = pick(rng);
+    if (!onFloor(g.position[i])) continue;
+    const float occ = tris.robustOcclusion(scene, glm::vec3(g.position[i]), {0, 1, 0}, jitterM);
+    if (occ == 1.0f && out.shadowed.size() < perKind) out.shadowed.push_back(i);
+    else if (occ == 0.0f && out.lit.size() < perKind) out.lit.push_back(i);
+  }
+  return out;
 }
 
 }  // namespace penumbra::test

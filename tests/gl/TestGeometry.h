@@ -1,8 +1,11 @@
 #pragma once
 // CPU ray casting against a scene's triangles, for tests that need a geometric truth without
-// the Embree reference: is the segment from a point toward the light blocked by a caster?
+// the Embree reference: is the segment from a point toward the light blocked by a caster? And
+// the floor pixels that are robustly in or out of a hard shadow, picked with it.
+#include <penumbra/Renderer.h>
 #include <penumbra/Scene.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace penumbra::test {
@@ -25,5 +28,17 @@ public:
 private:
   std::vector<glm::vec3> mV;  // three per triangle, world space
 };
+
+/// A G-buffer position on the floor plane y = 0 (within 1 mm) of the built-in scenes.
+bool onFloor(const glm::vec4& position);
+
+struct FloorProbes {
+  std::vector<size_t> shadowed, lit;  ///< pixel indices
+};
+/// Up to perKind floor pixels of each kind, picked at random (seeded) in at most maxTries picks,
+/// whose centre and 4 points jitterM around it are all occluded / all unoccluded from the light's
+/// centre: far enough from any shadow edge to be dark / lit for a small light.
+FloorProbes floorProbes(const Scene& scene, const GBufferData& g, size_t perKind, float jitterM, uint32_t seed,
+                        int maxTries);
 
 }  // namespace penumbra::test

@@ -52,30 +52,9 @@ Params with(Params p, const Params& more) {
 }
 
 constexpr int kMapSize = 1024;
-constexpr float kFloorEpsM = 1e-3f;  // G-buffer positions on the floor have y ≈ 0
-
-bool onFloor(const glm::vec4& p) { return p.w > 0.5f && std::abs(p.y) < kFloorEpsM; }
-
-struct Probes {
-  std::vector<size_t> shadowed, lit;
-};
-
-// Floor pixels whose centre and 4 points jitterM around it are all occluded / all unoccluded
-// from the light's centre: far enough from any shadow edge to be dark / lit for a small light.
-Probes floorProbes(const Scene& scene, const GBufferData& g, int perKind, float jitterM) {
-  CasterTriangles tris(scene);
-  Probes out;
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<size_t> pick(0, g.position.size() - 1);
-  const size_t n = static_cast<size_t>(perKind);
-  for (int tries = 0; tries < perKind * 200 && (out.shadowed.size() < n || out.lit.size() < n); ++tries) {
-    const size_t i = pick(rng);
-    if (!onFloor(g.position[i])) continue;
-    const float occ = tris.robustOcclusion(scene, glm::vec3(g.position[i]), {0, 1, 0}, jitterM);
-    if (occ == 1.0f && out.shadowed.size() < n) out.shadowed.push_back(i);
-    else if (occ == 0.0f && out.lit.size() < n) out.lit.push_back(i);
-  }
-  return out;
+// Floor pixels robustly in or out of the hard shadow: perKind of each kind.
+FloorProbes hardProbes(const Scene& scene, const GBufferData& g, int perKind, float jitterM) {
+  return floorProbes(scene, g, static_cast<size_t>(perKind), jitterM, 3, perKind * 200);
 }
 
 ReferenceResult traceReference(const Scene& scene, const GBufferData& g) {
@@ -94,7 +73,7 @@ void expectProbes(const std::string& sceneName, const std::string& projection, f
   constexpr int kProbesPerKind = 150;
   const Params light = {{"light.size", fmt::format("{}", lightSize)}};
   const RenderResult hard = renderScene(scene, projection, "hard", light, kW, kH, kMapSize);
-  const Probes probes = floorProbes(scene, hard.gbuffer, kProbesPerKind, jitterM);
+  const FloorProbes probes = hardProbes(scene, hard.gbuffer, kProbesPerKind, jitterM);
   ASSERT_GE(probes.shadowed.size(), 20u) << sceneName;
   ASSERT_GE(probes.lit.size(), 20u) << sceneName;
   constexpr float kDarkV = 0.2f, kLitV = 0.8f;  // a probe is right when V is beyond these
@@ -161,7 +140,7 @@ TEST(VarianceFilters, NoSelfShadowingOnAGrazingPlane) {
   const Scene scene = makeBuiltinScene("grazing");
   constexpr int kW = 192, kH = 108;
   const RenderResult hard = renderScene(scene, "uniform", "hard", {}, kW, kH, kMapSize);
-  const Probes probes = floorProbes(scene, hard.gbuffer, 400, 0.1f);
+  const FloorProbes probes = hardProbes(scene, hard.gbuffer, 400, 0.1f);
   ASSERT_GE(probes.lit.size(), 200u);
   constexpr float kAcneV = 0.9f;         // a lit floor pixel darker than this is self-shadowed
   constexpr double kMaxAcneShare = 0.005;

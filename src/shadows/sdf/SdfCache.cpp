@@ -6,11 +6,11 @@
 #include "reference/Hash.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
 #include <penumbra/Reference.h>
 
 #include <fmt/format.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -19,7 +19,6 @@
 #include <optional>
 #include <span>
 #include <system_error>
-#include <unistd.h>
 
 namespace penumbra::sdf {
 namespace {
@@ -45,8 +44,6 @@ struct Header {
   uint32_t reserved;  // 0; keeps the size a multiple of 8 without compiler padding
 };
 static_assert(sizeof(Header) == 80, "the header has no padding: every byte is written");
-
-std::atomic<unsigned> gTempCounter{0};
 
 size_t voxelCount(const int32_t dims[3]) {
   return static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]) * static_cast<size_t>(dims[2]);
@@ -109,26 +106,8 @@ void store(const fs::path& path, const SdfVolume& v) {
   hash.bytes(payload.data(), payload.size());
   header.payloadHash = hash.digest();
 
-  // Unique per process and call: two runs that store the same key never share a temporary.
-  const fs::path temp = fs::path(path).concat(fmt::format(".tmp.{}.{}", getpid(), gTempCounter.fetch_add(1)));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
-    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      throw Error(fmt::format("sdf cache: cannot write '{}'", temp.string()));
-    }
-  }
-  std::error_code error;
-  fs::rename(temp, path, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw Error(fmt::format("sdf cache: cannot rename '{}' to '{}' ({})", temp.string(), path.string(), error.message()));
-  }
+  writeBinaryFile(path, {std::span<const char>(reinterpret_cast<const char*>(&header), sizeof(header)),
+                         std::span<const char>(payload.data(), payload.size())});
 }
 
 }  // namespace
