@@ -21,6 +21,9 @@ struct ParamDesc {
   bool isInteger() const { return isChoice() || step == 1.0f; }
 };
 
+/// The choice names of an off/on parameter (e.g. pcf.hardwareCompare), in value order.
+inline constexpr std::string_view kOffOn[] = {"off", "on"};
+
 /// Parses `text` for `desc` (a number, or a choice name); throws a usage Error naming the key
 /// when the text is not a number/choice or lies outside [min, max].
 float parseParamValue(const ParamDesc& desc, std::string_view text);

@@ -49,11 +49,48 @@ float lightFootprintRadiusM(int view, float receiverM, float planeM, float light
 // receiver's distance from the near plane. The footprint is converted to uv at the point where
 // the receiver's ray crosses the near plane (exact for unwarped views; psm/tsm use the warp's
 // local scale there).
-vec2 blockerSearchRadiusUv(int view, vec3 wsReceiver, float lightSize) {
-  float nearM = u_shadow.views[view].range.x;
+// The light's footprint (uv, per axis) in the plane at distance planeM along the axis, for a
+// receiver at wsReceiver: every blocker at that distance or beyond that can occlude any part of
+// the light lies within it (the footprint shrinks as the plane nears the receiver).
+vec2 lightFootprintRadiusUv(int view, vec3 wsReceiver, float planeM, float lightSize) {
   float receiverM = lightDistance(view, wsReceiver);
-  float radiusM = lightFootprintRadiusM(view, receiverM, nearM, lightSize);
-  return vec2(radiusM) / shadowMetresPerUv(view, pointOnLightRay(view, wsReceiver, nearM));
+  float radiusM = lightFootprintRadiusM(view, receiverM, planeM, lightSize);
+  return vec2(radiusM) / shadowMetresPerUv(view, pointOnLightRay(view, wsReceiver, planeM));
+}
+
+vec2 blockerSearchRadiusUv(int view, vec3 wsReceiver, float lightSize) {
+  return lightFootprintRadiusUv(view, wsReceiver, u_shadow.views[view].range.x, lightSize);
+}
+
+// The smallest linear depth in the box of half-size radiusUv around uv in `view` of a map of
+// mapSize texels per side, from a min-depth pyramid (render/MinDepthPyramid.h: level k covers 2^(k+1) map texels per texel): at
+// the level whose texels are at least as wide as the box, the at most 2x2 texels over it. Their
+// union holds the box, so the result is never above the box's own minimum.
+float minDepthOverBox(sampler2DArray pyramid, int view, vec2 uv, vec2 radiusUv, float mapSize) {
+  vec2 lo = (uv - radiusUv) * mapSize, hi = (uv + radiusUv) * mapSize;
+  float width = max(max(hi.x - lo.x, hi.y - lo.y), 1.0);
+  int level = clamp(int(ceil(log2(width))) - 1, 0, textureQueryLevels(pyramid) - 1);
+  // Level k's size from level 0's (GL's mip sizes): textureSize with a non-constant level on a
+  // sampler passed as an argument read 1×1 on llvmpipe (Mesa 22.3).
+  ivec2 size = max(textureSize(pyramid, 0).xy >> level, ivec2(1));
+  float texelsPerCell = exp2(float(level + 1));
+  ivec2 a = clamp(ivec2(floor(lo / texelsPerCell)), ivec2(0), size - 1);
+  ivec2 b = clamp(ivec2(floor(hi / texelsPerCell)), a, min(a + 1, size - 1));
+  float m = 1.0;
+  for (int y = a.y; y <= b.y; ++y)
+    for (int x = a.x; x <= b.x; ++x) m = min(m, texelFetch(pyramid, ivec3(x, y, view), level).r);
+  return m;
+}
+
+// The blocker search region made tight: the near plane's footprint (blockerSearchRadiusUv,
+// capped at maxRadiusUv) is searched for its nearest surface, and no blocker can be nearer than
+// that, so the light's footprint at that surface's distance holds every blocker (a large sun
+// region in a big scene shrinks to what the blockers around the receiver need).
+vec2 nearestBlockerSearchRadiusUv(sampler2DArray pyramid, int view, vec3 wsReceiver, vec2 uv, float lightSize,
+                                  vec2 maxRadiusUv) {
+  vec2 nearPlane = min(blockerSearchRadiusUv(view, wsReceiver, lightSize), maxRadiusUv);
+  float nearestM = max(viewDistanceM(view, minDepthOverBox(pyramid, view, uv, nearPlane, shadowMapSize())), u_shadow.views[view].range.x);
+  return min(lightFootprintRadiusUv(view, wsReceiver, nearestM, lightSize), nearPlane);
 }
 
 // Penumbra width (m) on the receiver for blockers at linear depth `blockerDepth`:

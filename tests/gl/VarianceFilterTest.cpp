@@ -182,11 +182,13 @@ TEST(VarianceFilters, FenceLeaksAgainstReference) {
   ASSERT_GT(get("vsm").leakPct, 0.0);
   ASSERT_GT(get("vssm sat").leakPct, 0.0);
   // Four moments cut the bleeding: the leaks inside the reference's umbra (umbraLeakPct, the
-  // light-bleeding share) drop, msm-soft's to at most this share of vssm's (measured 0.64 on
-  // llvmpipe), msm's to no more than vsm's; so do the total leaks. They do not halve leakPct
-  // here: most of it is edge shape, which two and four moments share (docs/msm.md).
-  constexpr double kSoftUmbraLeakRatio = 0.8;
+  // light-bleeding share) drop, msm-soft's to at most this share of vssm's (measured 0.61 on
+  // llvmpipe), msm's to no more than vsm's; so do the total leaks. msm-soft's leakPct is at most
+  // half of vsm's (measured 0.45), the target; msm's is not (0.90): most of it is edge
+  // shape under the pixel footprint that vsm and msm share (docs/msm.md).
+  constexpr double kSoftUmbraLeakRatio = 0.8, kSoftLeakRatioToVsm = 0.5;
   EXPECT_LE(get("msm-soft").umbraLeakPct, kSoftUmbraLeakRatio * get("vssm sat").umbraLeakPct);
+  EXPECT_LE(get("msm-soft").leakPct, kSoftLeakRatioToVsm * get("vsm").leakPct);
   EXPECT_LT(get("msm-soft").leakPct, get("vssm sat").leakPct);
   for (const char* msm : {"msm float32", "msm quantized16"}) {
     EXPECT_LE(get(msm).umbraLeakPct, get("vsm").umbraLeakPct) << msm;
@@ -248,12 +250,18 @@ TEST(VarianceFilters, DISABLED_BenchmarkVisibilityPass) {
               kMapSize2k, glContext().info().renderer.c_str());
   for (const auto& [name, filter, params] : std::vector<std::tuple<std::string, std::string, Params>>{
            {"vssm sat", "vssm", {{"vssm.source", "sat"}}},
+           {"vssm sat, near-plane search", "vssm", {{"vssm.source", "sat"}, {"vssm.tightSearch", "off"}}},
            {"vssm mip", "vssm", {{"vssm.source", "mip"}}},
            {"msm-soft", "msm-soft", {}},
-           {"pcss", "pcss", {}}}) {
-    const double small = minVisibilityMs(pen, filter, with(params, {{"light.size", "0.03"}}), kMapSize2k);
-    const double large = minVisibilityMs(pen, filter, with(params, {{"light.size", "0.24"}}), kMapSize2k);
-    std::printf("  pen %-10s light.size 0.03 m: %8.2f ms, 0.24 m: %8.2f ms, ratio %.2f\n", name.c_str(), small, large,
+           {"pcss", "pcss", {}},
+           {"pcss, near-plane search", "pcss", {{"pcss.tightSearch", "off"}}}}) {
+    // Small and large alternated twice, each the minimum: drift on a shared CPU hits both.
+    double small = 1e30, large = 1e30;
+    for (int round = 0; round < 2; ++round) {
+      small = std::min(small, minVisibilityMs(pen, filter, with(params, {{"light.size", "0.03"}}), kMapSize2k));
+      large = std::min(large, minVisibilityMs(pen, filter, with(params, {{"light.size", "0.24"}}), kMapSize2k));
+    }
+    std::printf("  pen %-28s light.size 0.03 m: %8.2f ms, 0.24 m: %8.2f ms, ratio %.2f\n", name.c_str(), small, large,
                 large / small);
     EXPECT_GT(small, 0.0);
   }

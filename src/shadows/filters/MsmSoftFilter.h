@@ -1,6 +1,7 @@
 #pragma once
 // msm-soft: moment soft shadows — a summed-area table of four depth moments, moment-based blocker
 // search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md).
+#include "render/MinDepthPyramid.h"
 #include "render/SatBuilder.h"
 #include "render/ShadowMaps.h"
 
@@ -23,6 +24,7 @@ public:
 private:
   ShadowMapArray mMaps;
   SatBuilder mSat;
+  MinDepthPyramid mNearest;  // msm-soft.tightSearch
 };
 
 }  // namespace penumbra

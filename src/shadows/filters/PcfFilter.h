@@ -11,8 +11,6 @@ namespace penumbra {
 
 /// Names of PN_KERNEL_* (pcf.kernel, pcss.pattern), in enum order.
 inline constexpr std::string_view kKernelNames[] = {"box", "poisson"};
-/// pcf.hardwareCompare / pcss.hardwareCompare.
-inline constexpr std::string_view kOffOn[] = {"off", "on"};
 
 /// A GL sampler object that turns on hardware depth comparison (sampler2DArrayShadow: lit when
 /// ref ≤ stored) with bilinear filtering, bound over a depth texture's unit for one dispatch:

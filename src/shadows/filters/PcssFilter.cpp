@@ -25,6 +25,8 @@ constexpr ParamDesc kParams[] = {
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
      0.0002f, 0.0f, 0.05f, 0.0f},
+    {"pcss.tightSearch", "Tight search", "on: the blocker search covers the light's footprint at the nearest surface inside the near-plane region (a min-depth pyramid of the map), not on the near plane; off: the near plane's footprint, where a small blocker in a large region is lost",
+     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
@@ -38,6 +40,10 @@ void PcssFilter::renderShadowMaps(FrameContext& frame) {
   frame.renderViews(mMaps, frame.shadowProgram());
 }
 
+void PcssFilter::prefilter(FrameContext& frame) {
+  if (paramInt("pcss.tightSearch") != 0) mNearest.build(frame.shaders(), mMaps.depth());
+}
+
 void PcssFilter::computeVisibility(FrameContext& frame) {
   gpu::PcssUniforms u{};
   u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), param("pcss.minRadiusTexels"),
@@ -47,6 +53,10 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   const bool hardware = paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
+  if (paramInt("pcss.tightSearch") != 0) {
+    defines.set("PN_TIGHT_SEARCH");
+    mNearest.pyramid().bindUnit(PN_TEX_FILTER2);
+  }
   // One map at two units: raw depths for the blocker search, comparisons for the filter.
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   mMaps.depth().bindUnit(PN_TEX_FILTER1);

@@ -1,5 +1,6 @@
 #pragma once
 // pcss: percentage-closer soft shadows — blocker search, penumbra estimate, PCF (pcss.glsl).
+#include "render/MinDepthPyramid.h"
 #include "render/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
 #include "shadows/filters/PcfFilter.h"
@@ -16,6 +17,7 @@ public:
     return "percentage-closer soft shadows: blocker search, penumbra width from the light size, PCF of that width";
   }
   void renderShadowMaps(FrameContext& frame) override;
+  void prefilter(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
   /// "shadow-map", then "blocker-depth" and "penumbra-width-m" (PenumbraDebugImages.h).
   std::vector<DebugImage> debugImages() const override;
@@ -24,6 +26,7 @@ private:
   ShadowMapArray mMaps;
   ComparisonSampler mCompare;
   PenumbraDebugImages mPenumbraDebug;
+  MinDepthPyramid mNearest;  // pcss.tightSearch
 };
 
 }  // namespace penumbra

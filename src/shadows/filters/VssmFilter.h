@@ -1,6 +1,7 @@
 #pragma once
 // vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
 // of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
+#include "render/MinDepthPyramid.h"
 #include "render/SatBuilder.h"
 #include "render/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
@@ -27,6 +28,7 @@ private:
   ShadowMapArray mMaps;
   SatBuilder mSat;
   PenumbraDebugImages mPenumbraDebug;
+  MinDepthPyramid mNearest;  // vssm.tightSearch
 };
 
 }  // namespace penumbra
