@@ -162,6 +162,9 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
     const uint32_t jsonLength = readU32(bytes.data() + 12), jsonType = readU32(bytes.data() + 16);
     if (version != 2) fail(name, "", fmt::format("GLB version {} (only 2 is glTF 2.0)", version));
     if (length > bytes.size()) fail(name, "", fmt::format("truncated GLB: the header says {} bytes, the file has {}", length, bytes.size()));
+    // Before the subtraction below: a length under the headers' own size would wrap around.
+    if (length < kGlbHeaderBytes)
+      fail(name, "", fmt::format("malformed GLB: the header says {} bytes, less than its {}-byte headers", length, kGlbHeaderBytes));
     if (jsonType != kGlbJsonChunk || jsonLength > length - kGlbHeaderBytes || jsonLength == 0)
       fail(name, "", "malformed GLB: the first chunk is not a JSON chunk inside the file");
     json = bytes.subspan(kGlbHeaderBytes, jsonLength);
