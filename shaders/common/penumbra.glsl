@@ -93,6 +93,20 @@ vec2 nearestBlockerSearchRadiusUv(sampler2DArray pyramid, int view, vec3 wsRecei
   return min(lightFootprintRadiusUv(view, wsReceiver, nearestM, lightSize), nearPlane);
 }
 
+#ifdef PN_TIGHT_SEARCH  // set by shadows/TightSearch.cpp with the pyramid bound
+layout(binding = PN_TEX_MIN_DEPTH) uniform sampler2DArray s_minDepth;  // the map's min-depth pyramid
+#endif
+
+// A searching filter's blocker search region (uv half-size per axis) in [minRadiusUv,
+// maxRadiusUv]: from the nearest surface when the tight search is on, else the near plane's.
+vec2 blockerSearchRegionUv(int view, vec3 wsReceiver, vec2 uv, float lightSize, vec2 minRadiusUv, vec2 maxRadiusUv) {
+#ifdef PN_TIGHT_SEARCH
+  return max(nearestBlockerSearchRadiusUv(s_minDepth, view, wsReceiver, uv, lightSize, maxRadiusUv), minRadiusUv);
+#else
+  return clamp(blockerSearchRadiusUv(view, wsReceiver, lightSize), minRadiusUv, maxRadiusUv);
+#endif
+}
+
 // Penumbra width (m) on the receiver for blockers at linear depth `blockerDepth`:
 //   spot: w = (z_r − z_b) · w_light / z_b with w_light = 2R (the PCSS estimate),
 //   sun:  w = (z_r − z_b) · 2 tan α (the same with the light at infinity).

@@ -25,6 +25,7 @@
 #define PN_TEX_FILTER1 9
 #define PN_TEX_FILTER2 10
 #define PN_TEX_FILTER3 11
+#define PN_TEX_MIN_DEPTH PN_TEX_FILTER2  // a searching filter's min-depth pyramid (shadows/TightSearch.h)
 
 // Image units
 #define PN_IMG_VISIBILITY 0  // r32f output of the visibility pass

@@ -34,19 +34,32 @@ gl::Texture filled(const char* label, GLenum target, GLenum format, int size, in
   return t;
 }
 
-// The compute-shader copy (passes/texture_copy.comp.glsl) of every level-0 texel of `t` into a
-// twin texture of the same format and layers: one load and one store per texel.
-std::function<void()> copyOf(std::shared_ptr<const gl::Texture> t) {
-  auto twin = std::make_shared<gl::Texture>("micro copy target", t->desc());
+// The copy program (passes/texture_copy.comp.glsl) with `defines`, compiled here (untimed) in a
+// library of its own that the timed work keeps alive.
+struct CopyProgram {
+  std::shared_ptr<ShaderLibrary> shaders;
+  const gl::Program* program;
+};
+CopyProgram copyProgram(const char* label, const ShaderDefines& defines) {
   auto shaders = std::make_shared<ShaderLibrary>();
   ProgramDesc d;
-  d.label = "micro texture copy";
+  d.label = label;
   d.compute = {"passes/texture_copy.comp.glsl"};
+  d.defines = defines;
+  const gl::Program& program = shaders->program(d);
+  return {shaders, &program};
+}
+
+// The compute-shader copy of every level-0 texel of `t` into a twin texture of the same format
+// and layers: one load and one store per texel.
+std::function<void()> copyOf(std::shared_ptr<const gl::Texture> t) {
+  auto twin = std::make_shared<gl::Texture>("micro copy target", t->desc());
   const GLenum format = t->desc().format;
   PN_CHECK(format == GL_RG32F || format == GL_RGBA32F, "micro copy: unsupported format");
-  d.defines.set("COPY_FORMAT", format == GL_RG32F ? "rg32f" : "rgba32f").set("COPY_BUFFER", 0);
-  const gl::Program& program = shaders->program(d);  // compiled here, untimed
-  return [t, twin, shaders, &program] {
+  const CopyProgram copy = copyProgram(
+      "micro texture copy", ShaderDefines().set("COPY_FORMAT", format == GL_RG32F ? "rg32f" : "rgba32f").set("COPY_BUFFER", 0));
+  return [t, twin, copy] {
+    const gl::Program& program = *copy.program;
     t->bindImage(PN_IMG_AUX0, GL_READ_ONLY);
     twin->bindImage(PN_IMG_AUX1, GL_WRITE_ONLY);
     program.use();
@@ -60,13 +73,9 @@ std::function<void()> copyOf(std::shared_ptr<const gl::Texture> t) {
 // The same copy of a storage buffer of uvec4 (a summed-area table) into a twin buffer.
 std::function<void()> copyOf(std::shared_ptr<const gl::Buffer> b) {
   auto twin = std::make_shared<gl::Buffer>("micro copy target", b->size());
-  auto shaders = std::make_shared<ShaderLibrary>();
-  ProgramDesc d;
-  d.label = "micro buffer copy";
-  d.compute = {"passes/texture_copy.comp.glsl"};
-  d.defines.set("COPY_BUFFER", 1);
-  const gl::Program& program = shaders->program(d);  // compiled here, untimed
-  return [b, twin, shaders, &program] {
+  const CopyProgram copy = copyProgram("micro buffer copy", ShaderDefines().set("COPY_BUFFER", 1));
+  return [b, twin, copy] {
+    const gl::Program& program = *copy.program;
     b->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
     twin->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_SAT);
     program.use();

@@ -123,36 +123,39 @@ TEST(TightSearch, PyramidMinimumIsExactForItsCellsAndConservativeForTheBox) {
 // reference's umbra that a filter leaves almost fully lit (V > 0.9), and RMSE.
 TEST(TightSearch, BringsBackShadowsTheNearPlaneSearchLosesInCity) {
   const Scene scene = makeBuiltinScene("city");
-  constexpr int kWidth = 256, kHeight = 144;
-  RenderResult first = renderScene(scene, "csm", "hard", {}, kWidth, kHeight, 2048);
+  constexpr int kWidth = 256, kHeight = 144, kMapSize = 2048;  // the CLI's default map size
+  const RenderResult first = renderScene(scene, "csm", "hard", {}, kWidth, kHeight, kMapSize);
   ReferenceTracer tracer(scene);
   ReferenceOptions o;
   o.samples = 64;
   o.progress = false;
   o.useCache = false;
   const ReferenceResult ref = tracer.trace(first.gbuffer, scene.light(), o);
+  constexpr float kUmbraV = 0.02f;   // the reference's umbra, as umbra_leak_pct defines it
+  constexpr float kLostV = 0.9f;     // a filter's V above this there: the shadow is as good as gone
+  constexpr size_t kMinLostOff = 20;  // the near-plane search must lose this many, or the view proves nothing
+  auto inUmbra = [&](size_t i) { return ref.litMask[i] && ref.visibility[i] <= kUmbraV; };
   auto lostUmbra = [&](const RenderResult& r) {
     size_t lost = 0;
-    for (size_t i = 0; i < r.visibility.size(); ++i)
-      lost += ref.litMask[i] && ref.visibility[i] <= 0.02f && r.visibility[i] > 0.9f;
+    for (size_t i = 0; i < r.visibility.size(); ++i) lost += inUmbra(i) && r.visibility[i] > kLostV;
     return lost;
   };
   size_t umbra = 0;
-  for (size_t i = 0; i < ref.visibility.size(); ++i) umbra += ref.litMask[i] && ref.visibility[i] <= 0.02f;
+  for (size_t i = 0; i < ref.visibility.size(); ++i) umbra += inUmbra(i);
   std::printf("city 256x144, csm, reference 64 samples: %zu umbra pixels\n", umbra);
   for (const char* filter : {"pcss", "vssm", "msm-soft"}) {
     const std::string key = std::string(filter) + ".tightSearch";
-    const RenderResult off = renderScene(scene, "csm", filter, {{key, "off"}}, kWidth, kHeight, 2048);
-    const RenderResult on = renderScene(scene, "csm", filter, {{key, "on"}}, kWidth, kHeight, 2048);
+    const RenderResult off = renderScene(scene, "csm", filter, {{key, "off"}}, kWidth, kHeight, kMapSize);
+    const RenderResult on = renderScene(scene, "csm", filter, {{key, "on"}}, kWidth, kHeight, kMapSize);
     const VisibilityMetrics mOff = compareVisibility(off.visibility, ref.visibility, ref.litMask);
     const VisibilityMetrics mOn = compareVisibility(on.visibility, ref.visibility, ref.litMask);
     const size_t lostOff = lostUmbra(off), lostOn = lostUmbra(on);
-    std::printf("  %-9s umbra pixels at V > 0.9: near-plane search %zu, tight %zu; RMSE %.4f -> %.4f\n", filter, lostOff,
-                lostOn, mOff.rmse, mOn.rmse);
+    std::printf("  %-9s umbra pixels at V > %.1f: near-plane search %zu, tight %zu; RMSE %.4f -> %.4f\n", filter, kLostV,
+                lostOff, lostOn, mOff.rmse, mOn.rmse);
     EXPECT_LE(mOn.rmse, mOff.rmse) << filter;
     EXPECT_LE(lostOn, lostOff) << filter;
     if (std::string(filter) != "pcss") {
-      EXPECT_GT(lostOff, 20u) << filter << ": the near-plane search no longer loses shadows here; pick another view";
+      EXPECT_GT(lostOff, kMinLostOff) << filter << ": the near-plane search no longer loses shadows here; pick another view";
       EXPECT_LE(2 * lostOn, lostOff) << filter;
     }
   }

@@ -16,8 +16,7 @@ constexpr ParamDesc kParams[] = {
      1.0f, 0.5f, 16.0f, 0.0f},
     {"msm-soft.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
      512.0f, 1.0f, 4096.0f, 0.0f},
-    {"msm-soft.tightSearch", "Tight search", "on: the blocker search covers the light's footprint at the nearest surface inside the near-plane region (a min-depth pyramid of the map), not on the near plane; off: the near plane's footprint, where a small blocker in a large region is lost",
-     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    tightSearchParam("msm-soft.tightSearch"),
 };
 
 constexpr int kMoments = 4;
@@ -34,7 +33,7 @@ void MsmSoftFilter::renderShadowMaps(FrameContext& frame) {
 
 void MsmSoftFilter::prefilter(FrameContext& frame) {
   mSat.build(frame.shaders(), mMaps.depth(), kMoments);
-  if (paramInt("msm-soft.tightSearch") != 0) mNearest.build(frame.shaders(), mMaps.depth());
+  mTightSearch.build(frame, paramInt("msm-soft.tightSearch") != 0, mMaps.depth());
 }
 
 void MsmSoftFilter::computeVisibility(FrameContext& frame) {
@@ -44,10 +43,7 @@ void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   frame.setFilterBlock(u);
   mSat.bindTable();
   ShaderDefines defines;
-  if (paramInt("msm-soft.tightSearch") != 0) {
-    defines.set("PN_TIGHT_SEARCH");
-    mNearest.pyramid().bindUnit(PN_TEX_FILTER2);
-  }
+  mTightSearch.bind(paramInt("msm-soft.tightSearch") != 0, defines);
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl", defines));
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // msm-soft: moment soft shadows — a summed-area table of four depth moments, moment-based blocker
 // search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md).
-#include "render/MinDepthPyramid.h"
 #include "render/SatBuilder.h"
+#include "shadows/TightSearch.h"
 #include "render/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
@@ -24,7 +24,7 @@ public:
 private:
   ShadowMapArray mMaps;
   SatBuilder mSat;
-  MinDepthPyramid mNearest;  // msm-soft.tightSearch
+  TightSearch mTightSearch;
 };
 
 }  // namespace penumbra

@@ -25,8 +25,7 @@ constexpr ParamDesc kParams[] = {
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
      0.0002f, 0.0f, 0.05f, 0.0f},
-    {"pcss.tightSearch", "Tight search", "on: the blocker search covers the light's footprint at the nearest surface inside the near-plane region (a min-depth pyramid of the map), not on the near plane; off: the near plane's footprint, where a small blocker in a large region is lost",
-     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    tightSearchParam("pcss.tightSearch"),
     {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
@@ -41,7 +40,7 @@ void PcssFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void PcssFilter::prefilter(FrameContext& frame) {
-  if (paramInt("pcss.tightSearch") != 0) mNearest.build(frame.shaders(), mMaps.depth());
+  mTightSearch.build(frame, paramInt("pcss.tightSearch") != 0, mMaps.depth());
 }
 
 void PcssFilter::computeVisibility(FrameContext& frame) {
@@ -53,10 +52,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   const bool hardware = paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
-  if (paramInt("pcss.tightSearch") != 0) {
-    defines.set("PN_TIGHT_SEARCH");
-    mNearest.pyramid().bindUnit(PN_TEX_FILTER2);
-  }
+  mTightSearch.bind(paramInt("pcss.tightSearch") != 0, defines);
   // One map at two units: raw depths for the blocker search, comparisons for the filter.
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   mMaps.depth().bindUnit(PN_TEX_FILTER1);

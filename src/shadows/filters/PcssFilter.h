@@ -1,8 +1,8 @@
 #pragma once
 // pcss: percentage-closer soft shadows — blocker search, penumbra estimate, PCF (pcss.glsl).
-#include "render/MinDepthPyramid.h"
 #include "render/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
+#include "shadows/TightSearch.h"
 #include "shadows/filters/PcfFilter.h"
 
 #include <penumbra/Filter.h>
@@ -26,7 +26,7 @@ private:
   ShadowMapArray mMaps;
   ComparisonSampler mCompare;
   PenumbraDebugImages mPenumbraDebug;
-  MinDepthPyramid mNearest;  // pcss.tightSearch
+  TightSearch mTightSearch;
 };
 
 }  // namespace penumbra

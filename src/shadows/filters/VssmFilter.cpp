@@ -22,8 +22,7 @@ constexpr ParamDesc kParams[] = {
      1.0f, 0.5f, 16.0f, 0.0f},
     {"vssm.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
      512.0f, 1.0f, 4096.0f, 0.0f},
-    {"vssm.tightSearch", "Tight search", "on: the blocker search covers the light's footprint at the nearest surface inside the near-plane region (a min-depth pyramid of the map), not on the near plane; off: the near plane's footprint, where a small blocker in a large region is lost",
-     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    tightSearchParam("vssm.tightSearch"),
     {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
      4.0f, 1.0f, 16.0f, 1.0f},
 };
@@ -53,7 +52,7 @@ void VssmFilter::prefilter(FrameContext& frame) {
   else
     MipBuilder::build(mMaps.color());
   // From the depth map, or from the moments' z (channel r) with source=mip.
-  if (paramInt("vssm.tightSearch") != 0) mNearest.build(frame.shaders(), fromSat() ? mMaps.depth() : mMaps.color());
+  mTightSearch.build(frame, paramInt("vssm.tightSearch") != 0, fromSat() ? mMaps.depth() : mMaps.color());
 }
 
 void VssmFilter::computeVisibility(FrameContext& frame) {
@@ -70,10 +69,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   }
   mPenumbraDebug.bind(frame);
   ShaderDefines defines = ShaderDefines().set("PN_VSSM_SOURCE", paramInt("vssm.source"));
-  if (paramInt("vssm.tightSearch") != 0) {
-    defines.set("PN_TIGHT_SEARCH");
-    mNearest.pyramid().bindUnit(PN_TEX_FILTER2);
-  }
+  mTightSearch.bind(paramInt("vssm.tightSearch") != 0, defines);
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
 }
 

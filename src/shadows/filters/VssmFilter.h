@@ -1,10 +1,10 @@
 #pragma once
 // vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
 // of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
-#include "render/MinDepthPyramid.h"
 #include "render/SatBuilder.h"
 #include "render/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
+#include "shadows/TightSearch.h"
 
 #include <penumbra/Filter.h>
 
@@ -28,7 +28,7 @@ private:
   ShadowMapArray mMaps;
   SatBuilder mSat;
   PenumbraDebugImages mPenumbraDebug;
-  MinDepthPyramid mNearest;  // vssm.tightSearch
+  TightSearch mTightSearch;
 };
 
 }  // namespace penumbra

@@ -16,9 +16,6 @@
 
 layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u_msmSoft; };
 // The SAT is common/sat.glsl's storage buffer: two pair layers per view.
-#ifdef PN_TIGHT_SEARCH
-layout(binding = PN_TEX_FILTER2) uniform sampler2DArray s_nearest;  // the map's min-depth pyramid
-#endif
 
 // Below this blocker fraction the region holds no blocker worth a penumbra: fully lit.
 const float kMinBlockerFraction = 0.01;
@@ -46,11 +43,7 @@ float shadowVisibility(SurfacePoint s) {
   vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);
 
   // (1) Moment-based blocker search.
-#ifdef PN_TIGHT_SEARCH
-  vec2 searchUv = max(nearestBlockerSearchRadiusUv(s_nearest, view, s.ws, coord.xy, lightSize, maxRadiusUv), minRadiusUv);
-#else
-  vec2 searchUv = clamp(blockerSearchRadiusUv(view, s.ws, lightSize), minRadiusUv, maxRadiusUv);
-#endif
+  vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
   vec2 blocker = momentBlockerDepth(regionMoments(view, coord.xy, searchUv, false), t);
   if (blocker.y < kMinBlockerFraction) return 1.0;
 

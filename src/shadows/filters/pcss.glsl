@@ -14,9 +14,6 @@
 layout(std140, binding = PN_UBO_FILTER) uniform PcssBlock { PcssUniforms u_pcss; };
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_depthMap;       // raw depths: blocker search
 layout(binding = PN_TEX_FILTER1) uniform PN_COMPARISON_MAP s_compareMap;  // the same map: filtering
-#ifdef PN_TIGHT_SEARCH
-layout(binding = PN_TEX_FILTER2) uniform sampler2DArray s_nearest;  // its min-depth pyramid
-#endif
 
 // Tap i of `taps` in the chosen pattern, in the unit disk (Poisson) or square (box).
 vec2 patternTap(int i, int taps, mat2 rotation) {
@@ -59,11 +56,7 @@ float shadowVisibility(SurfacePoint s) {
   vec2 maxRadiusUv = vec2(u_pcss.params.w * texelUv);
   mat2 rotation = pixelRotation(s.pixel);
 
-#ifdef PN_TIGHT_SEARCH
-  vec2 searchUv = nearestBlockerSearchRadiusUv(s_nearest, view, s.ws, coord.xy, lightSize, maxRadiusUv);
-#else
-  vec2 searchUv = min(blockerSearchRadiusUv(view, s.ws, lightSize), maxRadiusUv);
-#endif
+  vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, vec2(0.0), maxRadiusUv);
   float blockerDepth;
   if (!averageBlockerDepth(r, searchUv, rotation, blockerDepth)) {
     recordNoBlocker(s);

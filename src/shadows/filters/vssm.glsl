@@ -21,9 +21,6 @@ layout(std140, binding = PN_UBO_FILTER) uniform VssmBlock { VssmUniforms u_vssm;
 #if PN_VSSM_SOURCE != PN_VSSM_SOURCE_SAT
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
 #endif
-#ifdef PN_TIGHT_SEARCH
-layout(binding = PN_TEX_FILTER2) uniform sampler2DArray s_nearest;  // the map's min-depth pyramid
-#endif
 
 // Above this unoccluded fraction the region has no blocker worth a penumbra: fully lit. It also
 // keeps 1 − P away from 0 in the blocker-depth division.
@@ -61,11 +58,7 @@ float shadowVisibility(SurfacePoint s) {
   vec2 minRadiusUv = vec2(u_vssm.params.z * texelUv), maxRadiusUv = vec2(u_vssm.params.w * texelUv);
 
   // (1) Blocker search.
-#ifdef PN_TIGHT_SEARCH
-  vec2 searchUv = max(nearestBlockerSearchRadiusUv(s_nearest, view, s.ws, coord.xy, lightSize, maxRadiusUv), minRadiusUv);
-#else
-  vec2 searchUv = clamp(blockerSearchRadiusUv(view, s.ws, lightSize), minRadiusUv, maxRadiusUv);
-#endif
+  vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
   vec2 region = regionMeanVariance(view, coord.xy, searchUv, false);
   float unoccluded = chebyshevUpperBound(region.x, region.y, t);
   if (unoccluded > kUnoccludedLit) {

@@ -1,0 +1,18 @@
+#include "shadows/TightSearch.h"
+
+#include "render/FrameContext.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+
+void TightSearch::build(FrameContext& frame, bool on, const gl::Texture& map) {
+  if (on) mPyramid.build(frame.shaders(), map);
+}
+
+void TightSearch::bind(bool on, ShaderDefines& defines) const {
+  if (!on) return;
+  defines.set("PN_TIGHT_SEARCH");
+  mPyramid.pyramid().bindUnit(PN_TEX_MIN_DEPTH);
+}
+
+}  // namespace penumbra
