@@ -15,8 +15,10 @@ float chebyshevUpperBound(float mu, float var, float t) {
 
 // Mean and floored variance from the first two raw moments (E[z], E[z^2]). The floor hides both
 // the float cancellation of E[z^2] - E[z]^2 and the zero variance of a region of one flat depth.
+// The floor is kept above kMinVariance, so that t > mu always gives p_max < 1 (never 0 / 0).
+const float kMinVariance = 1e-12;
 vec2 meanVariance(vec2 moments, float minVariance) {
-  return vec2(moments.x, max(moments.y - moments.x * moments.x, minVariance));
+  return vec2(moments.x, max(moments.y - moments.x * moments.x, max(minVariance, kMinVariance)));
 }
 
 // Light-bleeding reduction: visibilities below `amount` become 0 and the rest is stretched back

@@ -32,6 +32,15 @@ vec4 dequantizeMoments16(vec4 q) {
 // it back inside. Larger α = more robust, but lighter shadows (the mixture's own mass at 0 leaks).
 vec4 biasMoments(vec4 b, float alpha) { return mix(b, vec4(0.5), alpha); }
 
+// The smallest α the solve stays stable with: the moments' own rounding must stay inside the
+// mixture's spread. 32-bit floats (and the SAT's exact sums, solved in float): 1e-6, below which
+// the solve breaks up (measured on city, where a cascade's texel is 4e-5 of its depth range:
+// RMSE 0.042 at 1e-6, 0.22 at 1e-8); the 16-bit basis: 3e-5, Peters & Klein's value for its
+// 2^-16 rounding. The filters state α in texels² of depth (common/shadow.glsl's
+// texelDepthVariance) and keep it above these.
+const float kMinMomentBiasFloat32 = 1e-6;
+const float kMinMomentBiasQuantized16 = 3e-5;
+
 // A three-point distribution matching (1, b1, b2, b3, b4) with z[0] = t. z[1] <= z[2]; w sums to 1.
 struct MomentSupport {
   vec3 z;

@@ -67,6 +67,16 @@ float shadowTexelWorldSize(int view, vec3 ws) {
 // Metres of light-axis distance per unit of stored depth.
 float depthRangeM(int view) { return u_shadow.views[view].range.y - u_shadow.views[view].range.x; }
 
+// A variance of stored depth (linear depth² units) from one stated in texels²: `texelsSquared`
+// times the square of one texel's world size at ws, measured along the light's axis. Variance
+// floors are stated this way, like slope-scaled biases, so that one default serves a view 2 m
+// deep and a cascade 700 m deep: a floor in stored-depth units is a few millimetres in the first
+// and metres in the second, enough to wash out the shadow of a bench.
+float texelDepthVariance(int view, vec3 ws, float texelsSquared) {
+  float texelDepth = shadowTexelWorldSize(view, ws) / depthRangeM(view);
+  return texelsSquared * texelDepth * texelDepth;
+}
+
 // Camera view depth (m) of a world point: what cascades are split by.
 float cameraViewDepth(vec3 ws) { return -(u_frame.viewFromWorld * vec4(ws, 1.0)).z; }
 

@@ -141,7 +141,7 @@ void main() {
 // bias-mixed) distribution with fraction F, F − ρ(t) <= L <= F, where ρ(t) is the largest mass a
 // matching distribution can place at t. Also for moments stored in 16 bits.
 TEST(Moments, HamburgerBoundOnTwoAndThreeDepthDistributions) {
-  constexpr double kAlpha = 3e-5;       // msm.bias default
+  constexpr double kAlpha = 3e-5;       // the α msm.bias's default (10 texels²) gives on boxes
   constexpr double kAlpha16 = 6e-4;     // 16-bit storage: rounding errors of ~1e-5 need a larger bias
   constexpr double kFloatSlack = 2e-3;  // float32 solve of the 3x3 Hankel system
   std::mt19937 rng(11);

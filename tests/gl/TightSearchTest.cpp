@@ -134,6 +134,11 @@ TEST(TightSearch, BringsBackShadowsTheNearPlaneSearchLosesInCity) {
   constexpr float kUmbraV = 0.02f;   // the reference's umbra, as umbra_leak_pct defines it
   constexpr float kLostV = 0.9f;     // a filter's V above this there: the shadow is as good as gone
   constexpr size_t kMinLostOff = 20;  // the near-plane search must lose this many, or the view proves nothing
+  // With the tight search, at most this share of the umbra may be left lit. The cascades are 746 m
+  // deep: a variance floor or moment bias stated in linear depth (σ of metres) washed the bench's
+  // shadow out even when the search found it (vssm 44, msm-soft 22 of 2416 pixels); stated in
+  // texels², 2 and 2.
+  constexpr double kMaxLostShareOn = 0.005;
   auto inUmbra = [&](size_t i) { return ref.litMask[i] && ref.visibility[i] <= kUmbraV; };
   auto lostUmbra = [&](const RenderResult& r) {
     size_t lost = 0;
@@ -158,5 +163,6 @@ TEST(TightSearch, BringsBackShadowsTheNearPlaneSearchLosesInCity) {
       EXPECT_GT(lostOff, kMinLostOff) << filter << ": the near-plane search no longer loses shadows here; pick another view";
       EXPECT_LE(2 * lostOn, lostOff) << filter;
     }
+    EXPECT_LE(static_cast<double>(lostOn), kMaxLostShareOn * static_cast<double>(umbra)) << filter;
   }
 }

@@ -10,8 +10,8 @@ namespace {
 
 constexpr ParamDesc kParams[] = {
     {"vsm.minVariance", "Min variance",
-     "floor of the variance, in linear depth² units: hides float cancellation and the acne of flat receivers",
-     2e-6f, 0.0f, 1e-2f, 0.0f},
+     "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers",
+     4.0f, 0.0f, 64.0f, 0.0f},
     {"vsm.bleedReduction", "Bleed reduction",
      "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
      0.0f, 0.0f, 0.95f, 0.0f},

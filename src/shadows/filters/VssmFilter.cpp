@@ -14,8 +14,8 @@ static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames 
 constexpr ParamDesc kParams[] = {
     {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)",
      PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames},
-    {"vssm.minVariance", "Min variance", "floor of the variance, in linear depth² units: keeps flat receivers from shadowing themselves",
-     1e-5f, 0.0f, 1e-2f, 0.0f},
+    {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
+     3.0f, 0.0f, 256.0f, 0.0f},
     {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
      0.0f, 0.0f, 0.95f, 0.0f},
     {"vssm.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",

@@ -19,5 +19,7 @@ float shadowVisibility(SurfacePoint s) {
   if (!insideMap(coord)) return 1.0;
   vec4 b = momentsOverFootprint(s_moments, view, s, coord.xy, u_msm.params.z, u_msm.mode.x);
   if (u_msm.mode.y != 0) b = dequantizeMoments16(b);
-  return 1.0 - hamburgerShadowIntensity(biasMoments(b, u_msm.params.x), coord.z - u_msm.params.y);
+  float alpha = max(texelDepthVariance(view, s.ws, u_msm.params.x),
+                    u_msm.mode.y != 0 ? kMinMomentBiasQuantized16 : kMinMomentBiasFloat32);
+  return 1.0 - hamburgerShadowIntensity(biasMoments(b, alpha), coord.z - u_msm.params.y);
 }

@@ -20,16 +20,16 @@ layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u
 // Below this blocker fraction the region holds no blocker worth a penumbra: fully lit.
 const float kMinBlockerFraction = 0.01;
 
-// Biased box means of (z, z², z³, z⁴) over half-size radiusUv around uv in `view`. `exact`: a
+// Box means of (z, z², z³, z⁴) over half-size radiusUv around uv in `view`, biased by alpha. `exact`: a
 // box with fractional edges (the filter); otherwise edges snap to whole texels (the blocker
 // search: 8 texel fetches instead of 32).
-vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, bool exact) {
+vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, float alpha, bool exact) {
   ivec2 size = ivec2(shadowMapSize());
   vec2 lo, hi;
   satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
   vec4 b = exact ? vec4(vec2(satBoxMean(size, lo, hi, 2 * view)), vec2(satBoxMean(size, lo, hi, 2 * view + 1)))
                  : vec4(vec2(satBoxMeanSnapped(size, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(size, lo, hi, 2 * view + 1)));
-  return biasMoments(b, u_msmSoft.params.x);
+  return biasMoments(b, alpha);
 }
 
 float shadowVisibility(SurfacePoint s) {
@@ -41,13 +41,14 @@ float shadowVisibility(SurfacePoint s) {
   float t = coord.z - u_msmSoft.params.y;
   float texelUv = 1.0 / shadowMapSize();
   vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);
+  float alpha = max(texelDepthVariance(view, s.ws, u_msmSoft.params.x), kMinMomentBiasFloat32);
 
   // (1) Moment-based blocker search.
   vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
-  vec2 blocker = momentBlockerDepth(regionMoments(view, coord.xy, searchUv, false), t);
+  vec2 blocker = momentBlockerDepth(regionMoments(view, coord.xy, searchUv, alpha, false), t);
   if (blocker.y < kMinBlockerFraction) return 1.0;
 
   // (2) Penumbra; (3) filtering over it.
   vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blocker.x, lightSize), minRadiusUv, maxRadiusUv);
-  return 1.0 - hamburgerShadowIntensity(regionMoments(view, coord.xy, radiusUv, true), t);
+  return 1.0 - hamburgerShadowIntensity(regionMoments(view, coord.xy, radiusUv, alpha, true), t);
 }

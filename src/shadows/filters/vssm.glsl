@@ -26,21 +26,22 @@ layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
 // keeps 1 − P away from 0 in the blocker-depth division.
 const float kUnoccludedLit = 0.99;
 
-// Mean and floored variance of depth over the box of half-size radiusUv around uv in `view`.
+// Mean and variance (floored at minVariance) of depth over the box of half-size radiusUv around
+// uv in `view`.
 // `exact`: a box with fractional edges (the filter); otherwise edges may snap to whole texels
 // (the blocker search, which only needs a rough blocker depth: 4 texel fetches instead of 16).
-vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, bool exact) {
+vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, bool exact) {
 #if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
   ivec2 size = ivec2(shadowMapSize());
   vec2 lo, hi;
   satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
   vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
-  return vec2(m.x, max(m.y, u_vssm.params.x));
+  return vec2(m.x, max(m.y, max(minVariance, kMinVariance)));
 #else
   // The box as a footprint: trilinear taps at the level whose texels match its short side.
   vec2 moments = textureFootprint(s_moments, vec3(uv, float(view)), vec2(2.0 * radiusUv.x, 0.0),
                                   vec2(0.0, 2.0 * radiusUv.y), u_vssm.mode.x).rg;
-  return meanVariance(moments, u_vssm.params.x);
+  return meanVariance(moments, minVariance);
 #endif
 }
 
@@ -56,10 +57,11 @@ float shadowVisibility(SurfacePoint s) {
   float t = coord.z;
   float texelUv = 1.0 / shadowMapSize();
   vec2 minRadiusUv = vec2(u_vssm.params.z * texelUv), maxRadiusUv = vec2(u_vssm.params.w * texelUv);
+  float minVariance = texelDepthVariance(view, s.ws, u_vssm.params.x);
 
   // (1) Blocker search.
   vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
-  vec2 region = regionMeanVariance(view, coord.xy, searchUv, false);
+  vec2 region = regionMeanVariance(view, coord.xy, searchUv, minVariance, false);
   float unoccluded = chebyshevUpperBound(region.x, region.y, t);
   if (unoccluded > kUnoccludedLit) {
     recordNoBlocker(s);
@@ -70,6 +72,6 @@ float shadowVisibility(SurfacePoint s) {
 
   // (2) Penumbra; (3) filtering over it.
   vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize), minRadiusUv, maxRadiusUv);
-  vec2 filtered = regionMeanVariance(view, coord.xy, radiusUv, true);
+  vec2 filtered = regionMeanVariance(view, coord.xy, radiusUv, minVariance, true);
   return reduceLightBleeding(chebyshevUpperBound(filtered.x, filtered.y, t), u_vssm.params.y);
 }
