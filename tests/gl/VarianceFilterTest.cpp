@@ -219,34 +219,56 @@ TEST(VarianceFilters, PenRmseNearPcss) {
 
 namespace {
 
-// Minimum visibility-pass time over kFrames frames after warm-up (the minimum is the least
-// disturbed by other work on a shared CPU, where llvmpipe runs).
-double minVisibilityMs(Scene scene, const std::string& filter, const Params& params, int mapSize) {
-  constexpr int kWarmUp = 2, kFrames = 9;
-  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", filter, params);
-  Renderer& renderer = *owned;
+// Visibility-pass times of two configurations (a, b) measured frame by frame in alternation, with
+// both renderers kept alive, so that drift on a shared CPU (llvmpipe runs on it) hits both alike.
+// Reported: each one's median and the median and quartiles of the per-pair ratio b / a.
+struct PairedTimes {
+  double medianA = 0.0, medianB = 0.0, ratio = 0.0, ratioLo = 0.0, ratioHi = 0.0;
+};
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+}
+
+PairedTimes pairedVisibilityMs(const Scene& sceneA, const std::string& filterA, const Params& paramsA,
+                               const Scene& sceneB, const std::string& filterB, const Params& paramsB, int mapSize) {
+  constexpr int kWarmUp = 2, kPairs = 21;
+  const std::unique_ptr<Renderer> a = makeTestRenderer(sceneA, "uniform", filterA, paramsA);
+  const std::unique_ptr<Renderer> b = makeTestRenderer(sceneB, "uniform", filterB, paramsB);
   RenderOptions o;
   o.width = 320;
   o.height = 180;
   o.shadowMapSize = mapSize;
-  for (int i = 0; i < kWarmUp; ++i) renderer.render(o);  // includes the shaders' JIT compile
-  double best = 1e30;
-  for (int i = 0; i < kFrames; ++i) {
-    renderer.render(o);
-    best = std::min(best, renderer.timings().get("visibility"));
+  for (int i = 0; i < kWarmUp; ++i) {  // includes the shaders' JIT compile
+    a->render(o);
+    b->render(o);
   }
-  return best;
+  std::vector<double> msA, msB, ratios;
+  for (int i = 0; i < kPairs; ++i) {
+    // Alternate which goes first: a pass right after the other configuration's frame may find
+    // the caches cold.
+    Renderer& first = i % 2 == 0 ? *a : *b;
+    Renderer& second = i % 2 == 0 ? *b : *a;
+    first.render(o);
+    second.render(o);
+    msA.push_back(a->timings().get("visibility"));
+    msB.push_back(b->timings().get("visibility"));
+    ratios.push_back(msB.back() / msA.back());
+  }
+  return {quantile(msA, 0.5), quantile(msB, 0.5), quantile(ratios, 0.5), quantile(ratios, 0.25), quantile(ratios, 0.75)};
 }
 
 }  // namespace
 
 // Benchmark (run with --gtest_also_run_disabled_tests): the note. vssm's and msm-soft's
-// visibility pass as the light grows ×8 (O(1): flat), next to pcss (taps over a growing region);
-// msm's visibility pass against vsm's at the same filter width.
+// visibility pass as the light grows ×8 (O(1): flat), next to pcss (a fixed number of taps over a
+// growing region); msm's visibility pass against vsm's at the same filter width.
 TEST(VarianceFilters, DISABLED_BenchmarkVisibilityPass) {
   constexpr int kMapSize2k = 2048;
   const Scene pen = makeBuiltinScene("pen");
-  std::printf("visibility pass, 320x180, map %d, minimum of 9 frames after 2 warm-up, glFinish+steady_clock on %s\n",
+  std::printf("visibility pass, 320x180, map %d, 21 alternated frame pairs after 2 warm-up, glFinish+steady_clock on %s\n"
+              "  ratio: median [quartiles] of the per-pair ratio\n",
               kMapSize2k, glContext().info().renderer.c_str());
   for (const auto& [name, filter, params] : std::vector<std::tuple<std::string, std::string, Params>>{
            {"vssm sat", "vssm", {{"vssm.source", "sat"}}},
@@ -255,21 +277,17 @@ TEST(VarianceFilters, DISABLED_BenchmarkVisibilityPass) {
            {"msm-soft", "msm-soft", {}},
            {"pcss", "pcss", {}},
            {"pcss, near-plane search", "pcss", {{"pcss.tightSearch", "off"}}}}) {
-    // Small and large alternated twice, each the minimum: drift on a shared CPU hits both.
-    double small = 1e30, large = 1e30;
-    for (int round = 0; round < 2; ++round) {
-      small = std::min(small, minVisibilityMs(pen, filter, with(params, {{"light.size", "0.03"}}), kMapSize2k));
-      large = std::min(large, minVisibilityMs(pen, filter, with(params, {{"light.size", "0.24"}}), kMapSize2k));
-    }
-    std::printf("  pen %-28s light.size 0.03 m: %8.2f ms, 0.24 m: %8.2f ms, ratio %.2f\n", name.c_str(), small, large,
-                large / small);
-    EXPECT_GT(small, 0.0);
+    const PairedTimes t = pairedVisibilityMs(pen, filter, with(params, {{"light.size", "0.03"}}), pen, filter,
+                                             with(params, {{"light.size", "0.24"}}), kMapSize2k);
+    std::printf("  pen %-28s light.size 0.03 m: %7.2f ms, 0.24 m: %7.2f ms, ratio %.2f [%.2f, %.2f]\n", name.c_str(),
+                t.medianA, t.medianB, t.ratio, t.ratioLo, t.ratioHi);
+    EXPECT_GT(t.medianA, 0.0);
   }
   const Scene fence = makeBuiltinScene("fence");
-  const double vsm = minVisibilityMs(fence, "vsm", {}, kMapSize2k);
-  const double msm32 = minVisibilityMs(fence, "msm", {{"msm.storage", "float32"}}, kMapSize2k);
-  const double msm16 = minVisibilityMs(fence, "msm", {{"msm.storage", "quantized16"}}, kMapSize2k);
-  std::printf("  fence vsm %.2f ms, msm float32 %.2f ms (x%.2f), msm quantized16 %.2f ms (x%.2f)\n", vsm, msm32,
-              msm32 / vsm, msm16, msm16 / vsm);
-  EXPECT_GT(vsm, 0.0);
+  for (const char* storage : {"float32", "quantized16"}) {
+    const PairedTimes t = pairedVisibilityMs(fence, "vsm", {}, fence, "msm", {{"msm.storage", storage}}, kMapSize2k);
+    std::printf("  fence vsm %7.2f ms, msm %-11s %7.2f ms, ratio %.2f [%.2f, %.2f]\n", t.medianA, storage, t.medianB,
+                t.ratio, t.ratioLo, t.ratioHi);
+    EXPECT_GT(t.medianA, 0.0);
+  }
 }
