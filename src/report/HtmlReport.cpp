@@ -120,9 +120,9 @@ std::string gridSection(const BenchResults& r) {
         return fmt::format("<td><img src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}\"></td>", esc(path), row.width,
                            row.height, esc(alt));
       };
-      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} %<br>over-dark {:.2f} %<br>{} {:.3g} ms</td>",
+      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %<br>{} {:.3g} ms</td>",
                           esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
-                          row.metrics.overDarkPct, kCostPass, row.time(kCostPass).median);
+                          row.metrics.umbraLeakPct, row.metrics.overDarkPct, kCostPass, row.time(kCostPass).median);
       rows += img(row.imagePath, row.config.filter + " " + row.config.projection) +
               img(row.referencePath, "reference") + img(row.heatmapPath, "error heatmap") + "</tr>\n";
     }
@@ -208,14 +208,16 @@ std::string resultsTables(const BenchResults& r) {
     h += "<h4>" + esc(scene) + "</h4>\n<div class=\"wide\"><table><tr><th class=\"l\">filter</th><th class=\"l\">projection</th>"
          "<th class=\"l\">params</th><th>light size</th><th>frames</th>";
     for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
-    h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>over-dark %</th></tr>\n";
+    h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th title=\"leaking pixels inside the reference's umbra: light "
+         "bleeding rather than an edge's shape\">umbra leak %</th><th>over-dark %</th></tr>\n";
     for (const BenchRow* row : rows) {
       h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{:g}</td><td>{}</td>",
                        esc(row->config.filter), esc(row->config.projection), esc(row->config.paramsText()),
                        row->lightSize, row->frames);
       for (const std::string& p : passes) h += "<td>" + ms(row->time(p)) + "</td>";
-      h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n", row->metrics.rmse,
-                       row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.overDarkPct);
+      h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n",
+                       row->metrics.rmse, row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.umbraLeakPct,
+                       row->metrics.overDarkPct);
     }
     h += "</table></div>\n";
   }

@@ -9,7 +9,7 @@
 namespace penumbra::report {
 namespace {
 
-constexpr int kFormatVersion = 1;
+constexpr int kFormatVersion = 2;  // 2: umbra_leak_pct
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -34,8 +34,8 @@ nlohmann::json statsJson(const TimeStats& t) { return {{"median", t.median}, {"p
 
 std::vector<std::string> tableColumns(const BenchResults& results) {
   std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "width", "height",
-                                   "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "overdark_pct",
-                                   "penumbra_rmse", "pixels"};
+                                   "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "umbra_leak_pct",
+                                   "overdark_pct", "penumbra_rmse", "pixels"};
   for (const std::string& pass : results.passNames())
     for (const char* suffix : kStatSuffixes) cols.push_back(pass + suffix);
   for (const char* c : {"image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
@@ -50,7 +50,7 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
                              r.config.paramsText(), numFloat(r.lightSize), num(r.width), num(r.height),
                              num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
-                             num(m.leakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
+                             num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
   for (const std::string& pass : results.passNames()) {
     const auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassStats& p) { return p.name == pass; });
     if (it == r.passes.end()) {

@@ -125,6 +125,8 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   row.config = {.plan = "custom", .scene = "boxes", .projection = "uniform", .filter = "hard",
                 .params = {{"hard.bias", "slope"}, {"light.size", "0.1"}}, .inGrid = false};
   row.metrics.rmse = 0.1 + 0.2;  // 0.30000000000000004: needs all 17 digits
+  row.metrics.leakPct = 1.25;
+  row.metrics.umbraLeakPct = 0.375;  // its own column, not confused with leak_pct
   row.lightSize = 0.12f;         // written as 0.12, the float's shortest text
   row.passes = {{"visibility", {1.5, 1.0, 2.0}}, {kTotalPass, {3.0, 2.0, 4.0}}};
   r.rows.push_back(row);
@@ -137,6 +139,8 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   EXPECT_EQ(j["rows"][0]["rmse"].get<double>(), 0.1 + 0.2);
   EXPECT_EQ(j["rows"][0]["visibility_ms_median"].get<double>(), 1.5);
   EXPECT_EQ(j["rows"][0]["light_size"].get<double>(), 0.12);
+  EXPECT_EQ(j["rows"][0]["leak_pct"].get<double>(), 1.25);
+  EXPECT_EQ(j["rows"][0]["umbra_leak_pct"].get<double>(), 0.375);
 }
 
 TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
