@@ -71,9 +71,12 @@ vec4 textureFootprint(sampler2DArray s, vec3 uvLayer, vec2 dUVdx, vec2 dUVdy, in
 
 // The prefiltered moments under s's pixel footprint in `view` (s's map uv `uv`), the footprint
 // widened to at least minTexels on each axis: what vsm and msm read from their mip chains.
-vec4 momentsOverFootprint(sampler2DArray moments, int view, SurfacePoint s, vec2 uv, float minTexels, int maxTaps) {
-  vec2 dx, dy;
-  shadowFootprint(view, s, uv, dx, dy);
+// `usePixel` false: the pixel's footprint is ignored and the box is minTexels wide in map space,
+// the same for every camera (as pcf's kernel).
+vec4 momentsOverFootprint(sampler2DArray moments, int view, SurfacePoint s, vec2 uv, float minTexels, int maxTaps,
+                          bool usePixel) {
+  vec2 dx = vec2(0.0), dy = vec2(0.0);
+  if (usePixel) shadowFootprint(view, s, uv, dx, dy);
   widenFootprint(minTexels / shadowMapSize(), dx, dy);
   return textureFootprint(moments, vec3(uv, float(view)), dx, dy, maxTaps);
 }

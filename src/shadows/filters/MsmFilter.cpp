@@ -21,6 +21,8 @@ constexpr ParamDesc kParams[] = {
      0.0f, 0.0f, 0.05f, 0.0f},
     {"msm.filterTexels", "Filter width", "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness",
      2.0f, 1.0f, 64.0f, 0.0f},
+    {"msm.footprint", "Pixel footprint", "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, view-dependent); off: a fixed box of msm.filterTexels texels, the same from every camera",
+     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"msm.anisotropy", "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)",
      8.0f, 1.0f, 16.0f, 1.0f},
 };
@@ -55,7 +57,7 @@ void MsmFilter::prefilter(FrameContext& frame) {
 void MsmFilter::computeVisibility(FrameContext& frame) {
   gpu::MsmUniforms u{};
   u.params = glm::vec4(param("msm.bias"), param("msm.depthBias"), param("msm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("msm.anisotropy"), quantized(*this) ? 1 : 0, 0, 0);
+  u.mode = glm::ivec4(paramInt("msm.anisotropy"), quantized(*this) ? 1 : 0, paramInt("msm.footprint"), 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);

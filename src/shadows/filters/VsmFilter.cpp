@@ -18,6 +18,8 @@ constexpr ParamDesc kParams[] = {
     {"vsm.filterTexels", "Filter width",
      "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness", 2.0f, 1.0f,
      64.0f, 0.0f},
+    {"vsm.footprint", "Pixel footprint", "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, view-dependent); off: a fixed box of vsm.filterTexels texels, the same from every camera",
+     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"vsm.anisotropy", "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)",
      8.0f, 1.0f, 16.0f, 1.0f},
 };
@@ -42,7 +44,7 @@ void VsmFilter::prefilter(FrameContext& frame) {
 void VsmFilter::computeVisibility(FrameContext& frame) {
   gpu::VsmUniforms u{};
   u.params = glm::vec4(param("vsm.minVariance"), param("vsm.bleedReduction"), param("vsm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), 0, 0, 0);
+  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), paramInt("vsm.footprint"), 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);

@@ -5,7 +5,7 @@
 PN_GPU_BEGIN
 
 struct MsmSoftUniforms {
-  vec4 params;  // x: moment bias α, y: depth bias (linear depth), z: minimum filter radius (texels),
+  vec4 params;  // x: moment bias (texels²), y: depth bias (linear depth), z: minimum filter radius (texels),
                 // w: maximum search/filter radius (texels)
 };
 

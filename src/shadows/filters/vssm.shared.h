@@ -5,7 +5,7 @@
 PN_GPU_BEGIN
 
 struct VssmUniforms {
-  vec4 params;  // x: minimum variance (linear depth^2), y: light-bleeding reduction [0, 1),
+  vec4 params;  // x: minimum variance (texels², common/shadow.glsl), y: light-bleeding reduction [0, 1),
                 // z: minimum filter radius (texels), w: maximum search/filter radius (texels)
   ivec4 mode;   // x: maximum anisotropic taps (source=mip), yzw: unused
 };
