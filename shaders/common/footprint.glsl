@@ -30,9 +30,13 @@ vec3 hitTangentPlane(vec2 ndc, vec3 ws, vec3 n) {
 }
 
 // Map-uv offsets of one pixel step in screen x and y at s, in view `view`; `uv` is s's map uv.
+// The steps start from s's own projection in the current camera, not from s.pixel: a point
+// list (Renderer::visibilityAt) keeps the pixel a point was first seen at while the camera moves,
+// and rays through that pixel miss the point, which turned the camera's move into a footprint.
 void shadowFootprint(int view, SurfacePoint s, vec2 uv, out vec2 dUVdx, out vec2 dUVdy) {
   vec2 screen = vec2(u_frame.screen.xy);
-  vec2 ndc = (vec2(s.pixel) + 0.5) / screen * 2.0 - 1.0;
+  vec4 clip = u_frame.clipFromWorld * vec4(s.ws, 1.0);
+  vec2 ndc = clip.xy / clip.w;
   vec2 stepNdc = 2.0 / screen;
   dUVdx = shadowCoord(view, hitTangentPlane(ndc + vec2(stepNdc.x, 0.0), s.ws, s.geoNormal)).xy - uv;
   dUVdy = shadowCoord(view, hitTangentPlane(ndc + vec2(0.0, stepNdc.y), s.ws, s.geoNormal)).xy - uv;

@@ -218,29 +218,31 @@ TEST(VarianceFilters, PenRmseNearPcss) {
   }
 }
 
-// `<filter>.footprint=off`: the filter box is fixed in the map, so V at a fixed world point no
-// longer depends on the camera; on, it follows each pixel's footprint and moves as the camera
-// does (the shimmer measure, which holds world points still; compare's --shimmer 8 read
-// 3.2 % / 3.4 % on and 0.00 off on pen).
-TEST(VarianceFilters, FixedBoxIsTheSameFromEveryCamera) {
+// V at fixed world points while the camera makes 8 small moves (the shimmer measure) on pen, whose
+// spot map does not move with the camera: with `<filter>.footprint=off` the filter box is fixed in
+// the map, so nothing may change; with the footprint, the box follows each point's projection and
+// changes only a little. The footprint once started from the pixel a point was first seen at,
+// which after a move is a ray that misses the point: 3.2 % (vsm) and 3.4 % (msm) of the edge
+// points then changed by more than 0.1.
+TEST(VarianceFilters, FootprintFollowsThePointAsTheCameraMoves) {
   const Scene pen = makeBuiltinScene("pen");
   ShimmerOptions o;
   o.steps = 8;
   const RenderOptions render{256, 144, kMapSize};
+  constexpr double kMaxShimmerPct = 0.1;
   for (const char* filter : {"vsm", "msm"}) {
-    double pct[2] = {0.0, 0.0};
-    for (int on = 0; on <= 1; ++on) {
+    for (const char* footprint : {"off", "on"}) {
       const std::string key = std::string(filter) + ".footprint";
-      const std::unique_ptr<Renderer> r = makeTestRenderer(pen, "uniform", filter, {{key, on ? "on" : "off"}});
+      const std::unique_ptr<Renderer> r = makeTestRenderer(pen, "uniform", filter, {{key, footprint}});
       const ShimmerResult s = measureShimmer(*r, render, o);
-      std::printf("  pen %s %s=%s: shimmer_pct %.3f over %zu edge points\n", filter, key.c_str(), on ? "on" : "off",
+      std::printf("  pen %s %s=%s: shimmer_pct %.3f over %zu edge points\n", filter, key.c_str(), footprint,
                   s.shimmerPct, s.edgePoints);
       ASSERT_GT(s.edgePoints, 100u) << filter;
-      pct[on] = s.shimmerPct;
+      if (std::string(footprint) == "off")
+        EXPECT_EQ(s.shimmerPct, 0.0) << filter;
+      else
+        EXPECT_LE(s.shimmerPct, kMaxShimmerPct) << filter;
     }
-    EXPECT_EQ(pct[0], 0.0) << filter;
-    constexpr double kMinShimmerOnPct = 1.0;  // the footprint is camera-dependent: V moves
-    EXPECT_GT(pct[1], kMinShimmerOnPct) << filter;
   }
 }
 
