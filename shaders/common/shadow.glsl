@@ -68,7 +68,8 @@ float shadowTexelWorldSize(int view, vec3 ws) {
 float depthRangeM(int view) { return u_shadow.views[view].range.y - u_shadow.views[view].range.x; }
 
 // A variance of stored depth (linear depth² units) from one stated in texels²: `texelsSquared`
-// times the square of one texel's world size at ws, measured along the light's axis. Variance
+// times the square of one texel's world size at ws (across the rays), taken as a distance along
+// the light's axis and divided by the view's depth range. Variance
 // floors are stated this way, like slope-scaled biases, so that one default serves a view 2 m
 // deep and a cascade 700 m deep: a floor in stored-depth units is a few millimetres in the first
 // and metres in the second, enough to wash out the shadow of a bench.

@@ -5,7 +5,7 @@
 PN_GPU_BEGIN
 
 struct MsmUniforms {
-  vec4 params;  // x: moment bias (texels², see msm.glsl), y: depth bias (linear depth), z: minimum filter
+  vec4 params;  // x: moment bias (texels², see common/moments.glsl), y: depth bias (linear depth), z: minimum filter
                 // width (texels), w: unused
   ivec4 mode;   // x: maximum anisotropic taps, y: 1 = moments stored in the 16-bit basis, z: 1 = filter
                 // over the pixel's footprint, 0 = a fixed filter of params.z texels; w: unused
