@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -80,7 +81,11 @@ std::function<void()> copyOf(std::shared_ptr<const gl::Buffer> b) {
     twin->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_SAT);
     program.use();
     constexpr size_t kGroup = 64, kElementBytes = 16;  // local size and uvec4 of texture_copy.comp.glsl
-    glDispatchCompute(static_cast<GLuint>((b->size() / kElementBytes + kGroup - 1) / kGroup), 1, 1);
+    // Rows of kRowGroups groups: a single row is limited to 65535 groups (4 M elements).
+    constexpr size_t kRowGroups = 1024;
+    const size_t groups = (b->size() / kElementBytes + kGroup - 1) / kGroup;
+    glDispatchCompute(static_cast<GLuint>(std::min(groups, kRowGroups)),
+                      static_cast<GLuint>((groups + kRowGroups - 1) / kRowGroups), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   };
 }

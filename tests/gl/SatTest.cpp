@@ -4,6 +4,7 @@
 #include "GlslProbe.h"
 
 #include "render/SatBuilder.h"
+#include "report/MicroBenchmarks.h"
 #include "shared/Bindings.h"
 
 #include <algorithm>
@@ -260,6 +261,18 @@ TEST(Sat, BitExactAgainstSerialIntegerSums) {
     }
   }
   EXPECT_EQ(mismatches, 0);
+}
+
+// The bench's micro-benchmarks at the shadow-map sizes the CLI accepts past the --quick run's 512²:
+// at 2048² the 2-moment table is 4 M uvec4, and its copy's one row of 64-thread groups (65 536)
+// passed the 65 535 groups a dispatch may have per axis (GL_INVALID_VALUE: `penumbra bench
+// --shadow-map 2048` failed). Every block must run and time something.
+TEST(Sat, MicroBenchmarksRunAt2048) {
+  glContext();
+  constexpr int kMapSize = 2048, kRepetitions = 1;
+  const std::vector<report::MicroResult> results = report::runMicroBenchmarks(kMapSize, kRepetitions, true);
+  ASSERT_FALSE(results.empty());
+  for (const report::MicroResult& r : results) EXPECT_GT(r.ms.median, 0.0) << r.name;
 }
 
 // Benchmark, not a test (run with --gtest_also_run_disabled_tests): the SAT build of a 2048²
