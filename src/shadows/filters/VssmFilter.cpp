@@ -23,6 +23,8 @@ constexpr ParamDesc kParams[] = {
     {"vssm.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
      512.0f, 1.0f, 4096.0f, 0.0f},
     tightSearchParam("vssm.tightSearch"),
+    {"vssm.mipSplit", "Mip split", "source=mip: each box is read as n x n sub-boxes, each one mip level finer per halving: 1 = one trilinear read of the whole box (its tent weighs twice the box's width), 2 = 2x2, 4 = 4x4 (near the exact box, 16 reads)",
+     2.0f, 1.0f, 4.0f, 1.0f},
     {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
      4.0f, 1.0f, 16.0f, 1.0f},
 };
@@ -59,7 +61,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   gpu::VssmUniforms u{};
   u.params = glm::vec4(param("vssm.minVariance"), param("vssm.bleedReduction"), param("vssm.minRadiusTexels"),
                        param("vssm.maxRadiusTexels"));
-  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), 0, 0, 0);
+  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), paramInt("vssm.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
   if (fromSat()) {
     mSat.bindTable();

@@ -7,7 +7,7 @@ PN_GPU_BEGIN
 struct VssmUniforms {
   vec4 params;  // x: minimum variance (texels², common/shadow.glsl), y: light-bleeding reduction [0, 1),
                 // z: minimum filter radius (texels), w: maximum search/filter radius (texels)
-  ivec4 mode;   // x: maximum anisotropic taps (source=mip), yzw: unused
+  ivec4 mode;   // x: maximum anisotropic taps (source=mip), y: sub-boxes per axis (source=mip), zw: unused
 };
 
 PN_GPU_END
