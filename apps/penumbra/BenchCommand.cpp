@@ -114,11 +114,18 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
         std::fprintf(stderr, "penumbra bench: %s --projection %s --filter %s %s failed: %s\n", k.config.scene.c_str(),
                      k.config.projection.c_str(), k.config.filter.c_str(), k.config.paramsText().c_str(), k.reason.c_str());
       }
+    size_t microFailed = 0;
+    for (const report::MicroResult& m : results.micro)
+      if (!m.error.empty()) {
+        ++microFailed;
+        std::fprintf(stderr, "penumbra bench: micro-benchmark %s failed: %s\n", m.name.c_str(), m.error.c_str());
+      }
     std::printf("%zu configurations measured, %zu skipped (%zu failed) in %.1f s on %s (%s)\nreport: %s\n",
                 results.rows.size(), results.skipped.size(), failed, results.seconds, results.machine.glRenderer.c_str(),
                 results.machine.clock.c_str(), (dir / "report.html").string().c_str());
-    if (failed > 0) {
-      std::fprintf(stderr, "penumbra bench: %zu configuration(s) failed; the report lists them\n", failed);
+    if (failed > 0 || microFailed > 0) {
+      std::fprintf(stderr, "penumbra bench: %zu configuration(s) and %zu micro-benchmark(s) failed; the report lists them\n",
+                   failed, microFailed);
       return 1;
     }
     return 0;

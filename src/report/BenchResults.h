@@ -58,6 +58,7 @@ struct MicroResult {
   std::string baseline;     ///< name of the result it is compared with (a copy of its texture); "" = none
   TimeStats ms;
   int repetitions = 0;
+  std::string error;  ///< non-empty: the block failed (GL error, …) and was not timed
 };
 
 struct MachineInfo {

@@ -140,8 +140,13 @@ std::string microTable(const BenchResults& r) {
        "<th>× its copy</th></tr>\n";
   for (const MicroResult& m : r.micro) {
     std::string ratio = "—";
+    if (!m.error.empty()) {
+      h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td colspan=\"2\" class=\"l wrap\">failed: {}</td></tr>\n",
+                       esc(m.name), esc(m.description), esc(m.error));
+      continue;
+    }
     for (const MicroResult& b : r.micro)
-      if (!m.baseline.empty() && b.name == m.baseline && b.ms.median > 0)
+      if (!m.baseline.empty() && b.name == m.baseline && b.ms.median > 0 && b.error.empty())
         ratio = fmt::format("<span title=\"{}\">{:.1f} ×</span>", esc(b.name), m.ms.median / b.ms.median);
     h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
                      esc(m.description), ms(m.ms), ratio);

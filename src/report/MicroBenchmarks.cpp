@@ -158,19 +158,25 @@ std::vector<MicroResult> runMicroBenchmarks(int mapSize, int repetitions, bool c
   std::vector<MicroResult> out;
   PassTimer timer(cpuClock);
   for (const MicroBenchmark& m : microBenchmarks()) {
-    const std::function<void()> work = m.prepare(mapSize);
-    work();  // untimed: first use of a code path (and of the memory) costs extra
-    gl::throwIfGlError(m.name);
-    std::vector<double> ms;
-    for (int i = 0; i < repetitions; ++i) {
-      timer.beginFrame();
-      timer.begin(m.name);
-      work();
-      timer.end();
-      ms.push_back(timer.endFrame().total());
+    // A block that fails is recorded with its error and the others still run: the bench's
+    // configurations are measured by then, and the report must not be lost with it.
+    try {
+      const std::function<void()> work = m.prepare(mapSize);
+      work();  // untimed: first use of a code path (and of the memory) costs extra
+      gl::throwIfGlError(m.name);
+      std::vector<double> ms;
+      for (int i = 0; i < repetitions; ++i) {
+        timer.beginFrame();
+        timer.begin(m.name);
+        work();
+        timer.end();
+        ms.push_back(timer.endFrame().total());
+      }
+      gl::throwIfGlError(m.name);
+      out.push_back({m.name, m.describe(mapSize), m.baseline, timeStats(ms), repetitions, ""});
+    } catch (const Error& e) {
+      out.push_back({m.name, m.describe(mapSize), m.baseline, TimeStats{}, 0, e.what()});
     }
-    gl::throwIfGlError(m.name);
-    out.push_back({m.name, m.describe(mapSize), m.baseline, timeStats(ms), repetitions});
   }
   return out;
 }

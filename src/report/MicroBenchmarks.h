@@ -11,7 +11,8 @@ namespace penumbra::report {
 
 /// Runs every micro-benchmark `repetitions` times (after one untimed run) on mapSize² textures,
 /// with the renderer's clock (GL timer queries, or glFinish + steady_clock when cpuClock).
-/// Needs a current GL context. Throws penumbra::Error on GL failures.
+/// Needs a current GL context. A block that fails (a GL error) is returned with its `error` set
+/// and no times; the others still run.
 std::vector<MicroResult> runMicroBenchmarks(int mapSize, int repetitions, bool cpuClock);
 
 }  // namespace penumbra::report

@@ -118,7 +118,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
   j["micro"] = nlohmann::json::array();
   for (const MicroResult& mr : results.micro)
     j["micro"].push_back({{"name", mr.name}, {"description", mr.description}, {"baseline", mr.baseline}, {"ms", statsJson(mr.ms)},
-                          {"repetitions", mr.repetitions}});
+                          {"repetitions", mr.repetitions}, {"error", mr.error}});
   return j;
 }
 

@@ -2,6 +2,7 @@
 // quoting and the SVG charts (no GL).
 #include "report/BenchPlan.h"
 #include "report/BenchResults.h"
+#include "report/HtmlReport.h"
 #include "report/ResultsIO.h"
 #include "report/SvgChart.h"
 
@@ -141,6 +142,20 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   EXPECT_EQ(j["rows"][0]["light_size"].get<double>(), 0.12);
   EXPECT_EQ(j["rows"][0]["leak_pct"].get<double>(), 1.25);
   EXPECT_EQ(j["rows"][0]["umbra_leak_pct"].get<double>(), 0.375);
+}
+
+// A micro-benchmark that failed is kept with its error: in the JSON and in the page's table,
+// with no ratio drawn against it.
+TEST(BenchResultsIO, FailedMicroBenchmarkIsReportedNotLost) {
+  BenchResults r;
+  r.micro.push_back({"copy SAT table, 2 moments", "a copy", "", TimeStats{}, 0, "GL_INVALID_VALUE in glDispatchCompute"});
+  r.micro.push_back({"SAT build, 2 moments", "the build", "copy SAT table, 2 moments", {2.0, 1.0, 3.0}, 3, ""});
+  const nlohmann::json j = resultsJson(r);
+  EXPECT_EQ(j["micro"][0]["error"].get<std::string>(), "GL_INVALID_VALUE in glDispatchCompute");
+  EXPECT_EQ(j["micro"][1]["error"].get<std::string>(), "");
+  const std::string html = htmlReport(r);
+  EXPECT_NE(html.find("failed: GL_INVALID_VALUE in glDispatchCompute"), std::string::npos);
+  EXPECT_EQ(html.find(" ×</span>"), std::string::npos) << "a ratio against a failed baseline";
 }
 
 TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
