@@ -33,6 +33,21 @@ void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLs
   }
 }
 
+// A glGetError code by name; out of memory says what usually causes it here.
+std::string glErrorText(GLenum e) {
+  switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY (the shadow maps and the filter's tables may not fit: try a smaller --shadow-map)";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
+    default: return fmt::format("glGetError 0x{:04x}", e);
+  }
+}
+
 std::string glString(GLenum name) {
   const auto* s = reinterpret_cast<const char*>(glGetString(name));
   return s ? s : "";
@@ -50,7 +65,7 @@ void throwIfGlError(const char* where) {
   for (int i = 0; i < kMaxErrorFlags; ++i) {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) break;
-    if (pending.empty()) pending = fmt::format("glGetError 0x{:04x}", e);
+    if (pending.empty()) pending = glErrorText(e);
   }
   if (!pending.empty()) throw Error(fmt::format("OpenGL error in {}: {}", where, pending));
 }

@@ -7,6 +7,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <limits>
+
 namespace penumbra {
 namespace {
 
@@ -56,6 +59,14 @@ void SatBuilder::build(ShaderLibrary& shaders, const gl::Texture& depth, int mom
   PN_CHECK(w <= kMaxSatSide && h <= kMaxSatSide, fmt::format("SatBuilder: {}x{} exceeds {} per side", w, h, kMaxSatSide));
   const int pairs = momentCount / 2;
   const size_t tableBytes = static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(views * pairs) * kPairBytes;
+  // The readers index the table with a 32-bit int (common/sat.glsl's satIndex): say so rather
+  // than read the wrong texels. (Drivers may also refuse the memory: GL_OUT_OF_MEMORY, reported by
+  // the pass with a hint to use a smaller map.)
+  const size_t elements = tableBytes / kPairBytes;
+  PN_CHECK(elements <= static_cast<size_t>(std::numeric_limits<int32_t>::max()),
+           fmt::format("the summed-area table of {} view(s) of {}x{} texels with {} moments has {} entries, more than "
+                       "its 32-bit index reaches; use a smaller --shadow-map",
+                       views, w, h, momentCount, elements));
   if (!mTable || mTable.size() != tableBytes) mTable = gl::Buffer("summed-area table", tableBytes);
   mPairs = pairs;
   mWidth = w;

@@ -64,6 +64,7 @@ TEST(GlError, WithoutTheDebugCallbackGlGetErrorStillThrows) {
   const std::string m = errorFrom("the invalid bind");
   glEnable(GL_DEBUG_OUTPUT);
   std::printf("no callback: %s\n", m.c_str());
-  EXPECT_NE(m.find("OpenGL error in the invalid bind: glGetError 0x0500"), std::string::npos) << m;
+  // The code by name (release builds, where users meet it, have no callback).
+  EXPECT_NE(m.find("OpenGL error in the invalid bind: GL_INVALID_ENUM"), std::string::npos) << m;
   EXPECT_EQ(errorFrom("the next pass"), "");
 }
