@@ -43,29 +43,30 @@ float lightFootprintRadiusM(int view, float receiverM, float planeM, float light
   return isPerspectiveView(view) ? lightSize * gapM / max(receiverM, kMinLightDistanceM) : gapM * tan(lightSize);
 }
 
-// Blocker search radius (uv, per axis) for a receiver at wsReceiver: the light's footprint on
-// the view's near plane, the nearest place a blocker can be, so the region holds every texel
-// that can occlude any part of the light. It widens with the light's size and with the
-// receiver's distance from the near plane. The footprint is converted to uv at the point where
-// the receiver's ray crosses the near plane (exact for unwarped views; psm/tsm use the warp's
-// local scale there).
 // The light's footprint (uv, per axis) in the plane at distance planeM along the axis, for a
 // receiver at wsReceiver: every blocker at that distance or beyond that can occlude any part of
-// the light lies within it (the footprint shrinks as the plane nears the receiver).
+// the light lies within it (the footprint shrinks as the plane nears the receiver). The
+// footprint is converted to uv at the point where the receiver's ray crosses that plane (exact
+// for unwarped views; psm/tsm use the warp's local scale there).
 vec2 lightFootprintRadiusUv(int view, vec3 wsReceiver, float planeM, float lightSize) {
   float receiverM = lightDistance(view, wsReceiver);
   float radiusM = lightFootprintRadiusM(view, receiverM, planeM, lightSize);
   return vec2(radiusM) / shadowMetresPerUv(view, pointOnLightRay(view, wsReceiver, planeM));
 }
 
+// Blocker search radius (uv, per axis) for a receiver at wsReceiver: the light's footprint on
+// the view's near plane, the nearest place a blocker can be, so the region holds every texel
+// that can occlude any part of the light. It widens with the light's size and with the
+// receiver's distance from the near plane.
 vec2 blockerSearchRadiusUv(int view, vec3 wsReceiver, float lightSize) {
   return lightFootprintRadiusUv(view, wsReceiver, u_shadow.views[view].range.x, lightSize);
 }
 
 // The smallest linear depth in the box of half-size radiusUv around uv in `view` of a map of
-// mapSize texels per side, from a min-depth pyramid (render/MinDepthPyramid.h: level k covers 2^(k+1) map texels per texel): at
-// the level whose texels are at least as wide as the box, the at most 2x2 texels over it. Their
-// union holds the box, so the result is never above the box's own minimum.
+// mapSize texels per side, from a min-depth pyramid (render/MinDepthPyramid.h: a texel of level
+// k covers 2^(k+1) map texels per side): at the level whose texels are at least as wide as the
+// box, the at most 2x2 texels over it. Their union holds the box, so the result is never above
+// the box's own minimum.
 float minDepthOverBox(sampler2DArray pyramid, int view, vec2 uv, vec2 radiusUv, float mapSize) {
   vec2 lo = (uv - radiusUv) * mapSize, hi = (uv + radiusUv) * mapSize;
   float width = max(max(hi.x - lo.x, hi.y - lo.y), 1.0);

@@ -3,6 +3,7 @@
 #include "common/MomentQuantization.h"
 #include "render/FrameContext.h"
 #include "render/MipBuilder.h"
+#include "shadows/filters/MomentBias.h"
 #include "shadows/filters/msm.shared.h"
 #include "shared/Bindings.h"
 
@@ -15,8 +16,7 @@ constexpr int kStorageFloat32 = 0;
 constexpr ParamDesc kParams[] = {
     {"msm.storage", "Storage", "float32: RGBA32F moments (128 bits/texel); quantized16: RGBA16 in the optimised basis of Peters & Klein (64 bits/texel)",
      kStorageFloat32, 0, 1, 1, kStorageNames},
-    {"msm.bias", "Moment bias", "moment bias α in texels² (α = this × (a texel's world size / the view's depth range)², at least the storage's minimum): the moments are mixed with those of a spread distribution, b' = (1-α) b + α·0.5; keeps the solve stable and flat receivers lit, lightens shadows by up to α/2",
-     10.0f, 0.0f, 1000.0f, 0.0f},
+    momentBiasParam("msm.bias"),
     {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
      0.0f, 0.0f, 0.05f, 0.0f},
     {"msm.filterTexels", "Filter width", "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness",

@@ -1,6 +1,7 @@
 #include "shadows/filters/MsmSoftFilter.h"
 
 #include "render/FrameContext.h"
+#include "shadows/filters/MomentBias.h"
 #include "shadows/filters/msm_soft.shared.h"
 #include "shared/Bindings.h"
 
@@ -8,8 +9,7 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"msm-soft.bias", "Moment bias", "moment bias α in texels² (α = this × (a texel's world size / the view's depth range)², at least the storage's minimum): the moments are mixed with those of a spread distribution, b' = (1-α) b + α·0.5; keeps the solve stable and flat receivers lit, lightens shadows by up to α/2",
-     10.0f, 0.0f, 1000.0f, 0.0f},
+    momentBiasParam("msm-soft.bias"),
     {"msm-soft.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
      0.0f, 0.0f, 0.05f, 0.0f},
     {"msm-soft.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",

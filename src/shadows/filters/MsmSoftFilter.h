@@ -2,8 +2,8 @@
 // msm-soft: moment soft shadows — a summed-area table of four depth moments, moment-based blocker
 // search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md).
 #include "render/SatBuilder.h"
-#include "shadows/TightSearch.h"
 #include "render/ShadowMaps.h"
+#include "shadows/TightSearch.h"
 
 #include <penumbra/Filter.h>
 
