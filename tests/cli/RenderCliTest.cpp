@@ -98,6 +98,29 @@ TEST(RenderCli, SdfBakePrintsTimeAndMemoryOnce) {
   EXPECT_EQ(r.err.find("sdf: baked"), std::string::npos) << r.err;
 }
 
+// --camera places the camera (position:target[:fov]) on any scene; the picture changes, and
+// anything but three numbers, three numbers and an optional field of view is a usage error.
+TEST(RenderCli, CameraOptionMovesTheView) {
+  const std::string dir = freshDir("camera");
+  RunResult r = runPenumbra("render --size 64x36 --out own.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = runPenumbra("render --size 64x36 --camera -2,1.5,3:0,0.5,0:30 --out moved.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> own = readPng(dir + "/own.png", w, h), moved = readPng(dir + "/moved.png", w, h);
+  ASSERT_EQ(own.size(), moved.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < own.size(); ++i) differing += own[i] != moved[i];
+  EXPECT_GT(differing, own.size() / 4) << "the view did not move";
+  for (const char* bad : {"1,2:0,0,0", "1,2,3:1,2,3", "0,5,0:0,0,0", "1,2,3:0,0,0:200", "nan,1,2:0,0,0",
+                          "1,2,3,4:0,0,0", "1,2,3:0,0,0:30:4", "1,2,3", "a,b,c:0,0,0"}) {
+    r = runPenumbra(std::string("render --size 16x16 --camera ") + bad);
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_NE(r.err.find(std::string("--camera ") + bad), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1u) << r.err;
+  }
+}
+
 TEST(RenderCli, HelpOnEverySubcommand) {
   for (const char* sub : {"", "render", "compare", "view", "bench", "list"}) {
     const RunResult r = runPenumbra(std::string(sub) + " --help");
