@@ -202,6 +202,29 @@ TEST(Projection, TrapezoidRuleMapsTheFocusPointTo80Percent) {
   EXPECT_TRUE(std::isinf(trapezoidApexDistance(lambda, 0.9f * lambda, m)));
 }
 
+// tsm's second centre line aims at the centroid of the receivers' area, which must not lean
+// toward where the body's vertices happen to cluster (the near plane's four corners all project
+// next to the camera's point).
+TEST(Projection, HullAreaCentroid) {
+  std::vector<glm::vec2> square = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {0.5f, 0.5f}, {1.5f, 0.2f}, {2, 2}};
+  glm::vec2 c = hullAreaCentroid(square);
+  EXPECT_NEAR(c.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(c.y, 1.0f, 1e-5f);
+  // A triangle with many points crowded at one corner: the area centroid is the corners' mean.
+  std::vector<glm::vec2> triangle = {{0, 0}, {3, 0}, {0, 3}};
+  for (int i = 1; i <= 20; ++i) triangle.push_back({0.001f * static_cast<float>(i), 0.0005f * static_cast<float>(i)});
+  c = hullAreaCentroid(triangle);
+  EXPECT_NEAR(c.x, 1.0f, 1e-4f);
+  EXPECT_NEAR(c.y, 1.0f, 1e-4f);
+  // No area: the points' mean.
+  c = hullAreaCentroid({{0, 0}, {1, 1}, {3, 3}});
+  EXPECT_NEAR(c.x, 4.0f / 3.0f, 1e-5f);
+  EXPECT_NEAR(c.y, 4.0f / 3.0f, 1e-5f);
+  c = hullAreaCentroid({{5, -1}});
+  EXPECT_NEAR(c.x, 5.0f, 1e-6f);
+  EXPECT_NEAR(c.y, -1.0f, 1e-6f);
+}
+
 // The trapezoid spends the map on the receivers: its top and base edges touch their region and
 // its sides are tangents to it, so the body spans the whole map both ways, less the margins. The
 // margin along the centre line once grew with the apex distance: with the apex far away (little

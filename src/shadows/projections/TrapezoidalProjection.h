@@ -1,14 +1,17 @@
 #pragma once
 // tsm: trapezoidal shadow maps (Martin & Tan, "Anti-aliasing and continuity with trapezoidal
-// shadow maps", EGSR 2004). In the light's image plane the visible receivers form a region
-// elongated along the projected view axis; a trapezoid around it, narrow end at the camera, is
-// mapped onto the square map by a perspective warp, so the map spends its texels near the
-// camera. The warp's strength follows the 80% rule: the point at the focus distance lands on the
+// shadow maps", EGSR 2004). In the light's image plane the visible receivers form a region that
+// widens away from the camera; a trapezoid around it, narrow end at the camera and centred on the
+// projected view axis (or on the line to the region's centroid where the axis' image points away
+// from the receivers), is mapped onto the square map by a perspective warp, so the map spends its
+// texels near the camera. The warp's strength follows the 80% rule: the point at the focus distance lands on the
 // line 80% of the way across the map. The map still stores the light's linear depth; only the
 // rasterisation and lookup positions are warped. Degenerates (falls back to `uniform`'s fit)
 // when the camera looks along the light. Artifacts: texels are stretched along the trapezoid's
 // sides; as the camera turns the trapezoid changes every frame (no snapping: edges crawl).
 #include <penumbra/Projection.h>
+
+#include <vector>
 
 namespace penumbra {
 
@@ -34,5 +37,10 @@ glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float
 /// (of a trapezoid of height λ) maps to `mapFraction` of the way across the map:
 /// η = (1 − m)·λ·δ / (m·λ − δ). Returns +inf when δ ≥ m·λ (no warp is needed).
 float trapezoidApexDistance(float lambda, float delta, float mapFraction);
+
+/// The area centroid of the convex hull of `points` (Andrew's monotone chain, then the shoelace
+/// sums); the mean of the points when the hull has no area (fewer than 3 points, or collinear;
+/// (0, 0) for none).
+glm::vec2 hullAreaCentroid(std::vector<glm::vec2> points);
 
 }  // namespace penumbra
