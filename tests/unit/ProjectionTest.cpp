@@ -202,6 +202,20 @@ TEST(Projection, TrapezoidRuleMapsTheFocusPointTo80Percent) {
   EXPECT_TRUE(std::isinf(trapezoidApexDistance(lambda, 0.9f * lambda, m)));
 }
 
+// Stabilised cascades start at the nearest receiver rounded down to a quarter octave: never
+// past the receiver, never before the camera's near plane, and the same for small moves.
+TEST(Projection, StableNearDistance) {
+  EXPECT_FLOAT_EQ(stableNearDistance(0.05f, 0.1f), 0.1f);
+  EXPECT_FLOAT_EQ(stableNearDistance(64.0f, 0.1f), 64.0f);
+  for (float d : {0.3f, 1.0f, 7.7f, 68.95f, 500.0f}) {
+    const float s = stableNearDistance(d, 0.1f);
+    EXPECT_LE(s, d);
+    EXPECT_GT(s, d / std::exp2(0.25f) * 0.999f) << d;
+    EXPECT_FLOAT_EQ(std::exp2(std::round(std::log2(s) * 4.0f) / 4.0f), s) << "on the ladder";
+  }
+  EXPECT_EQ(stableNearDistance(68.9f, 0.1f), stableNearDistance(69.0f, 0.1f));
+}
+
 // tsm's second centre line aims at the centroid of the receivers' area, which must not lean
 // toward where the body's vertices happen to cluster (the near plane's four corners all project
 // next to the camera's point).

@@ -103,15 +103,30 @@ float stableFarDistance(float farM) {
   return std::exp2(std::ceil(std::log2(farM) * kStepsPerOctave) / kStepsPerOctave);
 }
 
+float stableNearDistance(float nearM, float cameraNearM) {
+  return std::max(cameraNearM, std::exp2(std::floor(std::log2(nearM) * kStepsPerOctave) / kStepsPerOctave));
+}
+
 CascadedProjection::CascadedProjection() : Projection(kParams) {}
 
 LightFrusta CascadedProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
                                               const Scene& scene, int mapSize) const {
   const int count = paramInt("csm.cascades");
   const bool stabilize = paramInt("csm.stabilize") != 0 && light.type == LightType::Directional;
-  const float nearM = camera.nearM;
   float farM = shadowFarDistance(camera, scene);
   if (stabilize) farM = std::min(stableFarDistance(farM), std::max(camera.farM, farM));
+  // The splits start at the nearest receiver the camera can see, not at its near plane: from above
+  // a city (an aerial camera 120 m up) every cascade but the last covered empty air and the last
+  // one spread over the whole view, 30x coarser than one uniform map. Stabilised cascades take
+  // that depth in quarter-octave steps, as the far end, so it changes rarely as the camera moves.
+  float nearM = camera.nearM;
+  const std::vector<glm::vec3> visible = receiverBody(camera, aspect, camera.nearM, farM, scene, light);
+  if (!visible.empty()) {
+    float nearest = farM;
+    for (const glm::vec3& p : visible) nearest = std::min(nearest, glm::dot(p - camera.position, camera.forward()));
+    nearest = std::max(nearest, camera.nearM);
+    nearM = stabilize ? stableNearDistance(nearest, camera.nearM) : nearest;
+  }
   farM = std::max(farM, nearM * 2.0f);
   const std::vector<float> z = practicalSplits(nearM, farM, count, param("csm.lambda"));
   float shortest = farM;

@@ -22,6 +22,10 @@ std::vector<float> practicalSplits(float nearM, float farM, int cascades, float 
 /// so that splits, and with them the cascades' sizes, stay constant while the camera moves.
 float stableFarDistance(float farM);
 
+/// The nearest visible receiver's depth rounded down to a quarter octave (2^(k/4) m), at least
+/// the camera's near plane: where stabilised cascades start.
+float stableNearDistance(float nearM, float cameraNearM);
+
 class CascadedProjection final : public Projection {
 public:
   CascadedProjection();

@@ -11,7 +11,7 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"tsm.focusDistanceM", "Focus distance", "camera depth (m) up to which the focus region reaches; mapped to focusMapFraction of the map",
+    {"tsm.focusDistanceM", "Focus distance", "depth (m) past the nearest visible receiver up to which the focus region reaches; mapped to focusMapFraction of the map",
      20.0f, 0.1f, 10000.0f, 0.0f},
     {"tsm.focusMapFraction", "Focus share", "share of the map's height the focus region is mapped to (the paper's 80% rule)",
      0.8f, 0.05f, 0.95f, 0.0f},
@@ -162,7 +162,7 @@ LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float asp
   if (body.empty()) return f;
 
   // The centre line starts at the camera's point in the light's image plane; the focus point is the
-  // view axis at tsm.focusDistanceM.
+  // view axis tsm.focusDistanceM past the nearest receiver.
   const glm::vec3 fwd = camera.forward();
   float depthLo = farM, depthHi = nearM;
   for (const glm::vec3& p : body) {
@@ -172,7 +172,10 @@ LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float asp
   depthLo = std::max(depthLo, nearM);
   bool valid = true;
   const glm::vec2 top = toNdc(base.clipFromWorld, camera.position + fwd * depthLo, valid);
-  const float focusDepth = std::clamp(param("tsm.focusDistanceM"), depthLo, depthHi);
+  // The focus region starts at the nearest receiver (the paper's near plane, were it tight): from
+  // 120 m above a city, a focus at 20 m from the camera lay in empty air, the 80% rule then put
+  // the apex on the top edge, and the map's median went to 7.1 screen px per texel (1.4 now).
+  const float focusDepth = std::min(depthLo + param("tsm.focusDistanceM"), depthHi);
   const glm::vec2 focus = toNdc(base.clipFromWorld, camera.position + fwd * focusDepth, valid);
   std::vector<glm::vec2> hull;
   for (const glm::vec3& p : body) hull.push_back(toNdc(base.clipFromWorld, p, valid));
