@@ -4,11 +4,7 @@
 
 #include <fmt/format.h>
 
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-
 #include <charconv>
-#include <cmath>
 
 namespace penumbra::app {
 
@@ -37,49 +33,6 @@ std::pair<int, int> parseSize(const std::string& text) {
       !parse(std::string_view(text).substr(x + 1), h) || w < 1 || h < 1 || w > 16384 || h > 16384)
     throw usageError(fmt::format("--size {}: expected WxH with each side in 1..16384, e.g. 640x360", text));
   return {w, h};
-}
-
-Camera parseCamera(const std::string& text, const Camera& base) {
-  const auto fail = [&](const std::string& why) {
-    return usageError(fmt::format("--camera {}: {} (expected X,Y,Z:TX,TY,TZ[:FOV], e.g. 4,3,6:0,0.5,0:40)", text, why));
-  };
-  std::vector<std::string> groups(1);
-  for (char c : text) {
-    if (c == ':') groups.emplace_back();
-    else groups.back() += c;
-  }
-  if (groups.size() < 2 || groups.size() > 3) throw fail("expected two or three ':'-separated parts");
-  const auto number = [&](const std::string& s) {
-    float v = 0.0f;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-      throw fail(fmt::format("'{}' is not a finite number", s));
-    return v;
-  };
-  const auto point = [&](const std::string& s, const char* what) {
-    glm::vec3 p(0.0f);
-    size_t start = 0;
-    for (int i = 0; i < 3; ++i) {
-      const size_t comma = s.find(',', start);
-      if ((i < 2) != (comma != std::string::npos)) throw fail(fmt::format("the {} needs three numbers", what));
-      p[i] = number(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-      start = comma + 1;
-    }
-    return p;
-  };
-  Camera c = base;
-  c.position = point(groups[0], "position");
-  c.target = point(groups[1], "target");
-  const glm::vec3 view = c.target - c.position;
-  if (glm::length(view) < 1e-6f) throw fail("the target is the position");
-  if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-4f)
-    throw fail(fmt::format("the view is along the camera's up vector ({}, {}, {})", c.up.x, c.up.y, c.up.z));
-  if (groups.size() == 3) {
-    const float fovDeg = number(groups[2]);
-    if (fovDeg < 1.0f || fovDeg > 170.0f) throw fail(fmt::format("field of view {}° is outside 1–170°", fovDeg));
-    c.fovYRad = glm::radians(fovDeg);
-  }
-  return c;
 }
 
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s) {
@@ -111,7 +64,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
   applyParams(cli, s.scene, *s.projection, *s.filter);
-  if (o.camera) s.scene.camera = parseCamera(*o.camera, s.scene.camera);
+  if (o.camera) s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
   const auto [w, h] = parseSize(o.size);
   s.render.width = w;
   s.render.height = h;

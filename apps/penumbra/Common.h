@@ -45,10 +45,4 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);
 
-/// "X,Y,Z:TX,TY,TZ[:FOV]" (metres, vertical field of view in degrees) → `base` with that position,
-/// target and, if given, field of view; up, near and far stay. Throws a usage error for anything
-/// else: a wrong count, a number that does not parse or is not finite, the target on the position,
-/// a view along the up vector, a field of view outside 1–170°.
-Camera parseCamera(const std::string& text, const Camera& base);
-
 }  // namespace penumbra::app

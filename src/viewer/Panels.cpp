@@ -227,6 +227,10 @@ void Viewer::drawLightCameraPanel() {
     mSession.camera() = mHomeCamera;
     resetCamera();
   }
+  ImGui::SameLine();
+  const std::string argument = "--camera " + cameraArgument(scene.camera);
+  if (ImGui::Button("Copy --camera")) ImGui::SetClipboardText(argument.c_str());
+  hint(("this view for penumbra render / compare: " + argument).c_str());
 }
 
 void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {

@@ -7,6 +7,7 @@
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
 #include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
@@ -384,8 +385,9 @@ std::filesystem::path Viewer::nextScreenshotPath() const {
 void Viewer::screenshotView(const std::filesystem::path& path) {
   const ColorImage img = readWindow(mViewRect);
   writePng(path, img.width, img.height, img.rgba);
-  setStatus(fmt::format("screenshot {} {}x{} scene={} projection={} filter={} view={}", path.string(), img.width, img.height,
-                        mSession.scene().name, mSession.projectionId(), mSession.filterId(), mMain.name),
+  setStatus(fmt::format("screenshot {} {}x{} scene={} projection={} filter={} view={} --camera {}", path.string(), img.width,
+                        img.height, mSession.scene().name, mSession.projectionId(), mSession.filterId(), mMain.name,
+                        cameraArgument(mSession.scene().camera)),
             false);
 }
 

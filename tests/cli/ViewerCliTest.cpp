@@ -87,6 +87,20 @@ double differingShare(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
   return double(differ) / double(a.size() / 4);
 }
 
+// Bytes that differ between the viewer's screenshot `viewPng` and `penumbra render`'s `renderPng`
+// (both in `dir`); fails the test if the sizes differ.
+size_t differingBytes(const std::string& dir, const std::string& viewPng, const std::string& renderPng) {
+  int w = 0, h = 0, w2 = 0, h2 = 0;
+  const auto view = readPng(dir + "/" + viewPng, w, h);
+  const auto render = readPng(dir + "/" + renderPng, w2, h2);
+  EXPECT_EQ(w, w2);
+  EXPECT_EQ(h, h2);
+  if (view.size() != render.size()) return view.size() + render.size();
+  size_t differing = 0;
+  for (size_t i = 0; i < view.size(); ++i) differing += view[i] != render[i];
+  return differing;
+}
+
 std::vector<int> glObjectCounts(const std::string& out) {
   std::vector<int> counts;
   std::istringstream in(out);
@@ -274,12 +288,26 @@ TEST(ViewerCli, ThreeDViewShowsExactlyWhatRenderWrites) {
   ASSERT_EQ(v.exitCode, 0) << v.err;
   const RunResult r = runPenumbra("render " + technique + " --out render.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  int w = 0, h = 0, w2 = 0, h2 = 0;
-  const auto view = readPng(dir + "/view.png", w, h);
-  const auto render = readPng(dir + "/render.png", w2, h2);
-  ASSERT_EQ(w, w2);
-  ASSERT_EQ(h, h2);
-  size_t differing = 0;
-  for (size_t i = 0; i < view.size(); ++i) differing += view[i] != render[i];
-  EXPECT_EQ(differing, 0u) << "bytes that differ between the viewer's screenshot and penumbra render";
+  EXPECT_EQ(differingBytes(dir, "view.png", "render.png"), 0u)
+      << "bytes that differ between the viewer's screenshot and penumbra render";
+}
+
+// A view found in the viewer is the same image from `penumbra render`: the screenshot's status
+// line carries the camera as a --camera argument.
+TEST(ViewerCli, ScreenshotCameraRendersTheSameImage) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-camera");
+  writeScript(dir + "/s.txt", "camera orbit 40 25 3\nscreenshot view.png\n");
+  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 512";
+  const RunResult v = runViewer(technique + " --hide-ui --script s.txt", dir);
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const size_t at = v.out.find("--camera ");
+  ASSERT_NE(at, std::string::npos) << v.out;
+  const std::string camera = v.out.substr(at, v.out.find_first_of(" \n", at + 9) - at);
+  const RunResult r = runPenumbra("render " + technique + " " + camera + " --out render.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(differingBytes(dir, "view.png", "render.png"), 0u) << camera;
+  const RunResult own = runPenumbra("render " + technique + " --out own.png", dir);
+  ASSERT_EQ(own.exitCode, 0) << own.err;
+  EXPECT_GT(differingBytes(dir, "view.png", "own.png"), 1000u) << "the orbit did not move the camera";
 }
