@@ -114,6 +114,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["scene"] = s.scene.name;
       j["filter"] = filter;
       j["projection"] = projection;
+      j["camera"] = cameraArgument(s.scene.camera);  // what --camera takes: the run repeats from it
       j["width"] = gbuffer.width;
       j["height"] = gbuffer.height;
       j["shadow_map"] = s.render.shadowMapSize;
@@ -145,8 +146,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       std::printf("%s\n", j.dump(2).c_str());
       return 0;
     }
-    std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n", s.scene.name.c_str(),
-                projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height, s.render.shadowMapSize, s.scene.light().size);
+    std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n  --camera %s\n",
+                s.scene.name.c_str(), projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height,
+                s.render.shadowMapSize, s.scene.light().size, cameraArgument(s.scene.camera).c_str());
     std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f  (inside the reference's umbra: %.3f)\n"
                 "  over-dark %%     %8.3f\n"
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"

@@ -25,6 +25,25 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
 }
 
+// The JSON names the camera as a --camera argument; given back, it repeats the run's numbers.
+TEST(CompareCli, CameraInTheJsonRepeatsTheRun) {
+  const std::string dir = freshDir("compare-camera");
+  const std::string common = "compare --scene boxes --size 96x64 --shadow-map 512 --samples 4 --json --out imgs";
+  RunResult r = runPenumbra(common + " --camera 3,2.5,4:0,0.4,0:35", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json first = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(first.contains("camera"));
+  r = runPenumbra(common + " --camera " + first["camera"].get<std::string>(), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json again = nlohmann::json::parse(r.out);
+  EXPECT_EQ(again["camera"], first["camera"]);
+  EXPECT_EQ(again["rmse"], first["rmse"]);
+  EXPECT_EQ(again["pixels"], first["pixels"]);
+  r = runPenumbra(common, dir);  // the scene's own camera sees something else
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(nlohmann::json::parse(r.out)["camera"], first["camera"]);
+}
+
 TEST(CompareCli, ShimmerReportsAPercentage) {
   const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 96x64 --shadow-map 512 --samples 4 --shimmer 5 --json --out imgs");
   ASSERT_EQ(r.exitCode, 0) << r.err;
