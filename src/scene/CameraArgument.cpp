@@ -11,6 +11,10 @@
 #include <vector>
 
 namespace penumbra {
+namespace {
+// The farthest far plane a scene file allows: beyond it the view's float math loses its metres.
+constexpr float kMaxCoordinateM = 1e7f;
+}  // namespace
 
 Camera parseCameraArgument(const std::string& text, const Camera& base) {
   const auto fail = [&](const std::string& why) {
@@ -36,6 +40,7 @@ Camera parseCameraArgument(const std::string& text, const Camera& base) {
       const size_t comma = s.find(',', start);
       if ((i < 2) != (comma != std::string::npos)) throw fail(fmt::format("the {} needs three numbers", what));
       p[i] = number(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (std::abs(p[i]) > kMaxCoordinateM) throw fail(fmt::format("{} {} is beyond ±1e7 m", what, p[i]));
       start = comma + 1;
     }
     return p;
