@@ -68,6 +68,11 @@ struct Light {
   float size = 0.0f;
 };
 
+/// Every world-space coordinate (vertices, the camera's position and target) stays within ±1e6 m
+/// (as the scene file's shape sizes): beyond that the float maths of the shadow passes stops
+/// meaning anything.
+inline constexpr float kMaxCoordinateM = 1e6f;
+
 struct Camera {
   glm::vec3 position{0.0f, 2.0f, 6.0f};
   glm::vec3 target{0.0f};

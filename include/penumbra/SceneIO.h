@@ -24,8 +24,8 @@ Scene loadScene(const std::string& nameOrPath);
 /// The --camera argument "X,Y,Z:TX,TY,TZ[:FOV]" (metres, vertical field of view in degrees) →
 /// `base` with that position, target and, if given, field of view; up, near and far stay. Throws
 /// a usage Error for anything else: a wrong count, a number that does not parse, is not finite or
-/// lies beyond ±1e7 m, the target on the position, a view along the up vector, a field of view
-/// outside 1–170°.
+/// lies beyond ±kMaxCoordinateM (1e6 m), the target on the position, a view along the up vector,
+/// a field of view outside 1–170°.
 Camera parseCameraArgument(const std::string& text, const Camera& base);
 
 /// The camera as a --camera argument, exact enough to read back the same floats.

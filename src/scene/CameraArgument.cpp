@@ -11,11 +11,6 @@
 #include <vector>
 
 namespace penumbra {
-namespace {
-// The farthest far plane a scene file allows: beyond it the view's float math loses its metres.
-constexpr float kMaxCoordinateM = 1e7f;
-}  // namespace
-
 Camera parseCameraArgument(const std::string& text, const Camera& base) {
   const auto fail = [&](const std::string& why) {
     return usageError(fmt::format("--camera {}: {} (expected X,Y,Z:TX,TY,TZ[:FOV], e.g. 4,3,6:0,0.5,0:40)", text, why));
@@ -40,7 +35,7 @@ Camera parseCameraArgument(const std::string& text, const Camera& base) {
       const size_t comma = s.find(',', start);
       if ((i < 2) != (comma != std::string::npos)) throw fail(fmt::format("the {} needs three numbers", what));
       p[i] = number(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-      if (std::abs(p[i]) > kMaxCoordinateM) throw fail(fmt::format("{} {} is beyond ±1e7 m", what, p[i]));
+      if (std::abs(p[i]) > kMaxCoordinateM) throw fail(fmt::format("{} {} is beyond ±1e6 m", what, p[i]));
       start = comma + 1;
     }
     return p;

@@ -164,6 +164,8 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     s.camera.nearM = c.number("near", s.camera.nearM, 1e-4f, 1e4f);
     s.camera.farM = c.number("far", s.camera.farM, 1e-3f, 1e7f);
     if (s.camera.farM <= s.camera.nearM) c.fail("far", "must be larger than near");
+    for (const auto& [key, p] : {std::pair{"position", s.camera.position}, std::pair{"target", s.camera.target}})
+      if (glm::any(glm::greaterThan(glm::abs(p), glm::vec3(kMaxCoordinateM)))) c.fail(key, "beyond ±1e6 m");
     if (glm::length(s.camera.target - s.camera.position) < 1e-6f) c.fail("target", "equals the position");
     c.finish();
   }

@@ -30,9 +30,6 @@ inline constexpr int kMaxJsonDepth = 64;
 inline constexpr uint64_t kMaxImages = 1024;
 inline constexpr int kMaxImageSide = 8192;
 inline constexpr uint64_t kMaxImageBytes = uint64_t(1) << 30;
-/// Every world-space coordinate stays within ±1e6 m (as the scene file's shape sizes): beyond
-/// that the float maths of the shadow passes stops meaning anything.
-inline constexpr float kMaxCoordinateM = 1e6f;
 
 /// Default light and camera placed when a model file has none (docs/scenes.md).
 inline constexpr float kDefaultSunAngularRadiusRad = 0.00465f;  // the real sun's angular radius
