@@ -17,8 +17,9 @@ float chebyshevUpperBound(float mu, float var, float t) {
 // the float cancellation of E[z^2] - E[z]^2 and the zero variance of a region of one flat depth.
 // The floor is kept above kMinVariance, so that t > mu always gives p_max < 1 (never 0 / 0).
 const float kMinVariance = 1e-12;
+float floorVariance(float variance, float minVariance) { return max(variance, max(minVariance, kMinVariance)); }
 vec2 meanVariance(vec2 moments, float minVariance) {
-  return vec2(moments.x, max(moments.y - moments.x * moments.x, max(minVariance, kMinVariance)));
+  return vec2(moments.x, floorVariance(moments.y - moments.x * moments.x, minVariance));
 }
 
 // Light-bleeding reduction: visibilities below `amount` become 0 and the rest is stretched back

@@ -40,6 +40,9 @@ vec4 biasMoments(vec4 b, float alpha) { return mix(b, vec4(0.5), alpha); }
 // texelDepthVariance) and keep it above these.
 const float kMinMomentBiasFloat32 = 1e-6;
 const float kMinMomentBiasQuantized16 = 3e-5;
+float floorMomentBias(float alpha, bool quantized16) {
+  return max(alpha, quantized16 ? kMinMomentBiasQuantized16 : kMinMomentBiasFloat32);
+}
 
 // A three-point distribution matching (1, b1, b2, b3, b4) with z[0] = t. z[1] <= z[2]; w sums to 1.
 struct MomentSupport {

@@ -11,6 +11,11 @@
 #include <vector>
 
 namespace penumbra {
+namespace {
+constexpr float kMinViewLengthM = 1e-6f;  // the target closer to the position than this: no view direction
+constexpr float kMinSinViewToUp = 1e-4f;  // sine of the angle between view and up: below it, no up in the image
+}  // namespace
+
 Camera parseCameraArgument(const std::string& text, const Camera& base) {
   const auto fail = [&](const std::string& why) {
     return usageError(fmt::format("--camera {}: {} (expected X,Y,Z:TX,TY,TZ[:FOV], e.g. 4,3,6:0,0.5,0:40)", text, why));
@@ -44,8 +49,8 @@ Camera parseCameraArgument(const std::string& text, const Camera& base) {
   c.position = point(groups[0], "position");
   c.target = point(groups[1], "target");
   const glm::vec3 view = c.target - c.position;
-  if (glm::length(view) < 1e-6f) throw fail("the target is the position");
-  if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-4f)
+  if (glm::length(view) < kMinViewLengthM) throw fail("the target is the position");
+  if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < kMinSinViewToUp)
     throw fail(fmt::format("the view is along the camera's up vector ({}, {}, {})", c.up.x, c.up.y, c.up.z));
   if (groups.size() == 3) {
     const float fovDeg = number(groups[2]);

@@ -3,6 +3,7 @@
 #include "common/MomentQuantization.h"
 #include "render/FrameContext.h"
 #include "render/MipBuilder.h"
+#include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/MomentBias.h"
 #include "shadows/filters/msm.shared.h"
 #include "shared/Bindings.h"
@@ -19,12 +20,9 @@ constexpr ParamDesc kParams[] = {
     momentBiasParam("msm.bias"),
     {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
      0.0f, 0.0f, 0.05f, 0.0f},
-    {"msm.filterTexels", "Filter width", "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness",
-     2.0f, 1.0f, 64.0f, 0.0f},
-    {"msm.footprint", "Pixel footprint", "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, view-dependent); off: a fixed box of msm.filterTexels texels, the same from every camera",
-     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"msm.anisotropy", "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)",
-     8.0f, 1.0f, 16.0f, 1.0f},
+    footprintWidthParam("msm.filterTexels"),
+    footprintParam("msm.footprint"),
+    footprintAnisotropyParam("msm.anisotropy"),
 };
 
 bool quantized(const Filter& f) { return f.paramInt("msm.storage") != kStorageFloat32; }

@@ -2,6 +2,7 @@
 
 #include "render/FrameContext.h"
 #include "render/MipBuilder.h"
+#include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/vsm.shared.h"
 #include "shared/Bindings.h"
 
@@ -15,13 +16,9 @@ constexpr ParamDesc kParams[] = {
     {"vsm.bleedReduction", "Bleed reduction",
      "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
      0.0f, 0.0f, 0.95f, 0.0f},
-    {"vsm.filterTexels", "Filter width",
-     "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness", 2.0f, 1.0f,
-     64.0f, 0.0f},
-    {"vsm.footprint", "Pixel footprint", "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, view-dependent); off: a fixed box of vsm.filterTexels texels, the same from every camera",
-     1.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"vsm.anisotropy", "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)",
-     8.0f, 1.0f, 16.0f, 1.0f},
+    footprintWidthParam("vsm.filterTexels"),
+    footprintParam("vsm.footprint"),
+    footprintAnisotropyParam("vsm.anisotropy"),
 };
 
 }  // namespace

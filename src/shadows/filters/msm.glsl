@@ -19,7 +19,6 @@ float shadowVisibility(SurfacePoint s) {
   if (!insideMap(coord)) return 1.0;
   vec4 b = momentsOverFootprint(s_moments, view, s, coord.xy, u_msm.params.z, u_msm.mode.x, u_msm.mode.z != 0);
   if (u_msm.mode.y != 0) b = dequantizeMoments16(b);
-  float alpha = max(texelDepthVariance(view, s.ws, u_msm.params.x),
-                    u_msm.mode.y != 0 ? kMinMomentBiasQuantized16 : kMinMomentBiasFloat32);
+  float alpha = floorMomentBias(texelDepthVariance(view, s.ws, u_msm.params.x), u_msm.mode.y != 0);
   return 1.0 - hamburgerShadowIntensity(biasMoments(b, alpha), coord.z - u_msm.params.y);
 }

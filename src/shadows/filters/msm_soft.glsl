@@ -41,7 +41,7 @@ float shadowVisibility(SurfacePoint s) {
   float t = coord.z - u_msmSoft.params.y;
   float texelUv = 1.0 / shadowMapSize();
   vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);
-  float alpha = max(texelDepthVariance(view, s.ws, u_msmSoft.params.x), kMinMomentBiasFloat32);
+  float alpha = floorMomentBias(texelDepthVariance(view, s.ws, u_msmSoft.params.x), false);  // solved in float32
 
   // (1) Moment-based blocker search.
   vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);

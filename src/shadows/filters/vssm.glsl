@@ -36,7 +36,7 @@ vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, boo
   vec2 lo, hi;
   satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
   vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
-  return vec2(m.x, max(m.y, max(minVariance, kMinVariance)));
+  return vec2(m.x, floorVariance(m.y, minVariance));
 #else
   // The box as n × n footprints of sub-boxes (n = vssm.mipSplit), each read with trilinear taps
   // at the level whose texels match its short side. One trilinear read of the whole box weighs

@@ -122,9 +122,7 @@ LightFrusta CascadedProjection::computeFrusta(const Camera& camera, float aspect
   float nearM = camera.nearM;
   const std::vector<glm::vec3> visible = receiverBody(camera, aspect, camera.nearM, farM, scene, light);
   if (!visible.empty()) {
-    float nearest = farM;
-    for (const glm::vec3& p : visible) nearest = std::min(nearest, glm::dot(p - camera.position, camera.forward()));
-    nearest = std::max(nearest, camera.nearM);
+    const float nearest = std::max(std::min(cameraDepthRange(visible, camera).x, farM), camera.nearM);
     nearM = stabilize ? stableNearDistance(nearest, camera.nearM) : nearest;
   }
   farM = std::max(farM, nearM * 2.0f);

@@ -32,6 +32,16 @@ float shadowFarDistance(const Camera& camera, const Scene& scene) {
   return std::min(camera.farM, farthest);
 }
 
+glm::vec2 cameraDepthRange(std::span<const glm::vec3> points, const Camera& camera) {
+  const glm::vec3 fwd = camera.forward();
+  glm::vec2 range(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+  for (const glm::vec3& p : points) {
+    const float d = glm::dot(p - camera.position, fwd);
+    range = {std::min(range.x, d), std::max(range.y, d)};
+  }
+  return range;
+}
+
 std::vector<Aabb> objectBounds(const Scene& scene) {
   std::vector<Aabb> out;
   out.reserve(scene.objects.size());

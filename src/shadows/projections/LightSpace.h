@@ -19,6 +19,10 @@ std::array<glm::vec3, 8> frustumCorners(const Camera& camera, float aspect, floa
 /// the camera's far plane, whichever is closer).
 float shadowFarDistance(const Camera& camera, const Scene& scene);
 
+/// The camera depths (m along its view axis) that `points` span: (nearest, farthest); (+inf, −inf)
+/// for none.
+glm::vec2 cameraDepthRange(std::span<const glm::vec3> points, const Camera& camera);
+
 /// World bounds of each object (index-aligned with scene.objects).
 std::vector<Aabb> objectBounds(const Scene& scene);
 

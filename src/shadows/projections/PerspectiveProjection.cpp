@@ -162,12 +162,8 @@ LightFrusta PerspectiveProjection::computeFrusta(const Camera& camera, float asp
   if (body.empty()) return f;
   // Slide-back in units of √(n·f) of the visible receivers: LiSPSM's optimal near distance for a
   // light perpendicular to the view, n + √(n·f), is where the warp spreads error evenly.
-  const glm::vec3 fwd = camera.forward();
-  float recvNear = std::numeric_limits<float>::max(), recvFar = 0.0f;
-  for (const glm::vec3& p : body) {
-    recvNear = std::min(recvNear, glm::dot(p - camera.position, fwd));
-    recvFar = std::max(recvFar, glm::dot(p - camera.position, fwd));
-  }
+  const glm::vec2 depths = cameraDepthRange(body, camera);
+  const float recvNear = depths.x, recvFar = std::max(depths.y, 0.0f);
   const float slide = param("psm.slideBack") * std::sqrt(std::max(recvNear, nearM) * recvFar);
   const PsmWarp warp = computePsmWarp(camera, light, body, casters, scene.bounds(), slide, marginFraction);
   if (warp.degenerate) return f;  // the unwarped fit

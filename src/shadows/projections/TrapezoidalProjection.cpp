@@ -22,6 +22,8 @@ constexpr ParamDesc kParams[] = {
 // wide) for a trapezoid to make sense; shorter means the receivers lie all around the camera's
 // point in the light's image plane (the camera looks along the light).
 constexpr float kMinCentreLineNdc = 0.05f;
+// Twice a hull's area (NDC²) below which it counts as a point or a line: the points' mean is used.
+constexpr double kMinHullArea2 = 1e-12;
 // The centroid line replaces the view axis' when its focus point gets this many times the texels.
 constexpr float kCentroidGain = 2.0f;
 // The apex is kept between these multiples of the trapezoid's height behind its top edge: closer
@@ -117,7 +119,7 @@ glm::vec2 hullAreaCentroid(std::vector<glm::vec2> points) {
     cx += (a.x + b.x) * c;
     cy += (a.y + b.y) * c;
   }
-  if (std::abs(area2) < 1e-12) return mean;
+  if (std::abs(area2) < kMinHullArea2) return mean;
   return mean + glm::vec2(static_cast<float>(cx / (3.0 * area2)), static_cast<float>(cy / (3.0 * area2)));
 }
 
@@ -164,12 +166,8 @@ LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float asp
   // The centre line starts at the camera's point in the light's image plane; the focus point is the
   // view axis tsm.focusDistanceM past the nearest receiver.
   const glm::vec3 fwd = camera.forward();
-  float depthLo = farM, depthHi = nearM;
-  for (const glm::vec3& p : body) {
-    depthLo = std::min(depthLo, glm::dot(p - camera.position, fwd));
-    depthHi = std::max(depthHi, glm::dot(p - camera.position, fwd));
-  }
-  depthLo = std::max(depthLo, nearM);
+  const glm::vec2 depths = cameraDepthRange(body, camera);
+  const float depthLo = std::max(std::min(depths.x, farM), nearM), depthHi = std::max(depths.y, nearM);
   bool valid = true;
   const glm::vec2 top = toNdc(base.clipFromWorld, camera.position + fwd * depthLo, valid);
   // The focus region starts at the nearest receiver (the paper's near plane, were it tight): from
