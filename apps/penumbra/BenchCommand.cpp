@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -41,7 +42,7 @@ std::string commandLine() {
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;
-    std::optional<std::string> size;
+    std::optional<std::string> size, camera;
     std::optional<int> shadowMap, frames, warmup, samples;
     std::optional<double> maxSeconds;
     std::string out = "bench";
@@ -65,6 +66,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--max-seconds", o->maxSeconds, "stop timing a configuration after this many seconds (default 4)")
       ->check(CLI::Range(0.0, 3600.0));
+  sub->add_option("--camera", o->camera,
+                  "the view of the run's one scene (--scenes NAME): X,Y,Z:TX,TY,TZ[:FOV], position and target in "
+                  "metres, vertical field of view in degrees (default: each scene's own camera)");
   sub->add_option("--out", o->out, "output folder")->capture_default_str();
   sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
@@ -89,10 +93,22 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
     settings.useCache = !o->noCache;
     const std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
+    if (o->camera) {
+      // A viewpoint belongs to one scene: the same coordinates would look at nothing in another.
+      std::vector<std::string> scenes;
+      for (const report::BenchConfig& c : configs)
+        if (std::find(scenes.begin(), scenes.end(), c.scene) == scenes.end()) scenes.push_back(c.scene);
+      if (scenes.size() != 1)
+        throw usageError(fmt::format("--camera: the run has {} scenes; a viewpoint belongs to one (add --scenes NAME)",
+                                     scenes.size()));
+      (void)parseCameraArgument(*o->camera, Camera{});  // a malformed camera fails here, before any GL
+      settings.camera = *o->camera;
+    }
 
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
-    const report::SetupFactory factory = [](const report::BenchConfig& c) {
+    const report::SetupFactory factory = [o](const report::BenchConfig& c) {
       TechniqueOptions t;
+      t.camera = o->camera;
       t.scene = c.scene;
       t.filter = c.filter;
       t.projection = c.projection;

@@ -62,6 +62,8 @@ struct BenchSettings {
   int referenceSamples = 256;     ///< light samples per pixel of the ray-traced reference
   bool useCache = true;           ///< on-disk reference cache
   int microRepetitions = 5;       ///< timed repetitions of each micro-benchmark
+  /// `--camera` of the run's one scene (cameraArgument form, as typed); "" = each scene's own.
+  std::string camera;
 };
 
 /// Every configuration of the plans, in run order: grouped by scene (one upload; one reference

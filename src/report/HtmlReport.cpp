@@ -66,6 +66,10 @@ std::string header(const BenchResults& r) {
       "the machine inflates times and makes them drift.</p>\n",
       s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height, s.shadowMapSize, s.referenceSamples,
       esc(m.clock), esc(m.glRenderer), m.loadStart, m.loadEnd, m.hardwareThreads);
+  if (!s.camera.empty())
+    h += fmt::format("<p>Camera: <code>--camera {}</code> (position : target : vertical field of view in degrees), "
+                     "not the scene's own.</p>\n",
+                     esc(s.camera));
   h += "<p class=\"note\">Contents: <a href=\"#quality\">1. quality vs cost</a> · <a href=\"#light\">2. cost vs light "
        "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
   return h;

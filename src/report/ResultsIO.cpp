@@ -100,6 +100,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
                    {"max_seconds_per_config", s.maxSecondsPerConfig},
                    {"reference_samples", s.referenceSamples},
                    {"micro_repetitions", s.microRepetitions}};
+  if (!s.camera.empty()) j["settings"]["camera"] = s.camera;
   j["seconds"] = results.seconds;
   const std::vector<std::string> columns = tableColumns(results);
   j["columns"] = columns;

@@ -117,6 +117,38 @@ TEST(BenchCli, UnknownSweepKeyIsAUsageError) {
   EXPECT_NE(r.err.find("pcss.filterSamples"), std::string::npos) << r.err;
 }
 
+// bench --camera measures the scene from that view: the row is compare's from the same camera
+// (same reference samples and map), the camera is recorded, and it belongs to one scene only.
+TEST(BenchCli, CameraMeasuresTheSceneFromThatView) {
+  const std::string dir = freshDir("bench-camera");
+  const std::string camera = "3,2.5,4:0,0.4,0:35";
+  RunResult r = runPenumbra("bench --scenes boxes --filters hard --projections uniform --camera " + camera +
+                                " --size 96x64 --shadow-map 512 --frames 1 --samples 4 --out out",
+                            dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  EXPECT_EQ(json["settings"]["camera"], camera);
+  ASSERT_EQ(json["rows"].size(), 1u);
+  EXPECT_NE(slurp(dir + "/out/report.html").find("--camera " + camera), std::string::npos);
+  const std::string compare = "compare --scene boxes --filter hard --projection uniform --size 96x64 --shadow-map 512 "
+                              "--samples 4 --json --out imgs";
+  r = runPenumbra(compare + " --camera " + camera, dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json fromView = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["rows"][0]["rmse"], fromView["rmse"]);
+  EXPECT_EQ(json["rows"][0]["pixels"], fromView["pixels"]);
+  r = runPenumbra(compare, dir);  // the scene's own camera: another image
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(nlohmann::json::parse(r.out)["pixels"], fromView["pixels"]);
+
+  r = runPenumbra("bench --scenes boxes,pen --filters hard --camera " + camera);
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("--scenes NAME"), std::string::npos) << r.err;
+  r = runPenumbra("bench --scenes boxes --filters hard --camera 1,2,3");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("expected X,Y,Z:TX,TY,TZ[:FOV]"), std::string::npos) << r.err;
+}
+
 TEST(BenchCli, QuickReportOpensInChromiumWithChartsAndImageGrid) {
   const std::string chromium = findChromium();
   if (chromium.empty())
