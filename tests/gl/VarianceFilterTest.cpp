@@ -1,8 +1,8 @@
 // The prefiltered filters (vsm, vssm, msm, msm-soft) end to end: shadows where the geometry
 // says for the sun (orthographic), the spot (perspective) and cascades; no self-shadowing on a
 // grazing plane; against the Embree reference, msm's and msm-soft's light leaks on `fence`
-// below vsm's and vssm's (not half: see FenceLeaksAgainstReference) and vssm's RMSE on `pen`
-// within 1.5x of pcss's. Benchmarks (disabled, run
+// below vsm's and vssm's, and at most half of them behind the wall, where the leaks are light
+// bleeding (FenceBehindTheWallIsLightBleeding); vssm's RMSE on `pen` within 1.5x of pcss's. Benchmarks (disabled, run
 // with --gtest_also_run_disabled_tests) print the visibility-pass times of the note.
 #include "GlFixture.h"
 #include "GlslProbe.h"
@@ -154,49 +154,86 @@ TEST(VarianceFilters, NoSelfShadowingOnAGrazingPlane) {
   }
 }
 
-// Overlapping slats at different depths: the case where two moments bleed light and four do not.
-// leak % counts every pixel with V − V_ref > 0.1. On this view most of it comes from what every
-// filter shares (a hard-ish edge against the reference's penumbra, the pixel-footprint blur):
-// hard itself leaks ~1.4 %. The bleeding is the difference between two and four moments in the
-// same pipeline: vssm vs msm-soft (one O(1) soft pipeline), vsm vs msm (one mip-filter width).
-TEST(VarianceFilters, FenceLeaksAgainstReference) {
-  const Scene scene = makeBuiltinScene("fence");
-  constexpr int kW = 256, kH = 144;
+// hard, pcss and every variant on `fence` (256x144, 1024² map) against one reference, printed as
+// the table of docs/msm.md.
+struct FenceLeaks {
   std::vector<std::pair<std::string, VisibilityMetrics>> results;
+  VisibilityMetrics get(const std::string& name) const {
+    for (const auto& [n, m] : results)
+      if (n == name) return m;
+    ADD_FAILURE() << name;
+    return VisibilityMetrics{};
+  }
+};
+
+FenceLeaks measureFenceLeaks(const Scene& scene, const char* view) {
+  constexpr int kW = 256, kH = 144;
+  FenceLeaks out;
   ReferenceResult ref;
   for (const Variant& v : {Variant{"hard", "hard", {}}, Variant{"pcss", "pcss", {}}, variants()[0], variants()[1],
                            variants()[2], variants()[3], variants()[4], variants()[5]}) {
     const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kW, kH, kMapSize);
     if (ref.visibility.empty()) ref = traceReference(scene, r.gbuffer);
-    results.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, ref.litMask));
+    out.results.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, ref.litMask));
   }
-  std::printf("fence %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s %8s\n", kW, kH, kMapSize,
-              ref.samplesPerPixel, results[0].second.pixels, "filter", "leak %", "umbra %", "dark %", "RMSE");
-  auto get = [&](const std::string& name) {
-    for (const auto& [n, m] : results)
-      if (n == name) return m;
-    ADD_FAILURE() << name;
-    return VisibilityMetrics{};
-  };
-  for (const auto& [name, m] : results)
+  std::printf("fence (%s) %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s %8s\n", view, kW, kH,
+              kMapSize, ref.samplesPerPixel, out.results[0].second.pixels, "filter", "leak %", "umbra %", "dark %", "RMSE");
+  for (const auto& [name, m] : out.results)
     std::printf("  %-16s %8.3f %8.3f %8.3f %8.4f\n", name.c_str(), m.leakPct, m.umbraLeakPct, m.overDarkPct, m.rmse);
-  ASSERT_GT(get("vsm").leakPct, 0.0);
-  ASSERT_GT(get("vssm sat").leakPct, 0.0);
+  return out;
+}
+
+// Overlapping slats at different depths: the case where two moments bleed light and four do not.
+// leak % counts every pixel with V − V_ref > 0.1. On the scene's own view most of it comes from
+// what every filter shares (a hard-ish edge against the reference's penumbra, the pixel-footprint
+// blur): hard itself leaks ~1.4 %. The bleeding is the difference between two and four moments in
+// the same pipeline: vssm vs msm-soft (one O(1) soft pipeline), vsm vs msm (one mip-filter width).
+TEST(VarianceFilters, FenceLeaksAgainstReference) {
+  const FenceLeaks f = measureFenceLeaks(makeBuiltinScene("fence"), "its own camera");
+  ASSERT_GT(f.get("vsm").leakPct, 0.0);
+  ASSERT_GT(f.get("vssm sat").leakPct, 0.0);
   // Four moments cut the bleeding: the leaks inside the reference's umbra (umbraLeakPct, the
   // light-bleeding share) drop, msm-soft's to at most this share of vssm's (measured 0.61 on
   // llvmpipe), msm's to no more than vsm's; so do the total leaks. msm-soft's leakPct is at most
-  // half of vsm's (measured 0.45), the target; msm's is not (0.90): most of it is edge
-  // shape under the pixel footprint that vsm and msm share (docs/msm.md).
+  // half of vsm's (measured 0.45), the target; msm's is not here (0.90): most of it is edge
+  // shape under the pixel footprint that vsm and msm share (docs/msm.md). Behind the wall, where
+  // the leaks are bleeding, it is (FenceBehindTheWallIsLightBleeding).
   constexpr double kSoftUmbraLeakRatio = 0.8, kSoftLeakRatioToVsm = 0.5;
-  EXPECT_LE(get("msm-soft").umbraLeakPct, kSoftUmbraLeakRatio * get("vssm sat").umbraLeakPct);
-  EXPECT_LE(get("msm-soft").leakPct, kSoftLeakRatioToVsm * get("vsm").leakPct);
-  EXPECT_LT(get("msm-soft").leakPct, get("vssm sat").leakPct);
+  EXPECT_LE(f.get("msm-soft").umbraLeakPct, kSoftUmbraLeakRatio * f.get("vssm sat").umbraLeakPct);
+  EXPECT_LE(f.get("msm-soft").leakPct, kSoftLeakRatioToVsm * f.get("vsm").leakPct);
+  EXPECT_LT(f.get("msm-soft").leakPct, f.get("vssm sat").leakPct);
   for (const char* msm : {"msm float32", "msm quantized16"}) {
-    EXPECT_LE(get(msm).umbraLeakPct, get("vsm").umbraLeakPct) << msm;
-    EXPECT_LE(get(msm).leakPct, get("vsm").leakPct) << msm;
+    EXPECT_LE(f.get(msm).umbraLeakPct, f.get("vsm").umbraLeakPct) << msm;
+    EXPECT_LE(f.get(msm).leakPct, f.get("vsm").leakPct) << msm;
   }
   // msm-soft is also the closer of the two soft pipelines overall.
-  EXPECT_LT(get("msm-soft").rmse, get("vssm sat").rmse);
+  EXPECT_LT(f.get("msm-soft").rmse, f.get("vssm sat").rmse);
+}
+
+// The floor behind fence's wall, seen from behind it: it lies in the wall's umbra, and in the map
+// the slats stand in front of the wall, so every filter region across a slat's edge holds two
+// occluder depths far in front of the receiver — the textbook case of light bleeding (the slats'
+// outlines show through the wall's shadow with two moments). Here the leaks are bleeding, not
+// edge shape: hard leaks 0.33 %, pcss none, vsm 2.6 % (2.4 % inside the umbra); four moments
+// take out most of it (measured on llvmpipe: msm float32 ×0.14 of vsm, quantized16 ×0.26,
+// msm-soft ×0.06, and ×0.03 of vssm's).
+TEST(VarianceFilters, FenceBehindTheWallIsLightBleeding) {
+  Scene scene = makeBuiltinScene("fence");
+  scene.camera = parseCameraArgument("4,3,-6:0,0,-3.5:50", scene.camera);
+  const FenceLeaks f = measureFenceLeaks(scene, "behind the wall");
+  // The view measures bleeding: vsm leaks inside the umbra, several times what hard's edges leak.
+  constexpr double kMinVsmUmbraLeakPct = 1.0, kMinBleedOverHard = 4.0;
+  ASSERT_GE(f.get("vsm").umbraLeakPct, kMinVsmUmbraLeakPct);
+  ASSERT_GE(f.get("vsm").leakPct, kMinBleedOverHard * f.get("hard").leakPct);
+  ASSERT_GE(f.get("vssm sat").umbraLeakPct, kMinVsmUmbraLeakPct);
+  // The target: msm's and msm-soft's leaks at most half of vsm's.
+  constexpr double kLeakRatioToVsm = 0.5;
+  for (const char* four : {"msm float32", "msm quantized16", "msm-soft"}) {
+    EXPECT_LE(f.get(four).leakPct, kLeakRatioToVsm * f.get("vsm").leakPct) << four;
+    EXPECT_LE(f.get(four).umbraLeakPct, kLeakRatioToVsm * f.get("vsm").umbraLeakPct) << four;
+  }
+  EXPECT_LE(f.get("msm-soft").leakPct, kLeakRatioToVsm * f.get("vssm sat").leakPct);
+  EXPECT_LE(f.get("msm-soft").leakPct, kLeakRatioToVsm * f.get("vssm mip").leakPct);
 }
 
 // The contact-hardening penumbra of `pen`: vssm's error within 1.5x of pcss's.
