@@ -7,6 +7,7 @@
 // therefore never overestimated as shadow; it can be underestimated (leak) by at most the weight
 // of that point at t. Requires the moments of depths in [0, 1] (linear light depth).
 #include "common/MomentQuantization.h"
+#include "common/chebyshev.glsl"
 
 vec4 depthMoments(float z) {
   float z2 = z * z;
@@ -45,9 +46,11 @@ float floorMomentBias(float alpha, bool quantized16) {
 }
 
 // A three-point distribution matching (1, b1, b2, b3, b4) with z[0] = t. z[1] <= z[2]; w sums to 1.
+// `valid` false: rounding left the Hankel matrix singular or indefinite (below).
 struct MomentSupport {
   vec3 z;
   vec3 w;
+  bool valid;
 };
 
 // The support through t. The other two points are the roots of c0 + c1 z + c2 z^2 where
@@ -73,6 +76,12 @@ MomentSupport momentSupport(vec4 b, float t) {
   float q = c.x / c.z;
   float r = sqrt(max(0.25 * p * p - q, 0.0));
   MomentSupport s;
+  // The bias keeps d22 and d33 positive in exact arithmetic, but where a region holds (nearly)
+  // one depth, d33 is a difference of moments that agree to their last bits and float32 storage
+  // can leave it zero or negative (or NaN). The quadratic's roots are then meaningless, and they
+  // showed as fully lit pixels scattered through an umbra (fence's floor behind its wall with a
+  // 2048² map: msm RMSE 0.060 against 0.015 at 1024²).
+  s.valid = d22 > 0.0 && d33 > 0.0;
   s.z = vec3(t, -0.5 * p - r, -0.5 * p + r);
   // w_i = E[(Z - z_j)(Z - z_k)] / ((z_i - z_j)(z_i - z_k)) over the two other points j, k.
   s.w.y = (b.y - b.x * (s.z.x + s.z.z) + s.z.x * s.z.z) / ((s.z.y - s.z.x) * (s.z.y - s.z.z));
@@ -85,6 +94,9 @@ MomentSupport momentSupport(vec4 b, float t) {
 // shadow intensity, 0 = lit). b must already be biased (biasMoments).
 float hamburgerShadowIntensity(vec4 b, float t) {
   MomentSupport s = momentSupport(b, t);
+  // A degenerate solve: the higher moments carry nothing beyond the first two, and for the one-
+  // or two-depth regions that produce it Chebyshev's bound is exact.
+  if (!s.valid) return 1.0 - chebyshevUpperBound(b.x, floorVariance(b.y - b.x * b.x, 0.0), t);
   float intensity = 0.0;
   if (s.z.z < t) intensity = 1.0 - s.w.x;  // both other points in front: everything but the mass at t
   else if (s.z.y < t) intensity = s.w.y;
@@ -95,6 +107,10 @@ float hamburgerShadowIntensity(vec4 b, float t) {
 // search). x: mean blocker depth, y: blocker fraction (0 = no blocker; x is then t).
 vec2 momentBlockerDepth(vec4 b, float t) {
   MomentSupport s = momentSupport(b, t);
+  if (!s.valid) {  // as hamburgerShadowIntensity: vssm's estimate from two moments, z_unocc = t
+    float unoccluded = chebyshevUpperBound(b.x, floorVariance(b.y - b.x * b.x, 0.0), t);
+    return unoccluded < 1.0 ? vec2((b.x - unoccluded * t) / (1.0 - unoccluded), 1.0 - unoccluded) : vec2(t, 0.0);
+  }
   float w = 0.0, wz = 0.0;
   if (s.z.y < t) { w += s.w.y; wz += s.w.y * s.z.y; }
   if (s.z.z < t) { w += s.w.z; wz += s.w.z * s.z.z; }

@@ -233,3 +233,40 @@ void main() {
   EXPECT_NEAR(out[0].y, 0.3, 0.01) << "blocker depth";
   EXPECT_NEAR(out[0].z, 0.4, 0.01) << "blocker fraction";
 }
+
+// A region of one depth (a wall's umbra; a flat floor under a fine map): its moments are
+// (z, z², z³, z⁴) up to float rounding, and with a small bias the rounding leaves the Hankel
+// matrix singular or indefinite. The bound must then still call a receiver behind the depth
+// shadowed and one in front lit (the solve's roots had lit pixels scattered through fence's
+// umbra behind its wall), and the blocker search must still find the depth.
+TEST(Moments, OneDepthRegionSurvivesRounding) {
+  std::vector<glm::vec4> in;
+  for (float z : {0.1f, 0.37f, 0.5f, 0.61f, 0.83f, 0.97f})
+    for (float alpha : {0.0f, 1e-8f, 1e-7f, 1e-6f})
+      for (float dt : {-0.02f, 0.02f}) in.emplace_back(z, alpha, z + dt, 0.0f);
+  const std::vector<glm::vec4> out = runCases("one-depth", std::string(kProbeHeader) + R"(
+#include "common/moments.glsl"
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  vec4 c = i_cases[i];
+  vec4 b = biasMoments(depthMoments(c.x), c.y);
+  o_results[i] = vec4(hamburgerShadowIntensity(b, c.z), momentBlockerDepth(b, c.z), 0.0);
+}
+)", in);
+  int degenerate = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const glm::vec4 c = in[i], r = out[i];
+    const bool behind = c.z > c.x;
+    const std::string what = "z " + std::to_string(c.x) + " alpha " + std::to_string(c.y) + " t " + std::to_string(c.z);
+    if (behind) {
+      EXPECT_GE(r.x, 0.99f) << what << ": shadowed";
+      EXPECT_NEAR(r.y, c.x, 0.01f) << what << ": blocker depth";
+      EXPECT_GE(r.z, 0.99f) << what << ": blocker fraction";
+    } else {
+      EXPECT_LE(r.x, 0.01f) << what << ": lit";
+      EXPECT_LE(r.z, 0.01f) << what << ": no blocker";
+    }
+    degenerate += !(std::isfinite(r.x) && std::isfinite(r.y));
+  }
+  EXPECT_EQ(degenerate, 0);
+}

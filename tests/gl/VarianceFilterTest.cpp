@@ -158,6 +158,7 @@ TEST(VarianceFilters, NoSelfShadowingOnAGrazingPlane) {
 // the table of docs/msm.md.
 struct FenceLeaks {
   std::vector<std::pair<std::string, VisibilityMetrics>> results;
+  ReferenceResult ref;
   VisibilityMetrics get(const std::string& name) const {
     for (const auto& [n, m] : results)
       if (n == name) return m;
@@ -169,7 +170,7 @@ struct FenceLeaks {
 FenceLeaks measureFenceLeaks(const Scene& scene, const char* view) {
   constexpr int kW = 256, kH = 144;
   FenceLeaks out;
-  ReferenceResult ref;
+  ReferenceResult& ref = out.ref;
   for (const Variant& v : {Variant{"hard", "hard", {}}, Variant{"pcss", "pcss", {}}, variants()[0], variants()[1],
                            variants()[2], variants()[3], variants()[4], variants()[5]}) {
     const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kW, kH, kMapSize);
@@ -234,6 +235,17 @@ TEST(VarianceFilters, FenceBehindTheWallIsLightBleeding) {
   }
   EXPECT_LE(f.get("msm-soft").leakPct, kLeakRatioToVsm * f.get("vssm sat").leakPct);
   EXPECT_LE(f.get("msm-soft").leakPct, kLeakRatioToVsm * f.get("vssm mip").leakPct);
+  // A finer map keeps that: the wall's umbra is a region of one depth, where rounding can leave
+  // the moment solve degenerate (common/moments.glsl); its roots once lit pixels all over it
+  // (RMSE at 2048² 0.060 for msm, 0.029 for msm-soft; measured now 0.017 and 0.008).
+  constexpr int kFineMap = 2048;
+  constexpr double kMaxFineRmseRatio = 1.5;
+  for (const Variant& v : {variants()[3], variants()[5]}) {
+    const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, 256, 144, kFineMap);
+    const VisibilityMetrics m = compareVisibility(r.visibility, f.ref.visibility, f.ref.litMask);
+    std::printf("  %-16s at %d²: leak %.3f %%, RMSE %.4f\n", v.name.c_str(), kFineMap, m.leakPct, m.rmse);
+    EXPECT_LE(m.rmse, kMaxFineRmseRatio * f.get(v.name).rmse) << v.name;
+  }
 }
 
 // The contact-hardening penumbra of `pen`: vssm's error within 1.5x of pcss's.
