@@ -22,6 +22,15 @@ vec2 meanVariance(vec2 moments, float minVariance) {
   return vec2(moments.x, floorVariance(moments.y - moments.x * moments.x, minVariance));
 }
 
+// VSSM's blocker estimate: a region's mean depth is P·z_unocc + (1 − P)·z_occ with P = p_max and
+// the unoccluded part taken at the receiver's depth (z_unocc = t), so z_occ = (mu − P·t) / (1 − P).
+// Returns (z_occ clamped to [0, t], the blocker fraction 1 − P); (t, 0) where nothing is in front.
+vec2 chebyshevBlockerDepth(float mu, float var, float t) {
+  float unoccluded = chebyshevUpperBound(mu, var, t);
+  if (unoccluded >= 1.0) return vec2(t, 0.0);
+  return vec2(clamp((mu - unoccluded * t) / (1.0 - unoccluded), 0.0, t), 1.0 - unoccluded);
+}
+
 // Light-bleeding reduction: visibilities below `amount` become 0 and the rest is stretched back
 // over [0, 1]. Bleeding regions are usually faint (p_max small), so cutting the low tail removes
 // them at the price of darker, narrower penumbrae. amount = 0 is the identity.

@@ -96,7 +96,10 @@ float hamburgerShadowIntensity(vec4 b, float t) {
   MomentSupport s = momentSupport(b, t);
   // A degenerate solve: the higher moments carry nothing beyond the first two, and for the one-
   // or two-depth regions that produce it Chebyshev's bound is exact.
-  if (!s.valid) return 1.0 - chebyshevUpperBound(b.x, floorVariance(b.y - b.x * b.x, 0.0), t);
+  if (!s.valid) {
+    vec2 mv = meanVariance(b.xy, 0.0);
+    return 1.0 - chebyshevUpperBound(mv.x, mv.y, t);
+  }
   float intensity = 0.0;
   if (s.z.z < t) intensity = 1.0 - s.w.x;  // both other points in front: everything but the mass at t
   else if (s.z.y < t) intensity = s.w.y;
@@ -107,9 +110,9 @@ float hamburgerShadowIntensity(vec4 b, float t) {
 // search). x: mean blocker depth, y: blocker fraction (0 = no blocker; x is then t).
 vec2 momentBlockerDepth(vec4 b, float t) {
   MomentSupport s = momentSupport(b, t);
-  if (!s.valid) {  // as hamburgerShadowIntensity: vssm's estimate from two moments, z_unocc = t
-    float unoccluded = chebyshevUpperBound(b.x, floorVariance(b.y - b.x * b.x, 0.0), t);
-    return unoccluded < 1.0 ? vec2((b.x - unoccluded * t) / (1.0 - unoccluded), 1.0 - unoccluded) : vec2(t, 0.0);
+  if (!s.valid) {  // as hamburgerShadowIntensity: vssm's estimate from the first two moments
+    vec2 mv = meanVariance(b.xy, 0.0);
+    return chebyshevBlockerDepth(mv.x, mv.y, t);
   }
   float w = 0.0, wz = 0.0;
   if (s.z.y < t) { w += s.w.y; wz += s.w.y * s.z.y; }

@@ -2,8 +2,9 @@
 // says for the sun (orthographic), the spot (perspective) and cascades; no self-shadowing on a
 // grazing plane; against the Embree reference, msm's and msm-soft's light leaks on `fence`
 // below vsm's and vssm's, and at most half of them behind the wall, where the leaks are light
-// bleeding (FenceBehindTheWallIsLightBleeding); vssm's RMSE on `pen` within 1.5x of pcss's. Benchmarks (disabled, run
-// with --gtest_also_run_disabled_tests) print the visibility-pass times of the note.
+// bleeding (FenceBehindTheWallIsLightBleeding); vssm's RMSE on `pen` within 1.5x of pcss's.
+// Benchmarks (disabled, run with --gtest_also_run_disabled_tests) print the visibility-pass times
+// of the note.
 #include "GlFixture.h"
 #include "GlslProbe.h"
 #include "TestGeometry.h"
@@ -154,7 +155,7 @@ TEST(VarianceFilters, NoSelfShadowingOnAGrazingPlane) {
   }
 }
 
-// hard, pcss and every variant on `fence` (256x144, 1024² map) against one reference, printed as
+// hard, pcss and every variant on `fence` (kFenceW x kFenceH, 1024² map) against one reference, printed as
 // the table of docs/msm.md.
 struct FenceLeaks {
   std::vector<std::pair<std::string, VisibilityMetrics>> results;
@@ -167,17 +168,18 @@ struct FenceLeaks {
   }
 };
 
+constexpr int kFenceW = 256, kFenceH = 144;
+
 FenceLeaks measureFenceLeaks(const Scene& scene, const char* view) {
-  constexpr int kW = 256, kH = 144;
   FenceLeaks out;
   ReferenceResult& ref = out.ref;
   for (const Variant& v : {Variant{"hard", "hard", {}}, Variant{"pcss", "pcss", {}}, variants()[0], variants()[1],
                            variants()[2], variants()[3], variants()[4], variants()[5]}) {
-    const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kW, kH, kMapSize);
+    const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kFenceW, kFenceH, kMapSize);
     if (ref.visibility.empty()) ref = traceReference(scene, r.gbuffer);
     out.results.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, ref.litMask));
   }
-  std::printf("fence (%s) %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s %8s\n", view, kW, kH,
+  std::printf("fence (%s) %dx%d, map %d, reference %d samples, %zu pixels:\n  %-16s %8s %8s %8s %8s\n", view, kFenceW, kFenceH,
               kMapSize, ref.samplesPerPixel, out.results[0].second.pixels, "filter", "leak %", "umbra %", "dark %", "RMSE");
   for (const auto& [name, m] : out.results)
     std::printf("  %-16s %8.3f %8.3f %8.3f %8.4f\n", name.c_str(), m.leakPct, m.umbraLeakPct, m.overDarkPct, m.rmse);
@@ -241,7 +243,7 @@ TEST(VarianceFilters, FenceBehindTheWallIsLightBleeding) {
   constexpr int kFineMap = 2048;
   constexpr double kMaxFineRmseRatio = 1.5;
   for (const Variant& v : {variants()[3], variants()[5]}) {
-    const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, 256, 144, kFineMap);
+    const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kFenceW, kFenceH, kFineMap);
     const VisibilityMetrics m = compareVisibility(r.visibility, f.ref.visibility, f.ref.litMask);
     std::printf("  %-16s at %d²: leak %.3f %%, RMSE %.4f\n", v.name.c_str(), kFineMap, m.leakPct, m.rmse);
     EXPECT_LE(m.rmse, kMaxFineRmseRatio * f.get(v.name).rmse) << v.name;

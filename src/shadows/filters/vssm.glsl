@@ -73,12 +73,12 @@ float shadowVisibility(SurfacePoint s) {
   // (1) Blocker search.
   vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
   vec2 region = regionMeanVariance(view, coord.xy, searchUv, minVariance, false);
-  float unoccluded = chebyshevUpperBound(region.x, region.y, t);
-  if (unoccluded > kUnoccludedLit) {
+  vec2 blocker = chebyshevBlockerDepth(region.x, region.y, t);
+  if (1.0 - blocker.y > kUnoccludedLit) {
     recordNoBlocker(s);
     return 1.0;
   }
-  float blockerDepth = clamp((region.x - unoccluded * t) / (1.0 - unoccluded), 0.0, t);
+  float blockerDepth = blocker.x;
   recordPenumbra(s, view, blockerDepth, lightSize);
 
   // (2) Penumbra; (3) filtering over it.
