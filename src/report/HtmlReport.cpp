@@ -3,7 +3,7 @@
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 
-#include <penumbra/ImageIO.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 

@@ -30,10 +30,6 @@ struct ContextOptions {
   bool verbose = false;  ///< print GL_RENDERER / GL_VERSION once on stderr
 };
 
-/// Throws penumbra::Error if the debug callback recorded a GL error (or glGetError reports one)
-/// since the last call. The renderer calls it after every pass.
-void throwIfGlError(const char* where);
-
 /// One headless platform that HeadlessContext tried and why it gave no context.
 struct PlatformAttempt {
   std::string platform;  ///< "EGL surfaceless", "EGL device", "EGL device 0", ...

@@ -1,6 +1,5 @@
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 
-#include "render/GpuScene.h"
 #include "shared/Bindings.h"
 #include "shared/VisibilityPoints.h"
 
@@ -22,6 +21,7 @@ const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, 
   d.label = "visibility " + std::string(filterFile);
   d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
   d.defines = defines;
+  if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
     d.label += " (points)";
     d.defines.set("PN_VISIBILITY_POINTS");
@@ -51,7 +51,7 @@ void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program,
 
 void FrameContext::drawCasters(const gl::Program& program, int view) const {
   glProgramUniform1i(program.id(), PN_LOC_VIEW, view);
-  mGpuScene.draw(program.id(), true);
+  mCasters.draw(program.id());
 }
 
 void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <string>
 
-namespace penumbra::reference {
+namespace penumbra {
 
 class ProgressBar {
 public:
@@ -32,4 +32,4 @@ private:
   std::chrono::steady_clock::time_point mStart, mLastDraw;
 };
 
-}  // namespace penumbra::reference
+}  // namespace penumbra

@@ -1,4 +1,4 @@
-#include "render/SatBuilder.h"
+#include "frame/SatBuilder.h"
 
 #include "shader/ShaderLibrary.h"
 #include "shared/Bindings.h"

@@ -1,20 +1,8 @@
 #pragma once
-// The CPU bake of the distance-field shadow technique (docs/sdf.md): a grid of signed distance
-// (m) to the scene's shadow casters, baked once per scene and cached on disk.
-//  - Distance: exact unsigned distance to the nearest caster triangle at every voxel centre,
-//    from Embree 3 point queries (rtcPointQuery + a closest-point-on-triangle callback).
-//  - Sign: ray-cast winding numbers. One ray per grid line along each axis collects every caster
-//    crossing with its facing; each voxel gets six votes (±x, ±y, ±z: the signed crossing count
-//    between it and either end of its line) and is inside when at least four votes say so.
-//    Closed meshes, overlapping closed meshes and either winding order come out right; an open
-//    sheet (a floor plane, a single quad) is never "inside" from more than one direction, so it
-//    gets positive distance on both sides: a zero-thickness occluder, which the march still
-//    stops at (distance → 0).
-//  - Open flat sheets (a caster object whose triangles all lie in one plane: floors, ground
-//    quads) are kept out of the grid, up to kMaxSheetTriangles in all: the shader measures the
-//    exact distance to their triangles instead. A 24 m floor would otherwise stretch the grid
-//    and leave the objects standing on it a voxel or two thick.
-//  - Alpha-masked materials are treated as solid (the field has no holes).
+// The distance field of the sdf technique (docs/sdf.md): a grid of signed distance (m) to the
+// scene's shadow casters plus the flat sheets measured exactly, and the geometry every baker
+// shares. The bake itself (Embree, oneTBB) is not on this floor: src/bake/ provides one, installed
+// with installEmbreeBaker(); an engine may install its own (setBaker) or none (sdf is then refused).
 #include "shadows/sdf/sdf.shared.h"
 
 #include <penumbra/Math.h>
@@ -25,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 namespace penumbra::sdf {
@@ -122,18 +111,19 @@ SdfVolume gridFor(const Scene& scene, int resolution);
 /// bake equal grids. Costs one pass over the casters' vertices (~1 ms per 100k triangles).
 uint64_t cacheKey(const Scene& scene, int resolution);
 
-/// Bakes without touching the cache. Throws penumbra::Error on a bad resolution or an Embree failure.
-SdfVolume bake(const Scene& scene, const BakeOptions& options = {});
-
-/// The cached grid for this scene and resolution when a valid cache file exists; otherwise bakes
-/// it and stores it (temporary name, then rename). Unreadable or corrupt files are ignored and
-/// replaced. Throws penumbra::Error when the cache directory cannot be created or written.
-SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options = {});
-
 /// Exposed for tests: the point of triangle abc closest to p (degenerate triangles allowed).
 glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
-/// "<dir>/sdf-<key>.bin"
-std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);
+/// The grid for these triangles at `resolution` (dims 0 when `casters.volume` is empty; voxelM is
+/// then set from the sheets' bounds, so that epsilons and offsets in voxels keep a scale).
+SdfVolume gridForTriangles(const CasterTriangles& casters, int resolution);
+
+/// What makes a scene's field: bakes it, or loads it from a cache. Throws penumbra::Error.
+using Baker = std::function<SdfVolume(const Scene& scene, const BakeOptions& options)>;
+/// Installs the baker the sdf filter uses (an empty one uninstalls). Not thread-safe: install it
+/// once at start-up.
+void setBaker(Baker baker);
+/// The installed baker; empty when none is (the sdf filter then refuses to run).
+const Baker& baker();
 
 }  // namespace penumbra::sdf

@@ -1,4 +1,4 @@
-#include "render/PassTimer.h"
+#include "frame/PassTimer.h"
 
 #include <numeric>
 

@@ -1,4 +1,6 @@
-#include "gl/Context.h"
+#include "platform/Context.h"
+
+#include "gl/Debug.h"
 
 #include <penumbra/Error.h>
 
@@ -20,55 +22,7 @@ constexpr const char* kHowToGetLlvmpipe =
     "or run scripts/install-deps) or a GPU driver with EGL; EGL_PLATFORM=surfaceless and "
     "LIBGL_ALWAYS_SOFTWARE=1 force llvmpipe";
 
-// The first GL error since the last check. The callback runs inside the driver, so it only
-// records; throwIfGlError() throws from our own code (never unwind through the driver).
-thread_local std::string tPendingError;
-
-void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
-                               const GLchar* message, const void*) {
-  if (type == GL_DEBUG_TYPE_ERROR) {
-    if (tPendingError.empty()) tPendingError = message;
-  } else if (severity == GL_DEBUG_SEVERITY_HIGH) {
-    std::fprintf(stderr, "penumbra: GL: %s\n", message);
-  }
-}
-
-// A glGetError code by name; out of memory says what usually causes it here.
-std::string glErrorText(GLenum e) {
-  switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY (the shadow maps and the filter's tables may not fit: try a smaller --shadow-map)";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
-    default: return fmt::format("glGetError 0x{:04x}", e);
-  }
-}
-
-std::string glString(GLenum name) {
-  const auto* s = reinterpret_cast<const char*>(glGetString(name));
-  return s ? s : "";
-}
-
 }  // namespace
-
-void throwIfGlError(const char* where) {
-  std::string pending;
-  pending.swap(tPendingError);
-  // The callback does not clear GL's error flags: drain them all, or the next check would
-  // report this error again. GL keeps at most one flag per error code (8 codes in 4.5); the
-  // bound also stops a lost context that keeps answering GL_CONTEXT_LOST.
-  constexpr int kMaxErrorFlags = 8;
-  for (int i = 0; i < kMaxErrorFlags; ++i) {
-    const GLenum e = glGetError();
-    if (e == GL_NO_ERROR) break;
-    if (pending.empty()) pending = glErrorText(e);
-  }
-  if (!pending.empty()) throw Error(fmt::format("OpenGL error in {}: {}", where, pending));
-}
 
 void Context::initialiseCurrent(const ContextOptions& options, std::string platform) {
   PN_CHECK(epoxy_gl_version() >= 45,
@@ -78,15 +32,12 @@ void Context::initialiseCurrent(const ContextOptions& options, std::string platf
   mInfo.version = glString(GL_VERSION);
   mInfo.vendor = glString(GL_VENDOR);
   mInfo.platform = std::move(platform);
-  mInfo.softwareRenderer = mInfo.renderer.find("llvmpipe") != std::string::npos ||
-                           mInfo.renderer.find("softpipe") != std::string::npos;
+  mInfo.softwareRenderer = isSoftwareRenderer(mInfo.renderer);
   if (options.verbose)
     std::fprintf(stderr, "penumbra: GL_RENDERER %s | GL_VERSION %s | %s\n", mInfo.renderer.c_str(),
                  mInfo.version.c_str(), mInfo.platform.c_str());
   if (options.debug) {
-    glEnable(GL_DEBUG_OUTPUT);
-    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    glDebugMessageCallback(onDebugMessage, nullptr);
+    installDebugMessageCallback();
   }
   // Reversed-Z camera depth (DESIGN.md conventions).
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

@@ -1,4 +1,4 @@
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Error.h>
 

@@ -1,10 +1,11 @@
 #pragma once
-// What a Filter may use during a frame: the scene, the light's views, the shader library, the
-// caster draw, the G-buffer-bound full-screen dispatch and its own uniform block. Filters never
-// touch the renderer's internals; the renderer never asks which filter it runs.
+// What a Filter may use during a frame: the light and its views, the shader library, the caster
+// draw, the full-screen dispatch over the surfaces and its own uniform block. Filters never
+// touch the core's internals; the core never asks which filter it runs.
+#include "frame/CasterSet.h"
 #include "gl/Objects.h"
-#include "render/PassTimer.h"
-#include "render/ShadowMaps.h"
+#include "frame/PassTimer.h"
+#include "frame/ShadowMaps.h"
 #include "shader/ShaderLibrary.h"
 
 #include <penumbra/Projection.h>
@@ -15,18 +16,39 @@
 
 namespace penumbra {
 
-class GpuScene;
+/// Where the visibility pass finds each pixel's surface (bound at PN_TEX_GBUF_POSITION and
+/// PN_TEX_GBUF_GEONORMAL by the core before the pass).
+enum class SurfaceSource {
+  Position,  ///< a world-position texture (w > 0.5 = geometry): Penumbra's own G-buffer
+  Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
+};
+
+/// Everything a frame's FrameContext refers to; owned by the core, alive for the frame.
+struct FrameResources {
+  const Light& light;
+  const Scene* cpuScene;  ///< the casters' triangles on the CPU, when the caller gave them
+  const LightFrusta& frusta;
+  int mapSize;
+  glm::ivec2 screen;
+  SurfaceSource surface;
+  ShaderLibrary& shaders;
+  const CasterSet& casters;
+  gl::Buffer& filterBlock;
+  PassTimer& timer;
+  const gl::Texture* visibility;
+};
 
 class FrameContext {
 public:
-  FrameContext(const Scene& scene, const LightFrusta& frusta, int mapSize, glm::ivec2 screen,
-               ShaderLibrary& shaders, const GpuScene& gpuScene, gl::Buffer& filterBlock, PassTimer& timer,
-               const gl::Texture* visibility)
-      : mScene(scene), mFrusta(frusta), mMapSize(mapSize), mScreen(screen), mShaders(shaders),
-        mGpuScene(gpuScene), mFilterBlock(filterBlock), mTimer(timer), mVisibility(visibility) {}
+  explicit FrameContext(const FrameResources& r)
+      : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
+        mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
+        mVisibility(r.visibility) {}
 
-  const Scene& scene() const { return mScene; }
-  const Light& light() const { return mScene.light(); }
+  /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
+  /// gave none. Only techniques that bake the geometry (sdf) need them.
+  const Scene* cpuScene() const { return mCpuScene; }
+  const Light& light() const { return mLight; }
   const LightFrusta& frusta() const { return mFrusta; }
   int viewCount() const { return static_cast<int>(mFrusta.views.size()); }
   int mapSize() const { return mMapSize; }
@@ -38,7 +60,8 @@ public:
   /// Shadow-pass program: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
   const gl::Program& shadowProgram(std::string_view fragment = "passes/shadow_depth.frag.glsl",
                                    const ShaderDefines& defines = {});
-  /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main.
+  /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
+  /// compiled for the frame's SurfaceSource (PN_SURFACE_FROM_DEPTH) and points mode.
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
 
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
@@ -52,7 +75,7 @@ public:
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
   void setFilterBlockBytes(const void* data, size_t bytes);
 
-  /// Binds the G-buffer and the visibility image, then runs `program` once per pixel.
+  /// Binds the visibility image, then runs `program` once per pixel (the surfaces are bound).
   /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
   void dispatchScreen(const gl::Program& program) const;
 
@@ -71,12 +94,14 @@ public:
   static void dispatch2D(const gl::Program& program, int width, int height, int group);
 
 private:
-  const Scene& mScene;
+  const Light& mLight;
+  const Scene* mCpuScene;
   const LightFrusta& mFrusta;
   int mMapSize;
   glm::ivec2 mScreen;
+  SurfaceSource mSurface;
   ShaderLibrary& mShaders;
-  const GpuScene& mGpuScene;
+  const CasterSet& mCasters;
   gl::Buffer& mFilterBlock;
   PassTimer& mTimer;
   const gl::Texture* mVisibility;

@@ -4,7 +4,7 @@
 // pass. Which clock produced a number is recorded with it (PassTimings::clock).
 #include "gl/Objects.h"
 
-#include <penumbra/Renderer.h>
+#include <penumbra/Timings.h>
 
 #include <chrono>
 #include <string>

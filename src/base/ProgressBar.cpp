@@ -1,4 +1,4 @@
-#include "reference/ProgressBar.h"
+#include "base/ProgressBar.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <utility>
 #include <unistd.h>
 
-namespace penumbra::reference {
+namespace penumbra {
 namespace {
 
 // Ten redraws a second look live; more would only cost terminal bandwidth.
@@ -50,4 +50,4 @@ void ProgressBar::draw(size_t done) {
   std::fflush(stderr);
 }
 
-}  // namespace penumbra::reference
+}  // namespace penumbra

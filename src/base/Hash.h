@@ -9,7 +9,7 @@
 #include <string_view>
 #include <type_traits>
 
-namespace penumbra::reference {
+namespace penumbra {
 
 class Hasher {
 public:
@@ -57,4 +57,4 @@ private:
   uint64_t mLength = 0;
 };
 
-}  // namespace penumbra::reference
+}  // namespace penumbra

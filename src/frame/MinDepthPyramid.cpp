@@ -1,4 +1,4 @@
-#include "render/MinDepthPyramid.h"
+#include "frame/MinDepthPyramid.h"
 
 #include "shader/ShaderLibrary.h"
 #include "shared/Bindings.h"

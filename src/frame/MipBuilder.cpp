@@ -1,4 +1,4 @@
-#include "render/MipBuilder.h"
+#include "frame/MipBuilder.h"
 
 #include <penumbra/Error.h>
 

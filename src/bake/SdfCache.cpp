@@ -1,13 +1,12 @@
 // The on-disk cache of baked SDFs: one file per key, "<dir>/sdf-<key>.bin", written to a unique
 // temporary name and renamed, so a reader never sees half a file. A file that fails any check
 // (size, magic, version, key, dimensions, payload hash) is ignored and baked over.
-#include "shadows/sdf/SdfBake.h"
+#include "bake/SdfBake.h"
 
-#include "reference/Hash.h"
+#include "base/Hash.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/ImageIO.h>
-#include <penumbra/Reference.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 
@@ -66,7 +65,7 @@ std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
   const size_t sheetVertices = 3 * static_cast<size_t>(header.sheetTriangles);
   const size_t payload = voxels * sizeof(float) + sheetVertices * sizeof(glm::vec3);
   if (file.size() != sizeof(Header) + payload) return std::nullopt;
-  reference::Hasher hash;
+  Hasher hash;
   hash.bytes(file.data() + sizeof(Header), payload);
   if (hash.digest() != header.payloadHash || !(header.voxelM > 0.0f)) return std::nullopt;
 
@@ -99,7 +98,7 @@ void store(const fs::path& path, const SdfVolume& v) {
   header.triangles = v.stats.triangles;
   header.bakeSeconds = v.stats.bakeSeconds;
   header.sheetTriangles = static_cast<uint32_t>(v.sheets.size() / 3);
-  reference::Hasher hash;
+  Hasher hash;
   std::vector<char> payload(v.distances.size() * sizeof(float) + v.sheets.size() * sizeof(glm::vec3));
   std::memcpy(payload.data(), v.distances.data(), v.distances.size() * sizeof(float));
   std::memcpy(payload.data() + v.distances.size() * sizeof(float), v.sheets.data(), v.sheets.size() * sizeof(glm::vec3));
@@ -112,22 +111,10 @@ void store(const fs::path& path, const SdfVolume& v) {
 
 }  // namespace
 
-uint64_t cacheKey(const Scene& scene, int resolution) {
-  reference::Hasher hash;
-  hash.text("penumbra sdf");
-  hash.value(kSdfCodeVersion);
-  hash.value(resolution);
-  hash.value(kPadVoxels);
-  const CasterTriangles casters = casterTriangles(scene);
-  hash.array(std::span<const glm::vec3>(casters.volume));
-  hash.array(std::span<const glm::vec3>(casters.sheets));
-  return hash.digest();
-}
-
 fs::path cacheFilePath(const fs::path& dir, uint64_t key) { return dir / fmt::format("sdf-{:016x}.bin", key); }
 
 SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
-  const fs::path dir = options.useCache ? (options.cacheDir.empty() ? defaultReferenceCacheDir() : options.cacheDir) : fs::path();
+  const fs::path dir = options.useCache ? (options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir) : fs::path();
   if (dir.empty()) return bake(scene, options);
   const auto start = std::chrono::steady_clock::now();
   const uint64_t key = cacheKey(scene, options.resolution);
