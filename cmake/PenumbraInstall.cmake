@@ -39,6 +39,9 @@ install(FILES ${PROJECT_BINARY_DIR}/PenumbraConfig.cmake ${PROJECT_BINARY_DIR}/P
         DESTINATION ${PENUMBRA_CMAKE_DIR})
 
 # pkg-config: penumbra (the core) and penumbra-reference; static archives, most dependent first.
+# Relocatable: the prefix is found from the .pc file's own folder, so `cmake --install --prefix`
+# anywhere gives files that point at that prefix.
+file(RELATIVE_PATH PENUMBRA_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 set(PENUMBRA_PC_LIBS "-lpenumbra_core -lpenumbra_techniques -lpenumbra_frame -lpenumbra_scene -lpenumbra_gl -lpenumbra_base")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/penumbra.pc.in ${PROJECT_BINARY_DIR}/penumbra.pc @ONLY)
 configure_file(${PROJECT_SOURCE_DIR}/cmake/penumbra-reference.pc.in ${PROJECT_BINARY_DIR}/penumbra-reference.pc @ONLY)

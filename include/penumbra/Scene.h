@@ -1,6 +1,6 @@
 #pragma once
 // The scene: meshes, materials, object instances, lights and a camera. Pure data, no GL.
-// Conventions (DESIGN.md): right-handed world, metres, +Y up.
+// Conventions (docs/design.md): right-handed world, metres, +Y up.
 #include <penumbra/Math.h>
 
 #include <cstdint>

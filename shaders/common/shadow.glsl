@@ -6,7 +6,7 @@
 int shadowViewCount() { return u_shadow.info.x; }
 float shadowMapSize() { return float(u_shadow.info.y); }
 
-// Linear light-space depth in [0,1] (DESIGN.md: shadow maps store linear depth).
+// Linear light-space depth in [0,1] (docs/design.md: shadow maps store linear depth).
 float lightDepth(int view, vec3 ws) { return dot(u_shadow.views[view].depthPlane, vec4(ws, 1.0)); }
 
 // Distance (m) from the light along its axis.

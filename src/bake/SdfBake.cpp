@@ -307,6 +307,7 @@ SdfVolume bake(const Scene& scene, const BakeOptions& options) {
   return grid;
 }
 
+// Makes loadOrBake the sdf filter's baker (setBaker).
 void installEmbreeBaker() { setBaker([](const Scene& scene, const BakeOptions& options) { return loadOrBake(scene, options); }); }
 
 }  // namespace penumbra::sdf

@@ -16,6 +16,8 @@
 //  - Alpha-masked materials are treated as solid (the field has no holes).
 #include "shadows/sdf/SdfVolume.h"
 
+#include <penumbra/Bake.h>
+
 #include <filesystem>
 
 namespace penumbra::sdf {
@@ -30,8 +32,5 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options = {});
 
 /// "<dir>/sdf-<key>.bin"
 std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);
-
-/// Makes loadOrBake the sdf filter's baker (setBaker). Tools call it once at start-up.
-void installEmbreeBaker();
 
 }  // namespace penumbra::sdf

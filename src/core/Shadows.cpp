@@ -154,6 +154,8 @@ void Shadows::render(const ShadowFrameInputs& in) {
     throw Error(fmt::format("shadow map size {} is outside 1..{} (the driver's maximum texture size)", in.mapSize, maxSize));
   const Light& light = in.lights.front();
   im.checkPair(light);
+  // An error the caller's own calls left is theirs: say so, rather than blame a pass below.
+  gl::throwIfGlError("the caller's GL calls before Shadows::render");
 
   const StateScope scope(in.restore);
   core::setPassDefaults();

@@ -39,7 +39,7 @@ void Context::initialiseCurrent(const ContextOptions& options, std::string platf
   if (options.debug) {
     installDebugMessageCallback();
   }
-  // Reversed-Z camera depth (DESIGN.md conventions).
+  // Reversed-Z camera depth (docs/design.md conventions).
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 }
 

@@ -1,4 +1,4 @@
-// Visibility error statistics over the pixels that face the light (DESIGN.md, "Reference and
+// Visibility error statistics over the pixels that face the light (docs/design.md, "Reference and
 // metrics"). Sums run in double: a 4K image has 8M pixels, beyond float's exact integers.
 #include <penumbra/Error.h>
 #include <penumbra/Metrics.h>
