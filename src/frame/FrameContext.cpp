@@ -1,6 +1,7 @@
 #include "frame/FrameContext.h"
 
 #include "shared/Bindings.h"
+#include "shared/Enums.h"
 #include "shared/VisibilityPoints.h"
 
 #include <penumbra/Error.h>
@@ -16,11 +17,26 @@ const gl::Program& FrameContext::shadowProgram(std::string_view fragment, const 
   return mShaders.program(d);
 }
 
+ShaderDefines FrameContext::frameDefines() const {
+  ShaderDefines d;
+  d.set("PN_SHADOW_VIEWS", viewCount());
+  d.set("PN_LIGHT_KIND", mLight.type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
+  const auto kind = [](const ShadowView& v) {
+    return v.warped ? PN_VIEW_KIND_WARPED : v.perspective ? PN_VIEW_KIND_PERSPECTIVE : PN_VIEW_KIND_ORTHO;
+  };
+  bool oneKind = true;
+  for (const ShadowView& v : mFrusta.views) oneKind = oneKind && kind(v) == kind(mFrusta.views.front());
+  if (oneKind && !mFrusta.views.empty()) d.set("PN_VIEW_KIND", kind(mFrusta.views.front()));
+  d.set("PN_CASCADE_BLEND", viewCount() > 1 && mFrusta.blendBandM > 0.0f ? 1 : 0);
+  return d;
+}
+
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "visibility " + std::string(filterFile);
   d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
-  d.defines = defines;
+  d.defines = frameDefines();
+  d.defines.merge(defines);
   if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
     d.label += " (points)";
