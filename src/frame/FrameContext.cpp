@@ -45,6 +45,13 @@ const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, 
   return mShaders.program(d);
 }
 
+const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const Parameterized& params,
+                                                  const ShaderDefines& defines) {
+  ShaderDefines all;
+  for (const auto& [name, value] : params.compileTimeConstants()) all.set(std::string(name), value);
+  return visibilityProgram(filterFile, all.merge(defines));
+}
+
 void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {
   program.use();
   glEnable(GL_DEPTH_TEST);

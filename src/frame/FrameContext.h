@@ -64,6 +64,9 @@ public:
   /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
   /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
+  /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
+  const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
+                                       const ShaderDefines& defines = {});
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
   /// PN_LIGHT_KIND, PN_VIEW_KIND (when all views are of one kind), PN_CASCADE_BLEND.
   ShaderDefines frameDefines() const;

@@ -41,11 +41,11 @@ void VsmFilter::prefilter(FrameContext& frame) {
 void VsmFilter::computeVisibility(FrameContext& frame) {
   gpu::VsmUniforms u{};
   u.params = glm::vec4(param("vsm.minVariance"), param("vsm.bleedReduction"), param("vsm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), paramInt("vsm.footprint"), 0, 0);
+  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl"));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl", *this));
 }
 
 std::vector<DebugImage> VsmFilter::debugImages() const { return {{"vsm-moments", &mMaps.color()}}; }

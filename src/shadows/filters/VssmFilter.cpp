@@ -13,7 +13,7 @@ static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames 
 
 constexpr ParamDesc kParams[] = {
     {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)",
-     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames},
+     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames, "PN_VSSM_SOURCE"},
     {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
      3.0f, 0.0f, 256.0f, 0.0f},
     {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
@@ -24,7 +24,7 @@ constexpr ParamDesc kParams[] = {
      512.0f, 1.0f, 4096.0f, 0.0f},
     tightSearchParam("vssm.tightSearch"),
     {"vssm.mipSplit", "Mip split", "source=mip: each box is read as n x n sub-boxes, each one mip level finer per halving: 1 = one trilinear read of the whole box (its tent weighs twice the box's width), 2 = 2x2, 4 = 4x4 (near the exact box, 16 reads)",
-     2.0f, 1.0f, 4.0f, 1.0f},
+     2.0f, 1.0f, 4.0f, 1.0f, {}, "PN_VSSM_MIP_SPLIT"},
     {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
      4.0f, 1.0f, 16.0f, 1.0f},
 };
@@ -61,7 +61,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   gpu::VssmUniforms u{};
   u.params = glm::vec4(param("vssm.minVariance"), param("vssm.bleedReduction"), param("vssm.minRadiusTexels"),
                        param("vssm.maxRadiusTexels"));
-  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), paramInt("vssm.mipSplit"), 0, 0);
+  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   if (fromSat()) {
     mSat.bindTable();
@@ -70,9 +70,9 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
     mMaps.color().bindUnit(PN_TEX_FILTER0);
   }
   mPenumbraDebug.bind(frame);
-  ShaderDefines defines = ShaderDefines().set("PN_VSSM_SOURCE", paramInt("vssm.source"));
+  ShaderDefines defines;
   mTightSearch.bind(paramInt("vssm.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", *this, defines));
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {

@@ -16,8 +16,8 @@
 #include "shadows/filters/vssm.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform VssmBlock { VssmUniforms u_vssm; };
-// PN_VSSM_SOURCE (a define): where region moments come from.
-// The SAT (source=sat) is common/sat.glsl's storage buffer.
+// Where region moments come from (PN_VSSM_SOURCE): the SAT (source=sat) is common/sat.glsl's
+// storage buffer.
 #if PN_VSSM_SOURCE != PN_VSSM_SOURCE_SAT
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
 #endif
@@ -42,7 +42,7 @@ vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, boo
   // at the level whose texels match its short side. One trilinear read of the whole box weighs
   // a tent twice the box's width (variance ×2 of the box's); 2 × 2 sub-boxes one level finer
   // ×1.25, 4 × 4 ×1.06.
-  int n = u_vssm.mode.y;
+  const int n = PN_VSSM_MIP_SPLIT;
   vec2 subUv = 2.0 * radiusUv / float(n);
   vec2 moments = vec2(0.0);
   for (int j = 0; j < n; ++j)
