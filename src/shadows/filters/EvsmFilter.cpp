@@ -1,0 +1,52 @@
+#include "shadows/filters/EvsmFilter.h"
+
+#include "render/FrameContext.h"
+#include "shadows/filters/ExpWarpParams.h"
+#include "shadows/filters/FootprintParams.h"
+#include "shadows/filters/evsm.shared.h"
+
+namespace penumbra {
+namespace {
+
+constexpr ParamDesc kParams[] = {
+    evsmComponentsParam("evsm.components"),
+    expWarpStorageParam("evsm.storage"),
+    positiveExponentParam("evsm.positiveExponent"),
+    negativeExponentParam("evsm.negativeExponent"),
+    {"evsm.minVariance", "Min variance",
+     "floor of the depth variance in texels² (as vsm.minVariance), taken through each warp's slope: hides the "
+     "acne of receivers that are not quite planar",
+     4.0f, 0.0f, 64.0f, 0.0f},
+    {"evsm.bleedReduction", "Bleed reduction",
+     "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
+     0.0f, 0.0f, 0.95f, 0.0f},
+    footprintWidthParam("evsm.filterTexels"),
+    footprintParam("evsm.footprint"),
+    footprintAnisotropyParam("evsm.anisotropy"),
+};
+
+}  // namespace
+
+EvsmFilter::EvsmFilter() : Filter(kParams) {}
+
+void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(*this, "evsm")); }
+
+void EvsmFilter::prefilter(FrameContext& frame) {
+  (void)frame;
+  mMaps.buildMips();
+}
+
+void EvsmFilter::computeVisibility(FrameContext& frame) {
+  const ExpWarpMaps::Warp w = evsmWarp(*this, "evsm");
+  gpu::EvsmUniforms u{};
+  u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), static_cast<float>(w.components));
+  u.params = glm::vec4(param("evsm.minVariance"), param("evsm.bleedReduction"), param("evsm.filterTexels"), 0.0f);
+  u.mode = glm::ivec4(paramInt("evsm.anisotropy"), paramInt("evsm.footprint"), 0, 0);
+  frame.setFilterBlock(u);
+  mMaps.bindForFiltering();
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm.glsl"));
+}
+
+std::vector<DebugImage> EvsmFilter::debugImages() const { return {{"evsm-moments", &mMaps.moments()}}; }
+
+}  // namespace penumbra

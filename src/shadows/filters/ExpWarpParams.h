@@ -1,0 +1,66 @@
+#pragma once
+// The parameters shared by evsm and evsm-soft (exp_warp.shared.h, ExpWarpMaps.h), declared once
+// for both, and the exponents in force once the storage's limit is applied.
+#include "shadows/filters/ExpWarpMaps.h"
+#include "shadows/filters/exp_warp.shared.h"
+
+#include <penumbra/Filter.h>
+
+#include <algorithm>
+#include <string>
+#include <string_view>
+
+namespace penumbra {
+
+inline constexpr std::string_view kEvsmComponentNames[] = {"2", "4"};
+
+// The help texts below quote the exponent limits of exp_warp.shared.h.
+static_assert(PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f == 43.0f && PN_EXP_WARP_MAX_LOG_FLOAT16 / 2.0f == 5.5f,
+              "update the limits quoted in the help texts");
+
+/// "<filter>.components": 2 (the positive warp) or 4 (both warps), default 4.
+constexpr ParamDesc evsmComponentsParam(std::string_view key) {
+  return {key, "Components",
+          "2: the positive warp (p, p²); 4: also the negative warp (n, n²), and V is the smaller of the two bounds "
+          "(twice the memory, far less light bleeding)",
+          1.0f, 0.0f, 1.0f, 1.0f, kEvsmComponentNames};
+}
+
+/// "<filter>.storage": float32 (default) or float16.
+constexpr ParamDesc expWarpStorageParam(std::string_view key) {
+  return {key, "Storage",
+          "float32: 32-bit float moments, exponents up to 43; float16: half the memory, exponents clamped to 5.5 "
+          "(e^11, the second moment at the far plane, is the largest power of e a half holds)",
+          0.0f, 0.0f, 1.0f, 1.0f, kExpWarpStorageNames};
+}
+
+/// "<filter>.positiveExponent": c+ of p = exp(c+ (2z − 1)), default 40.
+constexpr ParamDesc positiveExponentParam(std::string_view key) {
+  return {key, "Positive exponent",
+          "c+ of the positive warp exp(c+ (2z - 1)) of linear depth z: larger cuts more light bleeding between "
+          "occluders; clamped to 43 (float32) or 5.5 (float16) so that the stored p² stays finite",
+          40.0f, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f, 0.0f};
+}
+
+/// "<filter>.negativeExponent": c− of n = −exp(−c− (2z − 1)), default 5.
+constexpr ParamDesc negativeExponentParam(std::string_view key) {
+  return {key, "Negative exponent",
+          "c- of the negative warp -exp(-c- (2z - 1)) (components=4): it bounds the receivers the positive warp "
+          "leaves lit near a far occluder; clamped to 43 (float32) or 5.5 (float16)",
+          5.0f, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f, 0.0f};
+}
+
+/// The warp a filter's parameters ask for (prefix "evsm" or "evsm-soft"), exponents clamped to
+/// what its storage holds.
+inline ExpWarpMaps::Warp evsmWarp(const Filter& f, std::string_view prefix) {
+  const auto key = [&](std::string_view name) { return std::string(prefix) + "." + std::string(name); };
+  ExpWarpMaps::Warp w;
+  w.components = f.paramInt(key("components")) == 0 ? 2 : 4;
+  w.storage = static_cast<ExpWarpStorage>(f.paramInt(key("storage")));
+  const float maxExponent = maxWarpExponent(w.storage, 2);
+  w.positive = std::min(f.param(key("positiveExponent")), maxExponent);
+  w.negative = w.components == 4 ? std::min(f.param(key("negativeExponent")), maxExponent) : 0.0f;
+  return w;
+}
+
+}  // namespace penumbra
