@@ -38,21 +38,7 @@ vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, boo
   vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
   return vec2(m.x, floorVariance(m.y, minVariance));
 #else
-  // The box as n × n footprints of sub-boxes (n = vssm.mipSplit), each read with trilinear taps
-  // at the level whose texels match its short side. One trilinear read of the whole box weighs
-  // a tent twice the box's width (variance ×2 of the box's); 2 × 2 sub-boxes one level finer
-  // ×1.25, 4 × 4 ×1.06.
-  int n = u_vssm.mode.y;
-  vec2 subUv = 2.0 * radiusUv / float(n);
-  vec2 moments = vec2(0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      vec2 centre = uv - radiusUv + (vec2(i, j) + 0.5) * subUv;
-      moments += textureFootprint(s_moments, vec3(centre, float(view)), vec2(subUv.x, 0.0), vec2(0.0, subUv.y),
-                                  u_vssm.mode.x).rg;
-    }
-  moments /= float(n * n);
-  return meanVariance(moments, minVariance);
+  return meanVariance(boxMeanFromMips(s_moments, view, uv, radiusUv, u_vssm.mode.y, u_vssm.mode.x).rg, minVariance);
 #endif
 }
 
