@@ -4,6 +4,7 @@
 
 #include "shadows/filters/EsmFilter.h"
 #include "shadows/filters/EvsmFilter.h"
+#include "shadows/filters/EvsmSoftFilter.h"
 #include "shadows/filters/HardFilter.h"
 #include "shadows/filters/PcfFilter.h"
 #include "shadows/filters/PcssFilter.h"
@@ -54,6 +55,7 @@ const std::vector<Entry<Filter>>& filters() {
       {"msm-soft", [] { return std::make_unique<MsmSoftFilter>(); }},
       {"esm", [] { return std::make_unique<EsmFilter>(); }},
       {"evsm", [] { return std::make_unique<EvsmFilter>(); }},
+      {"evsm-soft", [] { return std::make_unique<EvsmSoftFilter>(); }},
   };
   return list;
 }

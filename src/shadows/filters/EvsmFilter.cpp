@@ -25,11 +25,20 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("evsm.anisotropy"),
 };
 
+ExpWarpMaps::Warp evsmWarp(const Filter& f) {
+  ExpWarpMaps::Warp w;
+  w.components = f.paramInt("evsm.components") == 0 ? 2 : 4;
+  w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm.storage"));
+  w.positive = clampWarpExponent(f.param("evsm.positiveExponent"), w.storage);
+  w.negative = w.components == 4 ? clampWarpExponent(f.param("evsm.negativeExponent"), w.storage) : 0.0f;
+  return w;
+}
+
 }  // namespace
 
 EvsmFilter::EvsmFilter() : Filter(kParams) {}
 
-void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(*this, "evsm")); }
+void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(*this)); }
 
 void EvsmFilter::prefilter(FrameContext& frame) {
   (void)frame;
@@ -37,7 +46,7 @@ void EvsmFilter::prefilter(FrameContext& frame) {
 }
 
 void EvsmFilter::computeVisibility(FrameContext& frame) {
-  const ExpWarpMaps::Warp w = evsmWarp(*this, "evsm");
+  const ExpWarpMaps::Warp w = evsmWarp(*this);
   gpu::EvsmUniforms u{};
   u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), static_cast<float>(w.components));
   u.params = glm::vec4(param("evsm.minVariance"), param("evsm.bleedReduction"), param("evsm.filterTexels"), 0.0f);

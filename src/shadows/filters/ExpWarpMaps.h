@@ -36,6 +36,8 @@ public:
   /// Binds the moments, trilinear, at PN_TEX_FILTER0.
   void bindForFiltering() const;
   const gl::Texture& moments() const { return mMaps.color(); }
+  /// The linear light depth the pass wrote with the moments (a min-depth pyramid's input).
+  const gl::Texture& depth() const { return mMaps.depth(); }
 
 private:
   ShadowMapArray mMaps;
