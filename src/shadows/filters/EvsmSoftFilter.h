@@ -1,7 +1,7 @@
 #pragma once
 // evsm-soft: exponential variance soft shadows — vssm's O(1) blocker search and filter on evsm's
 // four warped moments, read from their mip chain; penumbra by similar triangles as PCSS
-// (docs/evsm.md).
+// (docs/evsm-soft.md).
 #include "shadows/PenumbraDebugImages.h"
 #include "shadows/TightSearch.h"
 #include "shadows/filters/ExpWarpMaps.h"
