@@ -8,8 +8,13 @@
 namespace penumbra {
 namespace {
 
+constexpr std::string_view kComponentNames[] = {"2", "4"};
+
 constexpr ParamDesc kParams[] = {
-    evsmComponentsParam("evsm.components"),
+    {"evsm.components", "Components",
+     "2: the positive warp (p, p²); 4: also the negative warp (n, n²), and V is the smaller of the two bounds "
+     "(twice the memory, far less light where receivers are not planar)",
+     1.0f, 0.0f, 1.0f, 1.0f, kComponentNames},
     expWarpStorageParam("evsm.storage"),
     positiveExponentParam("evsm.positiveExponent"),
     negativeExponentParam("evsm.negativeExponent"),

@@ -11,19 +11,9 @@
 
 namespace penumbra {
 
-inline constexpr std::string_view kEvsmComponentNames[] = {"2", "4"};
-
 // The help texts below quote the exponent limits of exp_warp.shared.h.
 static_assert(PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f == 43.0f && PN_EXP_WARP_MAX_LOG_FLOAT16 / 2.0f == 5.5f,
               "update the limits quoted in the help texts");
-
-/// "<filter>.components": 2 (the positive warp) or 4 (both warps), default 4.
-constexpr ParamDesc evsmComponentsParam(std::string_view key) {
-  return {key, "Components",
-          "2: the positive warp (p, p²); 4: also the negative warp (n, n²), and V is the smaller of the two bounds "
-          "(twice the memory, far less light bleeding)",
-          1.0f, 0.0f, 1.0f, 1.0f, kEvsmComponentNames};
-}
 
 /// "<filter>.storage": float32 (default) or float16.
 constexpr ParamDesc expWarpStorageParam(std::string_view key) {
