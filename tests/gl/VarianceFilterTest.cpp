@@ -468,3 +468,48 @@ TEST(VarianceFilters, DISABLED_BenchmarkVisibilityPass) {
     EXPECT_GT(t.medianA, 0.0);
   }
 }
+
+// Benchmark (run with --gtest_also_run_disabled_tests): the cost columns of docs/esm.md's, evsm.md's
+// and evsm-soft.md's tables, fence from behind the wall. Every configuration's renderer is kept alive
+// and one frame of each is rendered per round, the order rotated each round, so that drift on a
+// shared CPU (llvmpipe runs on it) hits all alike; per pass, the median and quartiles over the
+// rounds, after 2 warm-up rounds (the first frame compiles the shaders).
+TEST(VarianceFilters, DISABLED_BenchmarkFenceBehindTheWallPasses) {
+  Scene scene = makeBuiltinScene("fence");
+  scene.camera = parseCameraArgument("4,3,-6:0,0,-3.5:50", scene.camera);
+  std::vector<Variant> list = {variant("vsm"), variant("msm float32"), variant("esm"), variant("evsm 2"),
+                               variant("evsm 4"), variant("evsm 4 float16"), variant("vssm sat"), variant("msm-soft"),
+                               variant("evsm-soft")};
+  constexpr int kWarmUp = 2, kRounds = 15;
+  const char* passes[] = {"shadow", "prefilter", "visibility"};
+  for (const auto& [width, height, mapSize] : {std::tuple{kFenceW, kFenceH, kMapSize}, std::tuple{256, 256, 2048}}) {
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    for (const Variant& v : list) renderers.push_back(makeTestRenderer(scene, "uniform", v.filter, v.params));
+    RenderOptions o;
+    o.width = width;
+    o.height = height;
+    o.shadowMapSize = mapSize;
+    std::vector<std::vector<std::vector<double>>> ms(list.size(), std::vector<std::vector<double>>(std::size(passes)));
+    for (int round = 0; round < kWarmUp + kRounds; ++round)
+      for (size_t k = 0; k < list.size(); ++k) {
+        const size_t i = (k + static_cast<size_t>(round)) % list.size();
+        renderers[i]->render(o);
+        if (round < kWarmUp) continue;
+        for (size_t p = 0; p < std::size(passes); ++p) ms[i][p].push_back(renderers[i]->timings().get(passes[p]));
+      }
+    std::printf("fence behind the wall, %dx%d, map %d, %d rounds after %d warm-up, glFinish+steady_clock on %s\n"
+                "  ms: median [quartiles]\n  %-16s %-22s %-22s %-22s %8s\n",
+                width, height, mapSize, kRounds, kWarmUp, glContext().info().renderer.c_str(), "filter", "shadow",
+                "prefilter", "visibility", "sum");
+    for (size_t i = 0; i < list.size(); ++i) {
+      std::printf("  %-16s", list[i].name.c_str());
+      double sum = 0.0;
+      for (size_t p = 0; p < std::size(passes); ++p) {
+        sum += quantile(ms[i][p], 0.5);
+        std::printf(" %7.2f [%5.2f, %5.2f]", quantile(ms[i][p], 0.5), quantile(ms[i][p], 0.25), quantile(ms[i][p], 0.75));
+      }
+      std::printf(" %8.2f\n", sum);
+      EXPECT_GT(quantile(ms[i][2], 0.5), 0.0) << list[i].name;
+    }
+  }
+}
