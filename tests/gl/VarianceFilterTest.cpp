@@ -26,12 +26,9 @@
 
 #include <fmt/format.h>
 
-#include <glm/gtc/constants.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <random>
-#include <span>
 #include <stdexcept>
 
 using namespace penumbra;
@@ -192,27 +189,12 @@ TEST(VarianceFilters, NoSelfShadowingOnAGrazingPlane) {
   }
 }
 
-// Floor pixels of `fence` whose point lies within kContactBandM (horizontally) of a caster: where
-// the wall and the slats stand on the floor. Found by horizontal rays a little above the floor.
+// The contact band: floor pixels within this distance (horizontally) of a caster, where the wall
+// and the slats stand on the floor.
 constexpr float kContactBandM = 0.5f;
-std::vector<uint8_t> contactBand(const Scene& scene, const GBufferData& g, std::span<const uint8_t> litMask) {
-  constexpr float kRayHeightM = 0.02f;  // above the floor, below any caster's lowest edge
-  constexpr int kDirections = 8;
-  const CasterTriangles casters(scene);
-  std::vector<uint8_t> band(litMask.size(), 0);
-  for (size_t i = 0; i < band.size(); ++i) {
-    if (!litMask[i] || !onFloor(g.position[i])) continue;
-    const glm::vec3 origin = glm::vec3(g.position[i]) + glm::vec3(0.0f, kRayHeightM, 0.0f);
-    for (int d = 0; d < kDirections && !band[i]; ++d) {
-      const float a = glm::two_pi<float>() * static_cast<float>(d) / kDirections;
-      band[i] = casters.blocked(origin, glm::vec3(std::cos(a), 0.0f, std::sin(a)), 0.0f, kContactBandM) ? 1 : 0;
-    }
-  }
-  return band;
-}
 
 // hard, pcss and every variant on `fence` (kFenceW x kFenceH, 1024² map) against one reference, printed as
-// the table of docs/msm.md; and the same metrics over the floor near contacts (contactBand).
+// the table of docs/msm.md; and the same metrics over the floor near contacts (floorNearCasters).
 struct FenceLeaks {
   std::vector<std::pair<std::string, VisibilityMetrics>> results, nearContacts;
   ReferenceResult ref;
@@ -240,7 +222,7 @@ FenceLeaks measureFenceLeaks(const Scene& scene, const char* view) {
     const RenderResult r = renderScene(scene, "uniform", v.filter, v.params, kFenceW, kFenceH, kMapSize);
     if (ref.visibility.empty()) {
       ref = traceReference(scene, r.gbuffer);
-      band = contactBand(scene, r.gbuffer, ref.litMask);
+      band = floorNearCasters(scene, r.gbuffer, ref.litMask, kContactBandM);
     }
     out.results.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, ref.litMask));
     out.nearContacts.emplace_back(v.name, compareVisibility(r.visibility, ref.visibility, band));
