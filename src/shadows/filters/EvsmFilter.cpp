@@ -1,6 +1,7 @@
 #include "shadows/filters/EvsmFilter.h"
 
 #include "render/FrameContext.h"
+#include "shadows/filters/BleedReduction.h"
 #include "shadows/filters/ExpWarpParams.h"
 #include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/evsm.shared.h"
@@ -22,9 +23,7 @@ constexpr ParamDesc kParams[] = {
      "floor of the depth variance in texels² (as vsm.minVariance), taken through each warp's slope: hides the "
      "acne of receivers that are not quite planar",
      4.0f, 0.0f, 64.0f, 0.0f},
-    {"evsm.bleedReduction", "Bleed reduction",
-     "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
-     0.0f, 0.0f, 0.95f, 0.0f},
+    bleedReductionParam("evsm.bleedReduction"),
     footprintWidthParam("evsm.filterTexels"),
     footprintParam("evsm.footprint"),
     footprintAnisotropyParam("evsm.anisotropy"),

@@ -1,6 +1,7 @@
 #include "shadows/filters/EvsmSoftFilter.h"
 
 #include "render/FrameContext.h"
+#include "shadows/filters/BleedReduction.h"
 #include "shadows/filters/ExpWarpParams.h"
 #include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/evsm_soft.shared.h"
@@ -17,9 +18,7 @@ constexpr ParamDesc kParams[] = {
      "floor of the depth variance in texels² (as vssm.minVariance), taken through each warp's slope: keeps receivers "
      "from shadowing themselves",
      3.0f, 0.0f, 256.0f, 0.0f},
-    {"evsm-soft.bleedReduction", "Bleed reduction",
-     "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)", 0.0f, 0.0f,
-     0.95f, 0.0f},
+    bleedReductionParam("evsm-soft.bleedReduction"),
     softMinRadiusParam("evsm-soft.minRadiusTexels"),
     softMaxRadiusParam("evsm-soft.maxRadiusTexels"),
     tightSearchParam("evsm-soft.tightSearch"),

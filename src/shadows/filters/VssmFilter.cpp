@@ -1,6 +1,7 @@
 #include "shadows/filters/VssmFilter.h"
 
 #include "render/FrameContext.h"
+#include "shadows/filters/BleedReduction.h"
 #include "render/MipBuilder.h"
 #include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/vssm.shared.h"
@@ -17,8 +18,7 @@ constexpr ParamDesc kParams[] = {
      PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames},
     {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
      3.0f, 0.0f, 256.0f, 0.0f},
-    {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
-     0.0f, 0.0f, 0.95f, 0.0f},
+    bleedReductionParam("vssm.bleedReduction"),
     softMinRadiusParam("vssm.minRadiusTexels"),
     softMaxRadiusParam("vssm.maxRadiusTexels"),
     tightSearchParam("vssm.tightSearch"),
