@@ -3,7 +3,7 @@
 #include "Commands.h"
 #include "Common.h"
 
-#include "gl/Context.h"
+#include "platform/Context.h"
 #include "report/BenchRunner.h"
 #include "report/HtmlReport.h"
 #include "report/ResultsIO.h"

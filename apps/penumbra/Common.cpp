@@ -35,8 +35,8 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s) {
-  auto renderer = std::make_unique<Renderer>(context);
+std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, Setup& s) {
+  auto renderer = std::make_unique<Renderer>();
   renderer->setScene(s.scene);
   renderer->setTechnique(std::move(s.projection), std::move(s.filter));
   return renderer;

@@ -3,7 +3,7 @@
 #include "Commands.h"
 #include "Common.h"
 
-#include "gl/Context.h"
+#include "platform/Context.h"
 #include "metrics/Shimmer.h"
 #include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"

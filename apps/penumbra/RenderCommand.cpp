@@ -2,8 +2,9 @@
 #include "Commands.h"
 #include "Common.h"
 
-#include "gl/Context.h"
+#include "platform/Context.h"
 
+#include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
 
 #include <cstdio>

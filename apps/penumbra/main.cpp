@@ -2,6 +2,8 @@
 // line on stderr. With no subcommand it runs `render` with its defaults.
 #include "Commands.h"
 
+#include "bake/SdfBake.h"
+
 #include <penumbra/Error.h>
 
 #include <cstdio>
@@ -10,6 +12,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Penumbra: real-time shadow techniques, rendered and measured against a ray-traced reference.\n"
                "With no subcommand, renders the default scene to penumbra.png."};
   app.require_subcommand(0, 1);
+  penumbra::sdf::installEmbreeBaker();  // the sdf filter's fields: baked with Embree, cached on disk
   std::vector<penumbra::app::Command> commands;
   penumbra::app::registerCommands(app, commands);
   try {

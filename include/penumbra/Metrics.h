@@ -2,7 +2,7 @@
 // The ruler: how far a technique's visibility V is from the reference V_ref, and images that
 // show where. Pure C++ (no GL). Per-pixel inputs are width × height arrays in the G-buffer's
 // row order (row 0 = bottom); output images are row 0 = top, ready for writePng.
-#include <penumbra/Renderer.h>
+#include <penumbra/Image.h>
 
 #include <cstddef>
 #include <cstdint>

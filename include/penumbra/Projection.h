@@ -42,7 +42,7 @@ public:
   /// The light's view(s) for this camera. `aspect` = width / height of the image; `mapSize` =
   /// texels per side of each map (fits add margins and snap in whole texels).
   virtual LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                    const Scene& scene, int mapSize) const = 0;
+                                    const SceneExtent& scene, int mapSize) const = 0;
 };
 
 }  // namespace penumbra

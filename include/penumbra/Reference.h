@@ -6,7 +6,7 @@
 // the geometric normal) and go toward the light: one ray for a light of size 0, N stratified
 // samples, uniform in solid angle, over the cone the light subtends for a spherical spot light or
 // the sun's disk. Results are deterministic (per-pixel seeds) and cached on disk.
-#include <penumbra/Renderer.h>
+#include <penumbra/Image.h>
 #include <penumbra/Scene.h>
 
 #include <cstdint>
@@ -28,7 +28,7 @@ struct ReferenceOptions {
   uint32_t seed = 0;           ///< the same seed gives bit-identical results
   bool progress = true;        ///< progress bar on stderr; drawn only when stderr is a terminal
   bool useCache = true;        ///< read and write the on-disk cache
-  /// Where cache files go; empty = defaultReferenceCacheDir().
+  /// Where cache files go; empty = defaultCacheDir() (penumbra/Files.h).
   std::filesystem::path cacheDir;
 };
 
@@ -62,10 +62,6 @@ struct ReferenceResult {
   bool fromCache = false;
   uint64_t cacheKey = 0;
 };
-
-/// $PENUMBRA_CACHE if set, else $XDG_CACHE_HOME/penumbra, else ~/.cache/penumbra; empty when
-/// none of these can be formed (no HOME).
-std::filesystem::path defaultReferenceCacheDir();
 
 /// An Embree BVH of the scene's shadow casters (objects with castsShadow), in world space, and
 /// the tracer that computes reference results from G-buffers. Thread-safe for concurrent trace()

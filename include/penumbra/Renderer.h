@@ -1,9 +1,13 @@
 #pragma once
-// The renderer runs the frame of DESIGN.md: projection → shadow pass → prefilter → G-buffer →
-// visibility → lit. It knows no technique: the Projection and Filter objects do that work.
+// Penumbra's own renderer (docs/design.md): a G-buffer pass, the shadows of the engine-facing
+// core (penumbra/Shadows.h: projection → shadow pass → prefilter → visibility) on that G-buffer,
+// then the lit pass. It is the core's first client and knows no technique.
 #include <penumbra/Filter.h>
+#include <penumbra/Image.h>
 #include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
+#include <penumbra/Shadows.h>
+#include <penumbra/Timings.h>
 
 #include <memory>
 #include <span>
@@ -13,7 +17,6 @@
 
 namespace penumbra {
 
-namespace gl { class Context; }
 class ShaderLibrary;
 
 struct RenderOptions {
@@ -24,40 +27,10 @@ struct RenderOptions {
   int debugView = 0;
 };
 
-/// A world point at which to evaluate a filter's visibility (Renderer::visibilityAt).
-struct SurfaceSample {
-  glm::vec3 position{0.0f};               ///< world (m)
-  glm::vec3 geoNormal{0.0f, 1.0f, 0.0f};  ///< unit geometric normal (decides N·L and biases)
-  glm::ivec2 pixel{0};                    ///< the pixel it was seen at (filters' per-pixel noise)
-};
-
-/// Per-pass times of the last frame, in order.
-struct PassTimings {
-  std::vector<std::pair<std::string, double>> ms;  ///< pass name → milliseconds
-  std::string clock;                               ///< "gl-timer-query" or "glFinish+steady_clock"
-  double get(std::string_view pass) const;
-  double total() const;
-};
-
-/// The G-buffer read back to the CPU, row 0 = bottom (GL order).
-struct GBufferData {
-  int width = 0, height = 0;
-  std::vector<glm::vec4> position;   ///< xyz world (m); w = 1 where there is geometry, else 0
-  std::vector<glm::vec4> geoNormal;  ///< xyz unit geometric normal (facing the camera side); w unused
-  std::vector<glm::vec4> normal;     ///< xyz shading normal
-  std::vector<glm::vec4> albedo;     ///< rgb base colour
-  bool covered(size_t i) const { return position[i].w > 0.5f; }
-};
-
-/// sRGB 8-bit RGBA, row 0 = top (ready for PNG).
-struct ColorImage {
-  int width = 0, height = 0;
-  std::vector<uint8_t> rgba;
-};
-
 class Renderer {
 public:
-  explicit Renderer(gl::Context& context);
+  /// Needs a current OpenGL 4.5 core context (the platform's, or the caller's).
+  Renderer();
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -73,12 +46,14 @@ public:
   void setCameraAndLights(const Camera& camera, const std::vector<Light>& lights);
 
   const Scene& scene() const;
-  Projection& projection() { return *mProjection; }
-  Filter& filter() { return *mFilter; }
-  const LightFrusta& frusta() const { return mFrusta; }
-  const PassTimings& timings() const { return mTimings; }
-  ShaderLibrary& shaders() { return *mShaders; }
-  gl::Context& context() { return mContext; }
+  Projection& projection();
+  Filter& filter();
+  const LightFrusta& frusta() const;
+  /// gbuffer, shadow, prefilter, visibility, lit: the last frame's passes in the order they ran.
+  const PassTimings& timings() const;
+  ShaderLibrary& shaders();
+  /// The core this renderer runs its shadows with.
+  Shadows& shadows();
 
   /// Re-runs the lit pass of the last frame with another visibility (width × height, row 0 =
   /// bottom; e.g. the reference's) and returns the image. The frame's own V is restored after.
@@ -112,12 +87,6 @@ public:
 
 private:
   void runLitPass();
-  gl::Context& mContext;
-  std::unique_ptr<ShaderLibrary> mShaders;
-  std::unique_ptr<Projection> mProjection;
-  std::unique_ptr<Filter> mFilter;
-  LightFrusta mFrusta;
-  PassTimings mTimings;
   std::unique_ptr<Impl> mImpl;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The scene: meshes, materials, object instances, lights and a camera. Pure data, no GL.
-// Conventions (DESIGN.md): right-handed world, metres, +Y up.
+// Conventions (docs/design.md): right-handed world, metres, +Y up.
 #include <penumbra/Math.h>
 
 #include <cstdint>
@@ -96,6 +96,18 @@ struct ShadowSettings {
   std::vector<std::pair<std::string, std::string>> params;
 };
 
+/// What the projections need of a scene: each object's world bounds and whether it casts. An
+/// engine fills it from its own meshes (Penumbra never needs their vertices for it).
+struct SceneExtent {
+  struct Body {
+    Aabb bounds;  ///< world space (m)
+    bool castsShadow = true;
+  };
+  std::vector<Body> bodies;
+  Aabb bounds() const;        ///< of every body
+  Aabb casterBounds() const;  ///< of the bodies that cast shadows
+};
+
 struct Scene {
   std::string name;
   std::filesystem::path sourceFile;  ///< empty for built-in scenes
@@ -111,6 +123,7 @@ struct Scene {
   const Light& light() const;  ///< the shadow-casting light (the first one); throws if none
   Aabb bounds() const;         ///< world bounds of every object
   Aabb casterBounds() const;   ///< world bounds of shadow casters
+  SceneExtent extent() const;  ///< every object's world bounds (one pass over the vertices)
   size_t triangleCount() const;
   /// Throws penumbra::Error if indices are out of range, positions not finite, etc.
   void validate() const;

@@ -1,5 +1,5 @@
 // Shadow pass for moment maps (vsm, vssm with source=mip, msm): writes the linear light depth z
-// (DESIGN.md convention, the same for orthographic and perspective views) to the depth buffer and
+// (docs/design.md convention, the same for orthographic and perspective views) to the depth buffer and
 // its moments to colour target 0, ready to be filtered (mip chains) like any texture.
 // Defines: PN_MOMENT_COUNT 2 → (z, z^2, 0, 0); 4 → (z, z^2, z^3, z^4).
 //          PN_MOMENT_SLOPE_VARIANCE (2 moments): add the variance of the depth plane across this

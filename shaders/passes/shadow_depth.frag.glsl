@@ -1,4 +1,4 @@
-// Shadow pass for depth-only maps: writes linear light depth in [0,1] (DESIGN.md convention),
+// Shadow pass for depth-only maps: writes linear light depth in [0,1] (docs/design.md convention),
 // the same value for orthographic and perspective views.
 #include "common/frame.glsl"
 #include "common/material.glsl"

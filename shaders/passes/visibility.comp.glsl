@@ -2,7 +2,8 @@
 // for pixels that face the light, 0 for pixels that face away (no direct light reaches them),
 // 1 where there is no geometry. Inside a cascade blend band V mixes two cascades (the filter is
 // run once per cascade with selectShadowView forced). With PN_VISIBILITY_POINTS defined the same
-// is done for a list of world points (Renderer::visibilityAt) instead of the G-buffer.
+// is done for a list of world points (Shadows::visibilityAt) instead of the surfaces. With
+// PN_SURFACE_FROM_DEPTH the surface positions come from the camera's depth texture.
 #include "common/visibility.glsl"
 #include "shared/VisibilityPoints.h"
 
@@ -50,10 +51,25 @@ void main() {
 
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
 
+// The pixel's world position; w = 1 where there is geometry, 0 on background.
+vec4 surfacePosition(ivec2 px) {
+#ifdef PN_SURFACE_FROM_DEPTH
+  // An engine's depth texture (bound where the position texture would be): unprojected through
+  // the inverse of its own camera matrices, at the pixel's centre.
+  float stored = texelFetch(s_gbufPosition, px, 0).r;
+  if (stored == u_frame.depthInfo.z) return vec4(0.0);
+  vec2 ndcXY = (vec2(px) + 0.5) / vec2(u_frame.screen.xy) * 2.0 - 1.0;
+  vec4 ws = u_frame.worldFromClip * vec4(ndcXY, u_frame.depthInfo.x * stored + u_frame.depthInfo.y, 1.0);
+  return vec4(ws.xyz / ws.w, 1.0);
+#else
+  return texelFetch(s_gbufPosition, px, 0);
+#endif
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
-  vec4 pos = texelFetch(s_gbufPosition, px, 0);
+  vec4 pos = surfacePosition(px);
   float v = 1.0;
   if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, texelFetch(s_gbufGeoNormal, px, 0).xyz, px);
   imageStore(i_visibility, px, vec4(v));

@@ -6,8 +6,9 @@
 PN_GPU_BEGIN
 
 struct FrameUniforms {
-  mat4 clipFromWorld;    // camera, reversed-Z
+  mat4 clipFromWorld;    // the camera's projection × view (Penumbra's own: reversed-Z)
   mat4 viewFromWorld;
+  mat4 worldFromClip;    // inverse of clipFromWorld: unprojects the depth texture (PN_SURFACE_FROM_DEPTH)
   vec4 cameraPosition;   // xyz: world (m)
   vec4 lightDirection;   // xyz: unit, from the light toward the scene; w: PN_LIGHT_*
   vec4 lightPosition;    // xyz: spot position (m); w: cos(cone half angle)
@@ -15,6 +16,7 @@ struct FrameUniforms {
   vec4 ambient;          // rgb: ambient radiance
   ivec4 screen;          // x, y: size in pixels; z: frame index; w: unused
   vec4 sceneInfo;        // x: scene bounding radius (m); yzw: unused
+  vec4 depthInfo;        // ndc.z = x · stored depth + y; z: the stored depth of background pixels; w: unused
 };
 
 struct ObjectGpu {
@@ -27,7 +29,7 @@ struct ObjectGpu {
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::FrameUniforms) == 2 * 64 + 7 * 16, "std140 size of FrameUniforms");
-static_assert(offsetof(penumbra::gpu::FrameUniforms, lightRadiance) == 128 + 48, "std140 offset");
+static_assert(sizeof(penumbra::gpu::FrameUniforms) == 3 * 64 + 8 * 16, "std140 size of FrameUniforms");
+static_assert(offsetof(penumbra::gpu::FrameUniforms, lightRadiance) == 192 + 48, "std140 offset");
 static_assert(sizeof(penumbra::gpu::ObjectGpu) == 2 * 64 + 2 * 16, "std430 size of ObjectGpu");
 #endif

@@ -4,7 +4,7 @@
 // geometries, so opaque scenes pay nothing for it.
 #include "reference/EmbreeScene.h"
 
-#include "reference/Hash.h"
+#include "base/Hash.h"
 
 #include <penumbra/Error.h>
 

@@ -1,9 +1,9 @@
 #include "reference/ReferenceCache.h"
 
-#include "reference/Hash.h"
+#include "base/Hash.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/ImageIO.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 
@@ -14,17 +14,6 @@
 #include <span>
 #include <system_error>
 #include <vector>
-
-namespace penumbra {
-
-std::filesystem::path defaultReferenceCacheDir() {
-  if (const char* dir = std::getenv("PENUMBRA_CACHE"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "penumbra";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "penumbra";
-  return {};
-}
-
-}  // namespace penumbra
 
 namespace penumbra::reference {
 namespace {

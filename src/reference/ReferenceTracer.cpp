@@ -7,12 +7,13 @@
 // the same samples: V = mean visibility, ∫cos·V and ∫cos, so exact and split shading differ by
 // the split alone (their difference is −Ω·L·Cov(cos, V) over the light).
 #include <penumbra/Error.h>
+#include <penumbra/Files.h>
 #include <penumbra/Reference.h>
 
 #include "reference/EmbreeScene.h"
-#include "reference/Hash.h"
+#include "base/Hash.h"
 #include "reference/LightSampling.h"
-#include "reference/ProgressBar.h"
+#include "base/ProgressBar.h"
 #include "reference/ReferenceCache.h"
 
 #include <fmt/format.h>
@@ -118,7 +119,7 @@ public:
                                                : reference::sphereOneMinusCos(mLight.radiusM, distanceM);
     if (!mLight.directional) axis = glm::normalize(mLight.centre - origin);
     const reference::Frame frame = reference::frameAround(axis);
-    reference::Pcg32 rng(reference::Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
+    reference::Pcg32 rng(Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
     int above = 0;
     float sumV = 0.0f, sumCos = 0.0f, sumCosV = 0.0f;
     for (int row = 0; row < mRows; ++row) {
@@ -210,7 +211,7 @@ ReferenceTracer::~ReferenceTracer() = default;
 float ReferenceTracer::rayOffsetM() const { return mImpl->rayOffsetM; }
 
 uint64_t ReferenceTracer::cacheKey(const GBufferData& g, const Light& light, const ReferenceOptions& options) const {
-  reference::Hasher hash;
+  Hasher hash;
   hash.text("penumbra.reference");
   hash.value(kReferenceCodeVersion);
   hash.value(mImpl->embree.geometryHash());
@@ -247,7 +248,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   std::filesystem::path cacheDir;
   if (options.useCache) {
     // No directory can be formed only without HOME; the result is the same, just not kept.
-    cacheDir = options.cacheDir.empty() ? defaultReferenceCacheDir() : options.cacheDir;
+    cacheDir = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
     if (!cacheDir.empty()) {
       if (auto cached = reference::loadCachedResult(cacheDir, key);
           cached && cached->width == g.width && cached->height == g.height) {
@@ -271,7 +272,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   r.shadingSplit.assign(pixels, glm::vec3(0.0f));
 
   const PixelTracer tracer(mImpl->embree, setup, mImpl->rayOffsetM, r.samplesPerPixel, options.seed);
-  reference::ProgressBar progress(fmt::format("reference {}x{} @ {} spp", g.width, g.height, r.samplesPerPixel),
+  ProgressBar progress(fmt::format("reference {}x{} @ {} spp", g.width, g.height, r.samplesPerPixel),
                                   pixels, options.progress);
   // Rows, one task each: enough tasks to balance shadowed and empty rows across cores.
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height), [&](const tbb::blocked_range<int>& rows) {

@@ -75,18 +75,44 @@ GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
   for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(vao, a, 0);
 }
 
-void GpuScene::draw(GLuint program, bool castersOnly) const {
+void GpuScene::draw(GLuint program) const {
   glBindVertexArray(mVao.id());
   mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
   for (size_t i = 0; i < mDraws.size(); ++i) {
     const Draw& d = mDraws[i];
-    if (castersOnly && !d.castsShadow) continue;
     glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
     glBindTextureUnit(PN_TEX_BASECOLOR, d.texture);
     glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(d.firstIndex * sizeof(uint32_t)), d.baseVertex);
   }
   glBindVertexArray(0);
+}
+
+std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
+  std::vector<CasterMesh> out;
+  for (size_t i = 0; i < mDraws.size(); ++i) {
+    const Draw& d = mDraws[i];
+    if (!d.castsShadow || d.indexCount == 0) continue;
+    const Object& o = scene.objects[i];
+    const Material& mat = scene.materials[o.material];
+    CasterMesh m;
+    m.vertexBuffer = mVertices.id();
+    m.stride = sizeof(Vertex);
+    m.positionOffset = offsetof(Vertex, position);
+    m.uvOffset = offsetof(Vertex, uv);
+    m.indexBuffer = mIndices.id();
+    m.firstIndex = static_cast<uint32_t>(d.firstIndex);
+    m.count = static_cast<uint32_t>(d.indexCount);
+    m.baseVertex = d.baseVertex;
+    m.worldFromObject = o.worldFromObject;
+    m.objectBounds = scene.meshes[o.mesh].bounds();
+    if (mat.alphaMask && mat.baseColorTexture >= 0) {
+      m.alphaTexture = d.texture;
+      m.alphaCutoff = mat.alphaCutoff;
+    }
+    out.push_back(m);
+  }
+  return out;
 }
 
 }  // namespace penumbra

@@ -1,10 +1,12 @@
 #pragma once
-// The scene's geometry on the GPU: one vertex buffer, one index buffer, one object table
-// (ObjectGpu[] in a storage buffer), and one texture per material image (sRGB RGBA8), bound at
-// PN_TEX_BASECOLOR for each draw (bindless-free: images of any size, no array layers to share).
-// Uploaded once per scene.
+// Penumbra's own renderer's scene on the GPU: one vertex buffer, one index buffer, one object
+// table (ObjectGpu[] in a storage buffer), and one texture per material image (sRGB RGBA8), bound
+// at PN_TEX_BASECOLOR for each draw (bindless-free: images of any size, no array layers to share).
+// Uploaded once per scene. The G-buffer pass draws it; the shadow passes get the same buffers as
+// CasterMesh records (casterMeshes), as an engine would give its own.
 #include "gl/Objects.h"
 
+#include <penumbra/Casters.h>
 #include <penumbra/Scene.h>
 
 #include <vector>
@@ -14,8 +16,11 @@ namespace penumbra {
 class GpuScene {
 public:
   explicit GpuScene(const Scene& scene);
-  /// Draws objects with the bound program; `castersOnly` skips objects that cast no shadow.
-  void draw(GLuint program, bool castersOnly) const;
+  /// Draws every object with the bound program (the G-buffer pass).
+  void draw(GLuint program) const;
+  /// The objects that cast shadows, as records over these buffers (alpha-masked materials with
+  /// their texture), for Shadows::setCasters.
+  std::vector<CasterMesh> casterMeshes(const Scene& scene) const;
 
 private:
   struct Draw {

@@ -1,19 +1,20 @@
-// The frame: projection → shadow pass → prefilter → G-buffer → visibility → lit.
-// No technique-specific branch lives here: the Projection and the Filter do that work.
+// Penumbra's own renderer: G-buffer → the core's shadows (projection → shadow pass → prefilter →
+// visibility) → lit. No technique-specific branch lives here, and no shadow work either: the
+// core (penumbra/Shadows.h) gets this G-buffer and the scene's buffers as an engine would.
 #include <penumbra/Renderer.h>
 
-#include "gl/Context.h"
+#include "core/FrameBlocks.h"
+#include "frame/FrameContext.h"
+#include "frame/PassTimer.h"
+#include "gl/Debug.h"
 #include "gl/Objects.h"
-#include "render/FrameContext.h"
 #include "render/GpuScene.h"
-#include "render/PassTimer.h"
 #include "shader/ShaderLibrary.h"
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
-#include "shared/Shadow.h"
-#include "shared/VisibilityPoints.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
 
 #include <fmt/format.h>
@@ -25,26 +26,23 @@
 namespace penumbra {
 
 namespace {
-constexpr size_t kFilterBlockBytes = 4096;  // room for any filter's uniform block
 constexpr int kMaxScreenSide = 16384;
 }  // namespace
 
 struct Renderer::Impl {
   Scene scene;
   std::unique_ptr<GpuScene> gpuScene;
-  PassTimer timer;
-  gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
-  gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
-  gl::Buffer filterBlock{"filter block", kFilterBlockBytes};
+  Shadows shadows;
+  PassTimer timer{gl::isSoftwareRenderer(gl::glString(GL_RENDERER))};
+  PassTimings timings;
+  gl::Buffer frameBlock{"renderer frame block", sizeof(gpu::FrameUniforms)};
   // Screen targets
   glm::ivec2 size{0};
-  gl::Texture position, normal, geoNormal, albedo, depth, visibility, color;
+  gl::Texture position, normal, geoNormal, albedo, depth, color;
   gl::Framebuffer gbuffer;
   int frameIndex = 0;
   int mapSize = 0;                   // of the last frame
   int debugView = PN_VIEW_SHADED;    // of the last frame
-
-  explicit Impl(bool cpuClock) : timer(cpuClock) {}
 
   void ensureScreen(glm::ivec2 s) {
     if (s == size) return;
@@ -60,7 +58,6 @@ struct Renderer::Impl {
     geoNormal = make("gbuffer geometric normal", GL_RGBA16F);
     albedo = make("gbuffer albedo", GL_RGBA8);
     depth = make("gbuffer depth", GL_DEPTH_COMPONENT32F);
-    visibility = make("visibility", GL_R32F);
     color = make("color", GL_RGBA8);
     gbuffer = gl::Framebuffer("gbuffer");
     gbuffer.attach(GL_COLOR_ATTACHMENT0, position);
@@ -71,112 +68,63 @@ struct Renderer::Impl {
     gbuffer.finish(4);
     size = s;
   }
+
+  ShadowCamera camera() const {
+    return ShadowCamera::fromCamera(scene.camera, static_cast<float>(size.x) / static_cast<float>(size.y));
+  }
+
+  /// The G-buffer and lit passes' frame block: the core's, plus the ambient the lit pass adds.
+  void uploadFrameBlock() {
+    gpu::FrameUniforms f = core::frameUniforms(camera(), scene.light(), size, frameIndex++, scene.bounds().radius());
+    f.ambient = glm::vec4(scene.ambient, 0.0f);
+    frameBlock.upload(f);
+    frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+  }
 };
 
-Renderer::Renderer(gl::Context& context)
-    : mContext(context), mShaders(std::make_unique<ShaderLibrary>()),
-      mImpl(std::make_unique<Impl>(context.info().softwareRenderer)) {}
+Renderer::Renderer() : mImpl(std::make_unique<Impl>()) {}
 
 Renderer::~Renderer() = default;
 
 const Scene& Renderer::scene() const { return mImpl->scene; }
+Projection& Renderer::projection() { return mImpl->shadows.projection(); }
+Filter& Renderer::filter() { return mImpl->shadows.filter(); }
+const LightFrusta& Renderer::frusta() const { return mImpl->shadows.frusta(); }
+const PassTimings& Renderer::timings() const { return mImpl->timings; }
+ShaderLibrary& Renderer::shaders() { return mImpl->shadows.shaders(); }
+Shadows& Renderer::shadows() { return mImpl->shadows; }
 
 void Renderer::setScene(const Scene& scene) {
   scene.validate();
   mImpl->scene = scene;
   mImpl->gpuScene = std::make_unique<GpuScene>(mImpl->scene);
+  std::vector<Aabb> receivers;
+  for (const Object& o : mImpl->scene.objects)
+    if (!o.castsShadow) receivers.push_back(mImpl->scene.meshes[o.mesh].bounds().transformed(o.worldFromObject));
+  mImpl->shadows.setCasters(mImpl->gpuScene->casterMeshes(mImpl->scene), receivers);
+  mImpl->shadows.setCasterGeometry(&mImpl->scene);
 }
 
 void Renderer::setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter) {
-  PN_CHECK(projection && filter, "setTechnique needs a projection and a filter");
-  if (mImpl->gpuScene) {
-    const std::string why = filter->incompatibility(projection->id(), mImpl->scene.light());
-    if (!why.empty())
-      throw usageError(fmt::format("--filter {} with --projection {} is not supported: {}", filter->id(),
-                                   projection->id(), why));
-  }
-  mProjection = std::move(projection);
-  mFilter = std::move(filter);
+  mImpl->shadows.setTechnique(std::move(projection), std::move(filter), mImpl->gpuScene ? &mImpl->scene.light() : nullptr);
 }
-
-namespace {
-
-gpu::FrameUniforms frameUniforms(const Scene& scene, glm::ivec2 size, int frameIndex) {
-  const Camera& cam = scene.camera;
-  const Light& light = scene.light();
-  const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
-  gpu::FrameUniforms f{};
-  f.viewFromWorld = cam.viewFromWorld();
-  f.clipFromWorld = cam.clipFromView(aspect) * f.viewFromWorld;
-  f.cameraPosition = glm::vec4(cam.position, 1.0f);
-  const bool spot = light.type == LightType::Spot;
-  f.lightDirection = glm::vec4(glm::normalize(light.direction), spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
-  f.lightPosition = glm::vec4(light.position, std::cos(light.coneAngleRad));
-  f.lightRadiance = glm::vec4(light.color * light.intensity, light.size);
-  f.ambient = glm::vec4(scene.ambient, 0.0f);
-  f.screen = glm::ivec4(size.x, size.y, frameIndex, 0);
-  f.sceneInfo = glm::vec4(scene.bounds().radius(), 0, 0, 0);
-  return f;
-}
-
-gpu::ShadowUniforms shadowUniforms(const LightFrusta& frusta, int mapSize) {
-  PN_CHECK(!frusta.views.empty() && frusta.views.size() <= PN_MAX_SHADOW_VIEWS,
-           fmt::format("a projection produced {} shadow views (1..{} allowed)", frusta.views.size(), PN_MAX_SHADOW_VIEWS));
-  gpu::ShadowUniforms s{};
-  for (size_t i = 0; i < frusta.views.size(); ++i) {
-    const ShadowView& v = frusta.views[i];
-    s.views[i].clipFromWorld = v.clipFromWorld;
-    s.views[i].depthPlane = v.depthPlane;
-    s.views[i].range = glm::vec4(v.nearM, v.farM, v.perspective ? 1.0f : 0.0f, v.splitFarM);
-    s.views[i].extent = glm::vec4(v.extent, frusta.blendBandM, v.warped ? 1.0f : 0.0f);
-  }
-  s.info = glm::ivec4(static_cast<int>(frusta.views.size()), mapSize, 0, 0);
-  return s;
-}
-
-}  // namespace
 
 void Renderer::render(const RenderOptions& options) {
   PN_CHECK(mImpl->gpuScene, "render() before setScene()");
-  PN_CHECK(mProjection && mFilter, "render() before setTechnique()");
   Impl& im = *mImpl;
-  const int maxSize = gl::maxTextureSize();
-  if (options.shadowMapSize < 1 || options.shadowMapSize > maxSize)
-    throw Error(fmt::format("shadow map size {} is outside 1..{} (the driver's maximum texture size)",
-                            options.shadowMapSize, maxSize));
   im.ensureScreen({options.width, options.height});
   im.mapSize = options.shadowMapSize;
   im.debugView = options.debugView;
-  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  mFrusta = mProjection->computeFrusta(im.scene.camera, aspect, im.scene.light(), im.scene, options.shadowMapSize);
 
-  const gpu::FrameUniforms frame = frameUniforms(im.scene, im.size, im.frameIndex++);
-  const gpu::ShadowUniforms shadow = shadowUniforms(mFrusta, options.shadowMapSize);
-  im.frameBlock.upload(frame);
-  im.shadowBlock.upload(shadow);
-  im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
-
-  FrameContext ctx(im.scene, mFrusta, options.shadowMapSize, im.size, *mShaders, *im.gpuScene, im.filterBlock,
-                   im.timer, &im.visibility);
   im.timer.beginFrame();
   {
-    ScopedPass pass(im.timer, "shadow");
-    mFilter->renderShadowMaps(ctx);
-  }
-  gl::throwIfGlError("the shadow pass");
-  {
-    ScopedPass pass(im.timer, "prefilter");
-    mFilter->prefilter(ctx);
-  }
-  gl::throwIfGlError("the prefilter pass");
-  {
     ScopedPass pass(im.timer, "gbuffer");
+    im.uploadFrameBlock();
     ProgramDesc d;
     d.label = "gbuffer";
     d.vertex = {"passes/geometry.vert.glsl"};
     d.fragment = {"passes/gbuffer.frag.glsl"};
-    const gl::Program& program = mShaders->program(d);
+    const gl::Program& program = shaders().program(d);
     glProgramUniform1i(program.id(), PN_LOC_VIEW, -1);
     glBindFramebuffer(GL_FRAMEBUFFER, im.gbuffer.id());
     glViewport(0, 0, im.size.x, im.size.y);
@@ -189,24 +137,29 @@ void Renderer::render(const RenderOptions& options) {
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     program.use();
-    im.gpuScene->draw(program.id(), false);
+    im.gpuScene->draw(program.id());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   gl::throwIfGlError("the G-buffer pass");
-  im.position.bindUnit(PN_TEX_GBUF_POSITION);
-  im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
-  im.geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
-  im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
-  {
-    ScopedPass pass(im.timer, "visibility");
-    mFilter->computeVisibility(ctx);
-  }
-  gl::throwIfGlError("the visibility pass");
+  const PassTimings gbuffer = im.timer.endFrame();
+
+  ShadowFrameInputs in;
+  in.camera = im.camera();
+  in.surfaces = {im.size.x, im.size.y, im.depth.id(), im.geoNormal.id(), im.position.id()};
+  in.lights = std::span<const Light>(&im.scene.light(), 1);
+  in.mapSize = options.shadowMapSize;
+  in.restore = RestoreState::None;  // this renderer sets what each of its passes needs
+  im.shadows.render(in);
+
+  im.timer.beginFrame();
   {
     ScopedPass pass(im.timer, "lit");
     runLitPass();
   }
-  mTimings = im.timer.endFrame();
+  const PassTimings lit = im.timer.endFrame();
+  im.timings = gbuffer;
+  for (const auto& entry : im.shadows.timings().ms) im.timings.ms.push_back(entry);
+  for (const auto& entry : lit.ms) im.timings.ms.push_back(entry);
 }
 
 void Renderer::runLitPass() {
@@ -214,42 +167,22 @@ void Renderer::runLitPass() {
   ProgramDesc d;
   d.label = "lit";
   d.compute = {"passes/lit.comp.glsl"};
-  const gl::Program& program = mShaders->program(d);
+  const gl::Program& program = shaders().program(d);
   glProgramUniform1i(program.id(), PN_LOC_LEVEL, im.debugView);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
-  im.visibility.bindUnit(PN_TEX_VISIBILITY);
+  glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityTexture());
   im.color.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
+  im.shadows.bindFrameBlocks();  // the shadow views: cascade and texel-density debug views
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);  // cascade and texel-density views
   FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
   gl::throwIfGlError("the lit pass");
 }
 
 std::vector<float> Renderer::visibilityAt(std::span<const SurfaceSample> points) {
   PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "visibilityAt() before render()");
-  Impl& im = *mImpl;
-  if (points.empty()) return {};
-  const glm::ivec4 header(static_cast<int>(points.size()), PN_POINTS_GRID_WIDTH, 0, 0);
-  std::vector<gpu::VisibilityPointGpu> data(points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    data[i] = {glm::vec4(points[i].position, 1.0f), glm::vec4(points[i].geoNormal, 0.0f), glm::ivec4(points[i].pixel, 0, 0)};
-  gl::Buffer in("visibility points", sizeof(header) + data.size() * sizeof(gpu::VisibilityPointGpu));
-  in.upload(&header, sizeof(header));
-  in.upload(data.data(), data.size() * sizeof(gpu::VisibilityPointGpu), sizeof(header));
-  gl::Buffer out("visibility at points", points.size() * sizeof(float));
-  im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
-  FrameContext ctx(im.scene, mFrusta, im.mapSize, im.size, *mShaders, *im.gpuScene, im.filterBlock, im.timer, &im.visibility);
-  ctx.setPoints(&in, &out, static_cast<int>(points.size()));
-  im.timer.beginFrame();  // a filter may time sub-passes; these times are not kept
-  mFilter->computeVisibility(ctx);
-  im.timer.endFrame();
-  gl::throwIfGlError("the visibility pass at points");
-  std::vector<float> v(points.size());
-  out.download(v.data(), v.size() * sizeof(float));
-  return v;
+  return mImpl->shadows.visibilityAt(points);
 }
 
 std::vector<float> Renderer::computeScreenScalar(const std::string& computeShader) {
@@ -258,14 +191,14 @@ std::vector<float> Renderer::computeScreenScalar(const std::string& computeShade
   ProgramDesc d;
   d.label = computeShader;
   d.compute = {computeShader};
-  const gl::Program& program = mShaders->program(d);
+  const gl::Program& program = shaders().program(d);
   gl::Texture target("screen scalar", {GL_TEXTURE_2D, GL_R32F, im.size.x, im.size.y, 1, 1});
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
+  im.shadows.bindFrameBlocks();
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-  im.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
   target.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
   gl::throwIfGlError(computeShader.c_str());
@@ -279,10 +212,11 @@ ColorImage Renderer::shadeWithVisibility(std::span<const float> visibility) {
   const size_t n = static_cast<size_t>(im.size.x) * static_cast<size_t>(im.size.y);
   PN_CHECK(visibility.size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", visibility.size(), im.size.x, im.size.y));
   const std::vector<float> own = readVisibility();
-  glTextureSubImage2D(im.visibility.id(), 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, visibility.data());
+  const GLuint v = im.shadows.visibilityTexture();
+  glTextureSubImage2D(v, 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, visibility.data());
   runLitPass();
   ColorImage out = readColor();
-  glTextureSubImage2D(im.visibility.id(), 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, own.data());
+  glTextureSubImage2D(v, 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, own.data());
   runLitPass();
   return out;
 }
@@ -296,20 +230,16 @@ void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>
 const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 
 std::vector<DebugImage> Renderer::debugImages() const {
-  std::vector<DebugImage> out = {{"visibility", &mImpl->visibility},
+  std::vector<DebugImage> core = mImpl->shadows.debugImages();
+  std::vector<DebugImage> out = {core.front(),  // the visibility
                                  {"gbuffer-depth", &mImpl->depth},
                                  {"gbuffer-normal", &mImpl->normal},
                                  {"gbuffer-albedo", &mImpl->albedo}};
-  if (mFilter)
-    for (const DebugImage& d : mFilter->debugImages()) out.push_back(d);
+  out.insert(out.end(), core.begin() + 1, core.end());
   return out;
 }
 
-std::vector<float> Renderer::readVisibility() const {
-  std::vector<float> v(static_cast<size_t>(mImpl->size.x) * static_cast<size_t>(mImpl->size.y));
-  mImpl->visibility.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
-  return v;
-}
+std::vector<float> Renderer::readVisibility() const { return mImpl->shadows.readVisibility(); }
 
 GBufferData Renderer::readGBuffer() const {
   GBufferData g;
@@ -372,7 +302,8 @@ void Renderer::dump(const std::string& dirName) const {
   const std::filesystem::path dir(dirName);
   const ColorImage color = readColor();
   writePng(dir / "color.png", color.width, color.height, color.rgba);
-  dumpTexture(dir, "visibility", mImpl->visibility);
+  for (const DebugImage& d : mImpl->shadows.debugImages())
+    if (d.name == "visibility") dumpTexture(dir, d.name, *d.texture);
   dumpTexture(dir, "gbuffer-depth", mImpl->depth);
   // Normals and albedo as viewable colour images.
   const GBufferData g = readGBuffer();
@@ -388,7 +319,7 @@ void Renderer::dump(const std::string& dirName) const {
   writeVec("gbuffer-normal.png", g.normal, 0.5f, 0.5f);
   writeVec("gbuffer-geometric-normal.png", g.geoNormal, 0.5f, 0.5f);
   writeVec("gbuffer-albedo.png", g.albedo, 1.0f, 0.0f);
-  for (const DebugImage& d : mFilter->debugImages())
+  for (const DebugImage& d : mImpl->shadows.filter().debugImages())
     if (d.texture && *d.texture) dumpTexture(dir, d.name, *d.texture);
 }
 

@@ -1,7 +1,7 @@
 #include "report/BenchRunner.h"
 
-#include "gl/Context.h"
-#include "reference/ProgressBar.h"
+#include "platform/Context.h"
+#include "base/ProgressBar.h"
 #include "report/FrameComparison.h"
 #include "report/MicroBenchmarks.h"
 
@@ -68,13 +68,13 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   results.machine.glVersion = context.info().version;
   results.machine.glVendor = context.info().vendor;
 
-  Renderer renderer(context);
+  Renderer renderer;
   const RenderOptions render{.width = set.width, .height = set.height, .shadowMapSize = set.shadowMapSize, .debugView = 0};
   std::optional<std::string> currentScene, currentLight;
   std::unique_ptr<ReferenceTracer> tracer;
   std::map<std::string, ReferenceResult> references;  // by light key, for the current scene
   std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
-  reference::ProgressBar bar("bench", configs.size(), options.progress && !options.verbose);
+  ProgressBar bar("bench", configs.size(), options.progress && !options.verbose);
 
   for (const BenchConfig& c : configs) {
     BenchSetup s = makeSetup(c);

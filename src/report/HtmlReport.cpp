@@ -3,7 +3,7 @@
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 
-#include <penumbra/ImageIO.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 
@@ -38,7 +38,7 @@ std::string ms(const TimeStats& t) {
   return fmt::format("{} <small>{}–{}</small>", msText(t.median), msText(t.p10), msText(t.p90));
 }
 
-// Passes run the same way whatever the technique (DESIGN.md): left out of the ratio table.
+// Passes run the same way whatever the technique (docs/design.md): left out of the ratio table.
 bool techniqueIndependent(const std::string& pass) { return pass == "gbuffer" || pass == "lit"; }
 
 std::vector<std::string> scenesInOrder(const BenchResults& r) {

@@ -1,10 +1,11 @@
 #include "report/MicroBenchmarks.h"
 
-#include "gl/Context.h"
+#include "platform/Context.h"
+#include "gl/Debug.h"
 #include "gl/Objects.h"
-#include "render/MipBuilder.h"
-#include "render/PassTimer.h"
-#include "render/SatBuilder.h"
+#include "frame/MipBuilder.h"
+#include "frame/PassTimer.h"
+#include "frame/SatBuilder.h"
 #include "shader/ShaderLibrary.h"
 #include "shared/Bindings.h"
 

@@ -11,7 +11,7 @@
 
 namespace penumbra::report {
 
-/// The pass whose time is the cost axis: the only pass that differs between filters (DESIGN.md).
+/// The pass whose time is the cost axis: the only pass that differs between filters (docs/design.md).
 inline constexpr const char* kCostPass = "visibility";
 
 /// A row's light.* parameters as text ("" when it uses the scene's own light).

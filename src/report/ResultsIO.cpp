@@ -1,6 +1,6 @@
 #include "report/ResultsIO.h"
 
-#include <penumbra/ImageIO.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 

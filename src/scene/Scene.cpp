@@ -40,6 +40,26 @@ Aabb Scene::casterBounds() const {
   return b;
 }
 
+SceneExtent Scene::extent() const {
+  SceneExtent e;
+  e.bodies.reserve(objects.size());
+  for (const Object& o : objects) e.bodies.push_back({meshes[o.mesh].bounds().transformed(o.worldFromObject), o.castsShadow});
+  return e;
+}
+
+Aabb SceneExtent::bounds() const {
+  Aabb b;
+  for (const Body& body : bodies) b.extend(body.bounds);
+  return b;
+}
+
+Aabb SceneExtent::casterBounds() const {
+  Aabb b;
+  for (const Body& body : bodies)
+    if (body.castsShadow) b.extend(body.bounds);
+  return b;
+}
+
 size_t Scene::triangleCount() const {
   size_t n = 0;
   for (const Object& o : objects) n += meshes[o.mesh].triangleCount();

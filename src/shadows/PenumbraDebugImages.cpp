@@ -1,6 +1,6 @@
 #include "shadows/PenumbraDebugImages.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shared/PenumbraDebug.h"
 
 namespace penumbra {

@@ -1,6 +1,6 @@
 #include "shadows/TightSearch.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shared/Bindings.h"
 
 namespace penumbra {

@@ -4,7 +4,7 @@
 // tightSearchParam, builds the map's min-depth pyramid in its prefilter step and, for the
 // visibility dispatch, turns the search on with bind. Off, the search covers the near plane's
 // footprint and nothing is built.
-#include "render/MinDepthPyramid.h"
+#include "frame/MinDepthPyramid.h"
 
 #include <penumbra/Params.h>
 

@@ -1,6 +1,7 @@
 #include "viewer/DebugDisplay.h"
 
-#include "gl/Context.h"
+#include "platform/Context.h"
+#include "gl/Debug.h"
 #include "shared/Viewer.h"
 
 #include <penumbra/Error.h>

@@ -1,7 +1,7 @@
 #include "viewer/SceneWriter.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/ImageIO.h>
+#include <penumbra/Files.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>

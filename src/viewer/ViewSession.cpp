@@ -28,9 +28,9 @@ void applySceneLightParams(Scene& scene, Projection& projection, Filter& filter)
 
 }  // namespace
 
-ViewSession::ViewSession(gl::Context& context, Scene scene, std::unique_ptr<Projection> projection,
+ViewSession::ViewSession(gl::Context& /*current: the renderer draws on it*/, Scene scene, std::unique_ptr<Projection> projection,
                          std::unique_ptr<Filter> filter, int shadowMapSize)
-    : mRenderer(context), mScene(std::move(scene)), mProjectionId(projection->id()), mFilterId(filter->id()),
+    : mScene(std::move(scene)), mProjectionId(projection->id()), mFilterId(filter->id()),
       mShadowMapSize(shadowMapSize) {
   // What the command line set (and the scene's own values) is remembered like a widget edit.
   for (const Parameterized* p : {static_cast<const Parameterized*>(projection.get()), static_cast<const Parameterized*>(filter.get())})

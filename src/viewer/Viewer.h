@@ -5,7 +5,7 @@
 //  - The view (this file): orbit/fly camera, light dragging, the main view + an inset (any
 //    Renderer::debugImages() entry, the colour output or the error heatmap), screenshots,
 //    shader hot reload, and the scripted mode (Script.h) used by tests and demos.
-#include "gl/Context.h"
+#include "platform/Context.h"
 #include "gl/Objects.h"
 #include "viewer/Cameras.h"
 #include "viewer/DebugDisplay.h"

@@ -1,5 +1,6 @@
 #include "CliSupport.h"
 
+#include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
 
 #include <gtest/gtest.h>

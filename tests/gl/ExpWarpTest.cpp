@@ -6,7 +6,7 @@
 #include "GlFixture.h"
 #include "GlslProbe.h"
 
-#include "render/SatBuilder.h"
+#include "frame/SatBuilder.h"
 #include "shadows/filters/ExpWarpMaps.h"
 #include "shadows/filters/exp_warp.shared.h"
 #include "shared/Bindings.h"

@@ -4,6 +4,8 @@
 // glGetError. Each error is reported once: the next check is clean.
 #include "GlFixture.h"
 
+#include "gl/Debug.h"
+
 #include <penumbra/Error.h>
 
 #include <epoxy/gl.h>

@@ -1,5 +1,7 @@
 #include "GlFixture.h"
 
+#include "bake/SdfBake.h"
+
 #include <memory>
 
 namespace penumbra::test {
@@ -15,7 +17,8 @@ std::unique_ptr<Renderer> makeTestRenderer(const Scene& sceneIn, const std::stri
   auto p = makeProjection(projection);
   auto f = makeFilter(filter);
   applyParams(params, scene, *p, *f);
-  auto renderer = std::make_unique<Renderer>(glContext());
+  glContext();  // made current before the renderer
+  auto renderer = std::make_unique<Renderer>();
   renderer->setScene(scene);
   renderer->setTechnique(std::move(p), std::move(f));
   return renderer;
@@ -51,5 +54,6 @@ glm::ivec2 projectToPixel(const Scene& scene, const glm::vec3& ws, int width, in
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  penumbra::sdf::installEmbreeBaker();  // as the CLI does: the sdf filter bakes with Embree
   return RUN_ALL_TESTS();
 }

@@ -1,7 +1,7 @@
 #pragma once
 // One headless OpenGL 4.5 context (llvmpipe here) for the whole GL test binary, plus helpers
 // that render a scene with a technique and read the visibility back.
-#include "gl/Context.h"
+#include "platform/Context.h"
 
 #include <penumbra/Registry.h>
 #include <penumbra/Renderer.h>

@@ -238,7 +238,8 @@ TEST(Pcss, SunPenumbraFollowsTheAngularRadius) {
 // asserted. Compare them as ratios within one run.
 TEST(PcssBenchmark, VisibilityTimeAsTheLightGrows) {
   Scene scene = makeBuiltinScene("pen");
-  Renderer renderer(glContext());
+  glContext();
+  Renderer renderer;
   RenderOptions o;
   o.width = 256;
   o.height = 144;

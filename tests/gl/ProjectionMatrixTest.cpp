@@ -31,7 +31,8 @@ Outcome run(const Scene& scene, const std::string& projection, const std::string
     o.refused = true;
     o.why = reason;
     // The renderer must refuse it too, naming the pair and the reason.
-    Renderer r(glContext());
+    glContext();
+    Renderer r;
     r.setScene(scene);
     try {
       r.setTechnique(makeProjection(projection), makeFilter(filter));

@@ -3,7 +3,7 @@
 #include "GlFixture.h"
 #include "GlslProbe.h"
 
-#include "render/SatBuilder.h"
+#include "frame/SatBuilder.h"
 #include "report/MicroBenchmarks.h"
 #include "shared/Bindings.h"
 

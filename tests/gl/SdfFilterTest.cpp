@@ -5,8 +5,8 @@
 #include "GlFixture.h"
 #include "GlslProbe.h"
 
-#include "render/FrameContext.h"
-#include "shadows/sdf/SdfBake.h"
+#include "frame/FrameContext.h"
+#include "bake/SdfBake.h"
 #include "shadows/sdf/SdfFilter.h"
 #include "shared/Bindings.h"
 #include "shared/Frame.h"

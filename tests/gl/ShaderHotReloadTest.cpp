@@ -3,6 +3,8 @@
 // and no GL object is leaked on the way.
 #include "GlFixture.h"
 
+#include "gl/Debug.h"
+
 #include "viewer/ShaderWatcher.h"
 
 #include <penumbra/Error.h>

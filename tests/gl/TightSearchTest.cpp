@@ -3,7 +3,7 @@
 // far too large: `city` under its low sun, where vssm and msm-soft lost whole shadows.
 #include "GlFixture.h"
 #include "GlslProbe.h"
-#include "render/MinDepthPyramid.h"
+#include "frame/MinDepthPyramid.h"
 #include "shared/Bindings.h"
 
 #include <penumbra/Metrics.h>

@@ -41,7 +41,8 @@ layout(local_size_x = 1) in;
 layout(std430, binding = PN_SSBO_TEST) buffer Out { vec4 o[]; };
 void main() {
   o[0] = u_frame.clipFromWorld[0] + u_frame.viewFromWorld[1] + u_frame.cameraPosition + u_frame.lightDirection +
-         u_frame.lightPosition + u_frame.lightRadiance + u_frame.ambient + vec4(u_frame.screen) + u_frame.sceneInfo;
+         u_frame.lightPosition + u_frame.lightRadiance + u_frame.ambient + vec4(u_frame.screen) + u_frame.sceneInfo +
+         u_frame.worldFromClip[3] + u_frame.depthInfo;
   o[1] = u_shadow.views[1].clipFromWorld[2] + u_shadow.views[1].depthPlane + u_shadow.views[1].range +
          u_shadow.views[1].extent + vec4(u_shadow.info);
 })";
@@ -70,6 +71,8 @@ void main() {
   EXPECT_EQ(offsetOf(program, "u_frame.lightRadiance"), GLint(offsetof(FrameUniforms, lightRadiance)));
   EXPECT_EQ(offsetOf(program, "u_frame.screen"), GLint(offsetof(FrameUniforms, screen)));
   EXPECT_EQ(offsetOf(program, "u_frame.sceneInfo"), GLint(offsetof(FrameUniforms, sceneInfo)));
+  EXPECT_EQ(offsetOf(program, "u_frame.worldFromClip"), GLint(offsetof(FrameUniforms, worldFromClip)));
+  EXPECT_EQ(offsetOf(program, "u_frame.depthInfo"), GLint(offsetof(FrameUniforms, depthInfo)));
   const GLint view1 = GLint(sizeof(ShadowViewGpu));
   EXPECT_EQ(offsetOf(program, "u_shadow.views[1].depthPlane"), view1 + GLint(offsetof(ShadowViewGpu, depthPlane)));
   EXPECT_EQ(offsetOf(program, "u_shadow.views[1].extent"), view1 + GLint(offsetof(ShadowViewGpu, extent)));

@@ -1,7 +1,7 @@
 // The error when no headless OpenGL context can be made: one line naming every platform tried
 // (Mesa's surfaceless, then the EGL device platform) with why each failed, and how to get Mesa's
 // llvmpipe. Built without touching EGL, so it runs where EGL works too.
-#include "gl/Context.h"
+#include "platform/Context.h"
 
 #include <gtest/gtest.h>
 

@@ -71,7 +71,7 @@ Scene sceneWithSun(const std::string& name, const glm::vec3& direction) {
 // The camera depth interval each view must cover: csm's slices (with the blend band before each
 // split), everything else the whole shadowed range.
 std::pair<float, float> viewDepthRange(const LightFrusta& f, size_t i, const Camera& cam, const Scene& scene) {
-  const float farM = std::max(shadowFarDistance(cam, scene), 2.0f * cam.nearM);
+  const float farM = std::max(shadowFarDistance(cam, scene.extent()), 2.0f * cam.nearM);
   if (f.views.size() == 1) return {cam.nearM, farM};
   const float a = i == 0 ? cam.nearM : f.views[i - 1].splitFarM - f.blendBandM;
   const float b = i + 1 == f.views.size() ? std::min(f.views[i].splitFarM, farM) : f.views[i].splitFarM;
@@ -80,12 +80,12 @@ std::pair<float, float> viewDepthRange(const LightFrusta& f, size_t i, const Cam
 
 void expectFrustumInsideClip(const Scene& scene, const std::string& projection, const std::string& label) {
   auto p = makeProjection(projection);
-  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize);
   ASSERT_FALSE(f.views.empty());
   size_t checked = 0;
   for (size_t i = 0; i < f.views.size(); ++i) {
     const auto [a, b] = viewDepthRange(f, i, scene.camera, scene);
-    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, a, b, scene, scene.light());
+    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, a, b, scene.extent(), scene.light());
     if (body.empty()) continue;  // a cascade slice in front of the scene: nothing to cover
     ++checked;
     int outside = 0;
@@ -126,9 +126,9 @@ TEST(Projection, CsmViewsFollowTheSplits) {
   auto p = makeProjection("csm");
   p->setParam("csm.cascades", 4.0f);
   p->setParam("csm.lambda", 0.9f);
-  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize);
   ASSERT_EQ(f.views.size(), 4u);
-  const float farM = stableFarDistance(shadowFarDistance(scene.camera, scene));
+  const float farM = stableFarDistance(shadowFarDistance(scene.camera, scene.extent()));
   const std::vector<float> z = practicalSplits(scene.camera.nearM, farM, 4, 0.9f);
   for (size_t i = 0; i < 4; ++i) EXPECT_FLOAT_EQ(f.views[i].splitFarM, z[i + 1]);
   EXPECT_GT(f.blendBandM, 0.0f);
@@ -171,7 +171,7 @@ TEST(Projection, PsmAndTsmWarpTheCityAndPsmClassifiesTheLight) {
   const Scene city = makeBuiltinScene("city");
   for (const char* id : {"psm", "tsm"}) {
     auto p = makeProjection(id);
-    const LightFrusta f = p->computeFrusta(city.camera, kAspect, city.light(), city, 2048);
+    const LightFrusta f = p->computeFrusta(city.camera, kAspect, city.light(), city.extent(), 2048);
     ASSERT_EQ(f.views.size(), 1u);
     EXPECT_TRUE(f.views[0].warped) << id << " fell back to an unwarped map on the city";
   }
@@ -248,9 +248,9 @@ TEST(Projection, TrapezoidFillsTheMap) {
   for (const char* name : {"grazing", "boxes", "fence", "city"}) {
     const Scene scene = makeBuiltinScene(name);
     auto p = makeProjection("tsm");
-    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize).views.at(0);
-    const float farM = std::max(shadowFarDistance(scene.camera, scene), 2.0f * scene.camera.nearM);
-    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene, scene.light());
+    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize).views.at(0);
+    const float farM = std::max(shadowFarDistance(scene.camera, scene.extent()), 2.0f * scene.camera.nearM);
+    const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene.extent(), scene.light());
     ASSERT_FALSE(body.empty()) << name;
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec3& q : body) {
@@ -268,7 +268,7 @@ TEST(Projection, TrapezoidFillsTheMap) {
 TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
   const Scene scene = makeBuiltinScene("city");
   auto p = makeProjection("csm");
-  const LightFrusta f0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const LightFrusta f0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize);
   const glm::mat4 worldFromLight = glm::inverse(f0.views[0].viewFromWorld);
   const glm::vec3 lightX = glm::vec3(worldFromLight[0]), lightZ = glm::vec3(worldFromLight[2]);
   for (size_t v = 0; v < f0.views.size(); ++v) {
@@ -283,7 +283,7 @@ TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
       const glm::vec3 move = lightX * (texelM * static_cast<float>(k) / 64.0f);
       c.position += move;
       c.target += move;
-      const glm::mat4 m = p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[v].clipFromWorld;
+      const glm::mat4 m = p->computeFrusta(c, kAspect, scene.light(), scene.extent(), kMapSize).views[v].clipFromWorld;
       if (m == previous) continue;
       ++changes;
       for (int col = 0; col < 3; ++col) EXPECT_EQ(m[col], previous[col]) << "view " << v << ": rotation/scale changed";
@@ -296,18 +296,18 @@ TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
     Camera c = scene.camera;
     c.position += lightZ * (3.7f * texelM);
     c.target += lightZ * (3.7f * texelM);
-    EXPECT_EQ(p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[v].clipFromWorld, f0.views[v].clipFromWorld);
+    EXPECT_EQ(p->computeFrusta(c, kAspect, scene.light(), scene.extent(), kMapSize).views[v].clipFromWorld, f0.views[v].clipFromWorld);
   }
   // Without stabilisation the same sub-texel moves change the matrix nearly every time.
   p->setParam("csm.stabilize", 0.0f);
-  const LightFrusta u0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const LightFrusta u0 = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize);
   int unstableChanges = 0;
   for (int k = 1; k < 16; ++k) {
     Camera c = scene.camera;
     const glm::vec3 move = lightX * (0.01f * static_cast<float>(k));
     c.position += move;
     c.target += move;
-    if (p->computeFrusta(c, kAspect, scene.light(), scene, kMapSize).views[0].clipFromWorld != u0.views[0].clipFromWorld) ++unstableChanges;
+    if (p->computeFrusta(c, kAspect, scene.light(), scene.extent(), kMapSize).views[0].clipFromWorld != u0.views[0].clipFromWorld) ++unstableChanges;
   }
   EXPECT_GE(unstableChanges, 12);
 }
@@ -321,7 +321,7 @@ std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint
   std::vector<float> cumulative;
   float total = 0.0f;
   const glm::mat4 clip = scene.camera.clipFromView(kAspect) * scene.camera.viewFromWorld();
-  const float farM = shadowFarDistance(scene.camera, scene);
+  const float farM = shadowFarDistance(scene.camera, scene.extent());
   for (const Object& o : scene.objects) {
     const Mesh& m = scene.meshes[o.mesh];
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
@@ -393,7 +393,7 @@ std::vector<glm::vec3> occluderHits(const std::vector<glm::vec3>& tri, const Lig
 // that the receiver is looked up in (csm: its cascade and, in the blend band, the next one).
 void expectCastersInsideClip(const Scene& scene, const std::string& projection) {
   auto p = makeProjection(projection);
-  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize);
   const std::vector<glm::vec3> tri = casterTriangles(scene);
   const glm::mat4 view = scene.camera.viewFromWorld();
   int hits = 0, outside = 0;
@@ -440,13 +440,13 @@ TEST(Projection, PsmFallsBackWhenTheWarpDegenerates) {
   spot.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
   spot.coneAngleRad = 1.2f;
   scene.lights = {spot};
-  const float farM = shadowFarDistance(scene.camera, scene);
-  const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene, spot);
+  const float farM = shadowFarDistance(scene.camera, scene.extent());
+  const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene.extent(), spot);
   const std::vector<glm::vec3> casters = casterExtrusion(body, spot, scene.casterBounds());
   ASSERT_FALSE(body.empty());
   EXPECT_TRUE(computePsmWarp(scene.camera, spot, body, casters, scene.bounds(), 1.0f, 0.0f).degenerate);
   auto p = makeProjection("psm");
-  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, spot, scene, kMapSize);
+  const LightFrusta f = p->computeFrusta(scene.camera, kAspect, spot, scene.extent(), kMapSize);
   ASSERT_EQ(f.views.size(), 1u);
   EXPECT_FALSE(f.views[0].warped);
   expectFrustumInsideClip(scene, "psm", "boxes, spot inside the view");
@@ -512,7 +512,7 @@ TEST(Projection, UniformFitIsTight) {
                                makeBuiltinScene("pen"), smallCornerOfALargeWorld()};
   for (const Scene& scene : scenes) {
     auto p = makeProjection("uniform");
-    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene, kMapSize).views.at(0);
+    const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize).views.at(0);
     const NeededFit need = measureNeededFit(scene, v);
     ASSERT_GT(need.farM, need.nearM) << scene.name;
     const glm::vec2 extentRatio = v.extent / need.extent;

@@ -3,6 +3,7 @@
 // near the middle of an edge is a spherical cap cut by the plane through the point and the edge,
 // which has a closed form, so every pixel has an exact answer (no GL; G-buffers are synthesised).
 #include <penumbra/Error.h>
+#include <penumbra/Files.h>
 #include <penumbra/Reference.h>
 
 #include <glm/gtc/constants.hpp>
@@ -442,11 +443,11 @@ TEST(ReferenceCache, DefaultDirectoryFollowsTheEnvironment) {
   setenv("PENUMBRA_CACHE", "/tmp/pn-cache", 1);
   setenv("XDG_CACHE_HOME", "/tmp/xdg", 1);
   setenv("HOME", "/tmp/home", 1);
-  EXPECT_EQ(defaultReferenceCacheDir(), std::filesystem::path("/tmp/pn-cache"));
+  EXPECT_EQ(defaultCacheDir(), std::filesystem::path("/tmp/pn-cache"));
   unsetenv("PENUMBRA_CACHE");
-  EXPECT_EQ(defaultReferenceCacheDir(), std::filesystem::path("/tmp/xdg/penumbra"));
+  EXPECT_EQ(defaultCacheDir(), std::filesystem::path("/tmp/xdg/penumbra"));
   unsetenv("XDG_CACHE_HOME");
-  EXPECT_EQ(defaultReferenceCacheDir(), std::filesystem::path("/tmp/home/.cache/penumbra"));
+  EXPECT_EQ(defaultCacheDir(), std::filesystem::path("/tmp/home/.cache/penumbra"));
   restore("PENUMBRA_CACHE", cache);
   restore("XDG_CACHE_HOME", xdg);
   restore("HOME", home);

@@ -1,6 +1,6 @@
 // The SDF bake against analytic signed distances, its sign rule on open and overlapping meshes,
 // and its disk cache. Small grids (32 voxels on the long axis) keep each test well under a second.
-#include "shadows/sdf/SdfBake.h"
+#include "bake/SdfBake.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Scene.h>

@@ -1,6 +1,6 @@
 #include "shadows/filters/EsmFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/esm.shared.h"
 #include "shadows/filters/exp_warp.shared.h"

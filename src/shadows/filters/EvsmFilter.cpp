@@ -1,6 +1,6 @@
 #include "shadows/filters/EvsmFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/BleedReduction.h"
 #include "shadows/filters/ExpWarpParams.h"
 #include "shadows/filters/FootprintParams.h"

@@ -1,7 +1,7 @@
 #include "shadows/filters/ExpWarpMaps.h"
 
-#include "render/FrameContext.h"
-#include "render/MipBuilder.h"
+#include "frame/FrameContext.h"
+#include "frame/MipBuilder.h"
 #include "shadows/filters/exp_warp.shared.h"
 #include "shared/Bindings.h"
 

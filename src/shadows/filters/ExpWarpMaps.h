@@ -2,7 +2,7 @@
 // The exponentially warped shadow maps of esm, evsm and evsm-soft (exp_warp.shared.h): the
 // storage formats and the exponents each can hold, the warp shadow pass
 // (passes/exp_warp.frag.glsl) and the mip chain that prefilters the moments.
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <string_view>
 

@@ -1,6 +1,6 @@
 #include "shadows/filters/HardFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/hard.shared.h"
 #include "shared/Bindings.h"
 

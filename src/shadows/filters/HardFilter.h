@@ -1,6 +1,6 @@
 #pragma once
 // hard: one comparison per pixel with a chosen bias; the baseline every other filter softens.
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
 

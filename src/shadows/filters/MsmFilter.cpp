@@ -1,8 +1,8 @@
 #include "shadows/filters/MsmFilter.h"
 
 #include "common/MomentQuantization.h"
-#include "render/FrameContext.h"
-#include "render/MipBuilder.h"
+#include "frame/FrameContext.h"
+#include "frame/MipBuilder.h"
 #include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/MomentBias.h"
 #include "shadows/filters/msm.shared.h"

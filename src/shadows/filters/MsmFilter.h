@@ -1,7 +1,7 @@
 #pragma once
 // msm: moment shadow maps — four depth moments (32-bit float or 16-bit quantised), a mip chain,
 // the Hamburger 4MSM lower bound (docs/msm.md).
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
 

@@ -1,6 +1,6 @@
 #include "shadows/filters/MsmSoftFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/MomentBias.h"
 #include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/msm_soft.shared.h"

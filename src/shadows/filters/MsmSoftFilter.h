@@ -1,8 +1,8 @@
 #pragma once
 // msm-soft: moment soft shadows — a summed-area table of four depth moments, moment-based blocker
 // search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md).
-#include "render/SatBuilder.h"
-#include "render/ShadowMaps.h"
+#include "frame/SatBuilder.h"
+#include "frame/ShadowMaps.h"
 #include "shadows/TightSearch.h"
 
 #include <penumbra/Filter.h>

@@ -1,6 +1,6 @@
 #include "shadows/filters/PcfFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/pcf.shared.h"
 #include "shared/Bindings.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 // pcf: percentage-closer filtering with a box or Poisson kernel of fixed radius (pcf.glsl).
 #include "gl/Objects.h"
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
 

@@ -1,6 +1,6 @@
 #include "shadows/filters/PcssFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/filters/pcss.shared.h"
 #include "shared/Bindings.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 // pcss: percentage-closer soft shadows — blocker search, penumbra estimate, PCF (pcss.glsl).
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
 #include "shadows/TightSearch.h"
 #include "shadows/filters/PcfFilter.h"

@@ -1,7 +1,7 @@
 #pragma once
 // second-depth: the midpoint of the two nearest surfaces, compared without bias (second_depth.glsl).
 #include "gl/Objects.h"
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
 

@@ -1,8 +1,8 @@
 #include "shadows/filters/VsmFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
+#include "frame/MipBuilder.h"
 #include "shadows/filters/BleedReduction.h"
-#include "render/MipBuilder.h"
 #include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/vsm.shared.h"
 #include "shared/Bindings.h"

@@ -1,7 +1,7 @@
 #pragma once
 // vsm: variance shadow maps — (z, z²) in 32-bit floats, a mip chain, trilinear + anisotropic
 // filtering over the pixel footprint, Chebyshev's one-tailed bound (docs/vsm.md).
-#include "render/ShadowMaps.h"
+#include "frame/ShadowMaps.h"
 
 #include <penumbra/Filter.h>
 

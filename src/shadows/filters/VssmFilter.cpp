@@ -1,8 +1,8 @@
 #include "shadows/filters/VssmFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
+#include "frame/MipBuilder.h"
 #include "shadows/filters/BleedReduction.h"
-#include "render/MipBuilder.h"
 #include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/vssm.shared.h"
 #include "shared/Bindings.h"

@@ -1,8 +1,8 @@
 #pragma once
 // vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
 // of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
-#include "render/SatBuilder.h"
-#include "render/ShadowMaps.h"
+#include "frame/SatBuilder.h"
+#include "frame/ShadowMaps.h"
 #include "shadows/PenumbraDebugImages.h"
 #include "shadows/TightSearch.h"
 

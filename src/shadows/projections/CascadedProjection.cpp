@@ -41,7 +41,7 @@ glm::vec2 sliceBoundingSphere(float a, float b, float k2) {
   return {c, std::sqrt((b - c) * (b - c) + b * b * k2)};
 }
 
-ShadowView stabilizedSunCascade(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+ShadowView stabilizedSunCascade(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                                 float a, float b, int mapSize, float marginTexels) {
   const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
   const glm::vec2 sphere = sliceBoundingSphere(a, b, tx * tx + ty * ty);
@@ -72,7 +72,7 @@ ShadowView stabilizedSunCascade(const Camera& camera, float aspect, const Light&
   return v;
 }
 
-ShadowView fittedCascade(const Camera& camera, float aspect, const Light& light, const Scene& scene, float a, float b,
+ShadowView fittedCascade(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene, float a, float b,
                          float marginFraction) {
   std::vector<glm::vec3> body = receiverBody(camera, aspect, a, b, scene, light);
   if (body.empty()) {  // the slice sees no part of the scene: fit its frustum so the map is valid
@@ -110,7 +110,7 @@ float stableNearDistance(float nearM, float cameraNearM) {
 CascadedProjection::CascadedProjection() : Projection(kParams) {}
 
 LightFrusta CascadedProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                              const Scene& scene, int mapSize) const {
+                                              const SceneExtent& scene, int mapSize) const {
   const int count = paramInt("csm.cascades");
   const bool stabilize = paramInt("csm.stabilize") != 0 && light.type == LightType::Directional;
   float farM = shadowFarDistance(camera, scene);

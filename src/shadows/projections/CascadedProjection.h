@@ -33,7 +33,7 @@ public:
   std::string_view description() const override {
     return "cascaded maps over practical splits of the view depth; stabilised, with a blend band";
   }
-  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };
 

@@ -25,7 +25,7 @@ std::array<glm::vec3, 8> frustumCorners(const Camera& camera, float aspect, floa
   return c;
 }
 
-float shadowFarDistance(const Camera& camera, const Scene& scene) {
+float shadowFarDistance(const Camera& camera, const SceneExtent& scene) {
   const glm::mat4 view = camera.viewFromWorld();
   float farthest = camera.nearM * 2.0f;
   for (const glm::vec3& c : scene.bounds().corners()) farthest = std::max(farthest, -(view * glm::vec4(c, 1.0f)).z);
@@ -40,13 +40,6 @@ glm::vec2 cameraDepthRange(std::span<const glm::vec3> points, const Camera& came
     range = {std::min(range.x, d), std::max(range.y, d)};
   }
   return range;
-}
-
-std::vector<Aabb> objectBounds(const Scene& scene) {
-  std::vector<Aabb> out;
-  out.reserve(scene.objects.size());
-  for (const Object& o : scene.objects) out.push_back(scene.meshes[o.mesh].bounds().transformed(o.worldFromObject));
-  return out;
 }
 
 glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float farM) {
@@ -79,14 +72,13 @@ std::vector<HalfSpace> pyramidInView(double tx, double ty, double nearM, double 
 }  // namespace
 
 Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
-                                  const Scene& scene) {
+                                  const SceneExtent& scene) {
   // Each object's box clipped to the camera frustum itself (not to the frustum's bounding box,
   // which for a camera looking down on a large ground covers most of the ground).
   const std::vector<HalfSpace> frustum = frustumHalfSpaces(camera, aspect, camera.nearM, shadowFarDistance(camera, scene));
   Aabb out;
-  for (const Aabb& b : objectBounds(scene)) {
-    for (const glm::vec3& p : clipBoxToConvex(b, frustum)) out.extend(glm::vec3(lightFromWorld * glm::vec4(p, 1.0f)));
-  }
+  for (const SceneExtent::Body& body : scene.bodies)
+    for (const glm::vec3& p : clipBoxToConvex(body.bounds, frustum)) out.extend(glm::vec3(lightFromWorld * glm::vec4(p, 1.0f)));
   return out;
 }
 
@@ -166,7 +158,7 @@ std::vector<glm::vec3> convexVertices(std::span<const HalfSpace> hs) {
   return out;
 }
 
-std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const Scene& scene,
+std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const SceneExtent& scene,
                                     const Light& light) {
   std::vector<HalfSpace> hs = frustumHalfSpaces(camera, aspect, nearM, farM);
   const std::vector<HalfSpace> box = boxHalfSpaces(scene.bounds());
@@ -217,7 +209,7 @@ std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Li
   return out;
 }
 
-glm::mat4 sunViewMatrix(const Scene& scene, const Light& light) {
+glm::mat4 sunViewMatrix(const SceneExtent& scene, const Light& light) {
   const Aabb bounds = scene.bounds();
   const float radius = std::max(bounds.radius(), 1e-3f);
   return lightViewMatrix(bounds.center() - glm::normalize(light.direction) * (2.0f * radius), light.direction);
@@ -229,7 +221,7 @@ Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m) {
   return b;
 }
 
-ShadowView fitLightView(const Scene& scene, const Light& light, std::span<const glm::vec3> receivers,
+ShadowView fitLightView(const SceneExtent& scene, const Light& light, std::span<const glm::vec3> receivers,
                         std::span<const glm::vec3> casters, float marginFraction) {
   constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
   constexpr float kMinNearM = 0.01f;              // a spot map's nearest near plane

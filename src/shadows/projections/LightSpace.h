@@ -17,14 +17,11 @@ std::array<glm::vec3, 8> frustumCorners(const Camera& camera, float aspect, floa
 
 /// The camera depth range worth shadowing: the near plane up to the farthest scene point (or
 /// the camera's far plane, whichever is closer).
-float shadowFarDistance(const Camera& camera, const Scene& scene);
+float shadowFarDistance(const Camera& camera, const SceneExtent& scene);
 
 /// The camera depths (m along its view axis) that `points` span: (nearest, farthest); (+inf, −inf)
 /// for none.
 glm::vec2 cameraDepthRange(std::span<const glm::vec3> points, const Camera& camera);
-
-/// World bounds of each object (index-aligned with scene.objects).
-std::vector<Aabb> objectBounds(const Scene& scene);
 
 /// Depth plane for a light view: depth = ((-z_view) - nearM) / (farM - nearM).
 glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float farM);
@@ -32,7 +29,7 @@ glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float fa
 /// Bounds in light view space of the receivers the camera can see: each object's box clipped to
 /// the camera frustum (between its near plane and shadowFarDistance). Empty if nothing is visible.
 Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
-                                  const Scene& scene);
+                                  const SceneExtent& scene);
 
 // ---- Convex bodies for the large-view projections (csm, psm, tsm) -----------------------------
 
@@ -70,7 +67,7 @@ std::vector<HalfSpace> lightPyramidHalfSpaces(const glm::mat4& lightFromWorld, f
 /// The region whose receivers can show in the image between camera depths nearM and farM: the
 /// camera frustum ∩ the scene's bounds (∩ the spot pyramid for a spot light), as the vertices of
 /// that convex body. Empty when the slice sees no part of the scene.
-std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const Scene& scene,
+std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const SceneExtent& scene,
                                     const Light& light);
 
 /// Points P such that conv(body ∪ P) holds every point inside `casters` that lies between a point
@@ -81,7 +78,7 @@ std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Li
 
 /// The sun's view for projections that must not move with the camera: centred on the scene,
 /// looking along the light, eye 2 bounding radii back (the same basis as `uniform`).
-glm::mat4 sunViewMatrix(const Scene& scene, const Light& light);
+glm::mat4 sunViewMatrix(const SceneExtent& scene, const Light& light);
 
 /// Bounds of points after the affine transform m.
 Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m);
@@ -90,7 +87,7 @@ Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m);
 /// `casters` (e.g. a casterExtrusion): sun = orthographic in sunViewMatrix's basis, spot =
 /// off-centre perspective from the light clamped to its cone; near/far bracket receivers and
 /// casters along the light axis. marginFraction widens xy (texels of margin / map size).
-ShadowView fitLightView(const Scene& scene, const Light& light, std::span<const glm::vec3> receivers,
+ShadowView fitLightView(const SceneExtent& scene, const Light& light, std::span<const glm::vec3> receivers,
                         std::span<const glm::vec3> casters, float marginFraction);
 
 }  // namespace penumbra

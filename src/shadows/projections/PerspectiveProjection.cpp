@@ -152,7 +152,7 @@ PsmWarp computePsmWarp(const Camera& camera, const Light& light, std::span<const
 PerspectiveProjection::PerspectiveProjection() : Projection(kParams) {}
 
 LightFrusta PerspectiveProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                                 const Scene& scene, int mapSize) const {
+                                                 const SceneExtent& scene, int mapSize) const {
   const float marginFraction = param("psm.marginTexels") / static_cast<float>(mapSize);
   const float nearM = camera.nearM, farM = std::max(shadowFarDistance(camera, scene), 2.0f * nearM);
   const std::vector<glm::vec3> body = receiverBody(camera, aspect, nearM, farM, scene, light);

@@ -49,7 +49,7 @@ public:
   std::string_view description() const override {
     return "one map taken in the camera's post-perspective space (virtual camera slide-back)";
   }
-  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };
 

@@ -153,7 +153,7 @@ glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float
 TrapezoidalProjection::TrapezoidalProjection() : Projection(kParams) {}
 
 LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                                 const Scene& scene, int mapSize) const {
+                                                 const SceneExtent& scene, int mapSize) const {
   const float marginFraction = param("tsm.marginTexels") / static_cast<float>(mapSize);
   const float nearM = camera.nearM, farM = std::max(shadowFarDistance(camera, scene), 2.0f * nearM);
   std::vector<glm::vec3> body = receiverBody(camera, aspect, nearM, farM, scene, light);

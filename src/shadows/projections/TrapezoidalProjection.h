@@ -22,7 +22,7 @@ public:
   std::string_view description() const override {
     return "one map warped by a trapezoid around the view frustum in light space (80% focus rule)";
   }
-  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };
 

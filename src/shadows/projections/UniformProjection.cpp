@@ -21,13 +21,12 @@ constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly insi
 // Distance along the light axis (metres) of the nearest point of any caster's box inside
 // `region` (the part of the light's view that holds the receivers' shadows): a caster's whole
 // box, e.g. a large ground's, would reach far beyond it. `fallback` if no caster is inside.
-float nearestCasterDistance(const Scene& scene, const glm::mat4& lightFromWorld, float fallback,
+float nearestCasterDistance(const SceneExtent& scene, const glm::mat4& lightFromWorld, float fallback,
                             std::span<const HalfSpace> region) {
   float nearest = fallback;
-  const std::vector<Aabb> bounds = objectBounds(scene);
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    if (!scene.objects[i].castsShadow) continue;
-    for (const glm::vec3& p : clipBoxToConvex(bounds[i], region))
+  for (const SceneExtent::Body& body : scene.bodies) {
+    if (!body.castsShadow) continue;
+    for (const glm::vec3& p : clipBoxToConvex(body.bounds, region))
       nearest = std::min(nearest, -(lightFromWorld * glm::vec4(p, 1.0f)).z);
   }
   return nearest;
@@ -38,7 +37,7 @@ float nearestCasterDistance(const Scene& scene, const glm::mat4& lightFromWorld,
 UniformProjection::UniformProjection() : Projection(kParams) {}
 
 LightFrusta UniformProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                             const Scene& scene, int mapSize) const {
+                                             const SceneExtent& scene, int mapSize) const {
   const float marginFraction = param("uniform.marginTexels") / static_cast<float>(mapSize);
   ShadowView v;
   if (light.type == LightType::Directional) {

@@ -14,7 +14,7 @@ public:
   std::string_view description() const override {
     return "one map fitted to the visible receivers and their casters (ortho sun, perspective spot)";
   }
-  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const Scene& scene,
+  LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };
 

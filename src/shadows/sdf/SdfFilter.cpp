@@ -1,6 +1,6 @@
 #include "shadows/sdf/SdfFilter.h"
 
-#include "render/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "shadows/sdf/sdf.shared.h"
 #include "shared/Bindings.h"
 
@@ -21,6 +21,10 @@ static_assert(PN_SDF_PENUMBRA_OUTER == 0 && PN_SDF_PENUMBRA_CENTERED == 1, "kPen
 /// k for a light of size 0 (a point or a delta-direction sun) in light mode: a clearance of
 /// 1/1000 of the ray length already counts as lit, i.e. a hard shadow up to a 1 mm band per metre.
 constexpr float kPointLightK = 1000.0f;
+
+constexpr std::string_view kNoBaker =
+    "no distance-field baker is installed (link Penumbra::bake and call penumbra::sdf::installEmbreeBaker(), or install "
+    "your own with penumbra::sdf::setBaker)";
 
 constexpr ParamDesc kParams[] = {
     {"sdf.kMode", "k from", "light: k = 1/tan(angular radius of the light seen from the receiver), so the scene's light size "
@@ -47,14 +51,23 @@ constexpr ParamDesc kParams[] = {
 
 SdfFilter::SdfFilter() : Filter(kParams) {}
 
+std::string SdfFilter::incompatibility(std::string_view, const Light&) const {
+  return sdf::baker() ? std::string() : std::string(kNoBaker);
+}
+
 void SdfFilter::renderShadowMaps(FrameContext& frame) {
   const int resolution = paramInt("sdf.resolution");
-  const uint64_t key = sdf::cacheKey(frame.scene(), resolution);
+  PN_CHECK(frame.cpuScene() != nullptr,
+           "sdf bakes the casters' triangles on the CPU: give them to Penumbra (Shadows::setCasterGeometry)");
+  const Scene& scene = *frame.cpuScene();
+  const uint64_t key = sdf::cacheKey(scene, resolution);
   if (mHaveField && key == mKey) return;
   sdf::BakeOptions options;
   options.resolution = resolution;
   options.verbose = true;  // every bake reports its time and memory on stderr; a cache hit is silent
-  setField(sdf::loadOrBake(frame.scene(), options));
+  const sdf::Baker& baker = sdf::baker();
+  PN_CHECK(baker, kNoBaker);
+  setField(baker(scene, options));
   mKey = key;
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // sdf: soft shadows by sphere tracing a signed distance field of the casters (docs/sdf.md).
 // No shadow map: renderShadowMaps only makes sure the field of the current scene is on the GPU
-// (baked once per scene, cached on disk); the visibility pass marches it toward the light.
+// (made once per scene by the installed baker, sdf::setBaker: src/bake/ bakes it with Embree and
+// caches it on disk); the visibility pass marches it toward the light.
 #include "gl/Objects.h"
-#include "shadows/sdf/SdfBake.h"
+#include "shadows/sdf/SdfVolume.h"
 #include "shadows/sdf/sdf.shared.h"
 
 #include <penumbra/Filter.h>
@@ -19,6 +20,8 @@ public:
   std::string_view description() const override {
     return "sphere-traced signed distance field of the casters (baked per scene, no shadow map); k from the light size or set";
   }
+  /// Refused when no baker is installed (sdf::setBaker): Penumbra::shadows has none of its own.
+  std::string incompatibility(std::string_view projectionId, const Light& light) const override;
   /// Uploads the scene's field as an R32F 3D texture the first time, and again only when the
   /// casters' geometry or sdf.resolution changes (one hash of the casters per frame).
   void renderShadowMaps(FrameContext& frame) override;

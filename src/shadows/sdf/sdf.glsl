@@ -1,6 +1,6 @@
 // sdf: distance-field soft shadows. No shadow map: a ray leaves the receiver toward the light
 // and sphere-traces (Hart 1996) a signed distance field of the casters baked once per scene
-// (SdfBake.h). At ray length t the free distance d keeps every caster at least the angle ≈ d/t
+// (src/bake/SdfBake.h). At ray length t the free distance d keeps every caster at least the angle ≈ d/t
 // off the ray, so the smallest k·d/t along the ray ("safe angle", Quilez 2010) estimates how much
 // of the light is visible; Aaltonen (2018) places the closest approach between two samples.
 // k ≈ 1/tan(angular radius of the light) ties the estimate to the light's physical size.

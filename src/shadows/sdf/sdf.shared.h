@@ -14,7 +14,7 @@
 #define PN_SDF_PENUMBRA_OUTER 0     // V = min(k d / t, 1): the penumbra lies outside the hard shadow
 #define PN_SDF_PENUMBRA_CENTERED 1  // the march goes on inside casters (d < 0); V = smoothstep(-1, 1, min k d / t)
 
-// Flat caster sheets (floors) measured exactly in the shader, in triangles (SdfBake.h)
+// Flat caster sheets (floors) measured exactly in the shader, in triangles (src/bake/SdfBake.h)
 #define PN_SDF_MAX_SHEET_TRIANGLES 16
 
 PN_GPU_BEGIN

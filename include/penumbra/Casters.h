@@ -1,0 +1,36 @@
+#pragma once
+// Shadow casters as an engine has them: meshes in GL buffers it owns. Penumbra draws them into
+// its shadow maps with its own programs, reading the buffers in place (it never copies or frees
+// them); the caller keeps them alive and unchanged while Penumbra renders.
+#include <penumbra/Math.h>
+
+#include <cstdint>
+
+namespace penumbra {
+
+/// A vertex attribute offset that means "this mesh has no such attribute".
+inline constexpr uint32_t kNoAttribute = 0xffffffffu;
+
+/// One placed mesh that casts shadows. Names are OpenGL object names (GLuint).
+struct CasterMesh {
+  uint32_t vertexBuffer = 0;    ///< GL buffer holding the vertices
+  uint32_t stride = 12;         ///< bytes from one vertex to the next
+  uint32_t positionOffset = 0;  ///< bytes to the position: 3 floats, object space (m)
+  /// Bytes to the texture coordinate (2 floats) used by the alpha mask; kNoAttribute = none.
+  uint32_t uvOffset = kNoAttribute;
+  /// GL buffer of 32-bit unsigned indices, three per triangle; 0 = draw `count` vertices in order.
+  uint32_t indexBuffer = 0;
+  uint32_t firstIndex = 0;      ///< first index (or first vertex, without an index buffer)
+  uint32_t count = 0;           ///< indices (or vertices), a multiple of 3
+  int32_t baseVertex = 0;       ///< added to every index
+  glm::mat4 worldFromObject{1.0f};
+  /// Object-space bounds of the vertices drawn: the light's views are fitted to them (an empty
+  /// box makes the mesh invisible to the fitting, not to the shadow maps).
+  Aabb objectBounds;
+  /// Alpha-tested caster: a GL 2D texture whose alpha below `alphaCutoff` is a hole (read at the
+  /// nearest texel of `uvOffset`'s coordinate, repeat wrapping). 0 = opaque.
+  uint32_t alphaTexture = 0;
+  float alphaCutoff = 0.5f;
+};
+
+}  // namespace penumbra

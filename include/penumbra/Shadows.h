@@ -1,0 +1,166 @@
+#pragma once
+// Penumbra inside an engine (docs/embedding.md): a shadow technique run on the caller's OpenGL
+// 4.5 context. The engine gives its camera, its depth and normal textures, its lights and its
+// casters (meshes in its own buffers); Penumbra renders the light's shadow maps, prefilters them
+// and writes a visibility texture (R32F, 1 = lit) that the engine samples in its own lighting.
+// Penumbra creates no context, and restores the GL state it changes (RestoreState below).
+//
+//   penumbra::Shadows shadows;                        // a GL 4.5 context is current
+//   shadows.setTechnique("csm", "pcss", {{"pcss.blockerSamples", "16"}});
+//   shadows.setCasters(casters);                      // CasterMesh: the engine's buffers
+//   shadows.render({.camera = penumbra::ShadowCamera::fromMatrices(view, proj, penumbra::DepthConvention::ZeroToOne),
+//                   .surfaces = {.width = w, .height = h, .depth = depthTex, .normal = normalTex},
+//                   .lights = lights});
+//   glBindTextureUnit(7, shadows.visibilityTexture());  // V of the first light, 1 = lit
+#include <penumbra/Casters.h>
+#include <penumbra/Filter.h>
+#include <penumbra/Image.h>
+#include <penumbra/Projection.h>
+#include <penumbra/Scene.h>
+#include <penumbra/Timings.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+class ShaderLibrary;  // src/shader/ShaderLibrary.h
+
+/// How the engine's depth texture stores depth: the glClipControl depth mode it rendered with.
+enum class DepthConvention {
+  NegativeOneToOne,  ///< GL's default: stored depth = ndc.z · 0.5 + 0.5
+  ZeroToOne,         ///< glClipControl(…, GL_ZERO_TO_ONE): stored depth = ndc.z (reversed-Z too)
+};
+
+/// The camera of this frame, as the engine rendered it.
+struct ShadowCamera {
+  glm::mat4 viewFromWorld{1.0f};
+  glm::mat4 clipFromView{1.0f};  ///< a perspective projection (symmetric frustum)
+  DepthConvention depth = DepthConvention::ZeroToOne;
+  /// The same camera as position, direction, field of view, near and far, and its aspect
+  /// (width / height): what the light's views are fitted to (cascade splits, warps). Made by
+  /// the two constructors below.
+  Camera fit;
+  float aspect = 1.0f;
+
+  /// From the engine's matrices. The fitted camera is recovered from them (an infinite far plane
+  /// becomes a far one that every projection clips to the scene's bounds). Throws a usage
+  /// penumbra::Error if clipFromView is not a perspective projection.
+  static ShadowCamera fromMatrices(const glm::mat4& viewFromWorld, const glm::mat4& clipFromView,
+                                   DepthConvention depth);
+  /// From Penumbra's own camera description (reversed-Z, zero to one: Camera::clipFromView).
+  static ShadowCamera fromCamera(const Camera& camera, float aspect);
+};
+
+/// The surfaces to shadow, one texel per pixel: GL texture names the engine owns (2D textures,
+/// width × height each). Their sampling state does not matter (Penumbra reads them with its own
+/// sampler objects); depth textures may have compare mode on.
+struct ShadowSurfaces {
+  int width = 0, height = 0;
+  /// Depth as rendered with the camera (any depth or single-channel float format). Pixels that
+  /// hold the clear value of the far plane are background (V = 1).
+  uint32_t depth = 0;
+  /// World-space normals in xyz (any float, half or snorm format), facing the camera: the
+  /// surface's geometric normal if the engine has one, its shading normal otherwise (biases are
+  /// measured along it).
+  uint32_t normal = 0;
+  /// Optional: world positions (xyz m; w > 0.5 where there is geometry) read instead of
+  /// reconstructing them from `depth`; Penumbra's own G-buffer has them. 0 = from depth.
+  uint32_t position = 0;
+};
+
+/// A world point at which to evaluate a filter's visibility (Shadows::visibilityAt).
+struct SurfaceSample {
+  glm::vec3 position{0.0f};               ///< world (m)
+  glm::vec3 geoNormal{0.0f, 1.0f, 0.0f};  ///< unit geometric normal (decides N·L and biases)
+  glm::ivec2 pixel{0};                    ///< the pixel it was seen at (filters' per-pixel noise)
+};
+
+/// What render() changes in the GL state and puts back.
+enum class RestoreState {
+  /// Every binding and switch Penumbra touches is read before and written back after: the
+  /// framebuffer and viewport, program, vertex array, depth test, function, mask and clamp, face
+  /// culling, texture units 0–15 (2D, 2D array, 3D targets) and their samplers, image units 0–3,
+  /// uniform buffers 0–2 and storage buffers 0–5 (indexed bindings), the active texture unit.
+  /// About 150 glGet calls a frame.
+  All,
+  /// Nothing is read back: after render() those bindings and switches hold whatever Penumbra
+  /// left (for engines that set their own state before every pass).
+  None,
+};
+
+struct ShadowFrameInputs {
+  ShadowCamera camera;
+  ShadowSurfaces surfaces;
+  /// The lights; lights[0] casts the shadows (one shadowed light today: more are refused).
+  std::span<const Light> lights;
+  int mapSize = 2048;  ///< texels per side of each shadow map, 1..GL_MAX_TEXTURE_SIZE
+  RestoreState restore = RestoreState::All;
+};
+
+/// Runs one technique (projection × filter) on the caller's context. Not thread-safe; every call
+/// needs the same GL 4.5 context current as at construction.
+class Shadows {
+public:
+  /// Needs a current OpenGL 4.5 core context (throws penumbra::Error otherwise). Starts with
+  /// the uniform projection and the hard filter.
+  Shadows();
+  /// Deletes every GL object Penumbra created (the context must still be current).
+  ~Shadows();
+  Shadows(const Shadows&) = delete;
+  Shadows& operator=(const Shadows&) = delete;
+
+  /// Replaces the technique. With a `light`, throws a usage Error (and keeps the old technique)
+  /// if the pair cannot work with it; render() checks the pair against its light every frame.
+  void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter,
+                    const Light* light = nullptr);
+  /// By id (penumbra list names them) with "key" → "value" parameters; usage Errors name what
+  /// is unknown or out of range.
+  void setTechnique(std::string_view projectionId, std::string_view filterId,
+                    const std::vector<std::pair<std::string, std::string>>& params = {});
+  Projection& projection();
+  Filter& filter();
+
+  /// The casters (validated: buffers exist and hold the ranges drawn) and the world bounds of
+  /// the receivers that cast no shadow (a ground that is not in `casters`): the light's views
+  /// are fitted to both. Cheap to call every frame with moved transforms.
+  void setCasters(std::span<const CasterMesh> casters, std::span<const Aabb> receiverBounds = {});
+  /// The casters' triangles on the CPU, for filters that bake them (sdf); nullptr = none. The
+  /// scene must outlive its use.
+  void setCasterGeometry(const Scene* scene);
+
+  /// Renders the shadow maps, prefilters them and writes the visibility texture.
+  void render(const ShadowFrameInputs& inputs);
+
+  /// V of light `light` for the last frame: an R32F 2D texture of the surfaces' size, 1 = lit,
+  /// 0 where the surface faces away from the light, 1 on background pixels. Owned by Penumbra.
+  uint32_t visibilityTexture(size_t light = 0) const;
+  /// The same, read back (row 0 = bottom).
+  std::vector<float> readVisibility(size_t light = 0) const;
+  /// V at world points with the last frame's maps (the visibility pass over a point list).
+  std::vector<float> visibilityAt(std::span<const SurfaceSample> points);
+
+  /// Binds Penumbra's frame and shadow-view blocks (PN_UBO_FRAME, PN_UBO_SHADOW of
+  /// shaders/shared/Bindings.h) as the last render() filled them, for a pass of the caller's
+  /// that includes shaders/common/shadow.glsl (a debug view of the cascades, say).
+  void bindFrameBlocks() const;
+
+  const LightFrusta& frusta() const;      ///< the last frame's views
+  const PassTimings& timings() const;     ///< "shadow", "prefilter", "visibility" of the last frame
+  /// Every intermediate of the last frame a viewer can show: the visibility, then the filter's.
+  std::vector<DebugImage> debugImages() const;
+  /// The programs Penumbra compiled (for tools that reload shader sources while running).
+  ShaderLibrary& shaders();
+
+  struct Impl;
+
+private:
+  std::unique_ptr<Impl> mImpl;
+};
+
+}  // namespace penumbra

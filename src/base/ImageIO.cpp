@@ -1,0 +1,39 @@
+// PNG files through stb (the stb_image and stb_image_write implementations live here, once).
+#include "base/AtomicFile.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
+
+#include <fmt/format.h>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb_image.h>
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace penumbra {
+
+void writePng(const std::filesystem::path& path, int width, int height, std::span<const uint8_t> rgba) {
+  PN_CHECK(rgba.size() == static_cast<size_t>(width) * static_cast<size_t>(height) * 4,
+           fmt::format("{}: pixel count does not match {}x{}", path.string(), width, height));
+  AtomicFile file(path);
+  if (!stbi_write_png(file.temporary().c_str(), width, height, 4, rgba.data(), width * 4))
+    throw Error(fmt::format("{}: cannot write the PNG", path.string()));
+  file.commit();
+}
+
+std::vector<uint8_t> readPng(const std::filesystem::path& path, int& width, int& height) {
+  int channels = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
+  if (!data) throw Error(fmt::format("{}: cannot read the PNG ({})", path.string(), stbi_failure_reason()));
+  std::vector<uint8_t> out(data, data + static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+  stbi_image_free(data);
+  return out;
+}
+
+}  // namespace penumbra

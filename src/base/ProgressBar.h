@@ -1,0 +1,35 @@
+#pragma once
+// A progress bar on stderr for long CPU loops, safe to advance from worker threads. It draws
+// only when asked to and stderr is a terminal, so logs and pipes never receive control codes.
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <mutex>
+#include <string>
+
+namespace penumbra {
+
+class ProgressBar {
+public:
+  ProgressBar(std::string label, size_t total, bool wanted);
+  ~ProgressBar();  // finishes the line if anything was drawn
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  /// Counts `done` more units; redraws at most every kRedrawInterval, from whichever thread.
+  void advance(size_t done);
+  bool enabled() const { return mEnabled; }
+
+private:
+  void draw(size_t done);
+
+  std::string mLabel;
+  size_t mTotal;
+  bool mEnabled;
+  bool mDrawn = false;
+  std::atomic<size_t> mDone{0};
+  std::mutex mDrawMutex;
+  std::chrono::steady_clock::time_point mStart, mLastDraw;
+};
+
+}  // namespace penumbra

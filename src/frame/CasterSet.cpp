@@ -1,0 +1,138 @@
+#include "frame/CasterSet.h"
+
+#include "shared/Bindings.h"
+#include "shared/Frame.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace penumbra {
+namespace {
+
+constexpr uint32_t kPositionBytes = 3 * sizeof(float);
+constexpr uint32_t kUvBytes = 2 * sizeof(float);
+// Vertex-buffer binding points of a caster's vertex array: the position stream and the uv stream
+// are two bindings of the same buffer, each at its own offset, so any offset works (attribute
+// relative offsets are limited to GL_MAX_VERTEX_ATTRIB_RELATIVE_OFFSET, as little as 2047 bytes).
+constexpr GLuint kPositionBinding = 0, kUvBinding = 1;
+// The shared vertex stage's attribute locations (passes/geometry.vert.glsl).
+constexpr GLuint kPositionAttribute = 0, kUvAttribute = 2;
+
+GLint64 bufferBytes(uint32_t buffer) {
+  GLint64 bytes = 0;
+  glGetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &bytes);
+  return bytes;
+}
+
+void check(const CasterMesh& m, size_t i) {
+  const auto fail = [i](const std::string& why) { throw usageError(fmt::format("caster {}: {}", i, why)); };
+  if (m.vertexBuffer == 0 || !glIsBuffer(m.vertexBuffer)) fail(fmt::format("vertexBuffer {} is not a GL buffer", m.vertexBuffer));
+  if (m.stride < kPositionBytes) fail(fmt::format("stride {} is below the 12 bytes of a position", m.stride));
+  if (m.count == 0 || m.count % 3 != 0) fail(fmt::format("count {} is not a positive multiple of 3", m.count));
+  const GLint64 vertexBytes = bufferBytes(m.vertexBuffer);
+  if (m.indexBuffer != 0) {
+    if (!glIsBuffer(m.indexBuffer)) fail(fmt::format("indexBuffer {} is not a GL buffer", m.indexBuffer));
+    const GLint64 needed = (static_cast<GLint64>(m.firstIndex) + m.count) * static_cast<GLint64>(sizeof(uint32_t));
+    if (needed > bufferBytes(m.indexBuffer))
+      fail(fmt::format("indices {}..{} lie beyond index buffer {} ({} bytes)", m.firstIndex, m.firstIndex + m.count - 1,
+                       m.indexBuffer, bufferBytes(m.indexBuffer)));
+  } else {
+    const GLint64 last = static_cast<GLint64>(m.firstIndex) + m.count - 1;
+    const GLint64 needed = last * m.stride + m.positionOffset + kPositionBytes;
+    if (needed > vertexBytes)
+      fail(fmt::format("vertices {}..{} lie beyond vertex buffer {} ({} bytes)", m.firstIndex, last, m.vertexBuffer, vertexBytes));
+  }
+  if (m.positionOffset + kPositionBytes > vertexBytes) fail(fmt::format("positionOffset {} lies beyond the vertex buffer", m.positionOffset));
+  if (m.alphaTexture != 0) {
+    if (!glIsTexture(m.alphaTexture)) fail(fmt::format("alphaTexture {} is not a GL texture", m.alphaTexture));
+    if (m.uvOffset == kNoAttribute) fail("an alphaTexture needs a uvOffset (the texture coordinate it is read at)");
+    if (m.uvOffset + kUvBytes > vertexBytes) fail(fmt::format("uvOffset {} lies beyond the vertex buffer", m.uvOffset));
+  }
+}
+
+}  // namespace
+
+size_t CasterSet::vaoFor(const Layout& layout) {
+  for (size_t i = 0; i < mLayouts.size(); ++i)
+    if (mLayouts[i] == layout) return i;
+  gl::VertexArray vao(fmt::format("casters vao {}", mLayouts.size()));
+  const GLuint id = vao.id();
+  glVertexArrayVertexBuffer(id, kPositionBinding, layout.vertexBuffer, layout.positionOffset, static_cast<GLsizei>(layout.stride));
+  glEnableVertexArrayAttrib(id, kPositionAttribute);
+  glVertexArrayAttribFormat(id, kPositionAttribute, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(id, kPositionAttribute, kPositionBinding);
+  if (layout.uvOffset != kNoAttribute) {
+    glVertexArrayVertexBuffer(id, kUvBinding, layout.vertexBuffer, layout.uvOffset, static_cast<GLsizei>(layout.stride));
+    glEnableVertexArrayAttrib(id, kUvAttribute);
+    glVertexArrayAttribFormat(id, kUvAttribute, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(id, kUvAttribute, kUvBinding);
+  }
+  if (layout.indexBuffer != 0) glVertexArrayElementBuffer(id, layout.indexBuffer);
+  mLayouts.push_back(layout);
+  mVaos.push_back(std::move(vao));
+  return mLayouts.size() - 1;
+}
+
+void CasterSet::set(std::span<const CasterMesh> casters) {
+  for (size_t i = 0; i < casters.size(); ++i) check(casters[i], i);
+  // Vertex arrays of layouts no caster uses any more would keep names of buffers the caller may
+  // delete: start over when the set of layouts shrinks.
+  std::vector<Layout> wanted;
+  for (const CasterMesh& m : casters) {
+    const Layout l{m.vertexBuffer, m.indexBuffer, m.stride, m.positionOffset, m.alphaTexture ? m.uvOffset : kNoAttribute};
+    if (std::find(wanted.begin(), wanted.end(), l) == wanted.end()) wanted.push_back(l);
+  }
+  for (const Layout& l : mLayouts)
+    if (std::find(wanted.begin(), wanted.end(), l) == wanted.end()) {
+      mLayouts.clear();
+      mVaos.clear();
+      break;
+    }
+  mDraws.clear();
+  std::vector<gpu::ObjectGpu> objects;
+  objects.reserve(casters.size());
+  for (const CasterMesh& m : casters) {
+    const Layout l{m.vertexBuffer, m.indexBuffer, m.stride, m.positionOffset, m.alphaTexture ? m.uvOffset : kNoAttribute};
+    mDraws.push_back({vaoFor(l), m});
+    gpu::ObjectGpu g{};
+    g.worldFromObject = m.worldFromObject;
+    g.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(m.worldFromObject)));
+    const bool masked = m.alphaTexture != 0;
+    g.baseColor = glm::vec4(1.0f, 1.0f, 1.0f, masked ? m.alphaCutoff : 0.0f);
+    g.material = glm::ivec4(masked ? 0 : -1, masked ? 1 : 0, 0, 0);
+    objects.push_back(g);
+  }
+  const size_t bytes = std::max<size_t>(1, objects.size()) * sizeof(gpu::ObjectGpu);
+  if (mObjects.size() < bytes) mObjects = gl::Buffer("caster objects", bytes);
+  if (!objects.empty()) mObjects.upload(objects.data(), objects.size() * sizeof(gpu::ObjectGpu));
+}
+
+void CasterSet::draw(GLuint program) const {
+  mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
+  for (size_t i = 0; i < mDraws.size(); ++i) {
+    const CasterMesh& m = mDraws[i].mesh;
+    glBindVertexArray(mVaos[mDraws[i].vao].id());
+    glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
+    if (m.alphaTexture != 0) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
+    if (m.indexBuffer != 0)
+      glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count), GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * sizeof(uint32_t)),
+                               m.baseVertex);
+    else
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(m.firstIndex), static_cast<GLsizei>(m.count));
+  }
+}
+
+std::vector<SceneExtent::Body> CasterSet::bodies() const {
+  std::vector<SceneExtent::Body> out;
+  out.reserve(mDraws.size());
+  for (const Draw& d : mDraws) out.push_back({d.mesh.objectBounds.transformed(d.mesh.worldFromObject), true});
+  return out;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,47 @@
+#pragma once
+// The shadow casters on the GPU as the shadow passes draw them: CasterMesh records (buffers the
+// caller owns, penumbra/Casters.h) with one vertex array per buffer layout and the object table
+// (ObjectGpu[] at PN_SSBO_OBJECTS) the shared vertex stage reads. Penumbra's own renderer hands
+// its scene over in the same form (render/GpuScene.h), so there is one caster path.
+#include "gl/Objects.h"
+
+#include <penumbra/Casters.h>
+#include <penumbra/Scene.h>
+
+#include <span>
+#include <vector>
+
+namespace penumbra {
+
+class CasterSet {
+public:
+  /// Replaces the casters. Checks each record against the GL objects it names (buffers exist and
+  /// hold the ranges drawn, textures exist) and throws a usage penumbra::Error naming the first
+  /// bad one. Vertex arrays are kept across calls for layouts seen before.
+  void set(std::span<const CasterMesh> casters);
+  /// Draws every caster with `program` (in use; PN_LOC_OBJECT set per draw, an alpha-tested
+  /// caster's texture at PN_TEX_BASECOLOR); leaves the last vertex array bound.
+  void draw(GLuint program) const;
+  /// Each caster's world bounds, in order (for SceneExtent).
+  std::vector<SceneExtent::Body> bodies() const;
+  size_t size() const { return mDraws.size(); }
+
+private:
+  struct Layout {
+    GLuint vertexBuffer = 0, indexBuffer = 0;
+    uint32_t stride = 0, positionOffset = 0, uvOffset = 0;
+    bool operator==(const Layout&) const = default;
+  };
+  struct Draw {
+    size_t vao;  ///< index into mVaos
+    CasterMesh mesh;
+  };
+  size_t vaoFor(const Layout& layout);
+
+  std::vector<Layout> mLayouts;
+  std::vector<gl::VertexArray> mVaos;  ///< one per mLayouts entry
+  std::vector<Draw> mDraws;
+  gl::Buffer mObjects;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,117 @@
+#pragma once
+// What a Filter may use during a frame: the light and its views, the shader library, the caster
+// draw, the full-screen dispatch over the surfaces and its own uniform block. Filters never
+// touch the core's internals; the core never asks which filter it runs.
+#include "frame/CasterSet.h"
+#include "gl/Objects.h"
+#include "frame/PassTimer.h"
+#include "frame/ShadowMaps.h"
+#include "shader/ShaderLibrary.h"
+
+#include <penumbra/Projection.h>
+#include <penumbra/Scene.h>
+
+#include <glm/glm.hpp>
+#include <string_view>
+
+namespace penumbra {
+
+/// Where the visibility pass finds each pixel's surface (bound at PN_TEX_GBUF_POSITION and
+/// PN_TEX_GBUF_GEONORMAL by the core before the pass).
+enum class SurfaceSource {
+  Position,  ///< a world-position texture (w > 0.5 = geometry): Penumbra's own G-buffer
+  Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
+};
+
+/// Everything a frame's FrameContext refers to; owned by the core, alive for the frame.
+struct FrameResources {
+  const Light& light;
+  const Scene* cpuScene;  ///< the casters' triangles on the CPU, when the caller gave them
+  const LightFrusta& frusta;
+  int mapSize;
+  glm::ivec2 screen;
+  SurfaceSource surface;
+  ShaderLibrary& shaders;
+  const CasterSet& casters;
+  gl::Buffer& filterBlock;
+  PassTimer& timer;
+  const gl::Texture* visibility;
+};
+
+class FrameContext {
+public:
+  explicit FrameContext(const FrameResources& r)
+      : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
+        mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
+        mVisibility(r.visibility) {}
+
+  /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
+  /// gave none. Only techniques that bake the geometry (sdf) need them.
+  const Scene* cpuScene() const { return mCpuScene; }
+  const Light& light() const { return mLight; }
+  const LightFrusta& frusta() const { return mFrusta; }
+  int viewCount() const { return static_cast<int>(mFrusta.views.size()); }
+  int mapSize() const { return mMapSize; }
+  glm::ivec2 screen() const { return mScreen; }
+  ShaderLibrary& shaders() { return mShaders; }
+  PassTimer& timer() { return mTimer; }
+
+  const gl::Program& program(const ProgramDesc& desc) { return mShaders.program(desc); }
+  /// Shadow-pass program: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
+  const gl::Program& shadowProgram(std::string_view fragment = "passes/shadow_depth.frag.glsl",
+                                   const ShaderDefines& defines = {});
+  /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
+  /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
+  /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
+  const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
+  /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
+  /// PN_LIGHT_KIND, PN_VIEW_KIND (when all views are of one kind), PN_CASCADE_BLEND.
+  ShaderDefines frameDefines() const;
+
+  /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
+  /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the
+  /// near plane still cast), no culling (thin and open casters cast from both sides).
+  void renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor = glm::vec4(1.0f));
+  /// Draws every shadow caster into the bound framebuffer for shadow view `view`.
+  void drawCasters(const gl::Program& program, int view) const;
+
+  /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
+  template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
+  void setFilterBlockBytes(const void* data, size_t bytes);
+
+  /// Binds the visibility image, then runs `program` once per pixel (the surfaces are bound).
+  /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
+  void dispatchScreen(const gl::Program& program) const;
+
+  /// Points mode, used by Renderer::visibilityAt: visibilityProgram() compiles the pass with
+  /// PN_VISIBILITY_POINTS (positions from `points`, a PointBlock of shared/VisibilityPoints.h,
+  /// V into `visibility`, one float per point) and dispatchScreen() runs over the points. A
+  /// filter needs no code for it as long as its visibility goes through those two calls.
+  void setPoints(const gl::Buffer* points, const gl::Buffer* visibility, int count) {
+    mPoints = points;
+    mPointVisibility = visibility;
+    mPointCount = count;
+  }
+  /// True in points mode: there is no screen, so per-pixel debug outputs are left alone.
+  bool pointsMode() const { return mPoints != nullptr; }
+  /// Runs `program` over a width × height grid in groups of `group`².
+  static void dispatch2D(const gl::Program& program, int width, int height, int group);
+
+private:
+  const Light& mLight;
+  const Scene* mCpuScene;
+  const LightFrusta& mFrusta;
+  int mMapSize;
+  glm::ivec2 mScreen;
+  SurfaceSource mSurface;
+  ShaderLibrary& mShaders;
+  const CasterSet& mCasters;
+  gl::Buffer& mFilterBlock;
+  PassTimer& mTimer;
+  const gl::Texture* mVisibility;
+  const gl::Buffer* mPoints = nullptr;
+  const gl::Buffer* mPointVisibility = nullptr;
+  int mPointCount = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,35 @@
+#include "frame/ShadowMaps.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+namespace penumbra {
+
+void ShadowMapArray::ensure(const std::string& label, int size, int layers, GLenum colorFormat, int colorLevels) {
+  if (size == mSize && layers == mLayers && colorFormat == mColorFormat && colorLevels == mColorLevels && mDepth) return;
+  const int maxSize = gl::maxTextureSize();
+  if (size > maxSize)
+    throw Error(fmt::format("shadow map of {}x{} exceeds this driver's maximum texture size {}", size, size, maxSize));
+  mFbos.clear();
+  mColor = {};
+  mDepth = gl::Texture(label + " depth", {GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, size, size, layers, 1});
+  mDepth.setSampling(GL_NEAREST, GL_NEAREST);
+  if (colorFormat != 0) {
+    mColor = gl::Texture(label + " color", {GL_TEXTURE_2D_ARRAY, colorFormat, size, size, layers, colorLevels});
+    mColor.setSampling(mColor.levels() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
+  }
+  for (int i = 0; i < layers; ++i) {
+    gl::Framebuffer fb(fmt::format("{} layer {}", label, i));
+    fb.attach(GL_DEPTH_ATTACHMENT, mDepth, 0, i);
+    if (colorFormat != 0) fb.attach(GL_COLOR_ATTACHMENT0, mColor, 0, i);
+    fb.finish(colorFormat != 0 ? 1 : 0);
+    mFbos.push_back(std::move(fb));
+  }
+  mSize = size;
+  mLayers = layers;
+  mColorFormat = colorFormat;
+  mColorLevels = colorLevels;
+}
+
+}  // namespace penumbra
