@@ -2,6 +2,8 @@
 
 #include "frame/FrameContext.h"
 #include "frame/MipBuilder.h"
+#include "shadows/filters/BleedReduction.h"
+#include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/vssm.shared.h"
 #include "shared/Bindings.h"
 
@@ -16,17 +18,12 @@ constexpr ParamDesc kParams[] = {
      PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames, "PN_VSSM_SOURCE"},
     {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
      3.0f, 0.0f, 256.0f, 0.0f},
-    {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
-     0.0f, 0.0f, 0.95f, 0.0f},
-    {"vssm.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
-     1.0f, 0.5f, 16.0f, 0.0f},
-    {"vssm.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
-     512.0f, 1.0f, 4096.0f, 0.0f},
+    bleedReductionParam("vssm.bleedReduction"),
+    softMinRadiusParam("vssm.minRadiusTexels"),
+    softMaxRadiusParam("vssm.maxRadiusTexels"),
     tightSearchParam("vssm.tightSearch"),
-    {"vssm.mipSplit", "Mip split", "source=mip: each box is read as n x n sub-boxes, each one mip level finer per halving: 1 = one trilinear read of the whole box (its tent weighs twice the box's width), 2 = 2x2, 4 = 4x4 (near the exact box, 16 reads)",
-     2.0f, 1.0f, 4.0f, 1.0f, {}, "PN_VSSM_MIP_SPLIT"},
-    {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
-     4.0f, 1.0f, 16.0f, 1.0f},
+    mipSplitParam("vssm.mipSplit"),
+    mipBoxAnisotropyParam("vssm.anisotropy"),
 };
 
 }  // namespace
@@ -61,7 +58,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   gpu::VssmUniforms u{};
   u.params = glm::vec4(param("vssm.minVariance"), param("vssm.bleedReduction"), param("vssm.minRadiusTexels"),
                        param("vssm.maxRadiusTexels"));
-  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), 0, 0, 0);
+  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), paramInt("vssm.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
   if (fromSat()) {
     mSat.bindTable();
