@@ -2,10 +2,11 @@
 // Shadow-map addressing shared by every filter: which view (cascade) covers a point, where the
 // point falls in that view's map, its linear light depth, and the world size of one texel there.
 // In the visibility pass what the frame is made of is known when the program is built
-// (FrameContext::visibilityProgram): PN_SHADOW_VIEWS (the view count), PN_VIEW_KIND (when every
-// view is of one kind) and PN_CASCADE_BLEND (a blend band between views) are compile-time
-// constants there, so a one-view frame selects no view, blends nothing and indexes its view's
-// data with a constant. Other passes read the same facts from the shadow block.
+// (FrameContext::visibilityProgram): PN_SHADOW_VIEWS (the view count), PN_VIEWS_PERSPECTIVE and
+// PN_VIEWS_WARPED (0 or 1, when every view agrees; a spot light's psm view is both) and
+// PN_CASCADE_BLEND (a blend band between views) are compile-time constants there, so a one-view
+// frame selects no view, blends nothing and indexes its view's data with a constant. Other
+// passes read the same facts from the shadow block.
 #include "common/frame.glsl"
 
 int shadowViewCount() {
@@ -27,8 +28,8 @@ float lightDistance(int view, vec3 ws) {
 }
 
 bool isPerspectiveView(int view) {
-#ifdef PN_VIEW_KIND
-  return PN_VIEW_KIND == PN_VIEW_KIND_PERSPECTIVE;
+#ifdef PN_VIEWS_PERSPECTIVE
+  return PN_VIEWS_PERSPECTIVE != 0;
 #else
   return u_shadow.views[view].range.z > 0.5;
 #endif
@@ -42,8 +43,8 @@ vec3 shadowCoord(int view, vec3 ws) {
 
 // psm/tsm: clipFromWorld carries a projective warp, so a texel's size depends on where it is.
 bool isWarpedView(int view) {
-#ifdef PN_VIEW_KIND
-  return PN_VIEW_KIND == PN_VIEW_KIND_WARPED;
+#ifdef PN_VIEWS_WARPED
+  return PN_VIEWS_WARPED != 0;
 #else
   return u_shadow.views[view].extent.w > 0.5;
 #endif

@@ -4,11 +4,6 @@
 #define PN_LIGHT_SUN 0
 #define PN_LIGHT_SPOT 1
 
-// How a frame's shadow views project (PN_VIEW_KIND, when every view of the frame is of one kind)
-#define PN_VIEW_KIND_ORTHO 0        // orthographic: texels the same size everywhere
-#define PN_VIEW_KIND_PERSPECTIVE 1  // a spot light's frustum: texels grow with distance
-#define PN_VIEW_KIND_WARPED 2       // psm/tsm: a projective warp, texel size from the derivatives
-
 // hard.bias
 #define PN_BIAS_NONE 0
 #define PN_BIAS_CONSTANT 1

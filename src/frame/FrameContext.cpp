@@ -21,12 +21,15 @@ ShaderDefines FrameContext::frameDefines() const {
   ShaderDefines d;
   d.set("PN_SHADOW_VIEWS", viewCount());
   d.set("PN_LIGHT_KIND", mLight.type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
-  const auto kind = [](const ShadowView& v) {
-    return v.warped ? PN_VIEW_KIND_WARPED : v.perspective ? PN_VIEW_KIND_PERSPECTIVE : PN_VIEW_KIND_ORTHO;
-  };
-  bool oneKind = true;
-  for (const ShadowView& v : mFrusta.views) oneKind = oneKind && kind(v) == kind(mFrusta.views.front());
-  if (oneKind && !mFrusta.views.empty()) d.set("PN_VIEW_KIND", kind(mFrusta.views.front()));
+  // Perspective and warped are two facts (psm's view of a spot light is both); each is compiled
+  // in when every view agrees on it.
+  bool allPerspective = true, nonePerspective = true, allWarped = true, noneWarped = true;
+  for (const ShadowView& v : mFrusta.views) {
+    (v.perspective ? nonePerspective : allPerspective) = false;
+    (v.warped ? noneWarped : allWarped) = false;
+  }
+  if (allPerspective != nonePerspective) d.set("PN_VIEWS_PERSPECTIVE", allPerspective ? 1 : 0);
+  if (allWarped != noneWarped) d.set("PN_VIEWS_WARPED", allWarped ? 1 : 0);
   d.set("PN_CASCADE_BLEND", viewCount() > 1 && mFrusta.blendBandM > 0.0f ? 1 : 0);
   return d;
 }

@@ -68,7 +68,7 @@ public:
   const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
                                        const ShaderDefines& defines = {});
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
-  /// PN_LIGHT_KIND, PN_VIEW_KIND (when all views are of one kind), PN_CASCADE_BLEND.
+  /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
   ShaderDefines frameDefines() const;
 
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
