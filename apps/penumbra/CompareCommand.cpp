@@ -51,6 +51,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     std::string out = "compare";
     bool json = false, noCache = false;
     int shimmer = 0;
+    std::optional<std::uintmax_t> cacheMaxMb;
   };
   auto o = std::make_shared<Options>();
   o->technique.size = "256x256";
@@ -62,6 +63,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ->capture_default_str();
   sub->add_flag("--json", o->json, "print one JSON object on stdout instead of the table");
   sub->add_flag("--no-cache", o->noCache, "recompute the reference even if a cached one exists");
+  addCacheCapOption(*sub, o->cacheMaxMb, "after the reference is stored");
   sub->add_option("--shimmer", o->shimmer,
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
@@ -80,6 +82,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     ReferenceOptions ro;
     ro.samples = o->samples;
     ro.useCache = !o->noCache;
+    ro.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     ro.progress = !o->json;
     const ReferenceTracer tracer(s.scene);
     const ReferenceResult ref = tracer.trace(gbuffer, s.scene.light(), ro);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace penumbra {
@@ -37,6 +38,10 @@ struct ReferenceOptions {
   uint32_t seed = 0;           ///< the same seed gives bit-identical results
   bool progress = true;        ///< progress bar on stderr; drawn only when stderr is a terminal
   bool useCache = true;        ///< read and write the on-disk cache
+  /// Cap of the cache folder in bytes, kept after this result is stored by evicting the least
+  /// recently used entries (penumbra/Files.h); unset = defaultCacheMaxBytes()
+  /// ($PENUMBRA_CACHE_MAX_MB, else kDefaultCacheMaxMiB).
+  std::optional<std::uintmax_t> cacheMaxBytes;
   /// Where cache files go; empty = defaultCacheDir() (penumbra/Files.h).
   std::filesystem::path cacheDir;
 };

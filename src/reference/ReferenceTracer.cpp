@@ -42,8 +42,8 @@ using reference::EmbreeScene;
 //     own coordinates, and its triangle's world vertices with the transform's terms). Such a hit
 //     is within p's own error of the surface: a neighbouring triangle near a shared edge, or the
 //     receiver itself where its triangle is not known.
-// Neither moves a shadow edge cast by anything that rises more than δ above the receiver (0.5 mm
-// 1 km from the origin, 1 µm within 1 m of it), where an origin lifted by ε along N moved every
+// Neither moves a shadow edge cast by anything that rises more than δ above the receiver (1 mm
+// 1 km from the origin, 2 µm within 1 m of it), where an origin lifted by ε along N moved every
 // edge by ε / tan(elevation) (the old ε = 1e-4 × scene size moved a 2 km scene's by 0.14 m).
 // A G-buffer normal shorter than this is not a normal (an unwritten pixel): the pixel is unlit.
 constexpr float kMinNormalLength = 1e-6f;
@@ -355,6 +355,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   const uint64_t key = mImpl->key(g, receivers, light, options);
 
   std::filesystem::path cacheDir;
+  std::uintmax_t cacheMaxBytes = 0;
   if (options.useCache) {
     // No directory can be formed only without HOME; the result is the same, just not kept.
     cacheDir = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
@@ -365,6 +366,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
         return std::move(*cached);
       }
       reference::prepareCacheDir(cacheDir);
+      cacheMaxBytes = options.cacheMaxBytes.value_or(defaultCacheMaxBytes());  // a bad variable stops us now
     }
   }
 
@@ -404,7 +406,10 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   for (size_t i = 0; i < pixels; ++i) r.approximationError[i] = r.shadingSplit[i] - r.shadingExact[i];
   r.traceSeconds = secondsSince(start);
   r.seconds = r.traceSeconds;
-  if (!cacheDir.empty()) reference::storeCachedResult(cacheDir, r);
+  if (!cacheDir.empty()) {
+    reference::storeCachedResult(cacheDir, r);
+    trimCache(cacheDir, cacheMaxBytes);
+  }
   return r;
 }
 
