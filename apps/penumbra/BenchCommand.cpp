@@ -45,6 +45,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     std::optional<std::string> size, camera;
     std::optional<int> shadowMap, frames, warmup, samples;
     std::optional<double> maxSeconds;
+    std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
     bool quick = false, noCache = false, verbose = false;
   };
@@ -72,6 +73,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--out", o->out, "output folder")->capture_default_str();
   sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
+  addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
   sub->add_flag("--verbose", o->verbose, "one line per configuration on stderr instead of the progress bar");
   commands.push_back({sub, [o] {
     report::BenchSettings settings;
@@ -92,6 +94,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     if (o->samples) settings.referenceSamples = *o->samples;
     if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
     settings.useCache = !o->noCache;
+    settings.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     const std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
     if (o->camera) {
       // A viewpoint belongs to one scene: the same coordinates would look at nothing in another.
