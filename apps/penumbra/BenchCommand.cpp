@@ -117,7 +117,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       t.projection = c.projection;
       for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
       Setup s = makeSetup(t);
-      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter)};
+      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
     };
     const std::filesystem::path dir(o->out);
     report::BenchResults results =

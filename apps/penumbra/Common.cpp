@@ -53,6 +53,7 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draw
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(s.scene);
   renderer->setTechnique(std::move(s.projection), std::move(s.filter));
+  renderer->shadows().contactShadows() = *s.contact;
   return renderer;
 }
 
@@ -66,7 +67,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   std::vector<std::pair<std::string, std::string>> sceneParams;
   for (const auto& kv : s.scene.shadow.params) {
     const std::string prefix = kv.first.substr(0, kv.first.find('.'));
-    if (prefix == "light" || prefix == s.projection->id() || prefix == s.filter->id()) {
+    if (prefix == "light" || prefix == "contact" || prefix == s.projection->id() || prefix == s.filter->id()) {
       sceneParams.push_back(kv);
     } else {
       const std::vector<std::string> p = projectionIds(), f = filterIds();
@@ -74,10 +75,10 @@ Setup makeSetup(const TechniqueOptions& o) {
         throw Error(fmt::format("{}: shadow.params.{}: no technique '{}'", s.scene.sourceFile.string(), kv.first, prefix));
     }
   }
-  applyParams(sceneParams, s.scene, *s.projection, *s.filter);
+  applyParams(sceneParams, s.scene, *s.projection, *s.filter, s.contact.get());
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
-  applyParams(cli, s.scene, *s.projection, *s.filter);
+  applyParams(cli, s.scene, *s.projection, *s.filter, s.contact.get());
   if (o.camera) s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
   const auto [w, h] = parseSize(o.size);
   s.render.width = w;

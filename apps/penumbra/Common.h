@@ -33,6 +33,7 @@ struct Setup {
   Scene scene;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  std::unique_ptr<Parameterized> contact = makeContactShadows();  ///< "contact.*"
   RenderOptions render;
 };
 

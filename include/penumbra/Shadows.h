@@ -119,12 +119,15 @@ public:
   /// if the pair cannot work with it; render() checks the pair against its light every frame.
   void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter,
                     const Light* light = nullptr);
-  /// By id (penumbra list names them) with "key" → "value" parameters; usage Errors name what
-  /// is unknown or out of range.
+  /// By id (penumbra list names them) with "key" → "value" parameters (the projection's, the
+  /// filter's and "contact.*"); usage Errors name what is unknown or out of range.
   void setTechnique(std::string_view projectionId, std::string_view filterId,
                     const std::vector<std::pair<std::string, std::string>>& params = {});
   Projection& projection();
   Filter& filter();
+  /// Contact shadows, the add-on any filter can take ("contact.*" parameters, docs/contact.md):
+  /// off by default; setParam("contact.shadows", "on") turns them on.
+  Parameterized& contactShadows();
 
   /// The casters (validated: buffers exist and hold the ranges drawn) and the world bounds of
   /// the receivers that cast no shadow (a ground that is not in `casters`): the light's views
@@ -151,7 +154,8 @@ public:
   void bindFrameBlocks() const;
 
   const LightFrusta& frusta() const;      ///< the last frame's views
-  const PassTimings& timings() const;     ///< "shadow", "prefilter", "visibility" of the last frame
+  /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame
+  const PassTimings& timings() const;
   /// Every intermediate of the last frame a viewer can show: the visibility, then the filter's.
   std::vector<DebugImage> debugImages() const;
   /// The programs Penumbra compiled (for tools that reload shader sources while running).

@@ -13,6 +13,7 @@
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
+#include "shadows/contact/ContactShadows.h"
 #include "shared/Bindings.h"
 #include "shared/VisibilityPoints.h"
 
@@ -62,6 +63,7 @@ struct Shadows::Impl {
   const Scene* cpuScene = nullptr;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  ContactShadows contact;
   LightFrusta frusta;
   PassTimings timings;
   // The last frame's, for visibilityAt and bindFrameBlocks.
@@ -119,6 +121,8 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
       projection->setParam(key, std::string_view(value));
     else if (filter->hasParam(key))
       filter->setParam(key, std::string_view(value));
+    else if (mImpl->contact.hasParam(key))
+      mImpl->contact.setParam(key, std::string_view(value));
     else
       throw usageError(fmt::format("unknown parameter '{}' for projection {} and filter {}", key, projectionId, filterId));
   }
@@ -127,6 +131,7 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
 
 Projection& Shadows::projection() { return *mImpl->projection; }
 Filter& Shadows::filter() { return *mImpl->filter; }
+Parameterized& Shadows::contactShadows() { return mImpl->contact; }
 
 void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aabb> receiverBounds) {
   mImpl->casters.set(casters);
@@ -191,6 +196,10 @@ void Shadows::render(const ShadowFrameInputs& in) {
   {
     ScopedPass pass(im.timer, "visibility");
     im.filter->computeVisibility(ctx);
+  }
+  if (im.contact.enabled()) {
+    ScopedPass pass(im.timer, "contact");
+    im.contact.apply(ctx);
   }
   gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
   gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);

@@ -55,6 +55,17 @@ const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, 
   return visibilityProgram(filterFile, all.merge(defines));
 }
 
+const gl::Program& FrameContext::screenProgram(std::string_view file, const Parameterized& params) {
+  PN_CHECK(!mPoints, "a screen pass has no screen in points mode");
+  ProgramDesc d;
+  d.label = "screen " + std::string(file);
+  d.compute = {std::string(file)};
+  d.defines = frameDefines();
+  if (mSurface == SurfaceSource::Depth) d.defines.set("PN_SURFACE_FROM_DEPTH");
+  for (const auto& [name, value] : params.compileTimeConstants()) d.defines.set(std::string(name), value);
+  return mShaders.program(d);
+}
+
 void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {
   program.use();
   glEnable(GL_DEPTH_TEST);
@@ -86,7 +97,7 @@ void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
   mFilterBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
 }
 
-void FrameContext::dispatchScreen(const gl::Program& program) const {
+void FrameContext::dispatchScreen(const gl::Program& program, bool readVisibility) const {
   if (mPoints) {
     mPoints->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINTS);
     mPointVisibility->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINT_VISIBILITY);
@@ -94,7 +105,7 @@ void FrameContext::dispatchScreen(const gl::Program& program) const {
     return;
   }
   PN_ASSERT(mVisibility != nullptr);
-  mVisibility->bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
+  mVisibility->bindImage(PN_IMG_VISIBILITY, readVisibility ? GL_READ_WRITE : GL_WRITE_ONLY);
   dispatch2D(program, mScreen.x, mScreen.y, PN_SCREEN_GROUP);
 }
 

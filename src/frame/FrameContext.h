@@ -67,6 +67,9 @@ public:
   /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
   const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
                                        const ShaderDefines& defines = {});
+  /// A screen pass of the frame's own (one GLSL file with its main) over the same surfaces as
+  /// the visibility pass, built like it: frameDefines(), the SurfaceSource, `params`' constants.
+  const gl::Program& screenProgram(std::string_view file, const Parameterized& params);
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
   /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
   ShaderDefines frameDefines() const;
@@ -82,9 +85,10 @@ public:
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
   void setFilterBlockBytes(const void* data, size_t bytes);
 
-  /// Binds the visibility image, then runs `program` once per pixel (the surfaces are bound).
+  /// Binds the visibility image (write-only, or read-write for a pass that changes what the
+  /// visibility pass wrote), then runs `program` once per pixel (the surfaces are bound).
   /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
-  void dispatchScreen(const gl::Program& program) const;
+  void dispatchScreen(const gl::Program& program, bool readVisibility = false) const;
 
   /// Points mode, used by Renderer::visibilityAt: visibilityProgram() compiles the pass with
   /// PN_VISIBILITY_POINTS (positions from `points`, a PointBlock of shared/VisibilityPoints.h,
