@@ -45,6 +45,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     std::optional<std::string> size, camera;
     std::optional<int> shadowMap, frames, warmup, samples, microRounds;
     std::optional<double> maxSeconds;
+    std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
     bool quick = false, noCache = false, verbose = false, microOnly = false;
   };
@@ -72,6 +73,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--out", o->out, "output folder")->capture_default_str();
   sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
+  addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
   sub->add_flag("--micro-only", o->microOnly,
                 "only the micro-benchmarks (prefilters against a copy, each filter's visibility pass against its minimal "
                 "kernel) at --size and --shadow-map: no configurations, no references");
@@ -98,6 +100,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     if (o->microRounds) settings.microRepetitions = *o->microRounds;
     if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
     settings.useCache = !o->noCache;
+    settings.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
     if (o->microOnly) configs.clear();
     if (o->camera) {

@@ -17,6 +17,7 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands);
 void addViewCommand(CLI::App& app, std::vector<Command>& commands);
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands);
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands);
+void addCacheCommand(CLI::App& app, std::vector<Command>& commands);
 
 /// All subcommands, in the order --help lists them. The first one runs when none is named.
 inline void registerCommands(CLI::App& app, std::vector<Command>& commands) {
@@ -25,6 +26,7 @@ inline void registerCommands(CLI::App& app, std::vector<Command>& commands) {
   addBenchCommand(app, commands);
   addViewCommand(app, commands);
   addListCommand(app, commands);
+  addCacheCommand(app, commands);
 }
 
 }  // namespace penumbra::app

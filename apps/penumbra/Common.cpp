@@ -1,6 +1,7 @@
 #include "Common.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 
@@ -20,6 +21,19 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
                  "camera position and target in metres, and optionally the vertical field of view in degrees: "
                  "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera)");
   app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
+}
+
+void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what) {
+  app.add_option("--cache-max-mb", mib,
+                 fmt::format("cap of the cache folder in MiB, applied {}: the least recently used entries are removed "
+                             "until the rest fit (default: ${}, else {})",
+                             what, kCacheMaxEnv, kDefaultCacheMaxMiB))
+      ->check(CLI::Range(std::uintmax_t{0}, UINTMAX_MAX >> 20));
+}
+
+std::optional<std::uintmax_t> cacheCapBytes(const std::optional<std::uintmax_t>& mib) {
+  constexpr std::uintmax_t kBytesPerMiB = std::uintmax_t{1} << 20;
+  return mib ? std::optional(*mib * kBytesPerMiB) : std::nullopt;
 }
 
 std::pair<int, int> parseSize(const std::string& text) {

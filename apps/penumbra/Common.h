@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,12 @@ Setup makeSetup(const TechniqueOptions& o);
 
 /// A renderer with the setup's scene and technique (which it takes over from `s`).
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
+
+/// Adds --cache-max-mb N: the cache folder's cap in MiB for this run (unset: PENUMBRA_CACHE_MAX_MB,
+/// else the default). `what` says when it applies.
+void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what);
+/// The cap in bytes that --cache-max-mb gave, or nothing.
+std::optional<std::uintmax_t> cacheCapBytes(const std::optional<std::uintmax_t>& mib);
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

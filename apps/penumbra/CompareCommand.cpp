@@ -1,5 +1,6 @@
 // penumbra compare: a technique against the ray-traced reference on the same pixels — metrics,
-// per-pass times, and images (technique, reference, error heatmap, split-approximation error).
+// per-pass times, and images (technique, reference, error heatmap, split-approximation error),
+// and the two V's as float images, so that anyone can check the ruler with another renderer.
 #include "Commands.h"
 #include "Common.h"
 
@@ -9,6 +10,7 @@
 #include "report/FrameComparison.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
@@ -42,6 +44,26 @@ ColorImage sheet(const std::vector<const ColorImage*>& images) {
   return out;
 }
 
+/// Every file compare writes into --out, in the order --help names them.
+constexpr std::pair<const char*, const char*> kOutputs[] = {
+    {"technique.png", "the frame lit with the technique's V"},
+    {"reference.png", "the same frame lit with V_ref"},
+    {"heatmap.png", "V - V_ref on a grey of V_ref: leaks red, over-darkening blue"},
+    {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong"},
+    {"sheet.png", "the four above, 2 x 2"},
+    {"texel-density.png", "screen pixels per shadow-map texel"},
+    {"visibility.exr", "the technique's V"},
+    {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
+    {"reference-visibility-cos.exr", "V_ref weighted by cos(theta): exact over unshadowed shading"},
+};
+
+std::string outputsHelp() {
+  std::string help = "folder for the outputs:";
+  for (const auto& [name, what] : kOutputs) help += fmt::format("\n  {} ({})", name, what);
+  return help + "\nEXR files: one float channel V, row 0 = top; V_ref is 0 on geometry that faces away from the light "
+                "(or lies outside a spot's cone) and 1 on background";
+}
+
 }  // namespace
 
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
@@ -51,6 +73,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     std::string out = "compare";
     bool json = false, noCache = false;
     int shimmer = 0;
+    std::optional<std::uintmax_t> cacheMaxMb;
   };
   auto o = std::make_shared<Options>();
   o->technique.size = "256x256";
@@ -58,10 +81,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   addTechniqueOptions(*sub, o->technique);
   sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
-  sub->add_option("--out", o->out, "folder for technique.png, reference.png, heatmap.png, approximation.png, sheet.png")
-      ->capture_default_str();
+  sub->add_option("--out", o->out, outputsHelp())->capture_default_str();
   sub->add_flag("--json", o->json, "print one JSON object on stdout instead of the table");
   sub->add_flag("--no-cache", o->noCache, "recompute the reference even if a cached one exists");
+  addCacheCapOption(*sub, o->cacheMaxMb, "after the reference is stored");
   sub->add_option("--shimmer", o->shimmer,
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
@@ -80,6 +103,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     ReferenceOptions ro;
     ro.samples = o->samples;
     ro.useCache = !o->noCache;
+    ro.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     ro.progress = !o->json;
     const ReferenceTracer tracer(s.scene);
     const ReferenceResult ref = tracer.trace(gbuffer, s.scene.light(), ro);
@@ -100,6 +124,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
                                     {"texel-density.png", &densityImage}})
       writePng(dir / name, img->width, img->height, img->rgba);
+    for (const auto& [name, v] : {std::pair{"visibility.exr", &cmp.visibility}, {"reference-visibility.exr", &ref.visibility},
+                                  {"reference-visibility-cos.exr", &ref.visibilityCosWeighted}})
+      writeExr(dir / name, ref.width, ref.height, flipRows<float>(*v, ref.width, ref.height));
 
     const PassTimings t = renderer.timings();
     std::optional<ShimmerResult> shimmer;

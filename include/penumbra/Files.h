@@ -2,10 +2,12 @@
 // Output files and the cache folder. Every writer writes to a temporary name in the same folder
 // (unique per process and call) and renames, so a failed or concurrent run never leaves a
 // half-written file. Errors throw penumbra::Error naming the file.
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace penumbra {
 
@@ -19,5 +21,35 @@ void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<st
 /// set, else $XDG_CACHE_HOME/penumbra, else ~/.cache/penumbra; empty when none of these can be
 /// formed (no HOME).
 std::filesystem::path defaultCacheDir();
+
+// --- a bounded cache folder -------------------------------------------------------------
+// A cache folder holds entries named <kind>-<16 hex digits>.bin (reference-…, sdf-…); anything
+// else in it is not an entry and is never counted, moved or removed. Its size is capped: after
+// each write the least recently used entries go until the rest fit. "Used" is the entry's
+// modification time, set when it is written and again whenever it is read (touchCacheEntry).
+
+/// Cap of the cache folder when nothing else says: 4 GiB, a few hundred references at 1280×720
+/// (33 bytes a pixel) or thousands at the bench's 256×144.
+inline constexpr std::uintmax_t kDefaultCacheMaxMiB = 4096;
+/// The environment variable that sets the cap, in MiB (a whole number ≥ 0; 0 keeps nothing).
+inline constexpr const char* kCacheMaxEnv = "PENUMBRA_CACHE_MAX_MB";
+
+/// $PENUMBRA_CACHE_MAX_MB in bytes if set, else kDefaultCacheMaxMiB. Throws a usage Error when
+/// the variable is not a whole number of MiB.
+std::uintmax_t defaultCacheMaxBytes();
+
+struct CacheEntry {
+  std::filesystem::path path;
+  std::uintmax_t bytes = 0;
+  std::filesystem::file_time_type lastUse;  ///< its modification time
+};
+
+/// The folder's entries, least recently used first (an empty list when the folder is missing).
+std::vector<CacheEntry> listCacheEntries(const std::filesystem::path& dir);
+/// Marks an entry as just used. A failure (a read-only folder) is ignored: reading still works.
+void touchCacheEntry(const std::filesystem::path& entry);
+/// Removes least recently used entries until the rest total at most maxBytes; returns those
+/// removed. An entry that another process removed first is skipped.
+std::vector<CacheEntry> trimCache(const std::filesystem::path& dir, std::uintmax_t maxBytes);
 
 }  // namespace penumbra

@@ -24,6 +24,10 @@ struct GBufferData {
   std::vector<glm::vec4> geoNormal;  ///< xyz unit geometric normal (facing the camera side); w unused
   std::vector<glm::vec4> normal;     ///< xyz shading normal
   std::vector<glm::vec4> albedo;     ///< rgb base colour
+  /// The triangle drawn at each pixel: (index into Scene::objects + 1, triangle index in that
+  /// object's mesh); x = 0 where unknown (background, or a G-buffer not made by the renderer).
+  /// May be empty: then unknown everywhere. The reference skips the receiver's own triangle.
+  std::vector<glm::uvec2> triangle;
   bool covered(size_t i) const { return position[i].w > 0.5f; }
 };
 

@@ -4,6 +4,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace penumbra {
@@ -16,6 +17,11 @@ struct ParamDesc {
   std::string_view help;   ///< one sentence: meaning, unit
   float def = 0.0f, min = 0.0f, max = 1.0f, step = 0.0f;  ///< step 1 = integer-valued
   std::span<const std::string_view> choices = {};
+  /// The GLSL constant that carries the value into the filter's program (integer-valued
+  /// parameters that shape its code: modes, kernels, tap counts), e.g. "PN_PCF_SAMPLES": the
+  /// program is built per value (FrameContext::visibilityProgram) and its loops and branches
+  /// fold. Empty: the value reaches the shader through the filter's uniform block.
+  std::string_view define = {};
 
   bool isChoice() const { return !choices.empty(); }
   bool isInteger() const { return isChoice() || step == 1.0f; }
@@ -47,6 +53,8 @@ public:
   void setParam(std::string_view key, std::string_view text);
   float param(std::string_view key) const;
   int paramInt(std::string_view key) const { return static_cast<int>(param(key)); }
+  /// (define, value) of every parameter that declares a GLSL constant (ParamDesc::define).
+  std::vector<std::pair<std::string_view, int>> compileTimeConstants() const;
 
 private:
   size_t indexOf(std::string_view key) const;

@@ -2,23 +2,33 @@
 // The ground truth: visibility and shading ray traced on the CPU with Embree, pixel-aligned with
 // the renderer's G-buffer. Every technique is measured against this (docs/reference.md).
 //
-// For each G-buffer pixel that faces the light, shadow rays start at the surface (offset along
-// the geometric normal) and go toward the light: one ray for a light of size 0, N stratified
-// samples, uniform in solid angle, over the cone the light subtends for a spherical spot light or
-// the sun's disk. Results are deterministic (per-pixel seeds) and cached on disk.
+// For each G-buffer pixel that faces the light, shadow rays start at the pixel's position (not
+// lifted off it: they skip the receiver's own triangle and ignore hits within its float error of
+// its plane) and go toward the light: one ray for a light of size 0, N stratified samples,
+// uniform in solid angle, over the cone the light subtends for a spherical spot light or the
+// sun's disk. Results are deterministic (per-pixel seeds) and cached on disk.
 #include <penumbra/Image.h>
 #include <penumbra/Scene.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace penumbra {
 
 /// Version of the reference's maths; part of every cache key. Bump it whenever a change to the
 /// code changes the numbers it produces, so that stale cache files are never read.
-inline constexpr uint32_t kReferenceCodeVersion = 1;
+inline constexpr uint32_t kReferenceCodeVersion = 2;
+
+/// How far a G-buffer position may lie off its triangle's plane, in float32 spacings of the
+/// largest magnitude it was computed from (its coordinates, its triangle's world vertices and the
+/// transform's terms): the rasteriser's rounding. Shadow rays ignore hits lower than this above
+/// the receiver's plane, t < tolerance / (N·ω), and skip the receiver's own triangle; the rays
+/// start on the surface, so no shadow cast from higher up moves. GL test
+/// ReferenceScale.GBufferPositionsLieWithinTheToleranceOfTheirTriangle measures the rasteriser.
+inline constexpr float kPositionToleranceUlps = 16.0f;
 
 struct ReferenceOptions {
   /// Light samples per pixel for a light of size > 0, in [1, kMaxReferenceSamples]; default 256.
@@ -28,6 +38,10 @@ struct ReferenceOptions {
   uint32_t seed = 0;           ///< the same seed gives bit-identical results
   bool progress = true;        ///< progress bar on stderr; drawn only when stderr is a terminal
   bool useCache = true;        ///< read and write the on-disk cache
+  /// Cap of the cache folder in bytes, kept after this result is stored by evicting the least
+  /// recently used entries (penumbra/Files.h); unset = defaultCacheMaxBytes()
+  /// ($PENUMBRA_CACHE_MAX_MB, else kDefaultCacheMaxMiB).
+  std::optional<std::uintmax_t> cacheMaxBytes;
   /// Where cache files go; empty = defaultCacheDir() (penumbra/Files.h).
   std::filesystem::path cacheDir;
 };
@@ -74,19 +88,17 @@ public:
   ReferenceTracer(const ReferenceTracer&) = delete;
   ReferenceTracer& operator=(const ReferenceTracer&) = delete;
 
-  /// Traces every covered pixel of `gbuffer` (position, geoNormal and albedo are read) toward
-  /// `light`. Throws penumbra::Error on inconsistent inputs, bad options, or an unusable cache dir.
+  /// Traces every covered pixel of `gbuffer` (position, geoNormal, albedo and, when present,
+  /// triangle are read) toward `light`. Throws penumbra::Error on inconsistent inputs (a triangle
+  /// id the scene does not have among them), bad options, or an unusable cache dir.
   ReferenceResult trace(const GBufferData& gbuffer, const Light& light,
                         const ReferenceOptions& options = {}) const;
 
   /// The key under which trace() caches its result: a hash of the casters' world-space
-  /// triangles (and alpha masks), the light, the G-buffer contents, samples, seed and
-  /// kReferenceCodeVersion.
+  /// triangles (and alpha masks), the light, the G-buffer contents, what each pixel's rays skip,
+  /// samples, seed and kReferenceCodeVersion.
   uint64_t cacheKey(const GBufferData& gbuffer, const Light& light,
                     const ReferenceOptions& options) const;
-
-  /// Distance (m) that ray origins are moved along the geometric normal; scales with the scene.
-  float rayOffsetM() const;
 
 private:
   struct Impl;

@@ -131,6 +131,9 @@ struct Scene {
 
 // Procedural shapes (object space, outward normals, counter-clockwise front faces).
 Mesh makePlane(float sizeX, float sizeZ);                   ///< XZ plane through the origin, normal +Y
+/// makePlane cut into cells × cells quads that share their vertices (edges between triangles of
+/// one surface, as a tessellated terrain has them); cells ≥ 1.
+Mesh makeGrid(float sizeX, float sizeZ, int cells);
 Mesh makeBox(const glm::vec3& size);                         ///< centred at the origin
 Mesh makeSphere(float radius, int slices = 32, int stacks = 16);
 Mesh makeCylinder(float radius, float height, int slices = 24);  ///< axis +Y, base at y = 0

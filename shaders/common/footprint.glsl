@@ -84,3 +84,20 @@ vec4 momentsOverFootprint(sampler2DArray moments, int view, SurfacePoint s, vec2
   widenFootprint(minTexels / shadowMapSize(), dx, dy);
   return textureFootprint(moments, vec3(uv, float(view)), dx, dy, maxTaps);
 }
+
+// The mean of a mip chain over the box of half-size radiusUv around uv in `view`, read as
+// split × split sub-boxes, each a footprint of trilinear taps (at most maxTaps along a non-square
+// sub-box's long axis) at the level whose texels match its short side: what the O(1) soft filters
+// read when their regions come from a mip chain (vssm with source=mip, evsm-soft). One trilinear
+// read of the whole box weighs a tent twice the box's width (variance ×2 of the box's); 2 × 2
+// sub-boxes one level finer ×1.25, 4 × 4 ×1.06.
+vec4 boxMeanFromMips(sampler2DArray moments, int view, vec2 uv, vec2 radiusUv, int split, int maxTaps) {
+  vec2 subUv = 2.0 * radiusUv / float(split);
+  vec4 sum = vec4(0.0);
+  for (int j = 0; j < split; ++j)
+    for (int i = 0; i < split; ++i) {
+      vec2 centre = uv - radiusUv + (vec2(i, j) + 0.5) * subUv;
+      sum += textureFootprint(moments, vec3(centre, float(view)), vec2(subUv.x, 0.0), vec2(0.0, subUv.y), maxTaps);
+    }
+  return sum / float(split * split);
+}

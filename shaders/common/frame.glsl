@@ -10,7 +10,15 @@ layout(std430, binding = PN_SSBO_OBJECTS) readonly buffer ObjectBlock { ObjectGp
 
 const float kPi = 3.14159265358979;
 
-bool isSpotLight() { return u_frame.lightDirection.w == float(PN_LIGHT_SPOT); }
+// The light's kind: a compile-time constant in the visibility pass (PN_LIGHT_KIND, from
+// FrameContext), read from the frame block elsewhere.
+bool isSpotLight() {
+#ifdef PN_LIGHT_KIND
+  return PN_LIGHT_KIND == PN_LIGHT_SPOT;
+#else
+  return u_frame.lightDirection.w == float(PN_LIGHT_SPOT);
+#endif
+}
 
 // Unit vector from a surface point toward the light's centre.
 vec3 toLight(vec3 wsPosition) {

@@ -13,6 +13,10 @@
 // are linear map depths. Outputs per map axis (xy): a view's extent may differ between x and y.
 #include "common/shadow.glsl"
 
+// Below this blocker fraction a search region holds no blocker worth a penumbra: fully lit
+// (msm-soft, evsm-soft: the fraction their blocker estimate gives).
+const float kMinBlockerFraction = 0.01;
+
 // Distances are divided by at most this little (m): a point at the light's centre has no
 // meaningful penumbra, and the guard keeps it finite.
 const float kMinLightDistanceM = 1e-6;

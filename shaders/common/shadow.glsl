@@ -1,9 +1,21 @@
 #pragma once
 // Shadow-map addressing shared by every filter: which view (cascade) covers a point, where the
 // point falls in that view's map, its linear light depth, and the world size of one texel there.
+// In the visibility pass what the frame is made of is known when the program is built
+// (FrameContext::visibilityProgram): PN_SHADOW_VIEWS (the view count), PN_VIEWS_PERSPECTIVE and
+// PN_VIEWS_WARPED (0 or 1, when every view agrees; a spot light's psm view is both) and
+// PN_CASCADE_BLEND (a blend band between views) are compile-time constants there, so a one-view
+// frame selects no view, blends nothing and indexes its view's data with a constant. Other
+// passes read the same facts from the shadow block.
 #include "common/frame.glsl"
 
-int shadowViewCount() { return u_shadow.info.x; }
+int shadowViewCount() {
+#ifdef PN_SHADOW_VIEWS
+  return PN_SHADOW_VIEWS;
+#else
+  return u_shadow.info.x;
+#endif
+}
 float shadowMapSize() { return float(u_shadow.info.y); }
 
 // Linear light-space depth in [0,1] (docs/design.md: shadow maps store linear depth).
@@ -15,7 +27,13 @@ float lightDistance(int view, vec3 ws) {
   return r.x + lightDepth(view, ws) * (r.y - r.x);
 }
 
-bool isPerspectiveView(int view) { return u_shadow.views[view].range.z > 0.5; }
+bool isPerspectiveView(int view) {
+#ifdef PN_VIEWS_PERSPECTIVE
+  return PN_VIEWS_PERSPECTIVE != 0;
+#else
+  return u_shadow.views[view].range.z > 0.5;
+#endif
+}
 
 // xy: map uv in [0,1]; z: linear depth in [0,1].
 vec3 shadowCoord(int view, vec3 ws) {
@@ -24,7 +42,13 @@ vec3 shadowCoord(int view, vec3 ws) {
 }
 
 // psm/tsm: clipFromWorld carries a projective warp, so a texel's size depends on where it is.
-bool isWarpedView(int view) { return u_shadow.views[view].extent.w > 0.5; }
+bool isWarpedView(int view) {
+#ifdef PN_VIEWS_WARPED
+  return PN_VIEWS_WARPED != 0;
+#else
+  return u_shadow.views[view].extent.w > 0.5;
+#endif
+}
 
 // Gradients (per world metre) of the map's u and v at ws: uv = 0.5 + 0.5·clip.xy / clip.w.
 void shadowUvGradients(int view, vec3 ws, out vec3 gradU, out vec3 gradV) {
@@ -95,7 +119,11 @@ int g_forcedShadowView = -1;
 
 // The view (cascade) a filter should use for this point.
 int selectShadowView(vec3 ws) {
+#if defined(PN_SHADOW_VIEWS) && PN_SHADOW_VIEWS == 1
+  return 0;
+#else
   return g_forcedShadowView >= 0 ? g_forcedShadowView : shadowViewAtDepth(cameraViewDepth(ws));
+#endif
 }
 
 // Cascade blend: within the band (extent.z metres of camera depth) before a split, visibility is
@@ -109,11 +137,15 @@ struct ShadowViewBlend {
 };
 
 ShadowViewBlend shadowViewBlend(vec3 ws) {
-  float depth = cameraViewDepth(ws);
   ShadowViewBlend b;
+  b.weight = 0.0;
+#if defined(PN_SHADOW_VIEWS) && PN_SHADOW_VIEWS == 1
+  b.first = b.second = 0;
+#else
+  float depth = cameraViewDepth(ws);
   b.first = shadowViewAtDepth(depth);
   b.second = b.first;
-  b.weight = 0.0;
+#if !defined(PN_CASCADE_BLEND) || PN_CASCADE_BLEND
   float band = u_shadow.views[b.first].extent.z;
   if (b.first < shadowViewCount() - 1 && band > 0.0) {
     float start = u_shadow.views[b.first].range.w - band;
@@ -122,6 +154,8 @@ ShadowViewBlend shadowViewBlend(vec3 ws) {
       b.weight = clamp((depth - start) / band, 0.0, 1.0);
     }
   }
+#endif
+#endif
   return b;
 }
 

@@ -1,5 +1,6 @@
 // G-buffer pass: world position, shading and geometric normals (both turned toward the camera,
-// so open meshes shade from either side), base colour.
+// so open meshes shade from either side), base colour, and which triangle the pixel shows: the
+// reference skips that triangle's own hits instead of lifting rays off it (docs/reference.md).
 #include "common/frame.glsl"
 #include "common/material.glsl"
 
@@ -11,6 +12,9 @@ layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_geoNormal;
 layout(location = 3) out vec4 o_albedo;
+// (object index + 1, triangle index in the object's mesh); 0 = none (cleared background).
+// gl_PrimitiveID counts from 0 in each draw, and GpuScene draws one object's whole mesh per call.
+layout(location = 4) out uvec2 o_triangle;
 
 void main() {
   alphaTest(v_uv);
@@ -24,4 +28,5 @@ void main() {
   o_normal = vec4(n, 0.0);
   o_geoNormal = vec4(g, 0.0);
   o_albedo = vec4(materialBaseColor(v_uv), 1.0);
+  o_triangle = uvec2(uint(u_object) + 1u, uint(gl_PrimitiveID));
 }

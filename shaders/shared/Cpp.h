@@ -13,7 +13,9 @@ using mat4 = glm::mat4;
 }  // namespace penumbra::gpu
 #define PN_GPU_BEGIN namespace penumbra::gpu {
 #define PN_GPU_END }
+#define PN_SHARED_FN inline  // a function written once for both languages (GLSL's subset of C++)
 #else
 #define PN_GPU_BEGIN
 #define PN_GPU_END
+#define PN_SHARED_FN
 #endif

@@ -10,12 +10,6 @@
 #define PN_DENSITY_LOG2_LO -4.0f
 #define PN_DENSITY_LOG2_HI 6.0f
 
-#ifdef __cplusplus
-#define PN_SHARED_FN inline
-#else
-#define PN_SHARED_FN
-#endif
-
 PN_GPU_BEGIN
 
 // Display-referred RGB in [0,1] (written to the 8-bit image as is); alpha 1.

@@ -120,6 +120,7 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
   const uint64_t key = cacheKey(scene, options.resolution);
   const fs::path path = cacheFilePath(dir, key);
   if (std::optional<SdfVolume> cached = load(path, key)) {
+    touchCacheEntry(path);  // used: the last to be evicted
     cached->stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(*cached);
   }
@@ -128,9 +129,13 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
   PN_CHECK(!error && fs::is_directory(dir),
            fmt::format("sdf cache: cannot create directory '{}' ({}); set PENUMBRA_CACHE to a writable directory",
                        dir.string(), error ? error.message() : "not a directory"));
+  const std::uintmax_t maxBytes = defaultCacheMaxBytes();  // a bad variable stops us before the bake
   SdfVolume v = bake(scene, options);
   v.stats.cacheKey = key;
-  if (!v.empty()) store(path, v);  // a scene without casters costs nothing to "bake"
+  if (!v.empty()) {  // a scene without casters costs nothing to "bake"
+    store(path, v);
+    trimCache(dir, maxBytes);
+  }
   return v;
 }
 

@@ -76,6 +76,15 @@ void Parameterized::setParam(std::string_view key, std::string_view text) {
 
 float Parameterized::param(std::string_view key) const { return mValues[indexOf(key)]; }
 
+std::vector<std::pair<std::string_view, int>> Parameterized::compileTimeConstants() const {
+  std::vector<std::pair<std::string_view, int>> out;
+  for (size_t i = 0; i < mDescs.size(); ++i) {
+    PN_ASSERT(mDescs[i].define.empty() || mDescs[i].isInteger());
+    if (!mDescs[i].define.empty()) out.emplace_back(mDescs[i].define, static_cast<int>(mValues[i]));
+  }
+  return out;
+}
+
 namespace {
 constexpr ParamDesc kSceneParams[] = {
     {"light.size", "Light size",

@@ -74,7 +74,9 @@ SavedGlState::SavedGlState() {
 void SavedGlState::restore() const {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(mDrawFramebuffer));
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(mReadFramebuffer));
-  glUseProgram(static_cast<GLuint>(mProgram));
+  // A program the caller deleted while it was current lived on only while current: once the
+  // core used its own, it is gone and cannot be made current again.
+  glUseProgram(glIsProgram(static_cast<GLuint>(mProgram)) ? static_cast<GLuint>(mProgram) : 0);
   glBindVertexArray(static_cast<GLuint>(mVertexArray));
   glViewport(mViewport[0], mViewport[1], mViewport[2], mViewport[3]);
   glDepthFunc(static_cast<GLenum>(mDepthFunc));

@@ -1,6 +1,7 @@
 #include "frame/FrameContext.h"
 
 #include "shared/Bindings.h"
+#include "shared/Enums.h"
 #include "shared/VisibilityPoints.h"
 
 #include <penumbra/Error.h>
@@ -16,17 +17,42 @@ const gl::Program& FrameContext::shadowProgram(std::string_view fragment, const 
   return mShaders.program(d);
 }
 
+ShaderDefines FrameContext::frameDefines() const {
+  ShaderDefines d;
+  d.set("PN_SHADOW_VIEWS", viewCount());
+  d.set("PN_LIGHT_KIND", mLight.type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
+  // Perspective and warped are two facts (psm's view of a spot light is both); each is compiled
+  // in when every view agrees on it.
+  bool allPerspective = true, nonePerspective = true, allWarped = true, noneWarped = true;
+  for (const ShadowView& v : mFrusta.views) {
+    (v.perspective ? nonePerspective : allPerspective) = false;
+    (v.warped ? noneWarped : allWarped) = false;
+  }
+  if (allPerspective != nonePerspective) d.set("PN_VIEWS_PERSPECTIVE", allPerspective ? 1 : 0);
+  if (allWarped != noneWarped) d.set("PN_VIEWS_WARPED", allWarped ? 1 : 0);
+  d.set("PN_CASCADE_BLEND", viewCount() > 1 && mFrusta.blendBandM > 0.0f ? 1 : 0);
+  return d;
+}
+
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "visibility " + std::string(filterFile);
   d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
-  d.defines = defines;
+  d.defines = frameDefines();
+  d.defines.merge(defines);
   if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
     d.label += " (points)";
     d.defines.set("PN_VISIBILITY_POINTS");
   }
   return mShaders.program(d);
+}
+
+const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const Parameterized& params,
+                                                  const ShaderDefines& defines) {
+  ShaderDefines all;
+  for (const auto& [name, value] : params.compileTimeConstants()) all.set(std::string(name), value);
+  return visibilityProgram(filterFile, all.merge(defines));
 }
 
 void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {

@@ -61,8 +61,15 @@ public:
   const gl::Program& shadowProgram(std::string_view fragment = "passes/shadow_depth.frag.glsl",
                                    const ShaderDefines& defines = {});
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
-  /// compiled for the frame's SurfaceSource (PN_SURFACE_FROM_DEPTH) and points mode.
+  /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
+  /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
+  /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
+  const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
+                                       const ShaderDefines& defines = {});
+  /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
+  /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
+  ShaderDefines frameDefines() const;
 
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
   /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the

@@ -1,7 +1,9 @@
 #pragma once
 // Per-pass GPU times. Real GPUs: GL_TIME_ELAPSED queries. Software rasterisers (llvmpipe),
 // whose timer queries read 0 for real work: glFinish + std::chrono::steady_clock around the
-// pass. Which clock produced a number is recorded with it (PassTimings::clock).
+// pass, or with PENUMBRA_CLOCK=cpu the CPU time of the whole process (every driver thread), which
+// a shared, loaded machine disturbs far less. Which clock produced a number is recorded with it
+// (PassTimings::clock).
 #include "gl/Objects.h"
 
 #include <penumbra/Timings.h>
@@ -14,7 +16,8 @@ namespace penumbra {
 
 class PassTimer {
 public:
-  explicit PassTimer(bool useCpuClock) : mCpuClock(useCpuClock) {}
+  /// useCpuClock: a software rasteriser (time on the CPU side, see above).
+  explicit PassTimer(bool useCpuClock);
   void beginFrame();
   void begin(std::string name);
   void end();
@@ -28,6 +31,8 @@ private:
     double cpuMs = 0.0;
   };
   bool mCpuClock;
+  bool mProcessTime;  ///< PENUMBRA_CLOCK=cpu: process CPU time instead of the wall clock
+  double mStartCpuMs = 0.0;
   std::vector<Entry> mEntries;
   std::vector<gl::Query> mPool;  // reused across frames: no GL object growth
   std::chrono::steady_clock::time_point mStart;

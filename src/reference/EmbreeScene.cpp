@@ -44,6 +44,26 @@ float alphaAt(const Image& image, glm::vec2 uv) {
   return static_cast<float>(image.rgba[4 * texel + 3]) / 255.0f;
 }
 
+/// An intersection context that knows which triangle the ray left: Embree passes the context to
+/// the context filter, so the receiver travels with the ray and no state is shared between rays.
+struct SkipContext {
+  RTCIntersectContext context;  // first: Embree sees a pointer to it
+  TriangleId skip;
+};
+
+/// Rejects hits on the receiver's own triangle: a flat triangle cannot shadow its own points
+/// toward directions above its plane (those below are never traced), so every such hit is a
+/// self-intersection caused by the position's rounding.
+void skipReceiverFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const SkipContext*>(args->context);
+  for (unsigned int i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (RTCHitN_geomID(args->hit, args->N, i) == c->skip.object &&
+        RTCHitN_primID(args->hit, args->N, i) == c->skip.triangle)
+      args->valid[i] = 0;
+  }
+}
+
 void alphaOcclusionFilter(const RTCFilterFunctionNArguments* args) {
   const auto* mask = static_cast<const AlphaMaskGeometry*>(args->geometryUserPtr);
   for (unsigned int i = 0; i < args->N; ++i) {
@@ -93,20 +113,24 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   checkDevice(device, mErrors, "creating a scene");
   RTCScene rtcScene = mScene.get();
   // Robust mode: watertight edges, so no shadow ray slips between two triangles of a mesh.
-  rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
+  // Context filters: occluded() skips the receiver's own triangle (skipReceiverFilter).
+  rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(rtcScene, RTC_BUILD_QUALITY_HIGH);
 
   Hasher hash;
-  for (const Object& object : scene.objects) {
+  PN_CHECK(scene.objects.size() < TriangleId::kNoObject, "reference: too many objects for Embree's geometry IDs");
+  for (uint32_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex) {
+    const Object& object = scene.objects[objectIndex];
     if (!object.castsShadow) continue;
     const Mesh& mesh = scene.meshes[object.mesh];
     const size_t triangles = mesh.triangleCount();
     if (triangles == 0) continue;
 
-    // Attached right away: the scene owns it from here, so an exception cannot leak it.
+    // Attached right away: the scene owns it from here, so an exception cannot leak it. Its ID
+    // is the object's index: the G-buffer names receivers that way.
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     checkDevice(device, mErrors, fmt::format("creating the geometry of '{}'", object.name));
-    rtcAttachGeometry(rtcScene, geometry);
+    rtcAttachGeometryByID(rtcScene, geometry, objectIndex);
     rtcReleaseGeometry(geometry);
     auto* vertices = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertices.size()));
@@ -146,25 +170,24 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   checkDevice(device, mErrors, "building the BVH");
   hash.value(mCasterTriangles);
   mGeometryHash = hash.digest();
-
-  const Aabb bounds = scene.bounds();
-  const glm::vec3 farthest = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
-  mSceneScaleM = std::max({bounds.radius(), farthest.x, farthest.y, farthest.z});
 }
 
 void EmbreeScene::ReleaseDevice::operator()(RTCDevice device) const { rtcReleaseDevice(device); }
 void EmbreeScene::ReleaseScene::operator()(RTCScene scene) const { rtcReleaseScene(scene); }
 
-bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tFar) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar,
+                           TriangleId skip) const {
+  SkipContext c;
+  rtcInitIntersectContext(&c.context);
+  c.skip = skip;
+  if (skip.object != TriangleId::kNoObject) c.context.filter = skipReceiverFilter;
   RTCRay ray{};
   ray.org_x = origin.x; ray.org_y = origin.y; ray.org_z = origin.z;
   ray.dir_x = direction.x; ray.dir_y = direction.y; ray.dir_z = direction.z;
-  ray.tnear = 0.0f;
+  ray.tnear = tNear;
   ray.tfar = tFar;
   ray.mask = std::numeric_limits<unsigned int>::max();
-  rtcOccluded1(mScene.get(), &context, &ray);
+  rtcOccluded1(mScene.get(), &c.context, &ray);
   return ray.tfar == -std::numeric_limits<float>::infinity();  // Embree's "hit something"
 }
 

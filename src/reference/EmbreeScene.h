@@ -1,6 +1,9 @@
 #pragma once
 // Embree 3 BVH of a Scene's shadow casters in world space: the same triangles, with the same
-// transforms, that the renderer rasterises. Answers occlusion queries only.
+// transforms, that the renderer rasterises. Answers occlusion queries only. Each caster's geometry
+// ID is its index in Scene::objects and its primitive IDs are its mesh's triangle indices, the
+// numbering the G-buffer records (GBufferData::triangle), so a ray can skip its receiver's own
+// triangle.
 #include <penumbra/Scene.h>
 
 #include <glm/glm.hpp>
@@ -29,6 +32,12 @@ struct EmbreeErrorLog {
   std::string last;
 };
 
+/// A triangle: object index in Scene::objects, triangle index in its mesh.
+struct TriangleId {
+  static constexpr uint32_t kNoObject = ~0u;  ///< no triangle
+  uint32_t object = kNoObject, triangle = 0;
+};
+
 class EmbreeScene {
 public:
   /// Throws penumbra::Error if Embree fails (the message is Embree's).
@@ -36,14 +45,13 @@ public:
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  /// True when a caster lies on the segment origin + t·direction, t in [0, tFar].
-  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tFar) const;
+  /// True when a caster lies on the segment origin + t·direction, t in [tNear, tFar], other
+  /// than the triangle `skip` (none when skip.object = TriangleId::kNoObject).
+  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar,
+                TriangleId skip = {}) const;
 
   /// Hash of the world-space caster triangles and alpha masks (part of the cache key).
   uint64_t geometryHash() const { return mGeometryHash; }
-  /// Size of the scene (m), from the world bounds of every object: the largest of its bounding
-  /// radius and its largest absolute coordinate (float spacing grows with |coordinates|).
-  float sceneScaleM() const { return mSceneScaleM; }
   size_t casterTriangles() const { return mCasterTriangles; }
 
 private:
@@ -55,7 +63,6 @@ private:
   std::vector<Image> mImages;  // copies: the filter reads them after the Scene is gone
   std::vector<std::unique_ptr<AlphaMaskGeometry>> mAlphaMasks;  // stable addresses for Embree
   uint64_t mGeometryHash = 0;
-  float mSceneScaleM = 1.0f;
   size_t mCasterTriangles = 0;
 };
 

@@ -102,6 +102,7 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
   // Derived, not stored: recomputing it is exact and keeps the file a fifth smaller.
   r.approximationError.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) r.approximationError[i] = r.shadingSplit[i] - r.shadingExact[i];
+  touchCacheEntry(cacheFilePath(dir, key));  // used: the last to be evicted
   return r;
 }
 

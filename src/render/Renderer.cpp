@@ -38,7 +38,7 @@ struct Renderer::Impl {
   gl::Buffer frameBlock{"renderer frame block", sizeof(gpu::FrameUniforms)};
   // Screen targets
   glm::ivec2 size{0};
-  gl::Texture position, normal, geoNormal, albedo, depth, color;
+  gl::Texture position, normal, geoNormal, albedo, triangle, depth, color;
   gl::Framebuffer gbuffer;
   int frameIndex = 0;
   int mapSize = 0;                   // of the last frame
@@ -57,6 +57,7 @@ struct Renderer::Impl {
     normal = make("gbuffer normal", GL_RGBA16F);
     geoNormal = make("gbuffer geometric normal", GL_RGBA16F);
     albedo = make("gbuffer albedo", GL_RGBA8);
+    triangle = make("gbuffer triangle", GL_RG32UI);
     depth = make("gbuffer depth", GL_DEPTH_COMPONENT32F);
     color = make("color", GL_RGBA8);
     gbuffer = gl::Framebuffer("gbuffer");
@@ -64,8 +65,9 @@ struct Renderer::Impl {
     gbuffer.attach(GL_COLOR_ATTACHMENT1, normal);
     gbuffer.attach(GL_COLOR_ATTACHMENT2, geoNormal);
     gbuffer.attach(GL_COLOR_ATTACHMENT3, albedo);
+    gbuffer.attach(GL_COLOR_ATTACHMENT4, triangle);
     gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
-    gbuffer.finish(4);
+    gbuffer.finish(5);
     size = s;
   }
 
@@ -131,6 +133,8 @@ void Renderer::render(const RenderOptions& options) {
     const float zero[4] = {0, 0, 0, 0};
     const float farDepth = 0.0f;  // reversed-Z
     for (GLint i = 0; i < 4; ++i) glClearNamedFramebufferfv(im.gbuffer.id(), GL_COLOR, i, zero);
+    const GLuint noTriangle[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferuiv(im.gbuffer.id(), GL_COLOR, 4, noTriangle);
     glClearNamedFramebufferfv(im.gbuffer.id(), GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
@@ -254,6 +258,8 @@ GBufferData Renderer::readGBuffer() const {
   read(mImpl->geoNormal, g.geoNormal);
   read(mImpl->normal, g.normal);
   read(mImpl->albedo, g.albedo);
+  g.triangle.resize(n);
+  mImpl->triangle.read(GL_RG_INTEGER, GL_UNSIGNED_INT, g.triangle.data(), n * sizeof(glm::uvec2));
   return g;
 }
 

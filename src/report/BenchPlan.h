@@ -4,6 +4,8 @@
 // (no GL): the expansion into configurations is unit-tested (tests/unit/BenchReportTest.cpp).
 #include <penumbra/Params.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -61,6 +63,8 @@ struct BenchSettings {
   double maxSecondsPerConfig = 4.0;
   int referenceSamples = 256;     ///< light samples per pixel of the ray-traced reference
   bool useCache = true;           ///< on-disk reference cache
+  /// Cap of the cache folder in bytes (ReferenceOptions::cacheMaxBytes); unset = the default.
+  std::optional<std::uintmax_t> cacheMaxBytes;
   /// Timed rounds of the micro-benchmarks (each round runs every block once, interleaved). Nine,
   /// as timedFrames: each visibility pass is timed in a whole frame, ~0.4 s at 1280×720 on llvmpipe.
   int microRepetitions = 9;

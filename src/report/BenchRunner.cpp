@@ -120,6 +120,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
         ReferenceOptions ro;
         ro.samples = set.referenceSamples;
         ro.useCache = set.useCache;
+        ro.cacheMaxBytes = set.cacheMaxBytes;
         ro.progress = false;  // the bench's own bar is on screen
         references[light] = tracer->trace(renderer.readGBuffer(), renderer.scene().light(), ro);
       }

@@ -12,9 +12,9 @@
 namespace penumbra::report {
 
 /// Pairs of filters whose cost ratio the report tabulates (numerator, denominator): more moments
-/// against fewer, and a soft variant against its base.
+/// against fewer, a warp against the plain moments, and a soft variant against its base.
 inline constexpr std::pair<const char*, const char*> kCostRatioPairs[] = {
-    {"msm", "vsm"}, {"msm-soft", "vssm"}, {"pcss", "pcf"}};
+    {"msm", "vsm"}, {"msm-soft", "vssm"}, {"pcss", "pcf"}, {"esm", "vsm"}, {"evsm", "vsm"}, {"evsm-soft", "vssm"}};
 
 /// The page as text.
 std::string htmlReport(const BenchResults& results);

@@ -1,4 +1,5 @@
 // Procedural shapes with outward normals and counter-clockwise front faces.
+#include <penumbra/Error.h>
 #include <penumbra/Scene.h>
 
 #include <glm/gtc/constants.hpp>
@@ -70,6 +71,24 @@ Mesh makePlane(float sizeX, float sizeZ) {
   Mesh m;
   m.name = "plane";
   addQuad(m, {-0.5f * sizeX, 0, 0.5f * sizeZ}, {sizeX, 0, 0}, {0, 0, -sizeZ}, {sizeX, sizeZ});
+  return m;
+}
+
+Mesh makeGrid(float sizeX, float sizeZ, int cells) {
+  PN_CHECK(cells >= 1, "makeGrid: at least one cell");
+  Mesh m;
+  m.name = "grid";
+  const float n = static_cast<float>(cells);
+  // makePlane's layout: uv (0, 0) at (−x, +z), u along +x, v along −z.
+  for (int j = 0; j <= cells; ++j)
+    for (int i = 0; i <= cells; ++i) {
+      const glm::vec2 uv{static_cast<float>(i) / n, static_cast<float>(j) / n};
+      m.vertices.push_back({{(uv.x - 0.5f) * sizeX, 0.0f, (0.5f - uv.y) * sizeZ}, {0, 1, 0}, uv});
+    }
+  const auto at = [cells](int i, int j) { return static_cast<uint32_t>(j * (cells + 1) + i); };
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i)
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
   return m;
 }
 

@@ -2,6 +2,9 @@
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
 
+#include "shadows/filters/EsmFilter.h"
+#include "shadows/filters/EvsmFilter.h"
+#include "shadows/filters/EvsmSoftFilter.h"
 #include "shadows/filters/HardFilter.h"
 #include "shadows/filters/PcfFilter.h"
 #include "shadows/filters/PcssFilter.h"
@@ -50,6 +53,9 @@ const std::vector<Entry<Filter>>& filters() {
       {"vssm", [] { return std::make_unique<VssmFilter>(); }},
       {"msm", [] { return std::make_unique<MsmFilter>(); }},
       {"msm-soft", [] { return std::make_unique<MsmSoftFilter>(); }},
+      {"esm", [] { return std::make_unique<EsmFilter>(); }},
+      {"evsm", [] { return std::make_unique<EvsmFilter>(); }},
+      {"evsm-soft", [] { return std::make_unique<EvsmSoftFilter>(); }},
   };
   return list;
 }

@@ -16,8 +16,10 @@ namespace {
 // that Embree's threads stay busy within a band.
 constexpr int kBandRows = 8;
 
+/// Rows [y0, y1) of a per-pixel array; an empty array (an optional G-buffer field) stays empty.
 template <class T>
 std::vector<T> rows(const std::vector<T>& all, int width, int y0, int y1) {
+  if (all.empty()) return {};
   const auto w = static_cast<std::ptrdiff_t>(width);
   return std::vector<T>(all.begin() + y0 * w, all.begin() + y1 * w);
 }
@@ -79,6 +81,7 @@ void HeatmapJob::run(Scene scene, GBufferData g, std::vector<float> v, ColorImag
       band.geoNormal = rows(g.geoNormal, g.width, y0, y1);
       band.normal = rows(g.normal, g.width, y0, y1);
       band.albedo = rows(g.albedo, g.width, y0, y1);
+      band.triangle = rows(g.triangle, g.width, y0, y1);
       const ReferenceResult r = tracer.trace(band, scene.light(), options);
       std::copy(r.visibility.begin(), r.visibility.end(), vRef.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
       std::copy(r.litMask.begin(), r.litMask.end(), mask.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);

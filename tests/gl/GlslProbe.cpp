@@ -1,5 +1,8 @@
 #include "GlslProbe.h"
 
+#include "GlFixture.h"
+#include "shared/Bindings.h"
+
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
@@ -42,6 +45,22 @@ gl::Program compileProbe(const std::string& label, const std::string& main, cons
     throw Error(fmt::format("probe '{}' failed to link:\n{}", label, log.c_str()));
   }
   return gl::Program(label, program);
+}
+
+std::vector<glm::vec4> runProbeCases(const std::string& label, const std::string& main,
+                                     const std::vector<glm::vec4>& inputs, const ShaderDefines& defines) {
+  glContext();
+  const gl::Program program = compileProbe(label, main, defines);
+  gl::Buffer in(label + " in", inputs.size() * sizeof(glm::vec4), inputs.data());
+  std::vector<glm::vec4> out(inputs.size(), glm::vec4(-1.0f));
+  gl::Buffer outBuffer(label + " out", out.size() * sizeof(glm::vec4), out.data());
+  in.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
+  outBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_TEST);
+  program.use();
+  glDispatchCompute(static_cast<GLuint>(inputs.size()), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  outBuffer.download(out.data(), out.size() * sizeof(glm::vec4));
+  return out;
 }
 
 }  // namespace penumbra::test

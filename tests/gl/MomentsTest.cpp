@@ -15,29 +15,6 @@ using namespace penumbra::test;
 
 namespace {
 
-// Runs `main` over `inputs` (one vec4 per case at PN_SSBO_AUX) and returns one vec4 per case.
-std::vector<glm::vec4> runCases(const std::string& label, const std::string& main, const std::vector<glm::vec4>& inputs) {
-  glContext();
-  const gl::Program program = compileProbe(label, main);
-  gl::Buffer in(label + " in", inputs.size() * sizeof(glm::vec4), inputs.data());
-  std::vector<glm::vec4> out(inputs.size(), glm::vec4(-1.0f));
-  gl::Buffer outBuffer(label + " out", out.size() * sizeof(glm::vec4), out.data());
-  in.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_AUX);
-  outBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_TEST);
-  program.use();
-  glDispatchCompute(static_cast<GLuint>(inputs.size()), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  outBuffer.download(out.data(), out.size() * sizeof(glm::vec4));
-  return out;
-}
-
-constexpr const char* kProbeHeader = R"(
-#include "shared/Bindings.h"
-layout(local_size_x = 1) in;
-layout(std430, binding = PN_SSBO_AUX) readonly buffer In { vec4 i_cases[]; };
-layout(std430, binding = PN_SSBO_TEST) writeonly buffer Out { vec4 o_results[]; };
-)";
-
 // A discrete depth distribution: points z_i with weights w_i (summing to 1).
 struct Distribution {
   std::vector<double> z, w;
@@ -90,7 +67,7 @@ TEST(Moments, ChebyshevBoundForKnownMeanVarianceDepth) {
   constexpr double kA = 0.2, kT = 0.7, kQ = 0.35;
   const double mu = kQ * kT + (1 - kQ) * kA, var = kQ * (1 - kQ) * (kT - kA) * (kT - kA);
   in.emplace_back(mu, var, kT, 0.0f);
-  const std::vector<glm::vec4> out = runCases("chebyshev", std::string(kProbeHeader) + R"(
+  const std::vector<glm::vec4> out = runProbeCases("chebyshev", std::string(kProbeCaseHeader) + R"(
 #include "common/chebyshev.glsl"
 void main() {
   vec4 c = i_cases[gl_GlobalInvocationID.x];
@@ -115,7 +92,7 @@ TEST(Moments, QuantisationTransformRoundTrips) {
   std::vector<glm::vec4> in;
   constexpr int kDepths = 101;
   for (int i = 0; i < kDepths; ++i) in.emplace_back(static_cast<float>(i) / (kDepths - 1), 0.0f, 0.0f, 0.0f);
-  const std::vector<glm::vec4> out = runCases("quantisation", std::string(kProbeHeader) + R"(
+  const std::vector<glm::vec4> out = runProbeCases("quantisation", std::string(kProbeCaseHeader) + R"(
 #include "common/moments.glsl"
 shared vec4 unusedShared;
 void main() {
@@ -174,7 +151,7 @@ TEST(Moments, HamburgerBoundOnTwoAndThreeDepthDistributions) {
     in.emplace_back(m[1], m[2], m[3], m[4]);
     in.emplace_back(ts[i], quantised[i] ? kAlpha16 : kAlpha, quantised[i], 0.0);
   }
-  std::vector<glm::vec4> pairs = runCases("hamburger", std::string(kProbeHeader) + R"(
+  std::vector<glm::vec4> pairs = runProbeCases("hamburger", std::string(kProbeCaseHeader) + R"(
 #include "common/moments.glsl"
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -221,7 +198,7 @@ TEST(Moments, TwoDepthBlockerSearchRecoversTheOccluder) {
   const Distribution d{{0.3, 0.8}, {0.4, 0.6}};
   const auto m = d.moments();
   const std::vector<glm::vec4> in = {{m[1], m[2], m[3], m[4]}, {0.6f, 3e-5f, 0.0f, 0.0f}};
-  const std::vector<glm::vec4> out = runCases("blocker", std::string(kProbeHeader) + R"(
+  const std::vector<glm::vec4> out = runProbeCases("blocker", std::string(kProbeCaseHeader) + R"(
 #include "common/moments.glsl"
 void main() {
   if (gl_GlobalInvocationID.x != 0u) return;
@@ -244,7 +221,7 @@ TEST(Moments, OneDepthRegionSurvivesRounding) {
   for (float z : {0.1f, 0.37f, 0.5f, 0.61f, 0.83f, 0.97f})
     for (float alpha : {0.0f, 1e-8f, 1e-7f, 1e-6f})
       for (float dt : {-0.02f, 0.02f}) in.emplace_back(z, alpha, z + dt, 0.0f);
-  const std::vector<glm::vec4> out = runCases("one-depth", std::string(kProbeHeader) + R"(
+  const std::vector<glm::vec4> out = runProbeCases("one-depth", std::string(kProbeCaseHeader) + R"(
 #include "common/moments.glsl"
 void main() {
   uint i = gl_GlobalInvocationID.x;

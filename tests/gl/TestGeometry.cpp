@@ -1,5 +1,7 @@
 #include "TestGeometry.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <cmath>
 #include <random>
 
@@ -77,6 +79,23 @@ FloorProbes floorProbes(const Scene& scene, const GBufferData& g, size_t perKind
     else if (occ == 0.0f && out.lit.size() < perKind) out.lit.push_back(i);
   }
   return out;
+}
+
+std::vector<uint8_t> floorNearCasters(const Scene& scene, const GBufferData& g, std::span<const uint8_t> mask,
+                                      float bandM) {
+  constexpr float kRayHeightM = 0.02f;  // above the floor, below any caster's lowest edge
+  constexpr int kDirections = 8;
+  const CasterTriangles casters(scene);
+  std::vector<uint8_t> band(mask.size(), 0);
+  for (size_t i = 0; i < band.size(); ++i) {
+    if (!mask[i] || !onFloor(g.position[i])) continue;
+    const glm::vec3 origin = glm::vec3(g.position[i]) + glm::vec3(0.0f, kRayHeightM, 0.0f);
+    for (int d = 0; d < kDirections && !band[i]; ++d) {
+      const float a = glm::two_pi<float>() * static_cast<float>(d) / kDirections;
+      band[i] = casters.blocked(origin, glm::vec3(std::cos(a), 0.0f, std::sin(a)), 0.0f, bandM) ? 1 : 0;
+    }
+  }
+  return band;
 }
 
 }  // namespace penumbra::test

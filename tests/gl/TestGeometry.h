@@ -6,6 +6,7 @@
 #include <penumbra/Scene.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace penumbra::test {
@@ -40,5 +41,11 @@ struct FloorProbes {
 /// centre: far enough from any shadow edge to be dark / lit for a small light.
 FloorProbes floorProbes(const Scene& scene, const GBufferData& g, size_t perKind, float jitterM, uint32_t seed,
                         int maxTries);
+
+/// A mask (1 = in) of the pixels of `mask` that lie on the floor within bandM, horizontally, of
+/// a caster: where casters stand on the floor (contacts). Found by horizontal rays in 8
+/// directions from a little above the floor.
+std::vector<uint8_t> floorNearCasters(const Scene& scene, const GBufferData& g, std::span<const uint8_t> mask,
+                                      float bandM);
 
 }  // namespace penumbra::test

@@ -2,6 +2,7 @@
 // triangle winds counter-clockwise seen from outside (its cross-product normal agrees with its
 // vertex normals and points away from the shape's centre). Bias modes, back-face culling and the
 // lit pass all depend on these.
+#include <penumbra/Error.h>
 #include <penumbra/Scene.h>
 
 #include <gtest/gtest.h>
@@ -102,6 +103,23 @@ TEST(Shapes, PlaneFacesUpAndWindsCounterClockwise) {
   const Aabb b = m.bounds();
   EXPECT_NEAR(b.size().x, 4.0f, 1e-6f);
   EXPECT_NEAR(b.size().z, 2.0f, 1e-6f);
+}
+
+TEST(Shapes, GridIsThePlaneCutIntoCellsThatShareTheirEdges) {
+  const Mesh m = makeGrid(4.0f, 2.0f, 3);
+  ASSERT_EQ(m.triangleCount(), 2u * 3u * 3u);
+  EXPECT_EQ(m.vertices.size(), 4u * 4u) << "one vertex per grid point: neighbours share edges exactly";
+  expectClean(m, checkShape(m, {0, -1, 0}, 1.0f - kFlatCosTol, [](const glm::vec3& p, const glm::vec3& n) {
+    return near(p.y, 0.0f) && near(n.y, 1.0f);
+  }));
+  const Aabb b = m.bounds();
+  EXPECT_NEAR(b.size().x, 4.0f, 1e-6f);
+  EXPECT_NEAR(b.size().z, 2.0f, 1e-6f);
+  // The uv of makePlane: (0, 0) at (−x, +z).
+  const Mesh plane = makePlane(4.0f, 2.0f);
+  EXPECT_EQ(m.vertices.front().position, plane.vertices.front().position);
+  EXPECT_EQ(m.vertices.front().uv, plane.vertices.front().uv);
+  EXPECT_THROW(makeGrid(1.0f, 1.0f, 0), Error);
 }
 
 TEST(Shapes, BoxNormalsAreItsFaceAxesPointingOut) {

@@ -1,6 +1,8 @@
 #pragma once
 // The parameters of a filter that reads a mip chain over the pixel's footprint (vsm and msm:
-// common/footprint.glsl's momentsOverFootprint), declared once for both.
+// common/footprint.glsl's momentsOverFootprint), declared once for both. The footprint switch
+// shapes the lookup's code and reaches it as PN_FOOTPRINT_PIXEL; the tap count stays a uniform
+// (compiled in, the loop was unrolled to its maximum and cost vsm and msm x1.4-1.7).
 #include <penumbra/Params.h>
 
 #include <string_view>
@@ -19,7 +21,7 @@ constexpr ParamDesc footprintParam(std::string_view key) {
   return {key, "Pixel footprint",
           "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, "
           "view-dependent); off: a fixed box of the filter's filterTexels texels, the same from every camera",
-          1.0f, 0.0f, 1.0f, 1.0f, kOffOn};
+          1.0f, 0.0f, 1.0f, 1.0f, kOffOn, "PN_FOOTPRINT_PIXEL"};
 }
 
 /// "<filter>.anisotropy": the most trilinear taps along the footprint's long axis, default 8.

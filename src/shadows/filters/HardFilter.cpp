@@ -13,7 +13,7 @@ static_assert(PN_BIAS_NONE == 0 && PN_BIAS_CONSTANT == 1 && PN_BIAS_SLOPE == 2 &
 
 constexpr ParamDesc kParams[] = {
     {"hard.bias", "Bias", "how self-shadowing (acne) is avoided: none, constant, slope (constant + slope-scaled) or normal (offset along the normal + constant)",
-     PN_BIAS_SLOPE, 0, 3, 1, kBiasModes},
+     PN_BIAS_SLOPE, 0, 3, 1, kBiasModes, "PN_HARD_BIAS"},
     {"hard.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
      0.0002f, 0.0f, 0.05f, 0.0f},
     {"hard.slopeBias", "Slope bias", "slope-scaled offset: multiples of texel size × tan(angle to the light)",
@@ -34,10 +34,9 @@ void HardFilter::renderShadowMaps(FrameContext& frame) {
 void HardFilter::computeVisibility(FrameContext& frame) {
   gpu::HardUniforms u{};
   u.bias = glm::vec4(param("hard.constantBias"), param("hard.slopeBias"), param("hard.normalOffsetTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("hard.bias"), 0, 0, 0);
   frame.setFilterBlock(u);
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl"));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl", *this));
 }
 
 std::vector<DebugImage> HardFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }

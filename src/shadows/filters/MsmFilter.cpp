@@ -16,7 +16,7 @@ constexpr int kStorageFloat32 = 0;
 
 constexpr ParamDesc kParams[] = {
     {"msm.storage", "Storage", "float32: RGBA32F moments (128 bits/texel); quantized16: RGBA16 in the optimised basis of Peters & Klein (64 bits/texel)",
-     kStorageFloat32, 0, 1, 1, kStorageNames},
+     kStorageFloat32, 0, 1, 1, kStorageNames, "PN_MSM_QUANTIZED"},
     momentBiasParam("msm.bias"),
     {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
      0.0f, 0.0f, 0.05f, 0.0f},
@@ -55,11 +55,11 @@ void MsmFilter::prefilter(FrameContext& frame) {
 void MsmFilter::computeVisibility(FrameContext& frame) {
   gpu::MsmUniforms u{};
   u.params = glm::vec4(param("msm.bias"), param("msm.depthBias"), param("msm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("msm.anisotropy"), quantized(*this) ? 1 : 0, paramInt("msm.footprint"), 0);
+  u.mode = glm::ivec4(paramInt("msm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl"));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl", *this));
 }
 
 std::vector<DebugImage> MsmFilter::debugImages() const { return {{"msm-moments", &mMaps.color()}}; }

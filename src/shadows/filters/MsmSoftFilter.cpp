@@ -2,6 +2,7 @@
 
 #include "frame/FrameContext.h"
 #include "shadows/filters/MomentBias.h"
+#include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/msm_soft.shared.h"
 #include "shared/Bindings.h"
 
@@ -12,10 +13,8 @@ constexpr ParamDesc kParams[] = {
     momentBiasParam("msm-soft.bias"),
     {"msm-soft.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
      0.0f, 0.0f, 0.05f, 0.0f},
-    {"msm-soft.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
-     1.0f, 0.5f, 16.0f, 0.0f},
-    {"msm-soft.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
-     512.0f, 1.0f, 4096.0f, 0.0f},
+    softMinRadiusParam("msm-soft.minRadiusTexels"),
+    softMaxRadiusParam("msm-soft.maxRadiusTexels"),
     tightSearchParam("msm-soft.tightSearch"),
 };
 

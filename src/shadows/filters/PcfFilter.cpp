@@ -4,6 +4,8 @@
 #include "shadows/filters/pcf.shared.h"
 #include "shared/Bindings.h"
 
+#include <cmath>
+
 namespace penumbra {
 namespace {
 
@@ -14,11 +16,11 @@ constexpr float kMaxPoissonTaps = 64.0f;
 
 constexpr ParamDesc kParams[] = {
     {"pcf.kernel", "Kernel", "box: a (2·ceil(r)+1)² grid of comparisons, one per texel; poisson: pcf.samples taps of a Poisson disk rotated per pixel",
-     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames},
+     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames, "PN_PCF_KERNEL"},
     {"pcf.radiusTexels", "Radius", "kernel radius in shadow-map texels (0 = one comparison, a hard shadow)",
      2.0f, 0.0f, 32.0f, 0.0f},
     {"pcf.samples", "Samples", "taps of the Poisson kernel (the box kernel's count follows its radius)",
-     16.0f, 1.0f, kMaxPoissonTaps, 1.0f},
+     16.0f, 1.0f, kMaxPoissonTaps, 1.0f, {}, "PN_PCF_SAMPLES"},
     {"pcf.hardwareCompare", "Hardware compare", "on: each tap is the hardware's bilinear 2x2 comparison (sampler2DShadow), smoother edges for the same tap count",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
@@ -48,14 +50,16 @@ void PcfFilter::renderShadowMaps(FrameContext& frame) {
 void PcfFilter::computeVisibility(FrameContext& frame) {
   gpu::PcfUniforms u{};
   u.params = glm::vec4(param("pcf.radiusTexels"), param("pcf.constantBias"), param("pcf.slopeBias"), 0.0f);
-  u.config = glm::ivec4(paramInt("pcf.kernel"), paramInt("pcf.samples"), 0, 0);
   frame.setFilterBlock(u);
   const bool hardware = paramInt("pcf.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
+  // One view: the box kernel's size is known here (cascades hold the radius in metres, so theirs
+  // vary per view and are found in the shader).
+  if (frame.viewCount() == 1) defines.set("PN_PCF_BOX_HALF_SIDE", static_cast<int>(std::ceil(param("pcf.radiusTexels"))));
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   if (hardware) mCompare.bind(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", *this, defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
 }
 

@@ -12,11 +12,11 @@ constexpr float kMaxTaps = 64.0f;
 
 constexpr ParamDesc kParams[] = {
     {"pcss.blockerSamples", "Blocker samples", "taps of the blocker search (box pattern: the largest odd grid with at most this many)",
-     16.0f, 1.0f, kMaxTaps, 1.0f},
+     16.0f, 1.0f, kMaxTaps, 1.0f, {}, "PN_PCSS_BLOCKER_SAMPLES"},
     {"pcss.filterSamples", "Filter samples", "taps of the percentage-closer filter (box pattern: the largest odd grid with at most this many)",
-     32.0f, 1.0f, kMaxTaps, 1.0f},
+     32.0f, 1.0f, kMaxTaps, 1.0f, {}, "PN_PCSS_FILTER_SAMPLES"},
     {"pcss.pattern", "Pattern", "sampling pattern of both steps: box grid or Poisson disk rotated per pixel",
-     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames},
+     PN_KERNEL_POISSON, 0, 1, 1, kKernelNames, "PN_PCSS_PATTERN"},
     {"pcss.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
      1.0f, 0.0f, 8.0f, 0.0f},
     {"pcss.maxRadiusTexels", "Max radius", "largest search and filter radius in texels: bounds the footprint (wider penumbrae are cut to it)",
@@ -47,7 +47,6 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   gpu::PcssUniforms u{};
   u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), param("pcss.minRadiusTexels"),
                        param("pcss.maxRadiusTexels"));
-  u.config = glm::ivec4(paramInt("pcss.blockerSamples"), paramInt("pcss.filterSamples"), paramInt("pcss.pattern"), 0);
   frame.setFilterBlock(u);
   const bool hardware = paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;
@@ -58,7 +57,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   mMaps.depth().bindUnit(PN_TEX_FILTER1);
   if (hardware) mCompare.bind(PN_TEX_FILTER1);
   mPenumbraDebug.bind(frame);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", *this, defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER1);
 }
 

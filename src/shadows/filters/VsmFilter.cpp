@@ -2,6 +2,7 @@
 
 #include "frame/FrameContext.h"
 #include "frame/MipBuilder.h"
+#include "shadows/filters/BleedReduction.h"
 #include "shadows/filters/FootprintParams.h"
 #include "shadows/filters/vsm.shared.h"
 #include "shared/Bindings.h"
@@ -13,9 +14,7 @@ constexpr ParamDesc kParams[] = {
     {"vsm.minVariance", "Min variance",
      "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers",
      4.0f, 0.0f, 64.0f, 0.0f},
-    {"vsm.bleedReduction", "Bleed reduction",
-     "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
-     0.0f, 0.0f, 0.95f, 0.0f},
+    bleedReductionParam("vsm.bleedReduction"),
     footprintWidthParam("vsm.filterTexels"),
     footprintParam("vsm.footprint"),
     footprintAnisotropyParam("vsm.anisotropy"),
@@ -41,11 +40,11 @@ void VsmFilter::prefilter(FrameContext& frame) {
 void VsmFilter::computeVisibility(FrameContext& frame) {
   gpu::VsmUniforms u{};
   u.params = glm::vec4(param("vsm.minVariance"), param("vsm.bleedReduction"), param("vsm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), paramInt("vsm.footprint"), 0, 0);
+  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl"));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl", *this));
 }
 
 std::vector<DebugImage> VsmFilter::debugImages() const { return {{"vsm-moments", &mMaps.color()}}; }

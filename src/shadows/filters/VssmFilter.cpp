@@ -2,6 +2,8 @@
 
 #include "frame/FrameContext.h"
 #include "frame/MipBuilder.h"
+#include "shadows/filters/BleedReduction.h"
+#include "shadows/filters/SoftRegionParams.h"
 #include "shadows/filters/vssm.shared.h"
 #include "shared/Bindings.h"
 
@@ -13,20 +15,15 @@ static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames 
 
 constexpr ParamDesc kParams[] = {
     {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)",
-     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames},
+     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames, "PN_VSSM_SOURCE"},
     {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
      3.0f, 0.0f, 256.0f, 0.0f},
-    {"vssm.bleedReduction", "Bleed reduction", "light-bleeding reduction: visibilities below this are cut to 0 and the rest rescaled (0 = off)",
-     0.0f, 0.0f, 0.95f, 0.0f},
-    {"vssm.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
-     1.0f, 0.5f, 16.0f, 0.0f},
-    {"vssm.maxRadiusTexels", "Max radius", "largest search and filter radius in texels (the cost does not depend on it)",
-     512.0f, 1.0f, 4096.0f, 0.0f},
+    bleedReductionParam("vssm.bleedReduction"),
+    softMinRadiusParam("vssm.minRadiusTexels"),
+    softMaxRadiusParam("vssm.maxRadiusTexels"),
     tightSearchParam("vssm.tightSearch"),
-    {"vssm.mipSplit", "Mip split", "source=mip: each box is read as n x n sub-boxes, each one mip level finer per halving: 1 = one trilinear read of the whole box (its tent weighs twice the box's width), 2 = 2x2, 4 = 4x4 (near the exact box, 16 reads)",
-     2.0f, 1.0f, 4.0f, 1.0f},
-    {"vssm.anisotropy", "Anisotropy", "source=mip: maximum trilinear taps along a non-square box's long axis",
-     4.0f, 1.0f, 16.0f, 1.0f},
+    mipSplitParam("vssm.mipSplit"),
+    mipBoxAnisotropyParam("vssm.anisotropy"),
 };
 
 }  // namespace
@@ -70,9 +67,9 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
     mMaps.color().bindUnit(PN_TEX_FILTER0);
   }
   mPenumbraDebug.bind(frame);
-  ShaderDefines defines = ShaderDefines().set("PN_VSSM_SOURCE", paramInt("vssm.source"));
+  ShaderDefines defines;
   mTightSearch.bind(paramInt("vssm.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", *this, defines));
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {

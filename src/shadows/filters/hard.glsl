@@ -11,10 +11,9 @@ layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_shadowMap;
 
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
-  int mode = u_hard.mode.x;
-  float texelM = shadowTexelWorldSize(view, s.ws);
+  const int mode = PN_HARD_BIAS;
   vec3 ws = s.ws;
-  if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * texelM);
+  if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * shadowTexelWorldSize(view, s.ws));
   vec3 coord = shadowCoord(view, ws);
   if (!insideMap(coord)) return 1.0;
   float bias = 0.0;

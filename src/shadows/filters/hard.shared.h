@@ -5,13 +5,13 @@
 
 PN_GPU_BEGIN
 
+// The bias mode (hard.bias, PN_BIAS_*) is compiled in as PN_HARD_BIAS.
 struct HardUniforms {
   vec4 bias;   // x: constant (linear depth units), y: slope scale (× texel size · tan θ), z: normal offset (texels), w: unused
-  ivec4 mode;  // x: PN_BIAS_*; yzw: unused
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::HardUniforms) == 32, "std140 size of HardUniforms");
+static_assert(sizeof(penumbra::gpu::HardUniforms) == 16, "std140 size of HardUniforms");
 #endif

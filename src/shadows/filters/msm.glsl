@@ -17,8 +17,8 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
-  vec4 b = momentsOverFootprint(s_moments, view, s, coord.xy, u_msm.params.z, u_msm.mode.x, u_msm.mode.z != 0);
-  if (u_msm.mode.y != 0) b = dequantizeMoments16(b);
-  float alpha = floorMomentBias(texelDepthVariance(view, s.ws, u_msm.params.x), u_msm.mode.y != 0);
+  vec4 b = momentsOverFootprint(s_moments, view, s, coord.xy, u_msm.params.z, u_msm.mode.x, PN_FOOTPRINT_PIXEL != 0);
+  if (PN_MSM_QUANTIZED != 0) b = dequantizeMoments16(b);
+  float alpha = floorMomentBias(texelDepthVariance(view, s.ws, u_msm.params.x), PN_MSM_QUANTIZED != 0);
   return 1.0 - hamburgerShadowIntensity(biasMoments(b, alpha), coord.z - u_msm.params.y);
 }

@@ -4,11 +4,12 @@
 
 PN_GPU_BEGIN
 
+// The storage (msm.storage: 1 = moments in the 16-bit basis) is compiled in as PN_MSM_QUANTIZED,
+// the footprint switch as FootprintParams.h says.
 struct MsmUniforms {
   vec4 params;  // x: moment bias (texels², see common/moments.glsl), y: depth bias (linear depth), z: minimum filter
                 // width (texels), w: unused
-  ivec4 mode;   // x: maximum anisotropic taps, y: 1 = moments stored in the 16-bit basis, z: 1 = filter
-                // over the pixel's footprint, 0 = a fixed filter of params.z texels; w: unused
+  ivec4 mode;   // x: maximum anisotropic taps along the footprint's long axis; yzw: unused
 };
 
 PN_GPU_END

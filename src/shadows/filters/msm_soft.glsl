@@ -17,9 +17,6 @@
 layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u_msmSoft; };
 // The SAT is common/sat.glsl's storage buffer: two pair layers per view.
 
-// Below this blocker fraction the region holds no blocker worth a penumbra: fully lit.
-const float kMinBlockerFraction = 0.01;
-
 // Box means of (z, z², z³, z⁴) over half-size radiusUv around uv in `view`, biased by alpha. `exact`: a
 // box with fractional edges (the filter); otherwise edges snap to whole texels (the blocker
 // search: 8 texel fetches instead of 32).

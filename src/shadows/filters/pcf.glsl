@@ -24,6 +24,13 @@ float shadowVisibility(SurfacePoint s) {
     radiusUv *= shadowMetresPerUv(0, s.ws) / shadowMetresPerUv(view, s.ws);
     radiusTexels = max(radiusUv.x, radiusUv.y) * shadowMapSize();
   }
-  if (u_pcf.config.x == PN_KERNEL_BOX) return percentageCloserBox(s_shadowMap, r, radiusUv, int(ceil(radiusTexels)));
-  return percentageCloserPoisson(s_shadowMap, r, radiusUv, u_pcf.config.y, pixelRotation(s.pixel));
+#if PN_PCF_KERNEL == PN_KERNEL_BOX
+#ifdef PN_PCF_BOX_HALF_SIDE
+  return percentageCloserBox(s_shadowMap, r, radiusUv, PN_PCF_BOX_HALF_SIDE);
+#else
+  return percentageCloserBox(s_shadowMap, r, radiusUv, int(ceil(radiusTexels)));
+#endif
+#else
+  return percentageCloserPoisson(s_shadowMap, r, radiusUv, PN_PCF_SAMPLES, pixelRotation(s.pixel));
+#endif
 }

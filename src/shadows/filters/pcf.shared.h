@@ -9,13 +9,14 @@
 
 PN_GPU_BEGIN
 
+// The kernel (pcf.kernel, PN_KERNEL_*) and the Poisson taps (pcf.samples) are compiled in as
+// PN_PCF_KERNEL and PN_PCF_SAMPLES.
 struct PcfUniforms {
   vec4 params;   // x: radius (texels), y: constant bias (linear depth), z: slope bias (texels), w: unused
-  ivec4 config;  // x: PN_KERNEL_*, y: Poisson taps, zw: unused
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::PcfUniforms) == 32, "std140 size of PcfUniforms");
+static_assert(sizeof(penumbra::gpu::PcfUniforms) == 16, "std140 size of PcfUniforms");
 #endif

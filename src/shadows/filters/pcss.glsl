@@ -17,22 +17,22 @@ layout(binding = PN_TEX_FILTER1) uniform PN_COMPARISON_MAP s_compareMap;  // the
 
 // Tap i of `taps` in the chosen pattern, in the unit disk (Poisson) or square (box).
 vec2 patternTap(int i, int taps, mat2 rotation) {
-  return u_pcss.config.z == PN_KERNEL_BOX ? boxTap(i, boxHalfSideForTaps(taps)) : poissonTap(i, rotation);
+  return PN_PCSS_PATTERN == PN_KERNEL_BOX ? boxTap(i, boxHalfSideForTaps(taps)) : poissonTap(i, rotation);
 }
 int patternTapCount(int taps) {
-  return u_pcss.config.z == PN_KERNEL_BOX ? boxTapCount(boxHalfSideForTaps(taps)) : clamp(taps, 1, kPoissonDiskSize);
+  return PN_PCSS_PATTERN == PN_KERNEL_BOX ? boxTapCount(boxHalfSideForTaps(taps)) : clamp(taps, 1, kPoissonDiskSize);
 }
 
 // Step (1): the mean linear depth of the texels in ±radiusUv that are closer to the light than
 // the receiver (the same biased test as the filter, so the receiver never blocks itself).
 // False when there is none: the receiver is fully lit.
 bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
-  int taps = patternTapCount(u_pcss.config.x);
+  int taps = patternTapCount(PN_PCSS_BLOCKER_SAMPLES);
   ivec2 mapSize = textureSize(s_depthMap, 0).xy;
   float sum = 0.0;
   int blockers = 0;
   for (int i = 0; i < taps; ++i) {
-    vec2 offset = tapInsideMap(r, patternTap(i, u_pcss.config.x, rotation) * radiusUv, mapSize);
+    vec2 offset = tapInsideMap(r, patternTap(i, PN_PCSS_BLOCKER_SAMPLES, rotation) * radiusUv, mapSize);
     float stored = texelFetch(s_depthMap, mapTexel(s_depthMap, r.uv + offset, r.layer), 0).r;
     if (compareDepth(tapDepth(r, offset), stored) == 0.0) {
       sum += stored;
@@ -66,7 +66,7 @@ float shadowVisibility(SurfacePoint s) {
 
   vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize),
                         vec2(u_pcss.params.z * texelUv), maxRadiusUv);
-  if (u_pcss.config.z == PN_KERNEL_BOX)
-    return percentageCloserBox(s_compareMap, r, radiusUv, boxHalfSideForTaps(u_pcss.config.y));
-  return percentageCloserPoisson(s_compareMap, r, radiusUv, u_pcss.config.y, rotation);
+  if (PN_PCSS_PATTERN == PN_KERNEL_BOX)
+    return percentageCloserBox(s_compareMap, r, radiusUv, boxHalfSideForTaps(PN_PCSS_FILTER_SAMPLES));
+  return percentageCloserPoisson(s_compareMap, r, radiusUv, PN_PCSS_FILTER_SAMPLES, rotation);
 }

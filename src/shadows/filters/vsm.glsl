@@ -16,7 +16,7 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
-  vec2 moments = momentsOverFootprint(s_moments, view, s, coord.xy, u_vsm.params.z, u_vsm.mode.x, u_vsm.mode.y != 0).rg;
+  vec2 moments = momentsOverFootprint(s_moments, view, s, coord.xy, u_vsm.params.z, u_vsm.mode.x, PN_FOOTPRINT_PIXEL != 0).rg;
   vec2 mv = meanVariance(moments, texelDepthVariance(view, s.ws, u_vsm.params.x));
   return reduceLightBleeding(chebyshevUpperBound(mv.x, mv.y, coord.z), u_vsm.params.y);
 }

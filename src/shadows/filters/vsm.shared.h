@@ -4,11 +4,11 @@
 
 PN_GPU_BEGIN
 
+// The footprint switch is compiled in (FootprintParams.h).
 struct VsmUniforms {
   vec4 params;  // x: minimum variance (texels², common/shadow.glsl's texelDepthVariance), y: light-bleeding
                 // reduction amount [0, 1), z: minimum filter width (texels), w: unused
-  ivec4 mode;   // x: maximum anisotropic taps along the footprint's long axis; y: 1 = filter over the
-                // pixel's footprint, 0 = a fixed filter of z texels; zw: unused
+  ivec4 mode;   // x: maximum anisotropic taps along the footprint's long axis; yzw: unused
 };
 
 PN_GPU_END

@@ -7,17 +7,15 @@
 // of (z, z²) (source=sat: exact boxes) or from the mip chain of vsm (source=mip: trilinear boxes,
 // approximate). Linear light depth per view. Artifacts: vsm's light bleeding; z_unocc = t makes
 // blockers look farther than they are when the region mixes receiver and far geometry.
-#include "common/depth_compare.glsl"
 #include "common/chebyshev.glsl"
 #include "common/footprint.glsl"
-#include "common/penumbra.glsl"
-#include "common/penumbra_debug.glsl"
 #include "common/sat.glsl"
+#include "common/soft_receiver.glsl"
 #include "shadows/filters/vssm.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform VssmBlock { VssmUniforms u_vssm; };
-// PN_VSSM_SOURCE (a define): where region moments come from.
-// The SAT (source=sat) is common/sat.glsl's storage buffer.
+// Where region moments come from (PN_VSSM_SOURCE): the SAT (source=sat) is common/sat.glsl's
+// storage buffer.
 #if PN_VSSM_SOURCE != PN_VSSM_SOURCE_SAT
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_moments;
 #endif
@@ -38,51 +36,29 @@ vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, boo
   vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
   return vec2(m.x, floorVariance(m.y, minVariance));
 #else
-  // The box as n × n footprints of sub-boxes (n = vssm.mipSplit), each read with trilinear taps
-  // at the level whose texels match its short side. One trilinear read of the whole box weighs
-  // a tent twice the box's width (variance ×2 of the box's); 2 × 2 sub-boxes one level finer
-  // ×1.25, 4 × 4 ×1.06.
-  int n = u_vssm.mode.y;
-  vec2 subUv = 2.0 * radiusUv / float(n);
-  vec2 moments = vec2(0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      vec2 centre = uv - radiusUv + (vec2(i, j) + 0.5) * subUv;
-      moments += textureFootprint(s_moments, vec3(centre, float(view)), vec2(subUv.x, 0.0), vec2(0.0, subUv.y),
-                                  u_vssm.mode.x).rg;
-    }
-  moments /= float(n * n);
-  return meanVariance(moments, minVariance);
+  return meanVariance(boxMeanFromMips(s_moments, view, uv, radiusUv, u_vssm.mode.y, u_vssm.mode.x).rg, minVariance);
 #endif
 }
 
 float shadowVisibility(SurfacePoint s) {
-  int view = selectShadowView(s.ws);
-  vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) {
-    recordNoBlocker(s);
-    return 1.0;
-  }
-  coord = coordInsideMap(view, s, coord, ivec2(shadowMapSize()));
-  float lightSize = u_frame.lightRadiance.w;
-  float t = coord.z;
-  float texelUv = 1.0 / shadowMapSize();
-  vec2 minRadiusUv = vec2(u_vssm.params.z * texelUv), maxRadiusUv = vec2(u_vssm.params.w * texelUv);
-  float minVariance = texelDepthVariance(view, s.ws, u_vssm.params.x);
+  SoftReceiver r;
+  if (!softReceiver(s, u_vssm.params.z, u_vssm.params.w, r)) return 1.0;
+  float t = r.coord.z;
+  float minVariance = texelDepthVariance(r.view, s.ws, u_vssm.params.x);
 
   // (1) Blocker search.
-  vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
-  vec2 region = regionMeanVariance(view, coord.xy, searchUv, minVariance, false);
+  vec2 searchUv = blockerSearchRegionUv(r.view, s.ws, r.coord.xy, r.lightSize, r.minRadiusUv, r.maxRadiusUv);
+  vec2 region = regionMeanVariance(r.view, r.coord.xy, searchUv, minVariance, false);
   vec2 blocker = chebyshevBlockerDepth(region.x, region.y, t);
   if (1.0 - blocker.y > kUnoccludedLit) {
     recordNoBlocker(s);
     return 1.0;
   }
   float blockerDepth = blocker.x;
-  recordPenumbra(s, view, blockerDepth, lightSize);
+  recordPenumbra(s, r.view, blockerDepth, r.lightSize);
 
   // (2) Penumbra; (3) filtering over it.
-  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blockerDepth, lightSize), minRadiusUv, maxRadiusUv);
-  vec2 filtered = regionMeanVariance(view, coord.xy, radiusUv, minVariance, true);
+  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(r.view, s.ws, blockerDepth, r.lightSize), r.minRadiusUv, r.maxRadiusUv);
+  vec2 filtered = regionMeanVariance(r.view, r.coord.xy, radiusUv, minVariance, true);
   return reduceLightBleeding(chebyshevUpperBound(filtered.x, filtered.y, t), u_vssm.params.y);
 }

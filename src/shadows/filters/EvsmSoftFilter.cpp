@@ -1,0 +1,72 @@
+#include "shadows/filters/EvsmSoftFilter.h"
+
+#include "frame/FrameContext.h"
+#include "shadows/filters/BleedReduction.h"
+#include "shadows/filters/ExpWarpParams.h"
+#include "shadows/filters/SoftRegionParams.h"
+#include "shadows/filters/evsm_soft.shared.h"
+
+namespace penumbra {
+namespace {
+
+// Four components always: the blocker search reads the negative warp (common/exp_warp.glsl).
+constexpr ParamDesc kParams[] = {
+    expWarpStorageParam("evsm-soft.storage"),
+    positiveExponentParam("evsm-soft.positiveExponent"),
+    negativeExponentParam("evsm-soft.negativeExponent"),
+    {"evsm-soft.minVariance", "Min variance",
+     "floor of the depth variance in texels² (as vssm.minVariance), taken through each warp's slope: keeps receivers "
+     "from shadowing themselves",
+     3.0f, 0.0f, 256.0f, 0.0f},
+    bleedReductionParam("evsm-soft.bleedReduction"),
+    softMinRadiusParam("evsm-soft.minRadiusTexels"),
+    softMaxRadiusParam("evsm-soft.maxRadiusTexels"),
+    tightSearchParam("evsm-soft.tightSearch"),
+    mipSplitParam("evsm-soft.mipSplit"),
+    mipBoxAnisotropyParam("evsm-soft.anisotropy"),
+};
+
+constexpr int kComponents = 4;
+
+ExpWarpMaps::Warp softWarp(const Filter& f) {
+  ExpWarpMaps::Warp w;
+  w.components = kComponents;
+  w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm-soft.storage"));
+  w.positive = clampWarpExponent(f.param("evsm-soft.positiveExponent"), w.storage);
+  w.negative = clampWarpExponent(f.param("evsm-soft.negativeExponent"), w.storage);
+  return w;
+}
+
+}  // namespace
+
+EvsmSoftFilter::EvsmSoftFilter() : Filter(kParams) {}
+
+void EvsmSoftFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm-soft moments", softWarp(*this)); }
+
+void EvsmSoftFilter::prefilter(FrameContext& frame) {
+  mMaps.buildMips();
+  mTightSearch.build(frame, paramInt("evsm-soft.tightSearch") != 0, mMaps.depth());
+}
+
+void EvsmSoftFilter::computeVisibility(FrameContext& frame) {
+  const ExpWarpMaps::Warp w = softWarp(*this);
+  gpu::EvsmSoftUniforms u{};
+  u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), 0.0f);
+  u.params = glm::vec4(param("evsm-soft.minVariance"), param("evsm-soft.bleedReduction"),
+                       param("evsm-soft.minRadiusTexels"), param("evsm-soft.maxRadiusTexels"));
+  u.mode = glm::ivec4(paramInt("evsm-soft.anisotropy"), paramInt("evsm-soft.mipSplit"), 0, 0);
+  frame.setFilterBlock(u);
+  mMaps.bindForFiltering();
+  mPenumbraDebug.bind(frame);
+  ShaderDefines defines;
+  mTightSearch.bind(paramInt("evsm-soft.tightSearch") != 0, defines);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm_soft.glsl", defines));
+}
+
+std::vector<DebugImage> EvsmSoftFilter::debugImages() const {
+  std::vector<DebugImage> out{{"evsm-soft-moments", &mMaps.moments()}};
+  for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
+  return out;
+}
+
+}  // namespace penumbra
