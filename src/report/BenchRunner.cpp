@@ -5,6 +5,7 @@
 #include "base/ProgressBar.h"
 #include "report/FrameComparison.h"
 #include "report/MicroBenchmarks.h"
+#include "report/ReferenceBaseline.h"
 #include "report/VisibilityBaselines.h"
 
 #include <penumbra/Error.h>
@@ -167,6 +168,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = set.shadowMapSize,
                                                 .rounds = set.microRepetitions, .cpuClock = cpuClock}))
     results.micro.push_back(std::move(m));
+  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
   if (results.machine.clock.empty()) results.machine.clock = PassTimer(cpuClock).endFrame().clock;  // no frame ran: its name
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
   results.machine.loadEnd = loadAverage();
