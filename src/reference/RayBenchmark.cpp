@@ -26,14 +26,17 @@ struct RayBenchmark::Impl {
   std::vector<RTCRay> rays;
   std::vector<size_t> start;
   std::vector<TriangleId> skip;
+  LightSetup setup;
+  std::vector<Receiver> receivers;
 };
 
 RayBenchmark::RayBenchmark(const Scene& scene, const GBufferData& g, const Light& light, int samples)
     : mImpl(std::make_unique<Impl>(scene, g, light, samples)) {
   PN_CHECK(light.size > 0.0f, "ray benchmark: the light must be soft (size > 0): a hard light casts one ray a pixel");
-  const LightSetup setup = setupLight(light);
-  const std::vector<Receiver> receivers = receiversOf(g, receiverTriangles(scene));
-  const PixelTracer pixelTracer(mImpl->embree, setup, samples, ReferenceOptions{}.seed);
+  mImpl->setup = setupLight(light);
+  mImpl->receivers = receiversOf(g, receiverTriangles(scene));
+  const std::vector<Receiver>& receivers = mImpl->receivers;
+  const PixelTracer pixelTracer(mImpl->embree, mImpl->setup, samples, ReferenceOptions{}.seed);
   SoftSamples pixelSamples;
   const size_t pixels = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
   mImpl->start.assign(pixels + 1, 0);
@@ -93,6 +96,33 @@ double RayBenchmark::tracePlainLoop() const {
   });
   const double seconds = secondsSince(start);
   PN_CHECK(blocked.load() <= m.rays.size(), "ray benchmark: more blocked rays than rays");
+  return seconds;
+}
+
+double RayBenchmark::traceGeneratingLoop() const {
+  const Impl& m = *mImpl;
+  const PixelTracer pixelTracer(m.embree, m.setup, m.samples, ReferenceOptions{}.seed);
+  std::atomic<size_t> rays{0};
+  const auto start = std::chrono::steady_clock::now();
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.g.height), [&](const tbb::blocked_range<int>& rows) {
+    thread_local SoftSamples samples;
+    size_t count = 0;
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = 0; x < m.g.width; ++x) {
+        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(m.g.width) + static_cast<size_t>(x);
+        if (!m.g.covered(i)) continue;
+        const glm::vec3 origin(m.g.position[i]);
+        glm::vec3 n;
+        float distanceM = 0.0f;
+        if (!pixelTracer.facesLight(origin, glm::vec3(m.g.geoNormal[i]), n, distanceM) || !pixelTracer.soft(distanceM)) continue;
+        pixelTracer.softSamples(i, origin, n, m.receivers[i], distanceM, samples);
+        m.embree.occluded(samples.bundle, m.receivers[i].triangle);
+        count += samples.bundle.size();
+      }
+    rays += count;
+  });
+  const double seconds = secondsSince(start);
+  PN_CHECK(rays.load() == m.rays.size(), "ray benchmark: the generating loop cast other rays than the recorded ones");
   return seconds;
 }
 

@@ -30,6 +30,11 @@ public:
   /// tracer does; nothing else. Wall seconds.
   double tracePlainLoop() const;
 
+  /// The plain loop generating the rays as it goes (the tracer's generator, per pixel), casting
+  /// them as tracePlainLoop does and counting the blocked ones: no result, no cache key, no
+  /// per-pixel sums. What the tracer adds to this is its own bookkeeping. Wall seconds.
+  double traceGeneratingLoop() const;
+
 private:
   struct Impl;
   std::unique_ptr<Impl> mImpl;

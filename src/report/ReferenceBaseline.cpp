@@ -45,6 +45,13 @@ std::vector<MicroResult> runReferenceBaseline(int width, int height, int rounds)
          auto b = get();
          return std::function<double()>([b] { return kMsPerSecond * b->tracePlainLoop(); });
        }},
+      {"reference: plain loop generating the rays",
+       fmt::format("the same rays generated per pixel by the tracer's own generator and cast as the plain loop casts them, "
+                   "nothing summed or kept ({}; wall clock)", where),
+       "reference: plain Embree loop", [get] {
+         auto b = get();
+         return std::function<double()>([b] { return kMsPerSecond * b->traceGeneratingLoop(); });
+       }},
       {"reference: ReferenceTracer::trace",
        fmt::format("the same rays generated, cast and summed by the reference, cache off ({}; wall clock)", where),
        "reference: plain Embree loop", [get] {
