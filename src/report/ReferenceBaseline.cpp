@@ -37,27 +37,22 @@ std::vector<MicroResult> runReferenceBaseline(int width, int height, int rounds)
     return *shared;
   };
   const std::string where = fmt::format("boxes at {}x{}, its sun at {} samples a pixel", width, height, kReferenceBaselineSamples);
+  constexpr const char* kPlainLoop = "reference: plain Embree loop";
+  // One row: a RayBenchmark run (seconds) timed in milliseconds.
+  auto row = [&](const char* name, const std::string& what, const char* baseline, double (reference::RayBenchmark::*run)() const) {
+    return MicroItem{name, fmt::format("{} ({}; wall clock)", what, where), baseline, [get, run] {
+                       auto b = get();
+                       return std::function<double()>([b, run] { return kMsPerSecond * ((*b).*run)(); });
+                     }};
+  };
   const std::vector<MicroItem> items = {
-      {"reference: plain Embree loop",
-       fmt::format("the reference's rays, recorded up front, each pixel's one coherent rtcOccluded1M stream skipping its "
-                   "triangle, rows over every core ({}; wall clock)", where),
-       "", [get] {
-         auto b = get();
-         return std::function<double()>([b] { return kMsPerSecond * b->tracePlainLoop(); });
-       }},
-      {"reference: plain loop generating the rays",
-       fmt::format("the same rays generated per pixel by the tracer's own generator and cast as the plain loop casts them, "
-                   "nothing summed or kept ({}; wall clock)", where),
-       "reference: plain Embree loop", [get] {
-         auto b = get();
-         return std::function<double()>([b] { return kMsPerSecond * b->traceGeneratingLoop(); });
-       }},
-      {"reference: ReferenceTracer::trace",
-       fmt::format("the same rays generated, cast and summed by the reference, cache off ({}; wall clock)", where),
-       "reference: plain Embree loop", [get] {
-         auto b = get();
-         return std::function<double()>([b] { return kMsPerSecond * b->traceReference(); });
-       }},
+      row(kPlainLoop, "the reference's rays, recorded up front, each pixel's one coherent rtcOccluded1M stream skipping its triangle, rows over every core",
+          "", &reference::RayBenchmark::tracePlainLoop),
+      row("reference: plain loop generating the rays",
+          "the same rays generated per pixel by the tracer's own generator and cast as the plain loop casts them, nothing summed or kept",
+          kPlainLoop, &reference::RayBenchmark::traceGeneratingLoop),
+      row("reference: ReferenceTracer::trace", "the same rays generated, cast and summed by the reference, cache off", kPlainLoop,
+          &reference::RayBenchmark::traceReference),
   };
   return runMicroItems(items, rounds);
 }
