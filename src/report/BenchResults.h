@@ -6,6 +6,7 @@
 
 #include <penumbra/Metrics.h>
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -50,15 +51,19 @@ struct SkippedConfig {
   bool failed = false;  ///< false: refused as an unsupported pair; true: an error during the run
 };
 
-/// A timed building block outside the frame (e.g. a summed-area table against a plain copy of
-/// the same texture).
+/// A timed building block outside the frame, next to its baseline: a summed-area table against
+/// a plain copy of the same texture, a filter's visibility pass against its minimal lookup
+/// kernel (docs/bench.md, "Micro-benchmarks").
 struct MicroResult {
-  std::string name;         ///< "copy", "mip chain", "sat"
-  std::string description;  ///< what was timed, on what texture
-  std::string baseline;     ///< name of the result it is compared with (a copy of its texture); "" = none
+  std::string name;         ///< "copy RG32F", "SAT build, 2 moments", "visibility: hard", …
+  std::string description;  ///< what was timed, on what data
+  std::string baseline;     ///< name of the result it is compared with; "" = none
   TimeStats ms;
-  int repetitions = 0;
-  std::string error;  ///< non-empty: the block failed (GL error, …) and was not timed
+  int repetitions = 0;  ///< timed rounds
+  std::string error;    ///< non-empty: the block failed (GL error, …) and was not timed
+  /// Its time over its baseline's, per round (the two ran in the same round): median and
+  /// 10th/90th percentiles. Empty without a baseline, or when either failed.
+  std::optional<TimeStats> ratio;
 };
 
 struct MachineInfo {

@@ -1,9 +1,12 @@
 #include "report/BenchRunner.h"
 
 #include "platform/Context.h"
+#include "frame/PassTimer.h"
 #include "base/ProgressBar.h"
 #include "report/FrameComparison.h"
 #include "report/MicroBenchmarks.h"
+#include "report/ReferenceBaseline.h"
+#include "report/VisibilityBaselines.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
@@ -161,7 +164,13 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     }
     bar.advance(1);
   }
-  results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, context.info().softwareRenderer);
+  const bool cpuClock = context.info().softwareRenderer;
+  results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, cpuClock);
+  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = set.shadowMapSize,
+                                                .rounds = set.microRepetitions, .cpuClock = cpuClock}))
+    results.micro.push_back(std::move(m));
+  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
+  if (results.machine.clock.empty()) results.machine.clock = PassTimer(cpuClock).endFrame().clock;  // no frame ran: its name
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
   results.machine.loadEnd = loadAverage();
   return results;

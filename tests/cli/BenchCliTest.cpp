@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +110,44 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
     EXPECT_LT(row["rmse"].get<double>(), 0.5);
   }
   EXPECT_EQ(json["rows"][0]["gl_renderer"], json["machine"]["gl_renderer"]);
+}
+
+// bench --micro-only: the micro table alone, in micro.csv and results.json alike. Every block runs
+// (each lookup kernel passed its check against its pass), and each visibility pass has its
+// ratio to its kernel: the table the visibility shaders are measured with (docs/bench.md).
+TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
+  const std::string dir = freshDir("bench-micro");
+  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  EXPECT_TRUE(json["rows"].empty());
+  const std::vector<std::vector<std::string>> csv = parseCsv(slurp(dir + "/out/micro.csv"));
+  ASSERT_EQ(csv.size() - 1, json["micro"].size());
+  const std::vector<std::string>& header = csv[0];
+  auto column = [&](const std::string& name) { return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+  size_t passes = 0;
+  for (size_t i = 0; i < json["micro"].size(); ++i) {
+    const nlohmann::json& m = json["micro"][i];
+    const std::string name = m["name"];
+    EXPECT_EQ(m["error"], "") << name;
+    EXPECT_EQ(csv[i + 1][column("name")], name);
+    EXPECT_GT(m["ms"]["median"].get<double>(), 0.0) << name;
+    if (m["baseline"] == "") {
+      EXPECT_TRUE(m["ratio"].is_null()) << name;
+      EXPECT_TRUE(csv[i + 1][column("ratio_median")].empty()) << name;
+      continue;
+    }
+    ASSERT_TRUE(m["ratio"].is_object()) << name;
+    EXPECT_GT(m["ratio"]["median"].get<double>(), 0.0) << name;
+    EXPECT_LE(m["ratio"]["p10"].get<double>(), m["ratio"]["median"].get<double>()) << name;
+    EXPECT_EQ(std::strtod(csv[i + 1][column("ratio_median")].c_str(), nullptr), m["ratio"]["median"].get<double>()) << name;
+    if (name.starts_with("visibility: ")) {
+      ++passes;
+      EXPECT_TRUE(m["baseline"].get<std::string>().starts_with("lookup: ")) << name;
+    }
+  }
+  EXPECT_EQ(passes, 6u) << "hard, pcf, pcf with hardware compare, vsm, vssm, msm";
+  EXPECT_NE(json["machine"]["clock"], "");
 }
 
 TEST(BenchCli, UnknownSweepKeyIsAUsageError) {

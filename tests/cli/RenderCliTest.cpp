@@ -85,6 +85,22 @@ TEST(RenderCli, VisibilityExrAndDump) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/d/" + f)) << f;
 }
 
+// --frames renders several frames and writes the last, the same image as one frame; --verbose
+// then times the frames after the first (the first compiles the shaders), pass by pass.
+TEST(RenderCli, FramesWriteTheSameImageAndTimeTheWarmFrames) {
+  const std::string dir = freshDir("frames");
+  RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --out one.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --frames 3 --verbose --out three.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0;
+  EXPECT_EQ(readPng(dir + "/one.png", w, h), readPng(dir + "/three.png", w, h));
+  EXPECT_NE(r.err.find("medians of the 2 frames after the first"), std::string::npos) << r.err;
+  for (const char* pass : {"gbuffer", "shadow", "prefilter", "visibility", "lit"})
+    EXPECT_NE(r.err.find(std::string("penumbra: ") + pass), std::string::npos) << pass << "\n" << r.err;
+  EXPECT_EQ(runPenumbra("render --frames 0").exitCode, 2);
+}
+
 // The distance field's bake reports its time and memory; a second run reads the cache silently.
 TEST(RenderCli, SdfBakePrintsTimeAndMemoryOnce) {
   const std::string cache = freshDir("sdf-cache");
