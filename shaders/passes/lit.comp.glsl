@@ -10,7 +10,8 @@ layout(binding = PN_TEX_GBUF_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = PN_TEX_GBUF_ALBEDO) uniform sampler2D s_gbufAlbedo;
 layout(binding = PN_TEX_VISIBILITY) uniform sampler2D s_visibility;
 layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
-layout(location = PN_LOC_LEVEL) uniform int u_debugView;
+// PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes; PN_LIGHT_KIND: the light's kind.
+const int kDebugView = PN_DEBUG_VIEW;
 
 const float kSpecularStrength = 0.25;  // share of the direct light reflected specularly
 const float kSpotEdgeSoftness = 0.05;  // cos range over which the spot cone fades out
@@ -29,7 +30,7 @@ const vec3 kCascadeColors[4] = vec3[4](vec3(1.0, 0.35, 0.3), vec3(0.35, 0.9, 0.3
 vec3 debugTint(ivec2 px, vec3 ws, vec3 shaded) {
   const float kBaseShade = 0.35;  // darkest a shadowed surface gets under the tint
   float shade = kBaseShade + (1.0 - kBaseShade) * dot(shaded, vec3(0.2126, 0.7152, 0.0722));
-  if (u_debugView == PN_VIEW_CASCADES) {
+  if (kDebugView == PN_VIEW_CASCADES) {
     ShadowViewBlend b = shadowViewBlend(ws);
     return shade * mix(kCascadeColors[b.first % 4], kCascadeColors[b.second % 4], b.weight);
   }
@@ -46,7 +47,7 @@ void main() {
   if (pos.w < 0.5) {
     float t = float(px.y) / float(u_frame.screen.y);
     color = mix(vec3(0.55, 0.6, 0.65), vec3(0.25, 0.4, 0.65), t);  // sky gradient (display-referred)
-  } else if (u_debugView == PN_VIEW_VISIBILITY) {
+  } else if (kDebugView == PN_VIEW_VISIBILITY) {
     color = vec3(v);
   } else {
     vec3 n = texelFetch(s_gbufNormal, px, 0).xyz;
@@ -66,7 +67,7 @@ void main() {
     vec3 hdr = u_frame.ambient.rgb * albedo + v * direct;
     color = toSrgb(acesApprox(hdr));
   }
-  if (pos.w > 0.5 && (u_debugView == PN_VIEW_CASCADES || u_debugView == PN_VIEW_TEXEL_DENSITY))
+  if (pos.w > 0.5 && (kDebugView == PN_VIEW_CASCADES || kDebugView == PN_VIEW_TEXEL_DENSITY))
     color = debugTint(px, pos.xyz, color);
   imageStore(i_color, px, vec4(color, 1.0));
 }

@@ -8,13 +8,21 @@
 
 namespace penumbra {
 
-const gl::Program& FrameContext::shadowProgram(std::string_view fragment, const ShaderDefines& defines) {
+FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragment, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "shadow pass " + std::string(fragment);
   d.vertex = {"passes/geometry.vert.glsl"};
   d.fragment = {std::string(fragment)};
   d.defines = defines;
-  return mShaders.program(d);
+  bool orthographic = true;
+  for (const ShadowView& v : mFrusta.views) orthographic = orthographic && !v.perspective && !v.warped;
+  if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
+  ShadowPrograms p;
+  p.masked = &mShaders.program(d);
+  d.label += " (opaque)";
+  d.defines.set("PN_OPAQUE_CASTERS");
+  p.opaque = &mShaders.program(d);
+  return p;
 }
 
 ShaderDefines FrameContext::frameDefines() const {
@@ -66,8 +74,13 @@ const gl::Program& FrameContext::screenProgram(std::string_view file, const Para
   return mShaders.program(d);
 }
 
-void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {
-  program.use();
+void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor) {
+  // Clip z in [0, 1] is the window depth: what PN_LINEAR_RASTER_DEPTH's clip z (the linear light
+  // depth) needs; with gl_FragDepth written it does not matter. The caller's mode comes back.
+  GLint depthMode = GL_ZERO_TO_ONE, origin = GL_LOWER_LEFT;
+  glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode);
+  glGetIntegerv(GL_CLIP_ORIGIN, &origin);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -80,15 +93,13 @@ void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program,
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
     if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
-    drawCasters(program, v);
+    glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);
+    glProgramUniform1i(programs.masked->id(), PN_LOC_VIEW, v);
+    mCasters.draw(programs.opaque->id(), programs.masked->id());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glDisable(GL_DEPTH_CLAMP);
-}
-
-void FrameContext::drawCasters(const gl::Program& program, int view) const {
-  glProgramUniform1i(program.id(), PN_LOC_VIEW, view);
-  mCasters.draw(program.id());
+  glClipControl(static_cast<GLenum>(origin), static_cast<GLenum>(depthMode));
 }
 
 void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {

@@ -57,9 +57,19 @@ public:
   PassTimer& timer() { return mTimer; }
 
   const gl::Program& program(const ProgramDesc& desc) { return mShaders.program(desc); }
-  /// Shadow-pass program: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
-  const gl::Program& shadowProgram(std::string_view fragment = "passes/shadow_depth.frag.glsl",
-                                   const ShaderDefines& defines = {});
+  /// The programs of a shadow pass: one for alpha-tested casters and one for opaque casters
+  /// (compiled with PN_OPAQUE_CASTERS: no alpha test, so early depth tests stay on).
+  struct ShadowPrograms {
+    const gl::Program* masked;
+    const gl::Program* opaque;
+  };
+  /// Shadow-pass programs: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
+  /// The default depth-only pass over orthographic views (a sun's uniform map or cascades) is
+  /// built with PN_LINEAR_RASTER_DEPTH: linear light depth is affine there, so the rasteriser's
+  /// own depth (the view's depth plane as clip z) is what the map stores and no fragment writes
+  /// gl_FragDepth.
+  ShadowPrograms shadowProgram(std::string_view fragment = kDepthOnlyFragment, const ShaderDefines& defines = {});
+  static constexpr std::string_view kDepthOnlyFragment = "passes/shadow_depth.frag.glsl";
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
   /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
   /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
@@ -77,9 +87,7 @@ public:
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
   /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the
   /// near plane still cast), no culling (thin and open casters cast from both sides).
-  void renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor = glm::vec4(1.0f));
-  /// Draws every shadow caster into the bound framebuffer for shadow view `view`.
-  void drawCasters(const gl::Program& program, int view) const;
+  void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }

@@ -171,8 +171,10 @@ void Renderer::runLitPass() {
   ProgramDesc d;
   d.label = "lit";
   d.compute = {"passes/lit.comp.glsl"};
+  // Built per debug view and light kind: the shaded image runs none of the debug code.
+  d.defines.set("PN_DEBUG_VIEW", im.debugView);
+  d.defines.set("PN_LIGHT_KIND", im.scene.light().type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
   const gl::Program& program = shaders().program(d);
-  glProgramUniform1i(program.id(), PN_LOC_LEVEL, im.debugView);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
