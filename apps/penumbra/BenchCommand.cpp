@@ -105,6 +105,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       settings.camera = *o->camera;
     }
 
+    checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
     const report::SetupFactory factory = [o](const report::BenchConfig& c) {
       TechniqueOptions t;

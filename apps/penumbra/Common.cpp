@@ -1,6 +1,7 @@
 #include "Common.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/Files.h>
 
 #include <fmt/format.h>
 
@@ -33,6 +34,22 @@ std::pair<int, int> parseSize(const std::string& text) {
       !parse(std::string_view(text).substr(x + 1), h) || w < 1 || h < 1 || w > 16384 || h > 16384)
     throw usageError(fmt::format("--size {}: expected WxH with each side in 1..16384, e.g. 640x360", text));
   return {w, h};
+}
+
+void checkOutput(const char* option, const std::string& path) {
+  try {
+    checkOutputFile(path);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", option, e.what()));
+  }
+}
+
+void checkOutputDir(const char* option, const std::string& path) {
+  try {
+    checkOutputFolder(path);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", option, e.what()));
+  }
 }
 
 std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, Setup& s) {

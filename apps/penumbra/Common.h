@@ -42,6 +42,12 @@ Setup makeSetup(const TechniqueOptions& o);
 /// A renderer with the setup's scene and technique (which it takes over from `s`).
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 
+/// Checks an output file (`option` names it in the message: "--out: x/: is a folder, not a
+/// file") or output folder before any work, so that no run writes one output and then fails on
+/// the next (penumbra/Files.h). Throws penumbra::Error (exit 1).
+void checkOutput(const char* option, const std::string& path);
+void checkOutputDir(const char* option, const std::string& path);
+
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);
 

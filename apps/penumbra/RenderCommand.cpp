@@ -25,6 +25,9 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
   commands.push_back({sub, [o] {
+    checkOutput("--out", o->out);
+    if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
+    if (!o->dump.empty()) checkOutputDir("--dump", o->dump);
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);

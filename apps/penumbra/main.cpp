@@ -6,9 +6,26 @@
 
 #include <penumbra/Error.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <iostream>
 
-int main(int argc, char** argv) {
+namespace {
+
+// Output that never arrived is a failure: `penumbra list > /dev/full` must not exit 0. stdout
+// is block-buffered when it is not a terminal, so most write errors appear only here.
+int flushStdout(int code) {
+  std::cout.flush();  // synchronised with stdio: its text is in stdout's buffer
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout) {
+    std::fprintf(stderr, "penumbra: cannot write to standard output (%s)\n", errno != 0 ? std::strerror(errno) : "write error");
+    return code == 0 ? 1 : code;
+  }
+  return code;
+}
+
+int run(int argc, char** argv) {
   CLI::App app{"Penumbra: real-time shadow techniques, rendered and measured against a ray-traced reference.\n"
                "With no subcommand, renders the default scene to penumbra.png."};
   app.require_subcommand(0, 1);
@@ -37,3 +54,7 @@ int main(int argc, char** argv) {
     return 1;
   }
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return flushStdout(run(argc, argv)); }
