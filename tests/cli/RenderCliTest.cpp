@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -40,6 +41,16 @@ TEST(RenderCli, MissingSceneFileExits1NamingIt) {
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("/no/such/scene.json"), std::string::npos) << r.err;
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+// The reproduction: `printf 'v nan 0 0\n...' > t.obj; penumbra render --scene t.obj` exited 0.
+TEST(RenderCli, ObjWithNanExits1NamingTheLine) {
+  const std::string dir = freshDir("obj-nan");
+  std::ofstream(dir + "/t.obj") << "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const RunResult r = runPenumbra("render --scene t.obj --size 16x16", dir);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "penumbra: t.obj: line 1: v: 'nan' is not a finite number\n");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
 }
 
 TEST(RenderCli, UnknownFilterExits2) {

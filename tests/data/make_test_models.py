@@ -268,6 +268,12 @@ def bad_files():
     out["inf_position.obj"] = "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"
     out["zero_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n"
     out["missing_mtl.obj"] = "mtllib no_such.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    # tinyobjloader reads what it cannot parse as 0: each of these loaded silently once.
+    out["nan_position.obj"] = "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    out["letters_position.obj"] = "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n"
+    out["huge_index.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"
+    out["nan_kd.obj"] = "mtllib nan_kd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl black\nf 1 2 3\n"
+    out["nan_kd.mtl"] = "newmtl black\nKd nan 0.5 0.5\n"
 
     base = {"lights": [{"type": "sun"}], "objects": [{"shape": "plane"}]}
     def scene(obj):

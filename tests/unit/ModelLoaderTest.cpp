@@ -256,3 +256,29 @@ TEST(ModelLoader, ErrorsNameTheProblem) {
   EXPECT_NE(err("bad_light_size.gltf").find("extras.size"), std::string::npos);
   EXPECT_NE(err("empty.glb").find("empty"), std::string::npos);
 }
+
+// tinyobjloader reads a number it cannot parse as 0 and an overflowing index as anything: each
+// of these loaded silently once (a vertex at 0, a black material, the last vertex).
+TEST(ModelLoader, ObjNumbersThatAreNotNumbersNameTheirLine) {
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("nan_position.obj").find("nan_position.obj: line 1: v: 'nan' is not a finite number"), std::string::npos)
+      << err("nan_position.obj");
+  EXPECT_NE(err("letters_position.obj").find("line 2: v: 'zero' is not a finite number"), std::string::npos);
+  EXPECT_NE(err("inf_position.obj").find("line 2: v: '1e999' is not a finite number"), std::string::npos);
+  EXPECT_NE(err("huge_index.obj").find("line 4: f: '99999999999999999999' is not an index"), std::string::npos)
+      << err("huge_index.obj");
+  EXPECT_NE(err("nan_kd.obj").find("nan_kd.obj: mtllib 'nan_kd.mtl': line 2: Kd: 'nan' is not a finite number"), std::string::npos)
+      << err("nan_kd.obj");
+  auto objError = [](const std::string& text) {
+    return errorOf([&] { loaders::loadObjFromMemory(text, "mem.obj", ""); });
+  };
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_NE(objError(triangle + "vn inf 0 1\nf 1//1 2//1 3//1\n").find("line 4: vn: 'inf'"), std::string::npos);
+  EXPECT_NE(objError(triangle + "vt 0.5 x\nf 1/1 2/1 3/1\n").find("line 4: vt: 'x'"), std::string::npos);
+  EXPECT_NE(objError(triangle + "f 0 1 2\n").find("line 4: f: '0' is not an index"), std::string::npos);
+  EXPECT_NE(objError(triangle + "f 1/ 2 3\n").find("line 4: f: '1/' ends in '/'"), std::string::npos);
+  EXPECT_NE(objError("v 0 0\n").find("line 1: v: 2 numbers"), std::string::npos);
+  // What real files hold still loads: comments, tabs, CRLF, '+', exponents, relative indices, w.
+  EXPECT_EQ(objError("# c\r\nv\t+0 0 0 1\r\nv 1e0 0 0 # x\r\nv 0 1 0\r\nvt 0 0\r\nf -3/1 -2/1 -1/1\r\n"), "");
+}

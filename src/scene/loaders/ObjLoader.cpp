@@ -1,6 +1,9 @@
 // Wavefront OBJ → Scene. tinyobjloader tokenises the file; every index it returns is checked
-// here (it passes out-of-range ones through), and every number must be finite. Faces are
-// unshared (three vertices per triangle) so that faces without `vn` get their own flat normal.
+// here (it passes out-of-range ones through). It reads a number it cannot parse ("nan", "inf",
+// "1e999", letters) as 0 and an index that overflows as anything, so every number of the
+// statements Penumbra uses (v, vn, vt, f; Kd and Ns in .mtl files) is checked first, by line.
+// Faces are unshared (three vertices per triangle) so that faces without `vn` get their own flat
+// normal.
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
@@ -11,14 +14,105 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <span>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 namespace penumbra::loaders {
 namespace {
 
 const glm::vec3 kDefaultColor{0.8f};  // faces without a material: the scene file's default colour
+// tinyobjloader keeps indices in an int: any index beyond this cannot mean what the file says.
+constexpr int64_t kMaxObjIndex = std::numeric_limits<int>::max();
+
+/// A statement whose numbers are checked: its keyword and how many numbers it takes.
+struct NumberRule {
+  std::string_view keyword;
+  size_t minCount, maxCount;
+  const char* what;  // for the message when the count is wrong
+};
+// v x y z [w | r g b] (tinyobjloader's vertex colours), vn x y z, vt u [v [w]].
+constexpr NumberRule kObjRules[] = {{"v", 3, 6, "x y z, optionally w or r g b"}, {"vn", 3, 3, "x y z"},
+                                    {"vt", 1, 3, "u [v [w]]"}};
+constexpr NumberRule kMtlRules[] = {{"Kd", 3, 3, "r g b"}, {"Ns", 1, 1, "an exponent"}};
+
+/// The whitespace-separated words of a line up to a '#' comment.
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    if (i >= line.size() || line[i] == '#') break;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+bool parseFinite(std::string_view s, float& out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double d = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), d);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(d) ||
+      std::abs(d) > std::numeric_limits<float>::max())
+    return false;
+  out = static_cast<float>(d);
+  return true;
+}
+
+/// One corner of an f statement: v, v/vt, v//vn or v/vt/vn; each a non-zero integer.
+std::string checkCorner(std::string_view corner) {
+  size_t part = 0;
+  for (size_t start = 0; part < 3; ++part) {
+    const size_t slash = corner.find('/', start);
+    const std::string_view n = corner.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+    const bool optional = part > 0 && n.empty();  // "1//3": no texture coordinate
+    if (!optional) {
+      int64_t v = 0;
+      const auto [end, ec] = std::from_chars(n.data(), n.data() + n.size(), v);
+      if (n.empty() || ec != std::errc() || end != n.data() + n.size() || v == 0 || v > kMaxObjIndex || v < -kMaxObjIndex)
+        return fmt::format("'{}' is not an index (a non-zero integer within ±{}; OBJ counts from 1)", corner, kMaxObjIndex);
+    }
+    if (slash == std::string_view::npos) return part == 0 || !n.empty() ? "" : fmt::format("'{}' ends in '/'", corner);
+    start = slash + 1;
+  }
+  return fmt::format("'{}' has more than three parts", corner);
+}
+
+/// Checks the numbers of every statement that `rules` (and, for an OBJ, `f`) name; throws
+/// Error("name: line N: keyword: problem").
+void checkNumbers(const std::string& text, const std::string& name, std::span<const NumberRule> rules, bool faces) {
+  size_t lineNumber = 0;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line(text.data() + start, end - start);
+    start = end + 1;
+    ++lineNumber;
+    const std::vector<std::string_view> w = words(line);
+    if (w.empty()) continue;
+    const std::string where = fmt::format("line {}", lineNumber);
+    if (faces && w[0] == "f") {
+      for (size_t i = 1; i < w.size(); ++i)
+        if (const std::string problem = checkCorner(w[i]); !problem.empty()) fail(name, where, "f: " + problem);
+      continue;
+    }
+    for (const NumberRule& rule : rules) {
+      if (w[0] != rule.keyword) continue;
+      const size_t count = w.size() - 1;
+      if (count < rule.minCount || count > rule.maxCount)
+        fail(name, where, fmt::format("{}: {} numbers; expected {}", rule.keyword, count, rule.what));
+      float unused = 0.0f;
+      for (size_t i = 1; i < w.size(); ++i)
+        if (!parseFinite(w[i], unused)) fail(name, where, fmt::format("{}: '{}' is not a finite number", rule.keyword, w[i]));
+    }
+  }
+}
 
 /// `mtllib` files, read with the same limits as every other file; the first failure is kept and
 /// reported as an error (tinyobjloader would only warn and fall back to a default material).
@@ -29,7 +123,9 @@ public:
                   std::string* warn, std::string* err) override {
     try {
       const std::vector<uint8_t> bytes = readFileLimited(mDir / id, fmt::format("mtllib '{}'", id));
-      std::istringstream in(std::string(bytes.begin(), bytes.end()));
+      const std::string text(bytes.begin(), bytes.end());
+      checkNumbers(text, fmt::format("mtllib '{}'", id), kMtlRules, false);
+      std::istringstream in(text);
       tinyobj::LoadMtl(names, materials, &in, warn, err);
       return true;
     } catch (const Error& e) {
@@ -43,13 +139,8 @@ private:
   std::filesystem::path mDir;
 };
 
-bool finite(std::initializer_list<float> v) {
-  return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); });
-}
-
-Material convertMaterial(const tinyobj::material_t& m, const std::string& file) {
-  const std::string field = fmt::format("material '{}'", m.name);
-  if (!finite({m.diffuse[0], m.diffuse[1], m.diffuse[2], m.shininess})) fail(file, field, "Kd or Ns is not finite");
+// Kd and Ns were checked (checkNumbers): finite.
+Material convertMaterial(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
   // Kd is a reflectance: above 1 it would create energy, so it is clamped like any display colour.
@@ -66,6 +157,7 @@ Model loadObjFromMemory(const std::string& text, const std::string& name, const 
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
+  checkNumbers(text, name, kObjRules, true);
   std::istringstream in(text);
   MtlReader mtl(baseDir);
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, true, false);
@@ -77,14 +169,6 @@ Model loadObjFromMemory(const std::string& text, const std::string& name, const 
   }
 
   const size_t positions = attrib.vertices.size() / 3, normals = attrib.normals.size() / 3, uvs = attrib.texcoords.size() / 2;
-  for (size_t i = 0; i < positions; ++i)
-    if (!finite({attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]}))
-      fail(name, fmt::format("v #{}", i + 1), "a coordinate is not finite");
-  for (size_t i = 0; i < normals; ++i)
-    if (!finite({attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]}))
-      fail(name, fmt::format("vn #{}", i + 1), "a component is not finite");
-  for (size_t i = 0; i < uvs; ++i)
-    if (!finite({attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]})) fail(name, fmt::format("vt #{}", i + 1), "a component is not finite");
 
   // Budget first: every polygon of n corners becomes n - 2 triangles of three unshared vertices.
   uint64_t triangles = 0;
@@ -97,7 +181,7 @@ Model loadObjFromMemory(const std::string& text, const std::string& name, const 
   Model model;
   Scene& scene = model.scene;
   scene.name = name;
-  for (const tinyobj::material_t& m : materials) scene.materials.push_back(convertMaterial(m, name));
+  for (const tinyobj::material_t& m : materials) scene.materials.push_back(convertMaterial(m));
   const auto defaultMaterial = static_cast<int>(scene.materials.size());
   scene.materials.push_back(Material{.name = "default", .baseColor = kDefaultColor});
 
