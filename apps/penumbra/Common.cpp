@@ -59,25 +59,43 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draw
   return renderer;
 }
 
+namespace {
+
+/// Runs `f` for a choice the scene file made (shadow.filter, shadow.params.KEY): what the
+/// registry refuses there is bad input in that file (exit 1, naming the file and the field), not
+/// a bad command line.
+std::string sceneFile(const Scene& scene) { return scene.sourceFile.empty() ? scene.name : scene.sourceFile.string(); }
+
+template <class F>
+auto sceneChoice(const Scene& scene, const std::string& field, F&& f) {
+  try {
+    return f();
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}: {}", sceneFile(scene), field, e.what()));
+  }
+}
+
+}  // namespace
+
 Setup makeSetup(const TechniqueOptions& o) {
   Setup s;
   s.scene = loadScene(o.scene);
-  s.projection = makeProjection(o.projection.value_or(s.scene.shadow.projection));
-  s.filter = makeFilter(o.filter.value_or(s.scene.shadow.filter));
+  s.projection = o.projection ? makeProjection(*o.projection)
+                              : sceneChoice(s.scene, "shadow.projection", [&] { return makeProjection(s.scene.shadow.projection); });
+  s.filter = o.filter ? makeFilter(*o.filter) : sceneChoice(s.scene, "shadow.filter", [&] { return makeFilter(s.scene.shadow.filter); });
   // The scene's own params apply when they belong to the technique in use (a scene may carry
   // settings for several); --set applies strictly.
-  std::vector<std::pair<std::string, std::string>> sceneParams;
   for (const auto& kv : s.scene.shadow.params) {
+    const std::string field = "shadow.params." + kv.first;
     const std::string prefix = kv.first.substr(0, kv.first.find('.'));
     if (prefix == "light" || prefix == s.projection->id() || prefix == s.filter->id()) {
-      sceneParams.push_back(kv);
+      sceneChoice(s.scene, field, [&] { applyParams({kv}, s.scene, *s.projection, *s.filter); });
     } else {
       const std::vector<std::string> p = projectionIds(), f = filterIds();
       if (std::find(p.begin(), p.end(), prefix) == p.end() && std::find(f.begin(), f.end(), prefix) == f.end())
-        throw Error(fmt::format("{}: shadow.params.{}: no technique '{}'", s.scene.sourceFile.string(), kv.first, prefix));
+        throw Error(fmt::format("{}: {}: no technique '{}'", sceneFile(s.scene), field, prefix));
     }
   }
-  applyParams(sceneParams, s.scene, *s.projection, *s.filter);
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
   applyParams(cli, s.scene, *s.projection, *s.filter);

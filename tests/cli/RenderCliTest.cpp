@@ -53,6 +53,29 @@ TEST(RenderCli, ObjWithNanExits1NamingTheLine) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
 }
 
+// A scene file's shadow.filter or shadow.params that the registry refuses is bad input in that
+// file (exit 1 naming file and field, as docs/scenes.md says), not a bad command line (exit 2).
+TEST(RenderCli, SceneFileTechniqueErrorsExit1NamingFileAndField) {
+  const std::string bad = std::string(PENUMBRA_TEST_DATA) + "/bad/";
+  RunResult r = runPenumbra("render --size 16x16 --scene " + bad + "scene_bad_filter.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("scene_bad_filter.json: shadow.filter: unknown filter 'blurry'"), std::string::npos) << r.err;
+  r = runPenumbra("render --size 16x16 --scene " + bad + "scene_param_out_of_range.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("scene_param_out_of_range.json: shadow.params.hard.slopeBias: "), std::string::npos) << r.err;
+  // The same mistakes on the command line stay usage errors.
+  EXPECT_EQ(runPenumbra("render --size 16x16 --set hard.slopeBias=99").exitCode, 2);
+}
+
+// `--scene DIR` printed a libstdc++ text without the file.
+TEST(RenderCli, SceneThatIsAFolderIsNamed) {
+  const std::string dir = freshDir("scene-folder");
+  std::filesystem::create_directories(dir + "/models.json");
+  const RunResult r = runPenumbra("render --size 16x16 --scene models.json", dir);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "penumbra: models.json: is a folder, not a scene or model file\n");
+}
+
 TEST(RenderCli, UnknownFilterExits2) {
   const RunResult r = runPenumbra("render --filter blurry");
   EXPECT_EQ(r.exitCode, 2);

@@ -286,6 +286,23 @@ def bad_files():
     out["scene_model_not_a_model.json"] = scene({"file": "scene_missing_model.json"})
     out["scene_number_overflow.json"] = scene({"shape": "box", "translate": [0, 0, 0]}).replace("[\n    0,", "[\n    1e999,", 1)
     out["scene_huge_translate.json"] = scene({"shape": "box", "translate": [1e20, 0, 0]})
+
+    def with_top(**fields):
+        s = json.loads(json.dumps(base))
+        s.update(fields)
+        return json.dumps(s, indent=1)
+    # Each of these rendered an empty, black or garbage image with exit 0, or exited 2 without
+    # naming the file.
+    out["scene_camera_down.json"] = with_top(camera={"position": [0, 10, 0], "target": [0, 0, 0]})
+    out["scene_camera_zero_up.json"] = with_top(camera={"position": [0, 2, 5], "up": [0, 0, 0]})
+    out["scene_camera_up_along_view.json"] = with_top(camera={"position": [0, 0, 5], "up": [0, 0, -2]})
+    out["scene_light_color_huge.json"] = with_top(lights=[{"type": "sun", "color": [1e38, 1, 1]}])
+    out["scene_light_color_negative.json"] = with_top(lights=[{"type": "sun", "color": [1, -0.5, 1]}])
+    out["scene_ambient_huge.json"] = with_top(ambient=[1e38, 0, 0])
+    out["scene_bad_filter.json"] = with_top(shadow={"filter": "blurry"})
+    out["scene_bad_param.json"] = with_top(shadow={"params": {"hard.nothing": 1}})
+    out["scene_param_out_of_range.json"] = with_top(shadow={"params": {"hard.slopeBias": 99}})
+    out["scene_binary.json"] = mask_png()  # not JSON: the message must not echo its bytes
     return out
 
 

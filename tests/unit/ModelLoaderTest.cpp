@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -227,9 +228,16 @@ TEST(ModelLoader, PunctualLightsAndTheirSize) {
 }
 
 TEST(ModelLoader, EveryBadFileGetsOneErrorNamingIt) {
+  // These load: their mistake is a technique choice, which the CLI checks against the registry
+  // (tests/loaders runs every bad file through the CLI).
+  const std::set<std::string> techniqueErrors = {"scene_bad_filter.json", "scene_bad_param.json", "scene_param_out_of_range.json"};
   size_t files = 0;
   for (const fs::directory_entry& f : fs::directory_iterator(kData / "bad")) {
     ++files;
+    if (techniqueErrors.count(f.path().filename().string())) {
+      EXPECT_NO_THROW(loadScene(f.path().string())) << f.path();
+      continue;
+    }
     const std::string e = errorOf([&] { loadScene(f.path().string()); });
     ASSERT_FALSE(e.empty()) << f.path() << " was accepted";
     EXPECT_NE(e.find(f.path().filename().string()), std::string::npos) << e;

@@ -350,7 +350,8 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, con
   Light l;
   if (!src.color.empty()) {
     if (src.color.size() != 3) error(sf + ".color", "expected 3 numbers");
-    for (double c : src.color) if (!(c >= 0.0 && c <= 1e6)) error(sf + ".color", "each component must be in [0, 1e6]");
+    for (double c : src.color)
+      if (!(c >= 0.0 && c <= kMaxRadiance)) error(sf + ".color", fmt::format("each component must be in [0, {}]", kMaxRadiance));
     l.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
   }
   if (!(src.intensity >= 0.0 && src.intensity <= 1e9)) error(sf + ".intensity", "must be in [0, 1e9]");

@@ -51,15 +51,16 @@ bool isModelFile(const std::filesystem::path& path) {
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
 }
 
-std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what) {
+std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what, uint64_t maxBytes) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) fail(what, "", fmt::format("cannot open {} (no such file)", path.string()));
+  if (std::filesystem::is_directory(status)) fail(what, "", fmt::format("{} is a folder, not a file", path.string()));
   if (!std::filesystem::is_regular_file(status)) fail(what, "", fmt::format("{} is not a regular file", path.string()));
   const uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) fail(what, "", fmt::format("cannot read the size of {}", path.string()));
-  if (size > kMaxFileBytes)
-    fail(what, "", fmt::format("{} is {} bytes, more than the {} byte limit", path.string(), size, kMaxFileBytes));
+  if (size > maxBytes)
+    fail(what, "", fmt::format("{} is {} bytes, more than the {} byte limit", path.string(), size, maxBytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(what, "", fmt::format("cannot open {} (not readable)", path.string()));
   std::vector<uint8_t> bytes(static_cast<size_t>(size));

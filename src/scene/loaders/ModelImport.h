@@ -66,8 +66,9 @@ void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromMod
 /// "file: field: problem" (field may be empty).
 [[noreturn]] void fail(const std::string& file, const std::string& field, const std::string& problem);
 
-/// Reads a whole regular file of at most kMaxFileBytes. Throws Error naming `what` otherwise.
-std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what);
+/// Reads a whole regular file of at most `maxBytes`. Throws Error naming `what` otherwise.
+std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what,
+                                     uint64_t maxBytes = kMaxFileBytes);
 
 /// Checks the limits that only the whole scene shows: vertex, triangle, object, image totals,
 /// finite world transforms and coordinates within kMaxCoordinateM. `file` names the error.
