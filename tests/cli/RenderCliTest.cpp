@@ -76,6 +76,29 @@ TEST(RenderCli, SceneThatIsAFolderIsNamed) {
   EXPECT_EQ(r.err, "penumbra: models.json: is a folder, not a scene or model file\n");
 }
 
+// Messages quote what files hold; a terminal escape or a newline in a glTF string reached the
+// terminal as it was.
+TEST(RenderCli, MessagesCarryNoControlCharacters) {
+  const RunResult r = runPenumbra("render --size 16x16 --scene " + std::string(PENUMBRA_TEST_DATA) + "/bad/control_chars.gltf");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("alphaMode: '\\x1b[2J\\x0aOPAQUE' is not OPAQUE"), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+// msm at a 16384² map said "framebuffer incomplete" where vssm said out of memory with advice.
+// An address-space limit makes llvmpipe's allocation fail at once (a GPU's memory is not bound
+// by it, so the test runs on software renderers only).
+TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
+  const RunResult probe = runPenumbra("render --size 16x16 --verbose");
+  if (probe.err.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not a software renderer: " << probe.err;
+  constexpr const char* kLimit = "ulimit -v 3000000 &&";  // KiB: 3 GB, a 16384² moment map needs 4 GiB
+  const RunResult r = runPenumbra("render --size 16x16 --filter msm --shadow-map 16384", "", kLimit);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("GL_OUT_OF_MEMORY (the shadow maps and the filter's tables may not fit: try a smaller --shadow-map)"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
 TEST(RenderCli, UnknownFilterExits2) {
   const RunResult r = runPenumbra("render --filter blurry");
   EXPECT_EQ(r.exitCode, 2);

@@ -257,6 +257,11 @@ def bad_files():
         d["bufferViews"][0]["byteStride"] = 4
     out["stride_too_small.gltf"] = triangle_gltf(mutate=stride)[1]
 
+    def terminal_escape(d):  # a string the message quotes: an ANSI "clear screen" and a newline
+        d["materials"] = [{"alphaMode": "\u001b[2J\nOPAQUE"}]
+        d["meshes"][0]["primitives"][0]["material"] = 0
+    out["control_chars.gltf"] = triangle_gltf(mutate=terminal_escape)[1]
+
     out["not_json.gltf"] = b'{"asset": {"version": "2.0"}, "meshes": [ {"primitives": '
     out["empty.glb"] = b""
     good_glb = triangle_glb()
