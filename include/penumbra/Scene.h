@@ -24,6 +24,9 @@ struct Mesh {
   std::vector<uint32_t> indices;  ///< three per triangle
   Aabb bounds() const;
   size_t triangleCount() const { return indices.size() / 3; }
+  /// True when at least one triangle has a non-zero area (a mesh of degenerate triangles, whose
+  /// corners lie on one line, draws no pixel and casts no shadow).
+  bool hasArea() const;
 };
 
 /// RGBA8 texture in memory (row 0 = top), used for base colour and alpha masks.
@@ -135,7 +138,8 @@ struct Scene {
   Aabb casterBounds() const;   ///< world bounds of shadow casters
   SceneExtent extent() const;  ///< every object's world bounds (one pass over the vertices)
   size_t triangleCount() const;
-  /// Throws penumbra::Error if indices are out of range, positions not finite, etc.
+  /// Throws penumbra::Error if indices are out of range, positions not finite, no triangle has
+  /// an area, the camera defines no view, etc.
   void validate() const;
 };
 

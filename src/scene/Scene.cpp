@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -101,6 +102,8 @@ void Scene::validate() const {
     PN_CHECK(m.baseColorTexture < static_cast<int>(images.size()),
              fmt::format("{}: material '{}': texture index out of range", where, m.name));
   PN_CHECK(triangleCount() > 0, fmt::format("{}: the scene has zero triangles", where));
+  PN_CHECK(std::any_of(objects.begin(), objects.end(), [&](const Object& o) { return meshes[o.mesh].hasArea(); }),
+           fmt::format("{}: every triangle has zero area (its corners lie on one line): nothing would be drawn", where));
   for (const Light& l : lights) {
     PN_CHECK(glm::length(l.direction) > 0.0f, fmt::format("{}: a light has a zero direction", where));
     PN_CHECK(l.size >= 0.0f, fmt::format("{}: a light has a negative size", where));

@@ -198,7 +198,7 @@ std::string jsonProblem(const Json::exception& e) {
 
 }  // namespace
 
-Scene loadSceneFile(const std::filesystem::path& path) {
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string file = path.string();
   const std::vector<uint8_t> bytes = loaders::readFileLimited(path, file, kMaxSceneFileBytes);
   Json j;
@@ -256,7 +256,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
       const std::filesystem::path modelPath = path.parent_path() / model;
       if (!loaders::isModelFile(modelPath)) r.fail("file", fmt::format("'{}' is not a .gltf, .glb or .obj file", model));
       try {
-        loaders::appendModel(s, loaders::loadModelFile(modelPath).scene, m, casts, name, modelPath.string());
+        loaders::appendModel(s, loaders::loadModelFile(modelPath, options).scene, m, casts, name, modelPath.string());
       } catch (const Error& e) {
         r.fail("file", e.what());
       }
@@ -294,17 +294,17 @@ Scene loadSceneFile(const std::filesystem::path& path) {
   return s;
 }
 
-Scene loadScene(const std::string& nameOrPath) {
+Scene loadScene(const std::string& nameOrPath, const LoadOptions& options) {
   const bool looksLikeFile = nameOrPath.find('/') != std::string::npos || nameOrPath.find('.') != std::string::npos;
   if (!looksLikeFile) return makeBuiltinScene(nameOrPath);
   std::error_code ec;
   if (std::filesystem::is_directory(nameOrPath, ec)) throw Error(fmt::format("{}: is a folder, not a scene or model file", nameOrPath));
-  if (loaders::isModelFile(nameOrPath)) return loaders::loadModelScene(nameOrPath);
+  if (loaders::isModelFile(nameOrPath)) return loaders::loadModelScene(nameOrPath, options);
   std::string ext = std::filesystem::path(nameOrPath).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".json" && std::filesystem::exists(nameOrPath, ec))
     throw Error(fmt::format("{}: not a scene file (.json) or a model file (.gltf, .glb, .obj)", nameOrPath));
-  return loadSceneFile(nameOrPath);
+  return loadSceneFile(nameOrPath, options);
 }
 
 }  // namespace penumbra

@@ -99,6 +99,31 @@ TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
 }
 
+// A 2 M-triangle load took 12 s without a word: a large model file is announced when it starts
+// and when it is loaded (with a bar between them on a terminal).
+TEST(RenderCli, LargeModelLoadsAreAnnounced) {
+  const std::string dir = freshDir("large-obj");
+  constexpr int kGrid = 600;  // 360 000 quads, ~17 MiB of OBJ: just above the 16 MiB announced
+  {
+    std::ofstream obj(dir + "/big.obj");
+    obj << "# " << std::string(1 << 20, '-') << "\n";  // a comment pads the file past the size announced
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; j <= kGrid; ++j) obj << "v " << i * 0.01 << " " << (i * 7 + j * 3) % 5 * 0.02 << " " << j * 0.01 << "\n";
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const int a = i * (kGrid + 1) + j + 1;
+        obj << "f " << a << " " << a + kGrid + 1 << " " << a + kGrid + 2 << " " << a + 1 << "\n";
+      }
+  }
+  ASSERT_GE(std::filesystem::file_size(dir + "/big.obj"), 16u << 20);
+  const RunResult r = runPenumbra("render --scene big.obj --size 16x16 --shadow-map 256", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("penumbra: loading big.obj ("), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" MiB)\npenumbra: loaded big.obj in "), std::string::npos) << r.err;
+  // Small files load silently.
+  EXPECT_EQ(runPenumbra("render --scene " + std::string(PENUMBRA_TEST_DATA) + "/models/box.obj --size 16x16").err, "");
+}
+
 TEST(RenderCli, UnknownFilterExits2) {
   const RunResult r = runPenumbra("render --filter blurry");
   EXPECT_EQ(r.exitCode, 2);

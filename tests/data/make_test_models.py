@@ -204,6 +204,8 @@ def bad_files():
     out["nan_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (nan, 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
     out["inf_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (float("inf"), 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
     out["index_out_of_range.gltf"] = triangle_gltf(indices=(0, 1, 99))[1]
+    # Triangles whose corners lie on one line draw nothing: an empty image with exit 0 once.
+    out["degenerate_triangles.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (1.0, 1.0, 1.0), (2.0, 2.0, 2.0)])[1]
     out["zero_triangles.gltf"] = triangle_gltf(mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=1))[1]
     out["missing_buffer.gltf"] = triangle_gltf(mutate=lambda d: None)[1].replace(
         b'"uri": "data:application/octet-stream;base64,', b'"uri": "no_such_file.bin", "x": "')
@@ -271,6 +273,7 @@ def bad_files():
 
     out["index_out_of_range.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n"
     out["inf_position.obj"] = "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"
+    out["degenerate_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 4 4 1\n"
     out["zero_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n"
     out["missing_mtl.obj"] = "mtllib no_such.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
     # tinyobjloader reads what it cannot parse as 0: each of these loaded silently once.

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 using namespace penumbra;
 namespace fs = std::filesystem;
 
@@ -293,4 +295,54 @@ TEST(ModelLoader, ObjNumbersThatAreNotNumbersNameTheirLine) {
   EXPECT_NE(objError("v 0 0\n").find("line 1: v: 2 numbers"), std::string::npos);
   // What real files hold still loads: comments, tabs, CRLF, '+', exponents, relative indices, w.
   EXPECT_EQ(objError("# c\r\nv\t+0 0 0 1\r\nv 1e0 0 0 # x\r\nv 0 1 0\r\nvt 0 0\r\nf -3/1 -2/1 -1/1\r\n"), "");
+}
+
+// A 2 M-triangle load took 12 s without a word: the loaders report their progress (the CLI
+// shows it for large files), from 0 when a file starts to 1 when it is loaded, increasing.
+TEST(ModelLoader, ProgressIsReportedWhileAFileLoads) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-progress-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  constexpr int kGrid = 300;  // 90 000 quads: 180 000 triangles, a 4 MB file
+  {
+    std::ofstream obj(dir / "grid.obj");
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; j <= kGrid; ++j) obj << "v " << i << " 0 " << j << "\n";
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const int a = i * (kGrid + 1) + j + 1;
+        obj << "f " << a << " " << a + kGrid + 1 << " " << a + kGrid + 2 << " " << a + 1 << "\n";
+      }
+  }
+  for (const fs::path& file : {dir / "grid.obj", kData / "models/alpha_quad.gltf"}) {
+    std::vector<double> seen;
+    const loaders::Model m = loaders::loadModelFile(file, {.progress = [&](const fs::path& f, double x) {
+      EXPECT_EQ(f, file);
+      seen.push_back(x);
+    }});
+    ASSERT_GE(seen.size(), 3u) << file;
+    EXPECT_EQ(seen.front(), 0.0);
+    EXPECT_EQ(seen.back(), 1.0);
+    for (size_t i = 1; i < seen.size(); ++i) EXPECT_GT(seen[i], seen[i - 1]) << file << " report " << i;
+    if (file.extension() == ".obj") {
+      EXPECT_GE(seen.size(), 50u) << "a 4 MB file is reported in steps";
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// A file of only degenerate triangles rendered an empty image with exit 0.
+TEST(ModelLoader, OnlyDegenerateTrianglesAreRefused) {
+  for (const char* name : {"degenerate_triangles.obj", "degenerate_triangles.gltf"}) {
+    const std::string e = errorOf([&] { loadScene((kData / "bad" / name).string()); });
+    EXPECT_NE(e.find(std::string(name) + ": every triangle has zero area"), std::string::npos) << e;
+  }
+  // Inside a scene file, placed next to shapes that draw, such a model is still an error.
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-degenerate-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  std::ofstream(dir / "s.json") << R"({"lights": [{"type": "sun"}], "objects": [{"shape": "box"}, {"file": "flat.obj"}]})";
+  const std::string e = errorOf([&] { loadScene((dir / "s.json").string()); });
+  EXPECT_NE(e.find("objects[1].file"), std::string::npos) << e;
+  EXPECT_NE(e.find("every triangle has zero area"), std::string::npos) << e;
+  fs::remove_all(dir);
 }

@@ -66,7 +66,8 @@ struct AccessorData {
 
 class Converter {
 public:
-  Converter(const tinygltf::Model& model, std::string file) : g(model), mFile(std::move(file)) {}
+  Converter(const tinygltf::Model& model, std::string file, ProgressReport* progress)
+      : g(model), mFile(std::move(file)), mProgress(progress) {}
   Model run();
 
 private:
@@ -85,6 +86,8 @@ private:
 
   const tinygltf::Model& g;
   std::string mFile;
+  ProgressReport* mProgress;
+  size_t mPrimitivesDone = 0, mPrimitivesTotal = 0;
   Model mOut;
   std::map<std::pair<int, int>, int> mMeshes;
   std::map<int, std::pair<int, bool>> mMaterials;  // glTF material → (scene material, invisible)
@@ -235,6 +238,7 @@ int Converter::meshFor(int mi, int pi) {
   if (auto it = mMeshes.find({mi, pi}); it != mMeshes.end()) return it->second;
   int& result = mMeshes[{mi, pi}];
   result = -1;
+  if (mProgress) mProgress->update(mPrimitivesDone++, mPrimitivesTotal);
   const tinygltf::Primitive& p = g.meshes[static_cast<size_t>(mi)].primitives[static_cast<size_t>(pi)];
   const std::string field = fmt::format("meshes[{}].primitives[{}]", mi, pi);
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
@@ -446,6 +450,7 @@ Model Converter::run() {
   if (g.asset.version.rfind("2.", 0) != 0) error("asset.version", fmt::format("'{}' is not glTF 2.x", g.asset.version));
   for (const std::string& ext : g.extensionsRequired)
     if (!kSupportedRequiredExtensions.count(ext)) error("extensionsRequired", fmt::format("{} is not supported", ext));
+  for (const tinygltf::Mesh& m : g.meshes) mPrimitivesTotal += m.primitives.size();
   mOnPath.assign(g.nodes.size(), 0);
   mVisited.assign(g.nodes.size(), 0);
   std::vector<int> roots;
@@ -479,6 +484,8 @@ Model Converter::run() {
 
 }  // namespace
 
-Model convertGltf(const tinygltf::Model& model, const std::string& file) { return Converter(model, file).run(); }
+Model convertGltf(const tinygltf::Model& model, const std::string& file, ProgressReport* progress) {
+  return Converter(model, file, progress).run();
+}
 
 }  // namespace penumbra::loaders

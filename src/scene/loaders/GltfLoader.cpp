@@ -149,9 +149,13 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
   return true;
 }
 
+// Share of a glTF load spent before the conversion (JSON, buffers, images).
+constexpr double kGltfParseShare = 0.4;
+
 }  // namespace
 
-Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name, const std::filesystem::path& baseDir) {
+Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name, const std::filesystem::path& baseDir,
+                         ProgressReport* progress) {
   if (bytes.empty()) fail(name, "", "the file is empty");
   if (bytes.size() > kMaxFileBytes) fail(name, "", fmt::format("{} bytes, more than the {} byte limit", bytes.size(), kMaxFileBytes));
   const bool binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
@@ -182,12 +186,16 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base)
                          : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), size, base);
   if (!ok) fail(name, "", oneLine(err.empty() ? warn : err));
-  return convertGltf(model, name);
+  if (progress) {
+    progress->stage(kGltfParseShare, 1.0);
+    progress->update(0, 1);
+  }
+  return convertGltf(model, name, progress);
 }
 
-Model loadGltf(const std::filesystem::path& path) {
+Model loadGltf(const std::filesystem::path& path, ProgressReport& progress) {
   const std::vector<uint8_t> bytes = readFileLimited(path, path.string());
-  return loadGltfFromMemory(bytes, path.string(), path.parent_path());
+  return loadGltfFromMemory(bytes, path.string(), path.parent_path(), &progress);
 }
 
 }  // namespace penumbra::loaders
