@@ -107,6 +107,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
 
     checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
+    checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
     const report::SetupFactory factory = [o](const report::BenchConfig& c) {
       TechniqueOptions t;
       t.camera = o->camera;

@@ -69,6 +69,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     renderer.render(s.render);  // warm-up: the first frame includes shader compilation

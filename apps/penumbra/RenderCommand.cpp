@@ -30,6 +30,8 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
     if (!o->dump.empty()) checkOutputDir("--dump", o->dump);
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    checkImageFits(context, s.render.width, s.render.height,
+                   kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     renderer.render(s.render);
