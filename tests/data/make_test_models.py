@@ -7,10 +7,13 @@ Outputs (all committed; rerun after editing this script):
   models/alpha_quad.gltf   ground + alpha-masked quad (a 4x4 texture with holes) under a
                            KHR_lights_punctual sun whose size is in the light's extras, + a camera
   models/box.obj, box.mtl  a unit cube with a red Kd material
+  models/textured_quads.gltf  alpha_quad's masked quad over a ground whose colour is a JPEG
+                           checker under KHR_texture_transform, with a WebP normal map that
+                           nothing decodes (Penumbra ignores normal maps)
   scenes/obj_and_gltf.json a scene file that places the OBJ and the glTF side by side
   bad/*                    files every loader must reject with one clear error (docs/scenes.md)
   fuzz/gltf/*, fuzz/scene/* seed corpora for the libFuzzer targets
-Only the standard library is used (PNG and GLB are written by hand).
+Only the standard library is used (PNG, JPEG and GLB are written by hand).
 """
 import base64
 import json
@@ -50,6 +53,86 @@ def mask_png():
             row += [220, 40, 30, 255] if c == "X" else [0, 0, 0, 0]
         rows.append(row)
     return png(4, 4, rows)
+
+
+# The ground texture of textured_quads.gltf: 4 x 4 blocks of 8 x 8 texels, row 0 = the image's
+# top row. Asymmetric under flips and quarter turns, so a wrong transform shows.
+CHECKER = ["ABAA",
+           "BBAB",
+           "ABBB",
+           "AABA"]
+CHECKER_RGB = {"A": (230, 200, 40), "B": (30, 60, 190)}
+CHECKER_BLOCK = 8
+# KHR_texture_transform of the ground: uv' = offset + rotate(rotation) (scale * uv).
+GROUND_UV_SCALE = [2.0, 2.0]
+GROUND_UV_ROTATION = 1.5707963267948966  # a quarter turn: u' = 2v, v' = -2u
+GROUND_UV_OFFSET = [0.0, 0.0]
+
+
+def jpeg_blocks(width, height, block_rgb):
+    """Baseline JPEG (4:4:4, quantisation 1) of an image whose 8 x 8 blocks are each one colour:
+    only DC coefficients, so a few lines encode it exactly. block_rgb(bx, by) -> (r, g, b)."""
+    def segment(marker, payload):
+        return struct.pack(">BBH", 0xFF, marker, len(payload) + 2) + payload
+
+    def canonical(counts, symbols):  # JPEG Huffman codes from the per-length counts
+        codes, code, k = {}, 0, 0
+        for length in range(1, 17):
+            for _ in range(counts[length - 1]):
+                codes[symbols[k]] = (code, length)
+                code += 1
+                k += 1
+            code <<= 1
+        return codes
+    dc_counts = [0, 1, 5, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0]  # ITU T.81 table K.3
+    dc_symbols = list(range(12))
+    ac_counts = [1] + [0] * 15  # one code: end of block
+    ac_symbols = [0x00]
+    dc_codes, ac_codes = canonical(dc_counts, dc_symbols), canonical(ac_counts, ac_symbols)
+
+    bits = []
+    def put(value, length):
+        bits.extend((value >> (length - 1 - i)) & 1 for i in range(length))
+    def put_dc(diff):
+        category = abs(diff).bit_length()
+        put(*dc_codes[category])
+        if category:
+            put(diff if diff >= 0 else diff + (1 << category) - 1, category)
+    previous = [0, 0, 0]
+    for by in range(height // 8):
+        for bx in range(width // 8):
+            r, g, b = block_rgb(bx, by)
+            ycc = (0.299 * r + 0.587 * g + 0.114 * b,
+                   -0.168736 * r - 0.331264 * g + 0.5 * b + 128,
+                   0.5 * r - 0.418688 * g - 0.081312 * b + 128)
+            for c in range(3):
+                dc = 8 * (int(round(ycc[c])) - 128)  # the DCT's DC term of a flat block
+                put_dc(dc - previous[c])
+                previous[c] = dc
+                put(*ac_codes[0x00])
+    bits.extend([1] * (-len(bits) % 8))
+    scan = bytearray()
+    for i in range(0, len(bits), 8):
+        byte = int("".join(map(str, bits[i:i + 8])), 2)
+        scan.append(byte)
+        if byte == 0xFF:
+            scan.append(0x00)  # byte stuffing
+    return (b"\xFF\xD8"
+            + segment(0xE0, b"JFIF\x00\x01\x01\x00\x00\x01\x00\x01\x00\x00")
+            + segment(0xDB, b"\x00" + bytes([1] * 64))
+            + segment(0xC0, struct.pack(">BHHB", 8, height, width, 3) + b"".join(bytes([c, 0x11, 0]) for c in (1, 2, 3)))
+            + segment(0xC4, b"\x00" + bytes(dc_counts) + bytes(dc_symbols))
+            + segment(0xC4, b"\x10" + bytes(ac_counts) + bytes(ac_symbols))
+            + segment(0xDA, b"\x03" + b"".join(bytes([c, 0x00]) for c in (1, 2, 3)) + b"\x00\x3F\x00")
+            + bytes(scan) + b"\xFF\xD9")
+
+
+def checker_jpeg():
+    return jpeg_blocks(4 * CHECKER_BLOCK, 4 * CHECKER_BLOCK, lambda bx, by: CHECKER_RGB[CHECKER[by][bx]])
+
+
+# The first bytes of a WebP file: enough for a loader to see what it is, nothing to decode.
+WEBP_HEADER = b"RIFF\x1a\x00\x00\x00WEBPVP8L\x0d\x00\x00\x00\x2f\x00\x00\x00\x10\x07\x10\x11\x11\x88\x88\xfe\x07\x00"
 
 
 class Gltf:
@@ -123,6 +206,23 @@ def alpha_quad_gltf():
              g.node(name="camera", camera=0, translation=[0.0, 5.5, 4.6], rotation=[s50, 0.0, 0.0, c50])]
     g.doc["scenes"][0]["nodes"] = roots
     return g.finish_embedded()
+
+
+def textured_quads_gltf():
+    """alpha_quad.gltf with a JPEG-textured ground (KHR_texture_transform) and a WebP normal map."""
+    g = json.loads(alpha_quad_gltf())
+    g["images"].append({"uri": "data:image/jpeg;base64," + base64.b64encode(checker_jpeg()).decode()})
+    g["images"].append({"uri": "data:image/webp;base64," + base64.b64encode(WEBP_HEADER).decode()})
+    g["textures"] += [{"source": 1}, {"source": 2}]
+    ground = g["materials"][0]
+    ground["pbrMetallicRoughness"]["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
+    ground["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1, "extensions": {"KHR_texture_transform": {
+        "offset": GROUND_UV_OFFSET, "rotation": GROUND_UV_ROTATION, "scale": GROUND_UV_SCALE}}}
+    ground["normalTexture"] = {"index": 2}
+    g["extensionsUsed"] += ["KHR_texture_transform"]
+    g["extensionsRequired"] = ["KHR_texture_transform"]
+    g["asset"]["generator"] = "penumbra tests/data/make_test_models.py"
+    return json.dumps(g, indent=1).encode()
 
 
 def glb(doc_bytes, bin_bytes=b"", version=2, length=None, json_type=0x4E4F534A):
@@ -231,6 +331,7 @@ def bad_files():
         d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(header + mask_png()[33:]).decode()}]
         d["textures"] = [{"source": 0}]
         d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        d["meshes"][0]["primitives"][0]["material"] = 0  # images are decoded when a material uses them
     out["huge_image.gltf"] = triangle_gltf(mutate=huge_image)[1]
 
     def deep(d):
@@ -240,6 +341,21 @@ def bad_files():
     def huge_scale(d):
         d["nodes"][0]["scale"] = [1e30, 1e30, 1e30]
     out["huge_coordinates.gltf"] = triangle_gltf(mutate=huge_scale)[1]
+
+    g, _ = triangle_gltf()  # a base-colour texture in a format Penumbra does not decode, in a buffer view
+    g.doc["images"] = [{"bufferView": g.view(WEBP_HEADER), "mimeType": "image/webp"}]
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    g.doc["meshes"][0]["primitives"][0]["material"] = 0
+    out["webp_base_colour.gltf"] = g.finish_embedded()
+
+    def bad_transform(d):
+        d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(mask_png()).decode()}]
+        d["textures"] = [{"source": 0}]
+        d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {
+            "KHR_texture_transform": {"rotation": "a quarter turn"}}}}}]
+        d["meshes"][0]["primitives"][0]["material"] = 0
+    out["bad_texture_transform.gltf"] = triangle_gltf(mutate=bad_transform)[1]
 
     def sparse(d):
         d["accessors"][0]["sparse"] = {"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
@@ -316,6 +432,7 @@ def bad_files():
 
 def main():
     write("models/alpha_quad.gltf", alpha_quad_gltf())
+    write("models/textured_quads.gltf", textured_quads_gltf())
     write("models/box.obj", BOX_OBJ)
     write("models/box.mtl", BOX_MTL)
     write("scenes/obj_and_gltf.json", json.dumps(SCENE, indent=1) + "\n")
@@ -326,6 +443,7 @@ def main():
     write("fuzz/gltf/triangle.glb", triangle_glb())
     write("fuzz/gltf/strip.gltf", triangle_gltf(indices=(0, 1, 2, 1), mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=5))[1])
     write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
+    write("fuzz/gltf/textured_quads.gltf", textured_quads_gltf())  # the JPEG decoder and KHR_texture_transform
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
     write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
     write("fuzz/scene/number_overflow.json", bad_files()["scene_number_overflow.json"])  # found by fuzzing

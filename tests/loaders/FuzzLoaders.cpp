@@ -5,6 +5,7 @@
 //           tests/data/models so that its "file" objects reach real glTF and OBJ models.
 // A penumbra::Error is the expected answer to bad input; anything else that escapes (another
 // exception, a sanitizer report, a timeout, memory beyond -rss_limit_mb) is a bug.
+#include "base/StbImageFormats.h"
 #define STB_IMAGE_IMPLEMENTATION  // penumbra_base has it in base/ImageIO.cpp, which this build leaves out
 #include <stb_image.h>
 

@@ -346,3 +346,40 @@ TEST(ModelLoader, OnlyDegenerateTrianglesAreRefused) {
   EXPECT_NE(e.find("every triangle has zero area"), std::string::npos) << e;
   fs::remove_all(dir);
 }
+
+// JPEG base-colour textures decode (they were refused), KHR_texture_transform is folded into the
+// texture coordinates, and an image no material's base colour uses (a WebP normal map) is never
+// decoded. tests/data/make_test_models.py writes the file.
+TEST(ModelLoader, JpegTextureTransformAndUnusedImages) {
+  const loaders::Model m = loaders::loadModelFile(kData / "models/textured_quads.gltf");
+  const Scene& s = m.scene;
+  ASSERT_EQ(s.images.size(), 2u) << "the mask and the JPEG; the WebP normal map is never decoded";
+  const Object& ground = s.objects[0];
+  const Material& mat = s.materials[ground.material];
+  ASSERT_GE(mat.baseColorTexture, 0);
+  const Image& jpeg = s.images[static_cast<size_t>(mat.baseColorTexture)];
+  ASSERT_EQ(jpeg.width, 32);
+  ASSERT_EQ(jpeg.height, 32);
+  const char* const checker[4] = {"ABAA", "BBAB", "ABBB", "AABA"};
+  const glm::ivec3 colours[2] = {{230, 200, 40}, {30, 60, 190}};
+  constexpr int kJpegTolerance = 2;  // YCbCr rounding
+  for (int by = 0; by < 4; ++by)
+    for (int bx = 0; bx < 4; ++bx) {
+      const glm::ivec3 want = colours[checker[by][bx] == 'A' ? 0 : 1];
+      const size_t texel = static_cast<size_t>(4 * ((8 * by + 4) * 32 + 8 * bx + 4));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(jpeg.rgba[texel + static_cast<size_t>(c)], want[c], kJpegTolerance) << bx << "," << by;
+    }
+  // uv (0,0) at (-3, 0, -3) across the 6 m ground; the transform: scale 2, a quarter turn.
+  for (const Vertex& v : s.meshes[ground.mesh].vertices) {
+    const glm::vec2 uv((v.position.x + 3.0f) / 6.0f, (v.position.z + 3.0f) / 6.0f);
+    EXPECT_NEAR(v.uv.x, 2.0f * uv.y, 1e-5f) << v.position.x << "," << v.position.z;
+    EXPECT_NEAR(v.uv.y, -2.0f * uv.x, 1e-5f) << v.position.x << "," << v.position.z;
+  }
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("webp_base_colour.gltf").find("textures[0] (images[0]): WebP is not an image format Penumbra decodes (PNG, JPEG)"),
+            std::string::npos) << err("webp_base_colour.gltf");
+  EXPECT_NE(err("bad_texture_transform.gltf")
+                .find("materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation: expected a finite number"),
+            std::string::npos) << err("bad_texture_transform.gltf");
+}

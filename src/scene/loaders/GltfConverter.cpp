@@ -4,6 +4,8 @@
 // the glTF field ("accessors[3]: …"). What is read and what is ignored: docs/scenes.md.
 #include "scene/loaders/GltfConverter.h"
 
+#include "scene/loaders/GltfTextures.h"
+
 // Declarations only (GltfLoader.cpp holds the implementation), configured as there.
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
@@ -31,7 +33,8 @@ constexpr float kMaxSpotSizeM = 100.0f, kMaxSunSizeRad = 0.5f;  // the scene fil
 constexpr float kPointConeMarginRad = 0.05f;    // room around the scene when aiming a point light
 
 const std::set<std::string> kSupportedRequiredExtensions = {
-    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength"};
+    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength",
+    "KHR_texture_transform"};
 
 // --- accessors ---------------------------------------------------------------------------------
 int componentBytes(int type) {
@@ -92,6 +95,8 @@ private:
   std::map<std::pair<int, int>, int> mMeshes;
   std::map<int, std::pair<int, bool>> mMaterials;  // glTF material → (scene material, invisible)
   std::map<int, int> mImages;
+  uint64_t mImageBytes = 0;  // decoded so far
+  std::map<int, UvTransform> mUvTransforms;  // glTF material → its base-colour texture's transform
   std::vector<uint8_t> mOnPath, mVisited;
   std::vector<size_t> mPointLights;  // lights to aim once the bounds are known
   uint64_t mVertices = 0, mTriangles = 0;
@@ -167,15 +172,7 @@ void Converter::reserve(uint64_t vertices, uint64_t triangles, const std::string
 
 int Converter::imageFor(int gi, const std::string& field) {
   if (auto it = mImages.find(gi); it != mImages.end()) return it->second;
-  const tinygltf::Image& src = g.images[static_cast<size_t>(gi)];
-  if (src.image.empty() || src.width < 1 || src.height < 1 ||
-      src.image.size() != 4 * static_cast<size_t>(src.width) * static_cast<size_t>(src.height))
-    error(field, fmt::format("images[{}] has no pixel data (its file '{}' could not be read)", gi, src.uri));
-  Image im;
-  im.width = src.width;
-  im.height = src.height;
-  im.rgba = src.image;
-  mOut.scene.images.push_back(std::move(im));
+  mOut.scene.images.push_back(decodeImage(g.images[static_cast<size_t>(gi)], gi, mFile, field, mImageBytes));
   return mImages[gi] = static_cast<int>(mOut.scene.images.size() - 1);
 }
 
@@ -211,6 +208,7 @@ int Converter::materialFor(int gm, const std::string& use, bool& invisible) {
       if (source >= 0 && static_cast<size_t>(source) >= g.images.size())
         error(fmt::format("textures[{}].source", texture), fmt::format("no image {} ({} images)", source, g.images.size()));
       if (source >= 0) m.baseColorTexture = imageFor(source, fmt::format("textures[{}]", texture));
+      mUvTransforms[gm] = readTextureTransform(pbr.baseColorTexture, mFile, field + ".pbrMetallicRoughness.baseColorTexture");
     }
     const float factorAlpha = static_cast<float>(pbr.baseColorFactor[3]);
     if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
@@ -296,7 +294,8 @@ int Converter::meshFor(int mi, int pi) {
   }
   const Material& mat = mOut.scene.materials[static_cast<size_t>(material)];
   if (mat.baseColorTexture >= 0) {
-    const int set = g.materials[static_cast<size_t>(p.material)].pbrMetallicRoughness.baseColorTexture.texCoord;
+    const UvTransform& transform = mUvTransforms[p.material];  // KHR_texture_transform, folded in here
+    const int set = transform.texCoord.value_or(g.materials[static_cast<size_t>(p.material)].pbrMetallicRoughness.baseColorTexture.texCoord);
     const std::string name = fmt::format("TEXCOORD_{}", set);
     const auto uv = p.attributes.find(name);
     if (uv == p.attributes.end()) error(field + ".attributes", fmt::format("no {}, which its material's base colour texture uses", name));
@@ -306,7 +305,7 @@ int Converter::meshFor(int mi, int pi) {
     if (t.count != pos.count) error(field + ".attributes." + name, fmt::format("{} elements, POSITION has {}", t.count, pos.count));
     for (size_t i = 0; i < t.count; ++i) {
       glm::vec2& v = mesh.vertices[i].uv;
-      v = glm::vec2(static_cast<float>(t.component(i, 0)), static_cast<float>(t.component(i, 1)));
+      v = transform.apply(glm::vec2(static_cast<float>(t.component(i, 0)), static_cast<float>(t.component(i, 1))));
       if (!std::isfinite(v.x) || !std::isfinite(v.y)) error(fmt::format("accessors[{}]", uv->second), fmt::format("texture coordinate {} is not finite", i));
     }
   }

@@ -1,22 +1,22 @@
 // glTF 2.0 input: tinygltf parses the JSON, the GLB container, buffers and data URIs; every
 // index, offset, count and number it hands over is checked by GltfConverter.cpp before use,
 // because tinygltf checks few of them. Two holes are closed before tinygltf runs: JSON nesting (its `extras`
-// reader recurses once per level) and buffer views that run past their buffer (it decodes an
-// image straight from such a view). Images are decoded by stb_image (ImageIO.cpp holds its
-// implementation) after a size check, never larger than kMaxImageSide.
+// reader recurses once per level) and buffer views that run past their buffer (it hands an
+// image straight from such a view to the image callback). Images stay encoded until a material
+// uses them (GltfTextures.cpp decodes them, size limits first).
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE        // our decoder below: size limits first
+#define TINYGLTF_NO_STB_IMAGE        // GltfTextures.cpp decodes, size limits first
 #define TINYGLTF_NO_STB_IMAGE_WRITE  // Penumbra never writes glTF
 #include <tiny_gltf.h>
 
 #include "scene/loaders/GltfConverter.h"
 #include "scene/loaders/GltfLoader.h"
+#include "scene/loaders/GltfTextures.h"
 
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <stb_image.h>
 
 #include <algorithm>
 #include <cstring>
@@ -94,12 +94,7 @@ void precheckJson(const std::string& file, std::span<const uint8_t> text) {
   }
 }
 
-// --- tinygltf callbacks: files and images, with limits ------------------------------------------
-struct LoadContext {
-  std::string file;
-  uint64_t imageBytes = 0;
-};
-
+// --- tinygltf callbacks: files with limits ---------------------------------------------------------
 bool fileExists(const std::string& path, void*) {
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec);
@@ -119,34 +114,6 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
 bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "writing is not supported";
   return false;
-}
-
-bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* user) {
-  auto* ctx = static_cast<LoadContext*>(user);
-  auto error = [&](const std::string& what) {
-    if (err) *err += fmt::format("images[{}]: {}", index, what);
-    return false;
-  };
-  int w = 0, h = 0, channels = 0;
-  if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &channels))
-    return error(fmt::format("not an image stb_image can decode ({})", stbi_failure_reason() ? stbi_failure_reason() : "empty"));
-  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-    return error(fmt::format("{}x{} texels; each side must be in 1..{}", w, h, kMaxImageSide));
-  const uint64_t bytesNeeded = 4ull * static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
-  if (ctx->imageBytes + bytesNeeded > kMaxImageBytes)
-    return error(fmt::format("decoded images would take more than {} bytes", kMaxImageBytes));
-  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);
-  if (!pixels) return error(fmt::format("cannot decode ({})", stbi_failure_reason() ? stbi_failure_reason() : "unknown"));
-  image->image.assign(pixels, pixels + bytesNeeded);
-  stbi_image_free(pixels);
-  image->width = w;
-  image->height = h;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  ctx->imageBytes += bytesNeeded;
-  return true;
 }
 
 // Share of a glTF load spent before the conversion (JSON, buffers, images).
@@ -175,9 +142,8 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
   }
   precheckJson(name, json);
 
-  LoadContext ctx{name, 0};
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&decodeImage, &ctx);
+  loader.SetImageLoader(&keepEncodedImage, nullptr);
   loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
   tinygltf::Model model;
   std::string err, warn;
