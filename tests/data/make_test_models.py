@@ -380,6 +380,12 @@ def bad_files():
         d["meshes"][0]["primitives"][0]["material"] = 0
     out["control_chars.gltf"] = triangle_gltf(mutate=terminal_escape)[1]
 
+    # glTF 1.0 (named and refused) and members tinygltf requires: its own messages named no field.
+    out["gltf1.gltf"] = json.dumps({"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}},
+                                    "nodes": {"root": {"meshes": ["box"]}}}, indent=1)
+    out["empty_object.gltf"] = b"{}"
+    out["missing_byte_length.gltf"] = triangle_gltf(mutate=lambda d: d["bufferViews"][0].pop("byteLength"))[1]
+    out["primitive_without_attributes.gltf"] = triangle_gltf(mutate=lambda d: d["meshes"][0]["primitives"].append({"mode": 4}))[1]
     out["not_json.gltf"] = b'{"asset": {"version": "2.0"}, "meshes": [ {"primitives": '
     out["empty.glb"] = b""
     good_glb = triangle_glb()

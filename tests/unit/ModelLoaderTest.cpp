@@ -383,3 +383,21 @@ TEST(ModelLoader, JpegTextureTransformAndUnusedImages) {
                 .find("materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation: expected a finite number"),
             std::string::npos) << err("bad_texture_transform.gltf");
 }
+
+// glTF 1.0 was not named; tinygltf's own messages carried no field ("{}" gave "JSON string too
+// short."): the members it requires are checked first, naming the field.
+TEST(ModelLoader, GltfStructureErrorsNameTheField) {
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("gltf1.gltf").find("gltf1.gltf: asset.version: '1.0': a glTF 1.0 file: Penumbra reads glTF 2.0 only"), std::string::npos)
+      << err("gltf1.gltf");
+  EXPECT_NE(err("glb_version1.glb").find("a binary glTF 1.0 file (GLB version 1)"), std::string::npos) << err("glb_version1.glb");
+  EXPECT_NE(err("empty_object.gltf").find("empty_object.gltf: asset: missing"), std::string::npos) << err("empty_object.gltf");
+  EXPECT_NE(err("missing_byte_length.gltf").find("bufferViews[0].byteLength: missing"), std::string::npos) << err("missing_byte_length.gltf");
+  EXPECT_NE(err("primitive_without_attributes.gltf").find("meshes[0].primitives[1].attributes: missing"), std::string::npos)
+      << err("primitive_without_attributes.gltf");
+  EXPECT_NE(gltfError(R"({"asset": {"version": "2.0"}, "accessors": [{"count": 3, "type": "VEC3"}]})").find("accessors[0].componentType: missing"),
+            std::string::npos);
+  EXPECT_NE(gltfError(R"({"asset": {"version": "2.0"}, "nodes": {"a": {}}})").find("collections keyed by name are glTF 1.0"), std::string::npos);
+  EXPECT_NE(gltfError(R"({"asset": {"version": 2}})").find("asset.version: expected a string"), std::string::npos);
+}

@@ -446,7 +446,6 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth) {
 }
 
 Model Converter::run() {
-  if (g.asset.version.rfind("2.", 0) != 0) error("asset.version", fmt::format("'{}' is not glTF 2.x", g.asset.version));
   for (const std::string& ext : g.extensionsRequired)
     if (!kSupportedRequiredExtensions.count(ext)) error("extensionsRequired", fmt::format("{} is not supported", ext));
   for (const tinygltf::Mesh& m : g.meshes) mPrimitivesTotal += m.primitives.size();
