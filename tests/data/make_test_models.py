@@ -7,6 +7,9 @@ Outputs (all committed; rerun after editing this script):
   models/alpha_quad.gltf   ground + alpha-masked quad (a 4x4 texture with holes) under a
                            KHR_lights_punctual sun whose size is in the light's extras, + a camera
   models/box.obj, box.mtl  a unit cube with a red Kd material
+  models/quantized_box.gltf  a unit box as gltfpack writes it (KHR_mesh_quantization): SHORT
+                           normalised positions scaled back by the node, BYTE normals, USHORT
+                           texture coordinates scaled back by KHR_texture_transform
   models/textured_quads.gltf  alpha_quad's masked quad over a ground whose colour is a JPEG
                            checker under KHR_texture_transform, with a WebP normal map that
                            nothing decodes (Penumbra ignores normal maps)
@@ -225,6 +228,50 @@ def textured_quads_gltf():
     return json.dumps(g, indent=1).encode()
 
 
+# quantized_box.gltf: positions in [-1, 1] as normalised SHORT, the node scales them by half a
+# metre; texture coordinates in [0, 1] as normalised USHORT, KHR_texture_transform scales by 2.
+QUANT_BOX_HALF_M = 0.5
+QUANT_UV_SCALE = 2.0
+
+
+def quantized_box_gltf():
+    g = Gltf()
+    faces = [((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((0, 0, -1), (-1, 0, 0), (0, 1, 0)), ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+             ((-1, 0, 0), (0, 0, 1), (0, 1, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1))]
+    pos, nrm, uv, idx = [], [], [], []
+    for n, u, v in faces:
+        base = len(pos)
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            pos.append([n[i] + su * u[i] + sv * v[i] for i in range(3)])
+            nrm.append(n)
+            uv.append(((su + 1) / 2, (1 - sv) / 2))
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    def packed(fmt, rows, pad):  # one element per stride, padded to 4 bytes as the extension requires
+        return b"".join(struct.pack("<" + fmt, *r) + b"\x00" * pad for r in rows)
+    def view(data, stride):
+        index = g.view(data)
+        g.doc["bufferViews"][index]["byteStride"] = stride
+        return index
+    q_pos = [[round(c * 32767) for c in p] for p in pos]
+    q_nrm = [[round(c * 127) for c in n] for n in nrm]
+    q_uv = [[round(c * 65535) for c in t] for t in uv]
+    acc = g.doc["accessors"]
+    acc.append({"bufferView": view(packed("3h", q_pos, 2), 8), "componentType": 5122, "normalized": True, "count": 24, "type": "VEC3",
+                "min": [-32767] * 3, "max": [32767] * 3})
+    acc.append({"bufferView": view(packed("3b", q_nrm, 1), 4), "componentType": 5120, "normalized": True, "count": 24, "type": "VEC3"})
+    acc.append({"bufferView": view(packed("2H", q_uv, 0), 4), "componentType": 5123, "normalized": True, "count": 24, "type": "VEC2"})
+    indices = g.accessor("H", idx, "SCALAR", 5123)
+    g.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(mask_png()).decode()}]
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["materials"] = [{"name": "quantized", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {
+        "KHR_texture_transform": {"scale": [QUANT_UV_SCALE, QUANT_UV_SCALE]}}}}}]
+    g.doc["meshes"].append({"name": "box", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
+                                                            "indices": indices, "material": 0}]})
+    g.doc["scenes"][0]["nodes"] = [g.node(name="box", mesh=0, scale=[QUANT_BOX_HALF_M] * 3, translation=[0, QUANT_BOX_HALF_M, 0])]
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_mesh_quantization", "KHR_texture_transform"]
+    return g.finish_embedded()
+
+
 def glb(doc_bytes, bin_bytes=b"", version=2, length=None, json_type=0x4E4F534A):
     doc_bytes += b" " * (-len(doc_bytes) % 4)
     body = struct.pack("<II", len(doc_bytes), json_type) + doc_bytes
@@ -439,6 +486,7 @@ def bad_files():
 def main():
     write("models/alpha_quad.gltf", alpha_quad_gltf())
     write("models/textured_quads.gltf", textured_quads_gltf())
+    write("models/quantized_box.gltf", quantized_box_gltf())
     write("models/box.obj", BOX_OBJ)
     write("models/box.mtl", BOX_MTL)
     write("scenes/obj_and_gltf.json", json.dumps(SCENE, indent=1) + "\n")
@@ -450,6 +498,7 @@ def main():
     write("fuzz/gltf/strip.gltf", triangle_gltf(indices=(0, 1, 2, 1), mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=5))[1])
     write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
     write("fuzz/gltf/textured_quads.gltf", textured_quads_gltf())  # the JPEG decoder and KHR_texture_transform
+    write("fuzz/gltf/quantized_box.gltf", quantized_box_gltf())
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
     write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
     write("fuzz/scene/number_overflow.json", bad_files()["scene_number_overflow.json"])  # found by fuzzing

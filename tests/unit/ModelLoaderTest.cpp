@@ -401,3 +401,37 @@ TEST(ModelLoader, GltfStructureErrorsNameTheField) {
   EXPECT_NE(gltfError(R"({"asset": {"version": "2.0"}, "nodes": {"a": {}}})").find("collections keyed by name are glTF 1.0"), std::string::npos);
   EXPECT_NE(gltfError(R"({"asset": {"version": 2}})").find("asset.version: expected a string"), std::string::npos);
 }
+
+// KHR_mesh_quantization as gltfpack writes it: SHORT positions (normalised, 8-byte stride) that
+// the node scales back, BYTE normals (4-byte stride), USHORT texture coordinates that
+// KHR_texture_transform scales back. tests/data/make_test_models.py writes the file.
+TEST(ModelLoader, QuantizedMeshesReadBackTheirValues) {
+  const Scene s = loadScene((kData / "models/quantized_box.gltf").string());
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Aabb b = s.bounds();
+  EXPECT_NEAR(b.lo.y, 0.0f, 1e-4f);  // SHORT ±32767 → ±1, × 0.5 m, lifted by 0.5 m
+  EXPECT_NEAR(b.hi.y, 1.0f, 1e-4f);
+  EXPECT_NEAR(b.lo.x, -0.5f, 1e-4f);
+  const Mesh& m = s.meshes[s.objects[0].mesh];
+  ASSERT_EQ(m.vertices.size(), 24u);
+  constexpr float kByteNormalStep = 1.0f / 127.0f;
+  for (const Vertex& v : m.vertices) {
+    // Each face's normal is its position's one coordinate at ±1 (before the node's scale).
+    const glm::vec3 face = glm::round(v.normal);
+    EXPECT_NEAR(glm::length(v.normal), 1.0f, kByteNormalStep);
+    EXPECT_NEAR(glm::dot(face, v.position), 1.0f, 1e-4f) << "normal (" << v.normal.x << "," << v.normal.y << "," << v.normal.z << ")";
+    // USHORT 0 or 65535 → 0 or 1, scaled by 2 by the texture transform.
+    for (float c : {v.uv.x, v.uv.y}) EXPECT_TRUE(std::abs(c) < 1e-6f || std::abs(c - 2.0f) < 1e-6f) << c;
+  }
+  // An integer NORMAL must be normalised (the extension allows only normalised BYTE and SHORT).
+  std::ifstream in(kData / "models/quantized_box.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string normalAccessor = R"("componentType": 5120,
+   "normalized": true)";
+  const size_t at = text.find(normalAccessor);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, normalAccessor.size(), R"("componentType": 5120,
+   "normalized": false)");
+  const std::string e = gltfError(text);
+  EXPECT_NE(e.find("accessors[1]: a BYTE or SHORT NORMAL must be normalized (KHR_mesh_quantization)"), std::string::npos) << e;
+}

@@ -283,6 +283,8 @@ int Converter::meshFor(int mi, int pi) {
     const AccessorData nrm = accessor(normal->second, field + ".attributes.NORMAL", TINYGLTF_TYPE_VEC3,
                                       {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT});
     if (nrm.count != pos.count) error(field + ".attributes.NORMAL", fmt::format("{} elements, POSITION has {}", nrm.count, pos.count));
+    if (nrm.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
+      error(fmt::format("accessors[{}]", normal->second), "a BYTE or SHORT NORMAL must be normalized (KHR_mesh_quantization)");
     for (size_t i = 0; i < nrm.count; ++i) {
       glm::vec3& v = mesh.vertices[i].normal;
       for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(nrm.component(i, c));
