@@ -410,7 +410,7 @@ def bad_files():
     out["sparse_accessor.gltf"] = triangle_gltf(mutate=sparse)[1]
 
     def required_ext(d):
-        d["extensionsUsed"] = d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+        d["extensionsUsed"] = d["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]  # instances Penumbra would not place
     out["required_extension.gltf"] = triangle_gltf(mutate=required_ext)[1]
 
     def bad_light(d):

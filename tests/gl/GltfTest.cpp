@@ -3,7 +3,9 @@
 // texture's holes in it, in the renderer and in the Embree reference, and the camera must see
 // through the holes. A scene file that places an OBJ and a glTF side by side renders, and agrees
 // with the reference.
+#include "CompressedModels.h"
 #include "GlFixture.h"
+#include "scene/loaders/GltfLoader.h"
 
 #include <penumbra/Reference.h>
 
@@ -184,4 +186,33 @@ TEST(Gltf, SceneFileWithObjAndGltfRendersAndMatchesTheReference) {
   EXPECT_GT(floorShadowRight, 40);   // the masked quad's shadow
   EXPECT_GT(compared, 10000);
   EXPECT_LT(disagreePct, 1.0);       // only shadow-edge pixels may differ
+}
+
+// Compressed geometry renders as the original: the box and ground as plain accessors, with
+// KHR_draco_mesh_compression (quantised: edges may move by a pixel) and with
+// EXT_meshopt_compression (lossless positions) cover the same pixels and cast the same shadow.
+TEST(Gltf, CompressedModelsRenderLikeTheOriginal) {
+  auto sceneOf = [](const std::vector<uint8_t>& glb) {
+    loaders::Model m = loaders::loadGltfFromMemory(glb, "mem.glb", "");
+    loaders::addDefaultLightAndCamera(m.scene, m.hasCamera);
+    m.scene.validate();
+    return m.scene;
+  };
+  auto render = [](const Scene& scene) { return renderScene(scene, "uniform", "hard", {{"hard.bias", "slope"}}, kSize, kSize, kMapSize); };
+  const RenderResult plain = render(sceneOf(test::plainBoxGlb()));
+  constexpr double kMaxDifferingPct = 0.5;  // Draco's 14-bit positions move a silhouette by under a pixel
+  for (const auto& [name, glb] : {std::pair{"draco", test::dracoBoxGlb()}, std::pair{"meshopt", test::meshoptBoxGlb()}}) {
+    const RenderResult r = render(sceneOf(glb));
+    size_t covered = 0, differing = 0, shadowed = 0;
+    for (size_t i = 0; i < r.visibility.size(); ++i) {
+      covered += plain.gbuffer.covered(i);
+      shadowed += plain.gbuffer.covered(i) && plain.visibility[i] < kShadowedV;
+      differing += r.gbuffer.covered(i) != plain.gbuffer.covered(i) || std::abs(r.visibility[i] - plain.visibility[i]) > 0.5f;
+    }
+    const double pct = 100.0 * static_cast<double>(differing) / static_cast<double>(r.visibility.size());
+    std::printf("%s box: %.3f%% of pixels differ from the plain file's (%zu covered, %zu in shadow)\n", name, pct, covered, shadowed);
+    EXPECT_GT(covered, r.visibility.size() / 4) << name;
+    EXPECT_GT(shadowed, 1000u) << name << ": the box's shadow";
+    EXPECT_LT(pct, kMaxDifferingPct) << name;
+  }
 }

@@ -34,7 +34,7 @@ constexpr float kPointConeMarginRad = 0.05f;    // room around the scene when ai
 
 const std::set<std::string> kSupportedRequiredExtensions = {
     "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength",
-    "KHR_texture_transform"};
+    "KHR_texture_transform", "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
 // --- accessors ---------------------------------------------------------------------------------
 int componentBytes(int type) {

@@ -8,6 +8,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE  // Penumbra never writes glTF
 #include <tiny_gltf.h>
 
+#include "scene/loaders/GltfCompression.h"
 #include "scene/loaders/GltfConverter.h"
 #include "scene/loaders/GltfDocument.h"
 #include "scene/loaders/GltfLoader.h"
@@ -37,6 +38,27 @@ uint32_t readU32(const uint8_t* p) {
   uint32_t v;
   std::memcpy(&v, p, 4);
   return v;  // glTF is little-endian, as every platform Penumbra builds on
+}
+
+void writeU32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }
+
+/// The file with its JSON replaced by `text` (a GLB keeps its other chunks as they were).
+std::vector<uint8_t> withJson(std::span<const uint8_t> file, bool binary, uint32_t jsonLength, uint32_t length, std::string text,
+                              const std::string& name) {
+  if (!binary) return {text.begin(), text.end()};
+  while (text.size() % 4 != 0) text += ' ';  // chunks stay 4-byte aligned
+  const size_t rest = length - kGlbHeaderBytes - jsonLength;  // the chunks after the JSON (checked: inside the file)
+  const size_t total = kGlbHeaderBytes + text.size() + rest;
+  if (total > UINT32_MAX) fail(name, "", "the GLB would grow past 4 GiB");
+  std::vector<uint8_t> out(total);
+  writeU32(out.data(), kGlbMagic);
+  writeU32(out.data() + 4, 2);
+  writeU32(out.data() + 8, static_cast<uint32_t>(total));
+  writeU32(out.data() + 12, static_cast<uint32_t>(text.size()));
+  writeU32(out.data() + 16, kGlbJsonChunk);
+  std::memcpy(out.data() + kGlbHeaderBytes, text.data(), text.size());
+  if (rest > 0) std::memcpy(out.data() + kGlbHeaderBytes + text.size(), file.data() + kGlbHeaderBytes + jsonLength, rest);
+  return out;
 }
 
 // --- tinygltf callbacks: files with limits ---------------------------------------------------------
@@ -72,10 +94,12 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
   if (bytes.size() > kMaxFileBytes) fail(name, "", fmt::format("{} bytes, more than the {} byte limit", bytes.size(), kMaxFileBytes));
   const bool binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
   std::span<const uint8_t> json = bytes;
+  uint32_t length = 0, jsonLength = 0;
   if (binary) {
     if (bytes.size() < kGlbHeaderBytes) fail(name, "", fmt::format("truncated GLB: {} bytes, the header needs {}", bytes.size(), kGlbHeaderBytes));
-    const uint32_t version = readU32(bytes.data() + 4), length = readU32(bytes.data() + 8);
-    const uint32_t jsonLength = readU32(bytes.data() + 12), jsonType = readU32(bytes.data() + 16);
+    const uint32_t version = readU32(bytes.data() + 4), jsonType = readU32(bytes.data() + 16);
+    length = readU32(bytes.data() + 8);
+    jsonLength = readU32(bytes.data() + 12);
     if (version == 1) fail(name, "", "a binary glTF 1.0 file (GLB version 1): Penumbra reads glTF 2.0 only (convert it first, e.g. with gltf-pipeline, which upgrades 1.0 files)");
     if (version != 2) fail(name, "", fmt::format("GLB version {} (only 2 is glTF 2.0)", version));
     if (length > bytes.size()) fail(name, "", fmt::format("truncated GLB: the header says {} bytes, the file has {}", length, bytes.size()));
@@ -86,7 +110,12 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
       fail(name, "", "malformed GLB: the first chunk is not a JSON chunk inside the file");
     json = bytes.subspan(kGlbHeaderBytes, jsonLength);
   }
-  checkGltfDocument(name, json);
+  nlohmann::json doc = checkGltfDocument(name, json);
+  const CompressedParts compressed = prepareCompressed(doc, name);
+  // What tinygltf parses: the file, or the file with the JSON prepared for it.
+  const std::vector<uint8_t> prepared = compressed.rewritten ? withJson(bytes, binary, jsonLength, length, doc.dump(), name)
+                                                             : std::vector<uint8_t>();
+  const std::span<const uint8_t> input = compressed.rewritten ? std::span<const uint8_t>(prepared) : bytes;
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keepEncodedImage, nullptr);
@@ -94,10 +123,11 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
   tinygltf::Model model;
   std::string err, warn;
   const std::string base = baseDir.empty() ? std::string(".") : baseDir.string();
-  const auto size = static_cast<unsigned int>(bytes.size());
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), size, base);
+  const auto size = static_cast<unsigned int>(input.size());
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(), size, base)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(input.data()), size, base);
   if (!ok) fail(name, "", "glTF parser (tinygltf): " + oneLine(err.empty() ? warn : err));
+  decompress(model, compressed, name);
   if (progress) {
     progress->stage(kGltfParseShare, 1.0);
     progress->update(0, 1);
