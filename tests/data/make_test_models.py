@@ -15,7 +15,9 @@ Outputs (all committed; rerun after editing this script):
                            nothing decodes (Penumbra ignores normal maps)
   scenes/obj_and_gltf.json a scene file that places the OBJ and the glTF side by side
   bad/*                    files every loader must reject with one clear error (docs/scenes.md)
-  fuzz/gltf/*, fuzz/scene/* seed corpora for the libFuzzer targets
+  fuzz/gltf/*, fuzz/obj/*, fuzz/scene/* seed corpora for the libFuzzer targets
+The compressed glTF files (Draco, meshopt) come from tests/support/CompressedModels.cpp
+(penumbra_make_compressed_models tests/data).
 Only the standard library is used (PNG, JPEG and GLB are written by hand).
 """
 import base64
@@ -449,6 +451,9 @@ def bad_files():
     out["nan_position.obj"] = "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
     out["letters_position.obj"] = "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n"
     out["huge_index.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"
+    # tinyobjloader converts a skin weight's joint id (its own `vw` extension) to int unchecked:
+    # undefined behaviour found by fuzzing. Penumbra reads no `vw`; the face is out of range.
+    out["skin_weight_overflow.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e40 0.5\nf 1 2 4\n"
     out["nan_kd.obj"] = "mtllib nan_kd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl black\nf 1 2 3\n"
     out["nan_kd.mtl"] = "newmtl black\nKd nan 0.5 0.5\n"
 
@@ -500,6 +505,11 @@ def main():
     write("fuzz/gltf/textured_quads.gltf", textured_quads_gltf())  # the JPEG decoder and KHR_texture_transform
     write("fuzz/gltf/quantized_box.gltf", quantized_box_gltf())
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
+    write("fuzz/obj/box.obj", BOX_OBJ)
+    write("fuzz/obj/box.mtl", BOX_MTL)
+    write("fuzz/obj/quad_with_uv_and_normals.obj",  # vt, vn, negative indices, a polygon, o/g, usemtl
+          "# seed\nmtllib box.mtl\no quad\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "vn 0 1 0\ng top\nusemtl red\nf -4/1/1 -3/2/1 -2/3/1 -1/4/1\nf 1//1 3//1 2//1\n")
     write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
     write("fuzz/scene/number_overflow.json", bad_files()["scene_number_overflow.json"])  # found by fuzzing
     write("fuzz/scene/shapes.json", json.dumps({

@@ -516,3 +516,17 @@ TEST(ModelLoader, BrokenCompressedDataNamesTheField) {
     EXPECT_NE(e.find(expected.at(name)), std::string::npos) << name << ": " << e;
   }
 }
+
+// Statements Penumbra ignores never reach tinyobjloader, which parses some of them with unchecked
+// conversions (a `vw` joint id of 1e40 became an int: undefined behaviour, found by fuzzing), and
+// lines end where tinyobjloader ends them (a lone CR too), so a statement cannot hide there.
+TEST(ModelLoader, ObjStatementsPenumbraIgnoresAreNotParsed) {
+  auto objError = [](const std::string& text) { return errorOf([&] { loaders::loadObjFromMemory(text, "mem.obj", ""); }); };
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_EQ(objError(triangle + "vw 0 1e40 0.5\nt tag 1/0/0 99999999999\ns 99999999999999999999\nl 1 2\nf 1 2 3\n"), "");
+  EXPECT_NE(objError("v 0 0 0\rv nan 0 0\rv 0 1 0\rf 1 2 3\r").find("line 2: v: 'nan'"), std::string::npos);
+  EXPECT_NE(objError("# a comment\rv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999\n").find("line 5: f: '99999999999'"),
+            std::string::npos);
+  const std::string e = errorOf([&] { loadScene((kData / "bad" / "skin_weight_overflow.obj").string()); });
+  EXPECT_NE(e.find("vertex index 4 is out of range (3 vertices)"), std::string::npos) << e;
+}

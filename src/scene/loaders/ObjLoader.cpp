@@ -41,6 +41,9 @@ struct NumberRule {
 constexpr NumberRule kObjRules[] = {{"v", 3, 6, "x y z, optionally w or r g b"}, {"vn", 3, 3, "x y z"},
                                     {"vt", 1, 3, "u [v [w]]"}};
 constexpr NumberRule kMtlRules[] = {{"Kd", 3, 3, "r g b"}, {"Ns", 1, 1, "an exponent"}};
+// The statements Penumbra reads (docs/scenes.md); tinyobjloader sees no other.
+constexpr std::string_view kObjStatements[] = {"v", "vn", "vt", "f", "o", "g", "usemtl", "mtllib"};
+constexpr std::string_view kMtlStatements[] = {"newmtl", "Kd", "Ns"};
 
 /// The whitespace-separated words of a line up to a '#' comment.
 std::vector<std::string_view> words(std::string_view line) {
@@ -86,17 +89,28 @@ std::string checkCorner(std::string_view corner) {
   return fmt::format("'{}' has more than three parts", corner);
 }
 
-/// Checks the numbers of every statement that `rules` (and, for an OBJ, `f`) name; throws
-/// Error("name: line N: keyword: problem").
-void checkNumbers(const std::string& text, const std::string& name, std::span<const NumberRule> rules, bool faces) {
+/// Checks the numbers of every statement that `rules` (and, for an OBJ, `f`) name, and returns
+/// the text as tinyobjloader may see it: every statement whose keyword is not in `keep` becomes a
+/// comment (line numbers stay). Penumbra reads none of those, and tinyobjloader parses some of
+/// them with unchecked conversions (`vw` joint ids become an int however large; texture options,
+/// tags, exponents near 2^31). Lines end at "\n", "\r\n" or a lone "\r", as tinyobjloader splits
+/// them. Throws Error("name: line N: keyword: problem").
+std::string checkStatements(const std::string& text, const std::string& name, std::span<const NumberRule> rules, bool faces,
+                            std::span<const std::string_view> keep) {
+  std::vector<size_t> ignored;  // offsets of the keywords to turn into comments
   size_t lineNumber = 0;
   for (size_t start = 0; start < text.size();) {
-    const size_t end = std::min(text.find('\n', start), text.size());
+    const size_t end = std::min(text.find_first_of("\r\n", start), text.size());
     const std::string_view line(text.data() + start, end - start);
-    start = end + 1;
+    const size_t lineStart = start;
+    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     ++lineNumber;
     const std::vector<std::string_view> w = words(line);
     if (w.empty()) continue;
+    if (std::find(keep.begin(), keep.end(), w[0]) == keep.end()) {
+      ignored.push_back(lineStart + static_cast<size_t>(w[0].data() - line.data()));
+      continue;
+    }
     const std::string where = fmt::format("line {}", lineNumber);
     if (faces && w[0] == "f") {
       for (size_t i = 1; i < w.size(); ++i)
@@ -113,6 +127,9 @@ void checkNumbers(const std::string& text, const std::string& name, std::span<co
         if (!parseFinite(w[i], unused)) fail(name, where, fmt::format("{}: '{}' is not a finite number", rule.keyword, w[i]));
     }
   }
+  std::string out = text;
+  for (size_t at : ignored) out[at] = '#';
+  return out;
 }
 
 /// `mtllib` files, read with the same limits as every other file; the first failure is kept and
@@ -124,8 +141,8 @@ public:
                   std::string* warn, std::string* err) override {
     try {
       const std::vector<uint8_t> bytes = readFileLimited(mDir / id, fmt::format("mtllib '{}'", id));
-      const std::string text(bytes.begin(), bytes.end());
-      checkNumbers(text, fmt::format("mtllib '{}'", id), kMtlRules, false);
+      const std::string text = checkStatements(std::string(bytes.begin(), bytes.end()), fmt::format("mtllib '{}'", id), kMtlRules,
+                                               false, kMtlStatements);
       std::istringstream in(text);
       tinyobj::LoadMtl(names, materials, &in, warn, err);
       return true;
@@ -169,7 +186,7 @@ private:
   size_t mNext = 0;
 };
 
-// Kd and Ns were checked (checkNumbers): finite.
+// Kd and Ns were checked (checkStatements): finite.
 Material convertMaterial(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
@@ -188,9 +205,9 @@ Model loadObjFromMemory(const std::string& text, const std::string& name, const 
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  checkNumbers(text, name, kObjRules, true);
+  const std::string checked = checkStatements(text, name, kObjRules, true, kObjStatements);
   if (progress) progress->stage(0.0, kObjParseShare);
-  ProgressStreamBuf buffer(text, progress);
+  ProgressStreamBuf buffer(checked, progress);
   std::istream in(&buffer);
   MtlReader mtl(baseDir);
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, true, false);
