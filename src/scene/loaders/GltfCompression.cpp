@@ -6,10 +6,7 @@
 
 #include "scene/loaders/ModelImport.h"
 
-// Declarations only (GltfLoader.cpp holds the implementation), configured as there.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "scene/loaders/TinyGltf.h"
 
 #include <draco/compression/decode.h>
 #include <fmt/format.h>

@@ -3,10 +3,8 @@
 // because tinygltf checks few of them. GltfDocument.cpp checks the JSON before tinygltf runs
 // (nesting, version, required members, views inside buffers), naming the field. Images stay
 // encoded until a material uses them (GltfTextures.cpp decodes them, size limits first).
-#define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE        // GltfTextures.cpp decodes, size limits first
-#define TINYGLTF_NO_STB_IMAGE_WRITE  // Penumbra never writes glTF
-#include <tiny_gltf.h>
+#define TINYGLTF_IMPLEMENTATION  // here, once
+#include "scene/loaders/TinyGltf.h"
 
 #include "scene/loaders/GltfCompression.h"
 #include "scene/loaders/GltfConverter.h"

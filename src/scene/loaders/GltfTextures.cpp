@@ -5,10 +5,7 @@
 // base/StbImageFormats.h).
 #include "scene/loaders/GltfTextures.h"
 
-// Declarations only (GltfLoader.cpp holds the implementation), configured as there.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "scene/loaders/TinyGltf.h"
 
 #include <fmt/format.h>
 #include <stb_image.h>
