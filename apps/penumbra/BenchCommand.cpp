@@ -115,7 +115,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       settings.camera = *o->camera;
     }
 
+    checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
+    checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
     const report::SetupFactory factory = [o](const report::BenchConfig& c) {
       TechniqueOptions t;
       t.camera = o->camera;

@@ -35,8 +35,13 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   commands.push_back({sub, [o] {
+    checkOutput("--out", o->out);
+    if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
+    if (!o->dump.empty()) checkOutputDir("--dump", o->dump);
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    checkImageFits(context, s.render.width, s.render.height,
+                   kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     renderer.render(s.render);

@@ -24,6 +24,9 @@ struct Mesh {
   std::vector<uint32_t> indices;  ///< three per triangle
   Aabb bounds() const;
   size_t triangleCount() const { return indices.size() / 3; }
+  /// True when at least one triangle has a non-zero area (a mesh of degenerate triangles, whose
+  /// corners lie on one line, draws no pixel and casts no shadow).
+  bool hasArea() const;
 };
 
 /// RGBA8 texture in memory (row 0 = top), used for base colour and alpha masks.
@@ -54,13 +57,18 @@ struct Object {
 /// "distant light" and the reference's cone sampling degenerates.
 inline constexpr float kMaxSunAngularRadiusRad = 0.5f;
 
+/// Largest light colour component and ambient radiance (linear RGB), for scene files and glTF
+/// alike: colour × intensity × the BRDF then stays far inside float range (a colour of 1e38
+/// overflowed to a black image).
+inline constexpr float kMaxRadiance = 1e6f;
+
 enum class LightType { Directional, Spot };
 
 struct Light {
   LightType type = LightType::Directional;
   glm::vec3 position{0.0f, 10.0f, 0.0f};   ///< spot only, metres
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit, from the light toward the scene
-  glm::vec3 color{1.0f};                   ///< linear RGB
+  glm::vec3 color{1.0f};                   ///< linear RGB, each in [0, kMaxRadiance]
   float intensity = 3.0f;                  ///< irradiance scale (sun) or intensity at 1 m (spot)
   float coneAngleRad = 0.6f;               ///< spot half angle, (0, pi/2)
   /// Physical size for soft shadows: spot = sphere radius in metres, sun = angular radius in
@@ -81,6 +89,11 @@ struct Camera {
   float nearM = 0.05f;
   float farM = 200.0f;
 
+  /// "" when the camera defines a view; otherwise what is wrong: the target on the position, an
+  /// up vector that is zero, not finite or along the view direction (a camera looking straight
+  /// down with the default up renders nothing meaningful). Scene files, --camera and
+  /// Scene::validate() check it.
+  std::string viewProblem() const;
   glm::mat4 viewFromWorld() const;
   /// Reversed-Z, [0,1] clip depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)): near → 1, far → 0.
   glm::mat4 clipFromView(float aspect) const;
@@ -118,14 +131,15 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   ShadowSettings shadow;
-  glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB)
+  glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB), each in [0, kMaxRadiance]
 
   const Light& light() const;  ///< the shadow-casting light (the first one); throws if none
   Aabb bounds() const;         ///< world bounds of every object
   Aabb casterBounds() const;   ///< world bounds of shadow casters
   SceneExtent extent() const;  ///< every object's world bounds (one pass over the vertices)
   size_t triangleCount() const;
-  /// Throws penumbra::Error if indices are out of range, positions not finite, etc.
+  /// Throws penumbra::Error if indices are out of range, positions not finite, no triangle has
+  /// an area, the camera defines no view, etc.
   void validate() const;
 };
 

@@ -11,10 +11,6 @@
 #include <vector>
 
 namespace penumbra {
-namespace {
-constexpr float kMinViewLengthM = 1e-6f;  // the target closer to the position than this: no view direction
-constexpr float kMinSinViewToUp = 1e-4f;  // sine of the angle between view and up: below it, no up in the image
-}  // namespace
 
 Camera parseCameraArgument(const std::string& text, const Camera& base) {
   const auto fail = [&](const std::string& why) {
@@ -48,10 +44,7 @@ Camera parseCameraArgument(const std::string& text, const Camera& base) {
   Camera c = base;
   c.position = point(groups[0], "position");
   c.target = point(groups[1], "target");
-  const glm::vec3 view = c.target - c.position;
-  if (glm::length(view) < kMinViewLengthM) throw fail("the target is the position");
-  if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < kMinSinViewToUp)
-    throw fail(fmt::format("the view is along the camera's up vector ({}, {}, {})", c.up.x, c.up.y, c.up.z));
+  if (const std::string problem = c.viewProblem(); !problem.empty()) throw fail(problem);
   if (groups.size() == 3) {
     const float fovDeg = number(groups[2]);
     if (fovDeg < 1.0f || fovDeg > 170.0f) throw fail(fmt::format("field of view {}° is outside 1–170°", fovDeg));

@@ -4,9 +4,25 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
+namespace {
+constexpr float kMinViewLengthM = 1e-6f;  // the target closer to the position than this: no view direction
+constexpr float kMinSinViewToUp = 1e-4f;  // sine of the angle between view and up: below it, no up in the image
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+std::string Camera::viewProblem() const {
+  const glm::vec3 view = target - position;
+  if (!finite(view) || !(glm::length(view) >= kMinViewLengthM)) return "the target is the position";
+  if (!finite(up) || !(glm::length(up) > 0.0f)) return fmt::format("the up vector ({}, {}, {}) is zero or not finite", up.x, up.y, up.z);
+  if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(up))) >= kMinSinViewToUp))
+    return fmt::format("the view is along the up vector ({}, {}, {}): no direction is up in the image", up.x, up.y, up.z);
+  return "";
+}
 
 glm::mat4 Camera::viewFromWorld() const { return glm::lookAt(position, target, up); }
 
@@ -86,10 +102,17 @@ void Scene::validate() const {
     PN_CHECK(m.baseColorTexture < static_cast<int>(images.size()),
              fmt::format("{}: material '{}': texture index out of range", where, m.name));
   PN_CHECK(triangleCount() > 0, fmt::format("{}: the scene has zero triangles", where));
+  PN_CHECK(std::any_of(objects.begin(), objects.end(), [&](const Object& o) { return meshes[o.mesh].hasArea(); }),
+           fmt::format("{}: every triangle has zero area (its corners lie on one line): nothing would be drawn", where));
   for (const Light& l : lights) {
     PN_CHECK(glm::length(l.direction) > 0.0f, fmt::format("{}: a light has a zero direction", where));
     PN_CHECK(l.size >= 0.0f, fmt::format("{}: a light has a negative size", where));
+    PN_CHECK(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(l.color, glm::vec3(kMaxRadiance))),
+             fmt::format("{}: a light's colour is outside [0, {}]", where, kMaxRadiance));
   }
+  PN_CHECK(glm::all(glm::greaterThanEqual(ambient, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(ambient, glm::vec3(kMaxRadiance))),
+           fmt::format("{}: the ambient radiance is outside [0, {}]", where, kMaxRadiance));
+  if (const std::string problem = camera.viewProblem(); !problem.empty()) throw Error(fmt::format("{}: camera: {}", where, problem));
 }
 
 }  // namespace penumbra

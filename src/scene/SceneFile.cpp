@@ -9,14 +9,22 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <fstream>
+#include <map>
 #include <set>
 
 namespace penumbra {
 namespace {
 
 using Json = nlohmann::json;
+
+// A scene file is written by hand or by a small script: 64 MiB holds several times the 65 536
+// objects the limits allow, and keeps a wrong path (a disk image) from being parsed as JSON.
+constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
+// The sphere's tessellation (slices around, stacks from pole to pole).
+constexpr int kSphereSlices = 48, kSphereStacks = 24;
 
 /// A JSON object being read: remembers its path for messages and which keys were used.
 class Reader {
@@ -62,6 +70,14 @@ public:
     }
     return r;
   }
+  /// An array of N numbers, each in [lo, hi].
+  template <int N>
+  glm::vec<N, float> vec(const std::string& key, glm::vec<N, float> def, float lo, float hi) {
+    const glm::vec<N, float> v = vec<N>(key, def);
+    for (int i = 0; i < N; ++i)
+      if (!(v[i] >= lo && v[i] <= hi)) fail(key, fmt::format("{} is outside [{}, {}]", v[i], lo, hi));
+    return v;
+  }
   Reader child(const std::string& key) { return Reader(raw(key), mFile, mPath.empty() ? key : mPath + "." + key); }
   /// Call last: any key not read is an error.
   void finish() const {
@@ -91,7 +107,7 @@ Mesh readShape(Reader& r) {
       r.fail("size", "must be positive and at most 1e6");
     return makeBox(size);
   }
-  if (shape == "sphere") return makeSphere(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), 48, 24);
+  if (shape == "sphere") return makeSphere(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), kSphereSlices, kSphereStacks);
   if (shape == "cylinder") return makeCylinder(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), r.number("height", 1.0f, 1e-6f, kMaxSizeM));
   if (shape == "cone") return makeCone(r.number("radius", 0.5f, 1e-6f, kMaxSizeM), r.number("height", 1.0f, 1e-6f, kMaxSizeM));
   if (shape.empty()) r.fail("shape", "missing (plane, box, sphere, cylinder or cone)");
@@ -131,29 +147,71 @@ Light readLight(Reader& r) {
   } else {
     l.size = r.number("size", 0.0f, 0.0f, kMaxSunAngularRadiusRad);
   }
-  l.color = r.vec<3>("color", l.color);
+  l.color = r.vec<3>("color", l.color, 0.0f, kMaxRadiance);
   l.intensity = r.number("intensity", l.intensity, 0.0f, 1e6f);
   r.finish();
   return l;
 }
 
+/// Vertices and triangles of a shape: fixed by its kind (the tessellation does not depend on the
+/// size), measured once on a unit instance.
+std::pair<uint64_t, uint64_t> shapeSize(const std::string& kind) {
+  static const std::map<std::string, std::pair<uint64_t, uint64_t>> kSizes = [] {
+    std::map<std::string, std::pair<uint64_t, uint64_t>> sizes;
+    for (const auto& [name, mesh] : {std::pair{"plane", makePlane(1, 1)}, {"box", makeBox(glm::vec3(1))},
+                                     {"sphere", makeSphere(1, kSphereSlices, kSphereStacks)}, {"cylinder", makeCylinder(1, 1)},
+                                     {"cone", makeCone(1, 1)}})
+      sizes[name] = {mesh.vertices.size(), mesh.triangleCount()};
+    return sizes;
+  }();
+  const auto it = kSizes.find(kind);
+  return it == kSizes.end() ? std::pair<uint64_t, uint64_t>{0, 0} : it->second;  // an unknown shape fails later, by name
+}
+
+// Fail fast (docs/scenes.md): the object count and the shapes' vertex and triangle totals are
+// checked before any shape is built (a file of 30 000 spheres once grew to 2.26 GB first).
+// Model files are checked as each one is placed (loaders::appendModel).
+void checkShapeTotals(const Json& objects, const Reader& top) {
+  if (objects.size() > loaders::kMaxObjects)
+    top.fail("objects", fmt::format("{} objects, more than the limit of {}", objects.size(), loaders::kMaxObjects));
+  uint64_t vertices = 0, triangles = 0;
+  for (const Json& o : objects) {
+    if (!o.is_object() || !o.contains("shape") || !o["shape"].is_string()) continue;
+    const auto [v, t] = shapeSize(o["shape"].get<std::string>());
+    vertices += v;
+    triangles += t;
+  }
+  if (vertices > loaders::kMaxVertices)
+    top.fail("objects", fmt::format("the shapes have {} vertices, more than the limit of {}", vertices, loaders::kMaxVertices));
+  if (triangles > loaders::kMaxTriangles)
+    top.fail("objects", fmt::format("the shapes have {} triangles, more than the limit of {}", triangles, loaders::kMaxTriangles));
+}
+
+/// nlohmann's parse message without its "[json.exception…] " tag and without the "last read:"
+/// bytes, which echo whatever the file holds (a PNG's binary header).
+std::string jsonProblem(const Json::exception& e) {
+  std::string what = e.what();
+  if (const size_t tag = what.find("] "); what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
+  if (const size_t bytes = what.find("; last read:"); bytes != std::string::npos) what.erase(bytes);
+  return what;
+}
+
 }  // namespace
 
-Scene loadSceneFile(const std::filesystem::path& path) {
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot open the scene file ({})", file, std::filesystem::exists(path) ? "not readable" : "no such file"));
+  const std::vector<uint8_t> bytes = loaders::readFileLimited(path, file, kMaxSceneFileBytes);
   Json j;
   try {
-    j = Json::parse(in);
+    j = Json::parse(bytes.begin(), bytes.end());
   } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
-    throw Error(fmt::format("{}: not valid JSON: {}", file, e.what()));
+    throw Error(fmt::format("{}: not valid JSON: {}", file, jsonProblem(e)));
   }
   Reader top(j, file, "");
   Scene s;
   s.sourceFile = path;
   s.name = top.string("name", path.stem().string());
-  s.ambient = top.vec<3>("ambient", s.ambient);
+  s.ambient = top.vec<3>("ambient", s.ambient, 0.0f, kMaxRadiance);
 
   if (top.has("camera")) {
     Reader c = top.child("camera");
@@ -167,6 +225,8 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     for (const auto& [key, p] : {std::pair{"position", s.camera.position}, std::pair{"target", s.camera.target}})
       if (glm::any(glm::greaterThan(glm::abs(p), glm::vec3(kMaxCoordinateM)))) c.fail(key, "beyond ±1e6 m");
     if (glm::length(s.camera.target - s.camera.position) < 1e-6f) c.fail("target", "equals the position");
+    if (const std::string problem = s.camera.viewProblem(); !problem.empty())
+      c.fail("up", problem + (c.has("up") ? "" : " (the default; set camera.up)"));
     c.finish();
   }
 
@@ -181,6 +241,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
   if (!top.has("objects")) top.fail("objects", "missing");
   const Json& objects = top.raw("objects");
   if (!objects.is_array() || objects.empty()) top.fail("objects", "expected a non-empty array");
+  checkShapeTotals(objects, top);
   for (size_t i = 0; i < objects.size(); ++i) {
     Reader r(objects[i], file, fmt::format("objects[{}]", i));
     const std::string name = r.string("name", fmt::format("object {}", i));
@@ -195,7 +256,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
       const std::filesystem::path modelPath = path.parent_path() / model;
       if (!loaders::isModelFile(modelPath)) r.fail("file", fmt::format("'{}' is not a .gltf, .glb or .obj file", model));
       try {
-        loaders::appendModel(s, loaders::loadModelFile(modelPath).scene, m, casts, name, modelPath.string());
+        loaders::appendModel(s, loaders::loadModelFile(modelPath, options).scene, m, casts, name, modelPath.string());
       } catch (const Error& e) {
         r.fail("file", e.what());
       }
@@ -233,11 +294,17 @@ Scene loadSceneFile(const std::filesystem::path& path) {
   return s;
 }
 
-Scene loadScene(const std::string& nameOrPath) {
+Scene loadScene(const std::string& nameOrPath, const LoadOptions& options) {
   const bool looksLikeFile = nameOrPath.find('/') != std::string::npos || nameOrPath.find('.') != std::string::npos;
   if (!looksLikeFile) return makeBuiltinScene(nameOrPath);
-  if (loaders::isModelFile(nameOrPath)) return loaders::loadModelScene(nameOrPath);
-  return loadSceneFile(nameOrPath);
+  std::error_code ec;
+  if (std::filesystem::is_directory(nameOrPath, ec)) throw Error(fmt::format("{}: is a folder, not a scene or model file", nameOrPath));
+  if (loaders::isModelFile(nameOrPath)) return loaders::loadModelScene(nameOrPath, options);
+  std::string ext = std::filesystem::path(nameOrPath).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".json" && std::filesystem::exists(nameOrPath, ec))
+    throw Error(fmt::format("{}: not a scene file (.json) or a model file (.gltf, .glb, .obj)", nameOrPath));
+  return loadSceneFile(nameOrPath, options);
 }
 
 }  // namespace penumbra

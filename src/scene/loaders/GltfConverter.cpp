@@ -4,10 +4,9 @@
 // the glTF field ("accessors[3]: …"). What is read and what is ignored: docs/scenes.md.
 #include "scene/loaders/GltfConverter.h"
 
-// Declarations only (GltfLoader.cpp holds the implementation), configured as there.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "scene/loaders/GltfTextures.h"
+
+#include "scene/loaders/TinyGltf.h"
 
 #include <penumbra/Error.h>
 
@@ -31,7 +30,8 @@ constexpr float kMaxSpotSizeM = 100.0f, kMaxSunSizeRad = 0.5f;  // the scene fil
 constexpr float kPointConeMarginRad = 0.05f;    // room around the scene when aiming a point light
 
 const std::set<std::string> kSupportedRequiredExtensions = {
-    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength"};
+    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength",
+    "KHR_texture_transform", "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
 // --- accessors ---------------------------------------------------------------------------------
 int componentBytes(int type) {
@@ -66,7 +66,8 @@ struct AccessorData {
 
 class Converter {
 public:
-  Converter(const tinygltf::Model& model, std::string file) : g(model), mFile(std::move(file)) {}
+  Converter(const tinygltf::Model& model, std::string file, ProgressReport* progress)
+      : g(model), mFile(std::move(file)), mProgress(progress) {}
   Model run();
 
 private:
@@ -85,10 +86,14 @@ private:
 
   const tinygltf::Model& g;
   std::string mFile;
+  ProgressReport* mProgress;
+  size_t mPrimitivesDone = 0, mPrimitivesTotal = 0;
   Model mOut;
   std::map<std::pair<int, int>, int> mMeshes;
   std::map<int, std::pair<int, bool>> mMaterials;  // glTF material → (scene material, invisible)
   std::map<int, int> mImages;
+  uint64_t mImageBytes = 0;  // decoded so far
+  std::map<int, UvTransform> mUvTransforms;  // glTF material → its base-colour texture's transform
   std::vector<uint8_t> mOnPath, mVisited;
   std::vector<size_t> mPointLights;  // lights to aim once the bounds are known
   uint64_t mVertices = 0, mTriangles = 0;
@@ -164,15 +169,7 @@ void Converter::reserve(uint64_t vertices, uint64_t triangles, const std::string
 
 int Converter::imageFor(int gi, const std::string& field) {
   if (auto it = mImages.find(gi); it != mImages.end()) return it->second;
-  const tinygltf::Image& src = g.images[static_cast<size_t>(gi)];
-  if (src.image.empty() || src.width < 1 || src.height < 1 ||
-      src.image.size() != 4 * static_cast<size_t>(src.width) * static_cast<size_t>(src.height))
-    error(field, fmt::format("images[{}] has no pixel data (its file '{}' could not be read)", gi, src.uri));
-  Image im;
-  im.width = src.width;
-  im.height = src.height;
-  im.rgba = src.image;
-  mOut.scene.images.push_back(std::move(im));
+  mOut.scene.images.push_back(decodeImage(g.images[static_cast<size_t>(gi)], gi, mFile, field, mImageBytes));
   return mImages[gi] = static_cast<int>(mOut.scene.images.size() - 1);
 }
 
@@ -208,6 +205,7 @@ int Converter::materialFor(int gm, const std::string& use, bool& invisible) {
       if (source >= 0 && static_cast<size_t>(source) >= g.images.size())
         error(fmt::format("textures[{}].source", texture), fmt::format("no image {} ({} images)", source, g.images.size()));
       if (source >= 0) m.baseColorTexture = imageFor(source, fmt::format("textures[{}]", texture));
+      mUvTransforms[gm] = readTextureTransform(pbr.baseColorTexture, mFile, field + ".pbrMetallicRoughness.baseColorTexture");
     }
     const float factorAlpha = static_cast<float>(pbr.baseColorFactor[3]);
     if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
@@ -235,6 +233,7 @@ int Converter::meshFor(int mi, int pi) {
   if (auto it = mMeshes.find({mi, pi}); it != mMeshes.end()) return it->second;
   int& result = mMeshes[{mi, pi}];
   result = -1;
+  if (mProgress) mProgress->update(mPrimitivesDone++, mPrimitivesTotal);
   const tinygltf::Primitive& p = g.meshes[static_cast<size_t>(mi)].primitives[static_cast<size_t>(pi)];
   const std::string field = fmt::format("meshes[{}].primitives[{}]", mi, pi);
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
@@ -281,6 +280,8 @@ int Converter::meshFor(int mi, int pi) {
     const AccessorData nrm = accessor(normal->second, field + ".attributes.NORMAL", TINYGLTF_TYPE_VEC3,
                                       {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT});
     if (nrm.count != pos.count) error(field + ".attributes.NORMAL", fmt::format("{} elements, POSITION has {}", nrm.count, pos.count));
+    if (nrm.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
+      error(fmt::format("accessors[{}]", normal->second), "a BYTE or SHORT NORMAL must be normalized (KHR_mesh_quantization)");
     for (size_t i = 0; i < nrm.count; ++i) {
       glm::vec3& v = mesh.vertices[i].normal;
       for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(nrm.component(i, c));
@@ -292,7 +293,8 @@ int Converter::meshFor(int mi, int pi) {
   }
   const Material& mat = mOut.scene.materials[static_cast<size_t>(material)];
   if (mat.baseColorTexture >= 0) {
-    const int set = g.materials[static_cast<size_t>(p.material)].pbrMetallicRoughness.baseColorTexture.texCoord;
+    const UvTransform& transform = mUvTransforms[p.material];  // KHR_texture_transform, folded in here
+    const int set = transform.texCoord.value_or(g.materials[static_cast<size_t>(p.material)].pbrMetallicRoughness.baseColorTexture.texCoord);
     const std::string name = fmt::format("TEXCOORD_{}", set);
     const auto uv = p.attributes.find(name);
     if (uv == p.attributes.end()) error(field + ".attributes", fmt::format("no {}, which its material's base colour texture uses", name));
@@ -302,7 +304,7 @@ int Converter::meshFor(int mi, int pi) {
     if (t.count != pos.count) error(field + ".attributes." + name, fmt::format("{} elements, POSITION has {}", t.count, pos.count));
     for (size_t i = 0; i < t.count; ++i) {
       glm::vec2& v = mesh.vertices[i].uv;
-      v = glm::vec2(static_cast<float>(t.component(i, 0)), static_cast<float>(t.component(i, 1)));
+      v = transform.apply(glm::vec2(static_cast<float>(t.component(i, 0)), static_cast<float>(t.component(i, 1))));
       if (!std::isfinite(v.x) || !std::isfinite(v.y)) error(fmt::format("accessors[{}]", uv->second), fmt::format("texture coordinate {} is not finite", i));
     }
   }
@@ -350,7 +352,8 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, con
   Light l;
   if (!src.color.empty()) {
     if (src.color.size() != 3) error(sf + ".color", "expected 3 numbers");
-    for (double c : src.color) if (!(c >= 0.0 && c <= 1e6)) error(sf + ".color", "each component must be in [0, 1e6]");
+    for (double c : src.color)
+      if (!(c >= 0.0 && c <= kMaxRadiance)) error(sf + ".color", fmt::format("each component must be in [0, {}]", kMaxRadiance));
     l.color = glm::vec3(src.color[0], src.color[1], src.color[2]);
   }
   if (!(src.intensity >= 0.0 && src.intensity <= 1e9)) error(sf + ".intensity", "must be in [0, 1e9]");
@@ -442,9 +445,9 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth) {
 }
 
 Model Converter::run() {
-  if (g.asset.version.rfind("2.", 0) != 0) error("asset.version", fmt::format("'{}' is not glTF 2.x", g.asset.version));
   for (const std::string& ext : g.extensionsRequired)
     if (!kSupportedRequiredExtensions.count(ext)) error("extensionsRequired", fmt::format("{} is not supported", ext));
+  for (const tinygltf::Mesh& m : g.meshes) mPrimitivesTotal += m.primitives.size();
   mOnPath.assign(g.nodes.size(), 0);
   mVisited.assign(g.nodes.size(), 0);
   std::vector<int> roots;
@@ -478,6 +481,8 @@ Model Converter::run() {
 
 }  // namespace
 
-Model convertGltf(const tinygltf::Model& model, const std::string& file) { return Converter(model, file).run(); }
+Model convertGltf(const tinygltf::Model& model, const std::string& file, ProgressReport* progress) {
+  return Converter(model, file, progress).run();
+}
 
 }  // namespace penumbra::loaders

@@ -1,22 +1,20 @@
 // glTF 2.0 input: tinygltf parses the JSON, the GLB container, buffers and data URIs; every
 // index, offset, count and number it hands over is checked by GltfConverter.cpp before use,
-// because tinygltf checks few of them. Two holes are closed before tinygltf runs: JSON nesting (its `extras`
-// reader recurses once per level) and buffer views that run past their buffer (it decodes an
-// image straight from such a view). Images are decoded by stb_image (ImageIO.cpp holds its
-// implementation) after a size check, never larger than kMaxImageSide.
-#define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE        // our decoder below: size limits first
-#define TINYGLTF_NO_STB_IMAGE_WRITE  // Penumbra never writes glTF
-#include <tiny_gltf.h>
+// because tinygltf checks few of them. GltfDocument.cpp checks the JSON before tinygltf runs
+// (nesting, version, required members, views inside buffers), naming the field. Images stay
+// encoded until a material uses them (GltfTextures.cpp decodes them, size limits first).
+#define TINYGLTF_IMPLEMENTATION  // here, once
+#include "scene/loaders/TinyGltf.h"
 
+#include "scene/loaders/GltfCompression.h"
 #include "scene/loaders/GltfConverter.h"
+#include "scene/loaders/GltfDocument.h"
 #include "scene/loaders/GltfLoader.h"
+#include "scene/loaders/GltfTextures.h"
 
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
-#include <stb_image.h>
 
 #include <algorithm>
 #include <cstring>
@@ -40,66 +38,28 @@ uint32_t readU32(const uint8_t* p) {
   return v;  // glTF is little-endian, as every platform Penumbra builds on
 }
 
-// Deepest nesting of arrays/objects, by a scan that skips strings: no recursion, any input.
-int jsonDepth(std::span<const uint8_t> text) {
-  int depth = 0, deepest = 0;
-  bool inString = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const uint8_t c = text[i];
-    if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return deepest;
+void writeU32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }
+
+/// The file with its JSON replaced by `text` (a GLB keeps its other chunks as they were).
+std::vector<uint8_t> withJson(std::span<const uint8_t> file, bool binary, uint32_t jsonLength, uint32_t length, std::string text,
+                              const std::string& name) {
+  if (!binary) return {text.begin(), text.end()};
+  while (text.size() % 4 != 0) text += ' ';  // chunks stay 4-byte aligned
+  const size_t rest = length - kGlbHeaderBytes - jsonLength;  // the chunks after the JSON (checked: inside the file)
+  const size_t total = kGlbHeaderBytes + text.size() + rest;
+  if (total > UINT32_MAX) fail(name, "", "the GLB would grow past 4 GiB");
+  std::vector<uint8_t> out(total);
+  writeU32(out.data(), kGlbMagic);
+  writeU32(out.data() + 4, 2);
+  writeU32(out.data() + 8, static_cast<uint32_t>(total));
+  writeU32(out.data() + 12, static_cast<uint32_t>(text.size()));
+  writeU32(out.data() + 16, kGlbJsonChunk);
+  std::memcpy(out.data() + kGlbHeaderBytes, text.data(), text.size());
+  if (rest > 0) std::memcpy(out.data() + kGlbHeaderBytes + text.size(), file.data() + kGlbHeaderBytes + jsonLength, rest);
+  return out;
 }
 
-uint64_t unsignedOr(const nlohmann::json& o, const char* key, uint64_t def, bool& ok) {
-  if (!o.contains(key)) return def;
-  if (!o[key].is_number_unsigned()) { ok = false; return def; }
-  return o[key].get<uint64_t>();
-}
-
-// Checks made on the raw JSON before tinygltf sees it (see the file comment).
-void precheckJson(const std::string& file, std::span<const uint8_t> text) {
-  if (jsonDepth(text) > kMaxJsonDepth) fail(file, "", fmt::format("JSON nests deeper than {} levels", kMaxJsonDepth));
-  const nlohmann::json doc = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
-  if (doc.is_discarded()) fail(file, "", "not valid JSON");
-  if (!doc.is_object()) fail(file, "", "the glTF document is not a JSON object");
-  if (!doc.contains("bufferViews") || !doc["bufferViews"].is_array()) return;
-  const nlohmann::json empty = nlohmann::json::array();
-  const nlohmann::json& buffers = doc.contains("buffers") && doc["buffers"].is_array() ? doc["buffers"] : empty;
-  const nlohmann::json& views = doc["bufferViews"];
-  for (size_t i = 0; i < views.size(); ++i) {
-    const nlohmann::json& v = views[i];
-    if (!v.is_object()) continue;  // tinygltf rejects it with its own message
-    bool ok = true;
-    const uint64_t buffer = unsignedOr(v, "buffer", ~uint64_t(0), ok);
-    const uint64_t offset = unsignedOr(v, "byteOffset", 0, ok);
-    const uint64_t length = unsignedOr(v, "byteLength", 0, ok);
-    const std::string field = fmt::format("bufferViews[{}]", i);
-    if (!ok) fail(file, field, "buffer, byteOffset and byteLength must be non-negative integers");
-    if (buffer >= buffers.size()) fail(file, field + ".buffer", fmt::format("no buffer {} ({} buffers)", buffer, buffers.size()));
-    bool okLength = buffers[buffer].is_object();
-    const uint64_t bufferLength = okLength ? unsignedOr(buffers[buffer], "byteLength", 0, okLength) : 0;
-    if (!okLength) fail(file, fmt::format("buffers[{}].byteLength", buffer), "must be a non-negative integer");
-    if (offset > bufferLength || length > bufferLength - offset)
-      fail(file, field, fmt::format("bytes {}..{} run past the end of buffers[{}] ({} bytes)", offset, offset + length, buffer, bufferLength));
-  }
-}
-
-// --- tinygltf callbacks: files and images, with limits ------------------------------------------
-struct LoadContext {
-  std::string file;
-  uint64_t imageBytes = 0;
-};
-
+// --- tinygltf callbacks: files with limits ---------------------------------------------------------
 bool fileExists(const std::string& path, void*) {
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec);
@@ -121,45 +81,24 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
   return false;
 }
 
-bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* user) {
-  auto* ctx = static_cast<LoadContext*>(user);
-  auto error = [&](const std::string& what) {
-    if (err) *err += fmt::format("images[{}]: {}", index, what);
-    return false;
-  };
-  int w = 0, h = 0, channels = 0;
-  if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &channels))
-    return error(fmt::format("not an image stb_image can decode ({})", stbi_failure_reason() ? stbi_failure_reason() : "empty"));
-  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-    return error(fmt::format("{}x{} texels; each side must be in 1..{}", w, h, kMaxImageSide));
-  const uint64_t bytesNeeded = 4ull * static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
-  if (ctx->imageBytes + bytesNeeded > kMaxImageBytes)
-    return error(fmt::format("decoded images would take more than {} bytes", kMaxImageBytes));
-  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);
-  if (!pixels) return error(fmt::format("cannot decode ({})", stbi_failure_reason() ? stbi_failure_reason() : "unknown"));
-  image->image.assign(pixels, pixels + bytesNeeded);
-  stbi_image_free(pixels);
-  image->width = w;
-  image->height = h;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  ctx->imageBytes += bytesNeeded;
-  return true;
-}
+// Share of a glTF load spent before the conversion (JSON, buffers, images).
+constexpr double kGltfParseShare = 0.4;
 
 }  // namespace
 
-Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name, const std::filesystem::path& baseDir) {
+Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name, const std::filesystem::path& baseDir,
+                         ProgressReport* progress) {
   if (bytes.empty()) fail(name, "", "the file is empty");
   if (bytes.size() > kMaxFileBytes) fail(name, "", fmt::format("{} bytes, more than the {} byte limit", bytes.size(), kMaxFileBytes));
   const bool binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
   std::span<const uint8_t> json = bytes;
+  uint32_t length = 0, jsonLength = 0;
   if (binary) {
     if (bytes.size() < kGlbHeaderBytes) fail(name, "", fmt::format("truncated GLB: {} bytes, the header needs {}", bytes.size(), kGlbHeaderBytes));
-    const uint32_t version = readU32(bytes.data() + 4), length = readU32(bytes.data() + 8);
-    const uint32_t jsonLength = readU32(bytes.data() + 12), jsonType = readU32(bytes.data() + 16);
+    const uint32_t version = readU32(bytes.data() + 4), jsonType = readU32(bytes.data() + 16);
+    length = readU32(bytes.data() + 8);
+    jsonLength = readU32(bytes.data() + 12);
+    if (version == 1) fail(name, "", "a binary glTF 1.0 file (GLB version 1): Penumbra reads glTF 2.0 only (convert it first, e.g. with gltf-pipeline, which upgrades 1.0 files)");
     if (version != 2) fail(name, "", fmt::format("GLB version {} (only 2 is glTF 2.0)", version));
     if (length > bytes.size()) fail(name, "", fmt::format("truncated GLB: the header says {} bytes, the file has {}", length, bytes.size()));
     // Before the subtraction below: a length under the headers' own size would wrap around.
@@ -169,25 +108,34 @@ Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name
       fail(name, "", "malformed GLB: the first chunk is not a JSON chunk inside the file");
     json = bytes.subspan(kGlbHeaderBytes, jsonLength);
   }
-  precheckJson(name, json);
+  nlohmann::json doc = checkGltfDocument(name, json);
+  const CompressedParts compressed = prepareCompressed(doc, name);
+  // What tinygltf parses: the file, or the file with the JSON prepared for it.
+  const std::vector<uint8_t> prepared = compressed.rewritten ? withJson(bytes, binary, jsonLength, length, doc.dump(), name)
+                                                             : std::vector<uint8_t>();
+  const std::span<const uint8_t> input = compressed.rewritten ? std::span<const uint8_t>(prepared) : bytes;
 
-  LoadContext ctx{name, 0};
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&decodeImage, &ctx);
+  loader.SetImageLoader(&keepEncodedImage, nullptr);
   loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
   tinygltf::Model model;
   std::string err, warn;
   const std::string base = baseDir.empty() ? std::string(".") : baseDir.string();
-  const auto size = static_cast<unsigned int>(bytes.size());
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), size, base);
-  if (!ok) fail(name, "", oneLine(err.empty() ? warn : err));
-  return convertGltf(model, name);
+  const auto size = static_cast<unsigned int>(input.size());
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(), size, base)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(input.data()), size, base);
+  if (!ok) fail(name, "", "glTF parser (tinygltf): " + oneLine(err.empty() ? warn : err));
+  decompress(model, compressed, name);
+  if (progress) {
+    progress->stage(kGltfParseShare, 1.0);
+    progress->update(0, 1);
+  }
+  return convertGltf(model, name, progress);
 }
 
-Model loadGltf(const std::filesystem::path& path) {
+Model loadGltf(const std::filesystem::path& path, ProgressReport& progress) {
   const std::vector<uint8_t> bytes = readFileLimited(path, path.string());
-  return loadGltfFromMemory(bytes, path.string(), path.parent_path());
+  return loadGltfFromMemory(bytes, path.string(), path.parent_path(), &progress);
 }
 
 }  // namespace penumbra::loaders

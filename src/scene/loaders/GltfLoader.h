@@ -13,11 +13,11 @@
 namespace penumbra::loaders {
 
 /// Loads a .gltf or .glb file (told apart by the GLB magic, not the extension).
-Model loadGltf(const std::filesystem::path& path);
+Model loadGltf(const std::filesystem::path& path, ProgressReport& progress);
 
 /// The same from bytes in memory; `name` names the file in errors and external URIs resolve
 /// against `baseDir`. Throws Error on any bad input (the fuzz target's entry point).
 Model loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name,
-                         const std::filesystem::path& baseDir);
+                         const std::filesystem::path& baseDir, ProgressReport* progress = nullptr);
 
 }  // namespace penumbra::loaders

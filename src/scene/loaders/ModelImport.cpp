@@ -41,6 +41,26 @@ constexpr float kMinNearM = 1e-4f;                            // the scene file'
 
 }  // namespace
 
+// Reports closer together than a hundredth of the load would only cost time.
+constexpr double kProgressStep = 0.01;
+
+ProgressReport::ProgressReport(const LoadOptions& options, std::filesystem::path file)
+    : mOptions(options), mFile(std::move(file)) {
+  if (mOptions.progress) mOptions.progress(mFile, 0.0);
+}
+
+void ProgressReport::update(uint64_t done, uint64_t total) {
+  if (!mOptions.progress || total == 0) return;
+  const double fraction = mFrom + (mTo - mFrom) * std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
+  if (fraction - mLast >= kProgressStep) report(fraction);
+}
+
+void ProgressReport::report(double fraction) {
+  if (!mOptions.progress || fraction <= mLast) return;
+  mLast = fraction;
+  mOptions.progress(mFile, fraction);
+}
+
 void fail(const std::string& file, const std::string& field, const std::string& problem) {
   if (field.empty()) throw Error(fmt::format("{}: {}", file, problem));
   throw Error(fmt::format("{}: {}: {}", file, field, problem));
@@ -51,15 +71,16 @@ bool isModelFile(const std::filesystem::path& path) {
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
 }
 
-std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what) {
+std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what, uint64_t maxBytes) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) fail(what, "", fmt::format("cannot open {} (no such file)", path.string()));
+  if (std::filesystem::is_directory(status)) fail(what, "", fmt::format("{} is a folder, not a file", path.string()));
   if (!std::filesystem::is_regular_file(status)) fail(what, "", fmt::format("{} is not a regular file", path.string()));
   const uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) fail(what, "", fmt::format("cannot read the size of {}", path.string()));
-  if (size > kMaxFileBytes)
-    fail(what, "", fmt::format("{} is {} bytes, more than the {} byte limit", path.string(), size, kMaxFileBytes));
+  if (size > maxBytes)
+    fail(what, "", fmt::format("{} is {} bytes, more than the {} byte limit", path.string(), size, maxBytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(what, "", fmt::format("cannot open {} (not readable)", path.string()));
   std::vector<uint8_t> bytes(static_cast<size_t>(size));
@@ -68,19 +89,24 @@ std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const st
   return bytes;
 }
 
-Model loadModelFile(const std::filesystem::path& path) {
+Model loadModelFile(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string ext = lowerExtension(path);
+  ProgressReport progress(options, path);
   Model model;
-  if (ext == ".gltf" || ext == ".glb") model = loadGltf(path);
-  else if (ext == ".obj") model = loadObj(path);
+  if (ext == ".gltf" || ext == ".glb") model = loadGltf(path, progress);
+  else if (ext == ".obj") model = loadObj(path, progress);
   else fail(path.string(), "", "not a model file (.gltf, .glb or .obj)");
   model.scene.sourceFile = path;
   checkSceneLimits(model.scene, path.string());
+  const bool drawsSomething = std::any_of(model.scene.objects.begin(), model.scene.objects.end(),
+                                          [&](const Object& o) { return model.scene.meshes[o.mesh].hasArea(); });
+  if (!drawsSomething) fail(path.string(), "", "every triangle has zero area (its corners lie on one line): nothing would be drawn");
+  progress.finish();
   return model;
 }
 
-Scene loadModelScene(const std::filesystem::path& path) {
-  Model model = loadModelFile(path);
+Scene loadModelScene(const std::filesystem::path& path, const LoadOptions& options) {
+  Model model = loadModelFile(path, options);
   addDefaultLightAndCamera(model.scene, model.hasCamera);
   model.scene.validate();
   return std::move(model.scene);

@@ -4,6 +4,7 @@
 // "model.glb: accessors[3]: index 812 is out of range (600 vertices)": the file, the field, the
 // problem. The limits are documented in docs/scenes.md; change both together.
 #include <penumbra/Scene.h>
+#include <penumbra/SceneIO.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -45,12 +46,30 @@ struct Model {
 /// True when the extension names a model format (.gltf, .glb, .obj; any case).
 bool isModelFile(const std::filesystem::path& path);
 
-/// Loads a .gltf, .glb or .obj file. Throws Error("file: field: problem") on any bad input.
-Model loadModelFile(const std::filesystem::path& path);
+/// Loads a .gltf, .glb or .obj file. Throws Error("file: field: problem") on any bad input, and
+/// when no triangle it places has an area (nothing would be drawn).
+Model loadModelFile(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Loads a model file as a complete scene: adds a sun from a default direction when it has no
 /// light and a camera framing its bounds when it has none, then validates it.
-Scene loadModelScene(const std::filesystem::path& path);
+Scene loadModelScene(const std::filesystem::path& path, const LoadOptions& options = {});
+
+/// Reports a model file's progress through options.progress (nothing when it is empty), at most
+/// every kProgressStep of the work so that a million-element loop costs nothing.
+class ProgressReport {
+public:
+  ProgressReport(const LoadOptions& options, std::filesystem::path file);
+  /// `done` of `total` units of the current stage, mapped into [from, to] of the whole load.
+  void stage(double from, double to) { mFrom = from; mTo = to; }
+  void update(uint64_t done, uint64_t total);
+  void finish() { report(1.0); }
+
+private:
+  void report(double fraction);
+  const LoadOptions& mOptions;
+  std::filesystem::path mFile;
+  double mFrom = 0.0, mTo = 1.0, mLast = 0.0;
+};
 
 /// Places a default sun (no lights) and a camera framing the bounds (when !hasCamera).
 void addDefaultLightAndCamera(Scene& scene, bool hasCamera);
@@ -66,8 +85,9 @@ void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromMod
 /// "file: field: problem" (field may be empty).
 [[noreturn]] void fail(const std::string& file, const std::string& field, const std::string& problem);
 
-/// Reads a whole regular file of at most kMaxFileBytes. Throws Error naming `what` otherwise.
-std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what);
+/// Reads a whole regular file of at most `maxBytes`. Throws Error naming `what` otherwise.
+std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what,
+                                     uint64_t maxBytes = kMaxFileBytes);
 
 /// Checks the limits that only the whole scene shows: vertex, triangle, object, image totals,
 /// finite world transforms and coordinates within kMaxCoordinateM. `file` names the error.

@@ -10,10 +10,11 @@
 namespace penumbra::loaders {
 
 /// Loads an .obj file; `mtllib` files resolve against its folder. Throws Error on bad input.
-Model loadObj(const std::filesystem::path& path);
+Model loadObj(const std::filesystem::path& path, ProgressReport& progress);
 
 /// The same from text in memory; `name` names the file in errors, `mtllib` files resolve
-/// against `baseDir`.
-Model loadObjFromMemory(const std::string& text, const std::string& name, const std::filesystem::path& baseDir);
+/// against `baseDir`. Reports the bytes parsed to `progress` when given.
+Model loadObjFromMemory(const std::string& text, const std::string& name, const std::filesystem::path& baseDir,
+                        ProgressReport* progress = nullptr);
 
 }  // namespace penumbra::loaders
