@@ -5,7 +5,7 @@
 // with the reference.
 #include "CompressedModels.h"
 #include "GlFixture.h"
-#include "scene/loaders/GltfLoader.h"
+#include "sceneio/loaders/GltfLoader.h"
 
 #include <penumbra/Reference.h>
 

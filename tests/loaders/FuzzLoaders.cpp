@@ -11,9 +11,9 @@
 #define STB_IMAGE_IMPLEMENTATION  // penumbra_base has it in base/ImageIO.cpp, which this build leaves out
 #include <stb_image.h>
 
-#include "scene/loaders/GltfLoader.h"
-#include "scene/loaders/ModelImport.h"
-#include "scene/loaders/ObjLoader.h"
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/ModelImport.h"
+#include "sceneio/loaders/ObjLoader.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>

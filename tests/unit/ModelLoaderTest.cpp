@@ -2,9 +2,9 @@
 // alpha masks, lights from KHR_lights_punctual with extras.size, cameras), the default light and
 // camera, the scene-file "file" hook, and one clear error for every file in tests/data/bad/.
 #include "CompressedModels.h"
-#include "scene/loaders/GltfLoader.h"
-#include "scene/loaders/ModelImport.h"
-#include "scene/loaders/ObjLoader.h"
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/ModelImport.h"
+#include "sceneio/loaders/ObjLoader.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>

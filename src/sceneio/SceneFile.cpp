@@ -3,7 +3,7 @@
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>
 
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,7 +1,7 @@
 // glTF JSON checks before tinygltf (GltfDocument.h).
-#include "scene/loaders/GltfDocument.h"
+#include "sceneio/loaders/GltfDocument.h"
 
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <fmt/format.h>
 

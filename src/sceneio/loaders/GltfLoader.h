@@ -3,7 +3,7 @@
 // (triangles, strips and fans; indexed or not), base colour factor and texture, alpha-mask
 // materials, KHR_lights_punctual lights (size from the light's `extras.size`) and the first
 // perspective camera. docs/scenes.md lists what is read, what is ignored and the limits.
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 // The checked conversion of a parsed glTF document into a Model (GltfConverter.cpp).
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <string>
 

@@ -3,9 +3,9 @@
 // stb_image (base/ImageIO.cpp holds its implementation), JPEG by libjpeg-turbo's TurboJPEG, which
 // is fuzzed upstream without end (Debian's stb_image is not safe on crafted JPEGs:
 // base/StbImageFormats.h).
-#include "scene/loaders/GltfTextures.h"
+#include "sceneio/loaders/GltfTextures.h"
 
-#include "scene/loaders/TinyGltf.h"
+#include "sceneio/loaders/TinyGltf.h"
 
 #include <fmt/format.h>
 #include <stb_image.h>

@@ -2,7 +2,7 @@
 // glTF textures as Penumbra reads them (GltfTextures.cpp): images kept encoded while tinygltf
 // parses and decoded (PNG, JPEG; size-limited) only when a base-colour texture uses them, and
 // KHR_texture_transform folded into the texture coordinates.
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>

@@ -2,11 +2,11 @@
 // images, KHR_lights_punctual lights and the first perspective camera. Every index, offset,
 // count and number is checked before use (tinygltf checks few): a failure is one Error naming
 // the glTF field ("accessors[3]: …"). What is read and what is ignored: docs/scenes.md.
-#include "scene/loaders/GltfConverter.h"
+#include "sceneio/loaders/GltfConverter.h"
 
-#include "scene/loaders/GltfTextures.h"
+#include "sceneio/loaders/GltfTextures.h"
 
-#include "scene/loaders/TinyGltf.h"
+#include "sceneio/loaders/TinyGltf.h"
 
 #include <penumbra/Error.h>
 

@@ -4,13 +4,13 @@
 // (nesting, version, required members, views inside buffers), naming the field. Images stay
 // encoded until a material uses them (GltfTextures.cpp decodes them, size limits first).
 #define TINYGLTF_IMPLEMENTATION  // here, once
-#include "scene/loaders/TinyGltf.h"
+#include "sceneio/loaders/TinyGltf.h"
 
-#include "scene/loaders/GltfCompression.h"
-#include "scene/loaders/GltfConverter.h"
-#include "scene/loaders/GltfDocument.h"
-#include "scene/loaders/GltfLoader.h"
-#include "scene/loaders/GltfTextures.h"
+#include "sceneio/loaders/GltfCompression.h"
+#include "sceneio/loaders/GltfConverter.h"
+#include "sceneio/loaders/GltfDocument.h"
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/GltfTextures.h"
 
 #include <penumbra/Error.h>
 

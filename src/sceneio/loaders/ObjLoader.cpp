@@ -7,7 +7,7 @@
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
-#include "scene/loaders/ObjLoader.h"
+#include "sceneio/loaders/ObjLoader.h"
 
 #include <penumbra/Error.h>
 

@@ -2,11 +2,11 @@
 // the reference ones (Draco, meshoptimizer; both fuzzed upstream); everything they are handed
 // and everything they return is checked here first: buffer ranges, counts against the limits
 // and the accessors, Draco's attribute and face indices before any is read.
-#include "scene/loaders/GltfCompression.h"
+#include "sceneio/loaders/GltfCompression.h"
 
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
-#include "scene/loaders/TinyGltf.h"
+#include "sceneio/loaders/TinyGltf.h"
 
 #include <draco/compression/decode.h>
 #include <fmt/format.h>

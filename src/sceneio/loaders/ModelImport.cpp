@@ -1,9 +1,9 @@
 // Shared model-file plumbing: format dispatch, limits, default light and camera, placing a model
 // inside a scene file. The format parsers live in GltfLoader.cpp and ObjLoader.cpp.
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
-#include "scene/loaders/GltfLoader.h"
-#include "scene/loaders/ObjLoader.h"
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/ObjLoader.h"
 
 #include <penumbra/Error.h>
 

@@ -2,7 +2,7 @@
 // Wavefront OBJ through tinyobjloader: positions, normals, texture coordinates, polygons
 // (fan-triangulated) and the diffuse colour (Kd) and shininess (Ns) of `mtllib` materials.
 // Each (shape, material) pair becomes one mesh. docs/scenes.md lists what is ignored.
-#include "scene/loaders/ModelImport.h"
+#include "sceneio/loaders/ModelImport.h"
 
 #include <filesystem>
 #include <string>
