@@ -1,5 +1,5 @@
 // penumbra render: one frame of a scene with a technique, to PNG (+ visibility EXR, + dump); with
-// --frames, the last of several (timing).
+// --repeat, the last of several renders of the same frame (timing).
 #include "Commands.h"
 #include "Common.h"
 
@@ -29,9 +29,9 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--out", o->out, "output PNG")->capture_default_str();
   sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
-  sub->add_option("--frames", o->frames,
-                  "render this many frames and write the last (the first compiles the shaders): for timing; --verbose "
-                  "then prints each pass's median over the frames after the first")
+  sub->add_option("--repeat", o->frames,
+                  "render the same frame this many times and write the last (the first compiles the shaders): for "
+                  "timing; --verbose then prints each pass's median over the renders after the first")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   commands.push_back({sub, [o] {

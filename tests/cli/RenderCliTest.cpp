@@ -191,20 +191,20 @@ TEST(RenderCli, VisibilityExrAndDump) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/d/" + f)) << f;
 }
 
-// --frames renders several frames and writes the last, the same image as one frame; --verbose
-// then times the frames after the first (the first compiles the shaders), pass by pass.
-TEST(RenderCli, FramesWriteTheSameImageAndTimeTheWarmFrames) {
+// --repeat renders the same frame several times and writes the last, the same image as one
+// render; --verbose then times the renders after the first (the first compiles the shaders).
+TEST(RenderCli, RepeatWritesTheSameImageAndTimesTheWarmFrames) {
   const std::string dir = freshDir("frames");
   RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --out one.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --frames 3 --verbose --out three.png", dir);
+  r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --repeat 3 --verbose --out three.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   int w = 0, h = 0;
   EXPECT_EQ(readPng(dir + "/one.png", w, h), readPng(dir + "/three.png", w, h));
   EXPECT_NE(r.err.find("medians of the 2 frames after the first"), std::string::npos) << r.err;
   for (const char* pass : {"gbuffer", "shadow", "prefilter", "visibility", "lit"})
     EXPECT_NE(r.err.find(std::string("penumbra: ") + pass), std::string::npos) << pass << "\n" << r.err;
-  EXPECT_EQ(runPenumbra("render --frames 0").exitCode, 2);
+  EXPECT_EQ(runPenumbra("render --repeat 0").exitCode, 2);
 }
 
 // The distance field's bake reports its time and memory; a second run reads the cache silently.
