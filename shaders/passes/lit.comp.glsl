@@ -14,7 +14,6 @@ layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
 const int kDebugView = PN_DEBUG_VIEW;
 
 const float kSpecularStrength = 0.25;  // share of the direct light reflected specularly
-const float kSpotEdgeSoftness = 0.05;  // cos range over which the spot cone fades out
 
 vec3 acesApprox(vec3 x) {  // Narkowicz's fit of the ACES filmic curve
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
@@ -54,11 +53,9 @@ void main() {
     vec3 albedo = texelFetch(s_gbufAlbedo, px, 0).rgb;
     vec3 l = toLight(pos.xyz);
     vec3 radiance = u_frame.lightRadiance.rgb;
-    if (isSpotLight()) {
+    if (isPositionalLight()) {
       vec3 d = u_frame.lightPosition.xyz - pos.xyz;
-      float cosAxis = dot(-l, u_frame.lightDirection.xyz);
-      float cone = smoothstep(u_frame.lightPosition.w, u_frame.lightPosition.w + kSpotEdgeSoftness, cosAxis);
-      radiance *= cone / max(dot(d, d), 1e-4);
+      radiance *= lightFalloff(pos.xyz) / max(dot(d, d), 1e-4);
     }
     vec3 h = normalize(l + normalize(u_frame.cameraPosition.xyz - pos.xyz));
     float NoL = max(dot(n, l), 0.0);

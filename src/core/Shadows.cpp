@@ -81,6 +81,8 @@ struct Shadows::Impl {
     shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
   }
   void checkPair(const Light& l) const {
+    if (const std::string why = projection->incompatibility(l); !why.empty())
+      throw usageError(fmt::format("--projection {} is not supported for this light: {}", projection->id(), why));
     const std::string why = filter->incompatibility(projection->id(), l);
     if (!why.empty())
       throw usageError(fmt::format("--filter {} with --projection {} is not supported: {}", filter->id(), projection->id(), why));

@@ -25,10 +25,19 @@ FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragme
   return p;
 }
 
+int shaderLightKind(const Light& light) {
+  switch (light.type) {
+    case LightType::Spot: return PN_LIGHT_SPOT;
+    case LightType::Point: return PN_LIGHT_POINT;
+    case LightType::Directional: break;
+  }
+  return PN_LIGHT_SUN;
+}
+
 ShaderDefines FrameContext::frameDefines() const {
   ShaderDefines d;
   d.set("PN_SHADOW_VIEWS", viewCount());
-  d.set("PN_LIGHT_KIND", mLight.type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
+  d.set("PN_LIGHT_KIND", shaderLightKind(mLight));
   // Perspective and warped are two facts (psm's view of a spot light is both); each is compiled
   // in when every view agrees on it.
   bool allPerspective = true, nonePerspective = true, allWarped = true, noneWarped = true;

@@ -16,6 +16,9 @@
 
 namespace penumbra {
 
+/// The light's kind as the shaders name it: PN_LIGHT_SUN, PN_LIGHT_SPOT or PN_LIGHT_POINT.
+int shaderLightKind(const Light& light);
+
 /// Where the visibility pass finds each pixel's surface (bound at PN_TEX_GBUF_POSITION and
 /// PN_TEX_GBUF_GEONORMAL by the core before the pass).
 enum class SurfaceSource {

@@ -20,6 +20,7 @@ LightSetup setupLight(const Light& light) {
            fmt::format("reference: light size {} must be finite and >= 0", light.size));
   PN_CHECK(glm::length(light.direction) > 0.0f, "reference: the light has a zero direction");
   LightSetup s;
+  s.light = light;
   s.power = light.color * light.intensity;
   s.soft = light.size > 0.0f;
   if (light.type == LightType::Directional) {
@@ -31,12 +32,14 @@ LightSetup setupLight(const Light& light) {
     const float sinAlpha = std::sin(light.size);
     if (s.soft) s.radiance = s.power / (glm::pi<float>() * sinAlpha * sinAlpha);
   } else {
-    PN_CHECK(light.coneAngleRad > 0.0f && light.coneAngleRad < glm::pi<float>(),
+    PN_CHECK(light.type == LightType::Point || (light.coneAngleRad > 0.0f && light.coneAngleRad < glm::pi<float>()),
              fmt::format("reference: spot cone half angle {} rad must be in (0, pi)", light.coneAngleRad));
     s.directional = false;
     s.centre = light.position;
     s.spotAxis = glm::normalize(light.direction);
-    s.cosCone = std::cos(light.coneAngleRad);
+    constexpr float kEveryDirection = -2.0f;  // below any cosine: a point light has no cone
+    s.cosCone = light.type == LightType::Point ? kEveryDirection : std::cos(light.coneAngleRad);
+    s.rangeM = light.rangeM;
     s.radiusM = light.size;
     // A uniform sphere of radiance L_e has intensity L_e · πR² in every direction.
     if (s.soft) s.radiance = s.power / (glm::pi<float>() * light.size * light.size);

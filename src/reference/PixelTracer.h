@@ -41,8 +41,10 @@ struct LightSetup {
   glm::vec3 centre{0.0f};             // spot: sphere centre (m)
   glm::vec3 toLight{0.0f, 1.0f, 0.0f};  // sun: unit direction toward the sun
   glm::vec3 spotAxis{0.0f, -1.0f, 0.0f};
-  float cosCone = 0.0f;               // spot: cos of the cone's half angle
-  float radiusM = 0.0f;               // spot: sphere radius
+  float cosCone = 0.0f;               // spot: cos of the cone's outer half angle (point: −2, no cone)
+  float radiusM = 0.0f;               // spot, point: sphere radius
+  float rangeM = 0.0f;                // spot, point: no light beyond it (0 = unlimited)
+  Light light;                        // the light itself: its falloff scales the shading
   float sunCapHeight = 0.0f;          // sun: 1 − cos(angular radius)
   glm::vec3 power{1.0f};              // colour × intensity: E at normal incidence (sun) or I (spot)
   glm::vec3 radiance{0.0f};           // soft lights: uniform emitted radiance L_e
@@ -130,8 +132,10 @@ public:
     out.visibilityCos = sumCos > 0.0f ? sumCosV / sumCos : out.visibility;
     // Uniform over the cone: ∫ f dω ≈ (Ω / N) Σ f, with Ω = 2π(1 − cos α).
     const float weight = glm::two_pi<float>() * capHeight / static_cast<float>(mSamples);
-    out.exact = brdf * mLight.radiance * (weight * sumCosV);
-    out.split = brdf * mLight.radiance * (weight * sumCos * out.visibility);
+    // The spot cone's and the range's falloff, taken at the receiver (constant over the light).
+    const float falloff = lightFalloff(mLight.light, origin);
+    out.exact = brdf * mLight.radiance * (falloff * weight * sumCosV);
+    out.split = brdf * mLight.radiance * (falloff * weight * sumCos * out.visibility);
     return out;
   }
 
@@ -149,6 +153,7 @@ public:
       if (!(distanceM > 0.0f)) return false;
       axis = toCentre / distanceM;
       if (glm::dot(-axis, mLight.spotAxis) < mLight.cosCone) return false;  // outside the spot cone
+      if (mLight.rangeM > 0.0f && distanceM >= mLight.rangeM) return false;  // beyond its range
     }
     return glm::dot(n, axis) > 0.0f;  // faces the light's centre
   }
@@ -203,7 +208,7 @@ private:
       // A point inside a spherical light is lit by all of it; the point-light law at r = R
       // keeps the value finite (such pixels are not a case the shadow maps can be judged on).
       const float r = std::max(length, mLight.radiusM);
-      irradiance = mLight.power / (r * r);
+      irradiance = mLight.power * (lightFalloff(mLight.light, origin) / (r * r));
       if (mLight.soft) length = 0.0f;
     }
     const float cosTheta = std::max(0.0f, glm::dot(n, dir));

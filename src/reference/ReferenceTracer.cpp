@@ -89,6 +89,8 @@ uint64_t ReferenceTracer::Impl::key(const GBufferData& g, std::span<const Receiv
   hash.value(light.color);
   hash.value(light.intensity);
   hash.value(light.coneAngleRad);
+  hash.value(light.innerConeAngleRad);
+  hash.value(light.rangeM);
   hash.value(light.size);
   const bool soft = light.size > 0.0f;  // a hard light's result depends on neither
   hash.value(samplesFor(light, options));

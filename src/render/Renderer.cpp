@@ -192,7 +192,7 @@ void Renderer::runLitPass() {
   d.compute = {"passes/lit.comp.glsl"};
   // Built per debug view and light kind: the shaded image runs none of the debug code.
   d.defines.set("PN_DEBUG_VIEW", im.debugView);
-  d.defines.set("PN_LIGHT_KIND", im.scene.light().type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
+  d.defines.set("PN_LIGHT_KIND", shaderLightKind(im.scene.light()));
   const gl::Program& program = shaders().program(d);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);

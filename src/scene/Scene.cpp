@@ -38,6 +38,26 @@ glm::mat4 Camera::clipFromView(float aspect) const {
   return m;
 }
 
+float lightFalloff(const Light& light, const glm::vec3& ws) {
+  if (!isPositional(light)) return 1.0f;
+  const glm::vec3 d = ws - light.position;
+  const float distanceM = glm::length(d);
+  float f = 1.0f;
+  if (light.rangeM > 0.0f) {
+    // KHR_lights_punctual's recommended window: (1 − (d / range)^4)^2, clamped.
+    const float x = distanceM / light.rangeM;
+    const float w = std::clamp(1.0f - x * x * x * x, 0.0f, 1.0f);
+    f *= w * w;
+  }
+  if (light.type == LightType::Spot && distanceM > 0.0f) {
+    const float cosAxis = glm::dot(d / distanceM, glm::normalize(light.direction));
+    const float lo = std::cos(light.coneAngleRad), hi = std::cos(light.innerConeAngleRad);
+    const float t = hi > lo ? std::clamp((cosAxis - lo) / (hi - lo), 0.0f, 1.0f) : (cosAxis >= lo ? 1.0f : 0.0f);
+    f *= t * t * (3.0f - 2.0f * t);  // smoothstep, as the lit pass
+  }
+  return f;
+}
+
 const Light& Scene::light() const {
   PN_CHECK(!lights.empty(), fmt::format("scene '{}' has no light", name));
   return lights.front();
@@ -107,6 +127,12 @@ void Scene::validate() const {
   for (const Light& l : lights) {
     PN_CHECK(glm::length(l.direction) > 0.0f, fmt::format("{}: a light has a zero direction", where));
     PN_CHECK(l.size >= 0.0f, fmt::format("{}: a light has a negative size", where));
+    PN_CHECK(l.rangeM >= 0.0f && std::isfinite(l.rangeM), fmt::format("{}: a light has a negative range", where));
+    if (l.type == LightType::Spot)
+      PN_CHECK(l.coneAngleRad > 0.0f && l.coneAngleRad <= kMaxSpotConeRad && l.innerConeAngleRad >= 0.0f &&
+                   l.innerConeAngleRad <= l.coneAngleRad,
+               fmt::format("{}: a spot light's cone angles (inner {} rad, outer {} rad) are not 0 <= inner <= outer <= {}",
+                           where, l.innerConeAngleRad, l.coneAngleRad, kMaxSpotConeRad));
     PN_CHECK(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(l.color, glm::vec3(kMaxRadiance))),
              fmt::format("{}: a light's colour is outside [0, {}]", where, kMaxRadiance));
   }

@@ -25,6 +25,11 @@ using Json = nlohmann::json;
 constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 // The sphere's tessellation (slices around, stacks from pole to pole).
 constexpr int kSphereSlices = 48, kSphereStacks = 24;
+constexpr float kMinMapSize = 16.0f, kMaxMapSize = 16384.0f;  // shadow-map texels per side
+constexpr float kMaxLightSphereM = 100.0f;  // a spot or point light's largest sphere radius
+constexpr float kMinSpotConeDeg = 1.0f;     // a spot's narrowest outer half angle
+// A spot without innerConeDeg fades over its cone's last degrees (the look of earlier files).
+constexpr float kDefaultSpotFadeDeg = 5.0f;
 
 /// A JSON object being read: remembers its path for messages and which keys were used.
 class Reader {
@@ -126,26 +131,59 @@ glm::mat4 readTransform(Reader& r) {
   return glm::scale(m, s);
 }
 
+/// "params": {"technique.key": number or name, …} of a shadow block, in file order.
+void readParams(Reader& parent, std::vector<std::pair<std::string, std::string>>& out) {
+  if (!parent.has("params")) return;
+  Reader p = parent.child("params");
+  for (const auto& [key, value] : parent.raw("params").items()) {
+    p.has(key);
+    if (value.is_number()) out.emplace_back(key, fmt::format("{}", value.get<double>()));
+    else if (value.is_string()) out.emplace_back(key, value.get<std::string>());
+    else p.fail(key, "expected a number or a name");
+  }
+}
+
 Light readLight(Reader& r) {
   Light l;
   const std::string type = r.string("type", "sun");
   if (type == "sun") l.type = LightType::Directional;
   else if (type == "spot") l.type = LightType::Spot;
-  else r.fail("type", fmt::format("unknown light type '{}' (sun or spot)", type));
-  l.direction = r.vec<3>("direction", l.direction);
-  if (glm::length(l.direction) < 1e-6f) r.fail("direction", "must not be zero");
-  l.direction = glm::normalize(l.direction);
+  else if (type == "point") l.type = LightType::Point;
+  else r.fail("type", fmt::format("unknown light type '{}' (sun, spot or point)", type));
+  if (l.type != LightType::Point) {
+    l.direction = r.vec<3>("direction", l.direction);
+    if (glm::length(l.direction) < 1e-6f) r.fail("direction", "must not be zero");
+    l.direction = glm::normalize(l.direction);
+  }
+  if (isPositional(l)) {
+    l.position = r.vec<3>("position", l.position, -kMaxCoordinateM, kMaxCoordinateM);
+    l.size = r.number("size", 0.0f, 0.0f, kMaxLightSphereM);
+    l.rangeM = r.number("range", 0.0f, 0.0f, kMaxCoordinateM);
+    if (l.rangeM > 0.0f && l.rangeM <= l.size) r.fail("range", fmt::format("{} m must exceed the light's size {} m", l.rangeM, l.size));
+  } else {
+    l.size = r.number("size", 0.0f, 0.0f, kMaxSunAngularRadiusRad);
+  }
   if (l.type == LightType::Spot) {
-    l.position = r.vec<3>("position", l.position);
     if (r.has("target")) {
       const glm::vec3 target = r.vec<3>("target", glm::vec3(0));
       if (glm::length(target - l.position) < 1e-6f) r.fail("target", "equals the position");
       l.direction = glm::normalize(target - l.position);
     }
-    l.coneAngleRad = glm::radians(r.number("coneAngleDeg", glm::degrees(l.coneAngleRad), 1.0f, 85.0f));
-    l.size = r.number("size", 0.0f, 0.0f, 100.0f);
-  } else {
-    l.size = r.number("size", 0.0f, 0.0f, kMaxSunAngularRadiusRad);
+    // coneAngleDeg: the older name of the outer angle.
+    if (r.has("coneAngleDeg") && r.has("outerConeDeg")) r.fail("coneAngleDeg", "give outerConeDeg or coneAngleDeg, not both");
+    const char* outerKey = r.has("coneAngleDeg") ? "coneAngleDeg" : "outerConeDeg";
+    const float outerDeg = r.number(outerKey, glm::degrees(l.coneAngleRad), kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad));
+    l.coneAngleRad = glm::radians(outerDeg);
+    // Without an inner angle the light fades over the cone's last kDefaultSpotFadeDeg degrees.
+    const float innerDeg = r.number("innerConeDeg", std::max(0.0f, outerDeg - kDefaultSpotFadeDeg), 0.0f, outerDeg);
+    l.innerConeAngleRad = glm::radians(innerDeg);
+  }
+  l.castsShadow = r.boolean("castsShadow", true);
+  if (r.has("shadow")) {
+    Reader s = r.child("shadow");
+    l.shadow.mapSize = static_cast<int>(s.number("mapSize", 0.0f, kMinMapSize, kMaxMapSize));
+    readParams(s, l.shadow.params);
+    s.finish();
   }
   l.color = r.vec<3>("color", l.color, 0.0f, kMaxRadiance);
   l.intensity = r.number("intensity", l.intensity, 0.0f, 1e6f);
@@ -276,16 +314,8 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     Reader sh = top.child("shadow");
     s.shadow.projection = sh.string("projection", s.shadow.projection);
     s.shadow.filter = sh.string("filter", s.shadow.filter);
-    s.shadow.mapSize = static_cast<int>(sh.number("mapSize", static_cast<float>(s.shadow.mapSize), 16.0f, 16384.0f));
-    if (sh.has("params")) {
-      Reader p = sh.child("params");
-      for (const auto& [key, value] : sh.raw("params").items()) {
-        p.has(key);
-        if (value.is_number()) s.shadow.params.emplace_back(key, fmt::format("{}", value.get<double>()));
-        else if (value.is_string()) s.shadow.params.emplace_back(key, value.get<std::string>());
-        else p.fail(key, "expected a number or a name");
-      }
-    }
+    s.shadow.mapSize = static_cast<int>(sh.number("mapSize", static_cast<float>(s.shadow.mapSize), kMinMapSize, kMaxMapSize));
+    readParams(sh, s.shadow.params);
     sh.finish();
   }
   top.finish();

@@ -208,7 +208,7 @@ TEST(ModelLoader, NodeTransformsCompose) {
 TEST(ModelLoader, PunctualLightsAndTheirSize) {
   const std::string lights = R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [
       {"type": "spot", "intensity": 5, "spot": {"outerConeAngle": 0.5}, "extras": {"size": 0.25}},
-      {"type": "point", "extras": {"size": 0.1}}]}},)";
+      {"type": "point", "range": 12, "extras": {"size": 0.1}}]}},)";
   const std::string nodes = R"([{"mesh": 0},
       {"translation": [0, 4, 0], "rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 0}}},
       {"translation": [3, 0.5, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}}])";
@@ -218,14 +218,16 @@ TEST(ModelLoader, PunctualLightsAndTheirSize) {
   EXPECT_EQ(spot.type, LightType::Spot);
   EXPECT_NEAR(spot.size, 0.25f, 1e-7f);
   EXPECT_NEAR(spot.coneAngleRad, 0.5f, 1e-6f);
+  EXPECT_EQ(spot.innerConeAngleRad, 0.0f);  // KHR_lights_punctual's default inner angle
+  EXPECT_EQ(spot.rangeM, 0.0f);             // no range given: unlimited
   EXPECT_NEAR(spot.position.y, 4.0f, 1e-6f);
   EXPECT_NEAR(spot.direction.y, -1.0f, 1e-5f);
-  // The point light becomes a spot light aimed at the middle of the scene's bounds.
+  // The point light stays a point light, with its position and range.
   const Light& point = m.scene.lights[1];
-  EXPECT_EQ(point.type, LightType::Spot);
+  EXPECT_EQ(point.type, LightType::Point);
   EXPECT_NEAR(point.size, 0.1f, 1e-7f);
-  const glm::vec3 toCenter = glm::normalize(m.scene.bounds().center() - point.position);
-  EXPECT_NEAR(glm::dot(point.direction, toCenter), 1.0f, 1e-5f);
+  EXPECT_EQ(point.position, glm::vec3(3.0f, 0.5f, 0.0f));
+  EXPECT_EQ(point.rangeM, 12.0f);
   // A sun's size is an angle: 0.7 rad is refused, naming the field.
   const std::string bigSun = R"("extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "extras": {"size": 0.7}}]}},)";
   const std::string e = gltfError(meshGltf(kSquare, {0, 1, 2}, "", R"([{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 0}}}])", "[0]", bigSun));

@@ -25,9 +25,7 @@ namespace {
 
 constexpr float kAlwaysHoleCutoff = 2.0f;       // above any alpha: every texel is a hole
 constexpr float kMinConeRad = 0.0175f;          // 1°: the scene file's narrowest spot cone
-constexpr float kMaxConeRad = 1.4835f;          // 85°: the widest a perspective shadow map covers
 constexpr float kMaxSpotSizeM = 100.0f, kMaxSunSizeRad = 0.5f;  // the scene file's light-size bounds
-constexpr float kPointConeMarginRad = 0.05f;    // room around the scene when aiming a point light
 
 const std::set<std::string> kSupportedRequiredExtensions = {
     "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength",
@@ -95,7 +93,6 @@ private:
   uint64_t mImageBytes = 0;  // decoded so far
   std::map<int, UvTransform> mUvTransforms;  // glTF material → its base-colour texture's transform
   std::vector<uint8_t> mOnPath, mVisited;
-  std::vector<size_t> mPointLights;  // lights to aim once the bounds are known
   uint64_t mVertices = 0, mTriangles = 0;
 };
 
@@ -364,17 +361,24 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, con
   l.direction = glm::normalize(dir);
   if (src.type == "directional") {
     l.type = LightType::Directional;
-  } else if (src.type == "spot" || src.type == "point") {
+  } else if (src.type == "spot") {
     l.type = LightType::Spot;
-    if (src.type == "spot") {
-      if (!(src.spot.outerConeAngle > 0.0 && src.spot.outerConeAngle <= 1.5707964))
-        error(sf + ".spot.outerConeAngle", "must be in (0, pi/2]");
-      l.coneAngleRad = std::clamp(static_cast<float>(src.spot.outerConeAngle), kMinConeRad, kMaxConeRad);
-    } else {
-      mPointLights.push_back(mOut.scene.lights.size());
-    }
+    // KHR_lights_punctual: 0 <= innerConeAngle < outerConeAngle <= pi/2 (defaults 0 and pi/4).
+    if (!(src.spot.outerConeAngle > 0.0 && src.spot.outerConeAngle <= 1.5707964))
+      error(sf + ".spot.outerConeAngle", "must be in (0, pi/2]");
+    if (!(src.spot.innerConeAngle >= 0.0 && src.spot.innerConeAngle < src.spot.outerConeAngle))
+      error(sf + ".spot.innerConeAngle", "must be in [0, outerConeAngle)");
+    // A cone wider than kMaxSpotConeRad keeps the light's falloff but frames the map narrower.
+    l.coneAngleRad = std::clamp(static_cast<float>(src.spot.outerConeAngle), kMinConeRad, kMaxSpotConeRad);
+    l.innerConeAngleRad = std::min(static_cast<float>(src.spot.innerConeAngle), l.coneAngleRad);
+  } else if (src.type == "point") {
+    l.type = LightType::Point;
   } else {
     error(sf + ".type", fmt::format("'{}' is not directional, spot or point", src.type));
+  }
+  if (src.type != "directional" && src.range > 0.0) {
+    if (!(src.range <= kMaxCoordinateM)) error(sf + ".range", fmt::format("must be at most {} m", kMaxCoordinateM));
+    l.rangeM = static_cast<float>(src.range);
   }
   if (src.extras.IsObject() && src.extras.Has("size")) {
     const tinygltf::Value& v = src.extras.Get("size");
@@ -466,15 +470,6 @@ Model Converter::run() {
   for (int r : roots) visit(r, glm::mat4(1.0f), 0);
   if (mOut.scene.objects.empty() || mOut.scene.triangleCount() == 0)
     error("", "the scene places no triangles (no mesh node with triangle primitives)");
-  const Aabb bounds = mOut.scene.bounds();
-  for (size_t i : mPointLights) {  // a point light becomes a spot light aimed at the scene
-    Light& l = mOut.scene.lights[i];
-    const glm::vec3 toCenter = bounds.center() - l.position;
-    const float d = glm::length(toCenter);
-    l.direction = d > 1e-6f ? toCenter / d : glm::vec3(0.0f, -1.0f, 0.0f);
-    const float r = bounds.radius();
-    l.coneAngleRad = d > r ? std::min(kMaxConeRad, std::asin(r / d) + kPointConeMarginRad) : kMaxConeRad;
-  }
   mOut.scene.name = mFile;
   return std::move(mOut);
 }
