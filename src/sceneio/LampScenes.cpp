@@ -104,8 +104,9 @@ void addShelves(Scene& s, const glm::vec3& floorCentre) {
 
 // A room open toward the camera: the point lamp hangs beside the table's end, low enough that
 // light reaches under the top, so the legs throw long shadows across the floor toward the left
-// wall, and the top's shadow covers the floor beyond the table's far end. The spot in the front
-// left corner throws the table's and the chair's shadows onto the back wall and the shelves.
+// wall, and the top's shadow covers the floor beyond the table's far end and climbs that wall
+// (to about 0.5 m); the chair's shadow falls toward the back wall. The spot on the ceiling before
+// the shelves lights them: the boards' and books' shadows fall on the boards and the back wall.
 Scene makeRoomScene() {
   Scene s;
   s.name = "room";
@@ -120,15 +121,15 @@ Scene makeRoomScene() {
   addObject(s, "ceiling", makeBox({wideM, kWallM, depthM}), kWallColor, at({0.0f, kRoomHeightM + 0.5f * kWallM, midZ}));
 
   constexpr float kTableHeightM = 0.75f;
-  addTable(s, {0.0f, 0.0f, -0.9f}, {1.4f, 0.05f, 0.8f}, kTableHeightM);
-  addChair(s, {0.75f, 0.0f, -1.75f}, glm::pi<float>());
+  addTable(s, {-0.8f, 0.0f, -0.9f}, {1.4f, 0.05f, 0.8f}, kTableHeightM);
+  addChair(s, {0.1f, 0.0f, -1.75f}, glm::pi<float>());
   addShelves(s, {1.75f, 0.0f, kRoomBackZ + 0.16f});
 
-  // Light 0: a bulb (5 cm radius) hanging 0.65 m above the table's height, half a metre past its
-  // +X end, under a conical shade; its range covers the room (the far corner is 4.5 m away).
+  // Light 0: a bulb (5 cm radius) hanging 0.55 m above the table's height, 0.8 m past its +X end,
+  // under a conical shade; its range covers the room (the far corner is 4.5 m away).
   const glm::vec3 warm{1.0f, 0.85f, 0.65f};
   constexpr float kLampRadiusM = 0.05f, kLampRangeM = 6.0f, kLampIntensity = 2.5f;
-  const glm::vec3 lamp{1.2f, kTableHeightM + 0.65f, -0.7f};
+  const glm::vec3 lamp{0.7f, kTableHeightM + 0.55f, -0.7f};
   s.lights.push_back(pointLight(lamp, kLampRadiusM, kLampRangeM, kLampIntensity, warm));
   // The shade's rim is kShadeGapM above the bulb's centre (clear of its sphere and of the cube
   // maps' near plane, which is at the sphere): it keeps light off the ceiling and the walls' tops,
