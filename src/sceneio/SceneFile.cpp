@@ -278,6 +278,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
   if (!top.has("lights")) top.fail("lights", "missing (at least one light)");
   const Json& lights = top.raw("lights");
   if (!lights.is_array() || lights.empty()) top.fail("lights", "expected a non-empty array");
+  if (lights.size() > kMaxLights) top.fail("lights", fmt::format("{} lights, more than the limit of {}", lights.size(), kMaxLights));
   for (size_t i = 0; i < lights.size(); ++i) {
     Reader r(lights[i], file, fmt::format("lights[{}]", i));
     s.lights.push_back(readLight(r));

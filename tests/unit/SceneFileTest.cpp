@@ -223,6 +223,15 @@ TEST(SceneFile, BadLightEntriesNameTheField) {
   }
 }
 
+// Each light has its own maps and visibility layer: a file with more than kMaxLights is refused
+// by name (it reached Shadows::render, which exited 2 without naming the file).
+TEST(SceneFile, TooManyLightsAreRefusedByName) {
+  std::string lights;
+  for (size_t i = 0; i <= kMaxLights; ++i) lights += std::string(i ? ", " : "") + R"({"type": "point", "position": [0, 2, 0]})";
+  const std::string e = loadError(R"({"lights": [)" + lights + R"(], "objects": [{"shape": "box"}]})");
+  EXPECT_NE(e.find("t.json: lights: 17 lights, more than the limit of 16"), std::string::npos) << e;
+}
+
 // Every light key read back: a point light, a spot with both cones and a range, the overrides.
 TEST(SceneFile, LightsKeepEveryKey) {
   const Scene s = loadSceneFile(writeTemp("lights.json", R"({"lights": [
