@@ -81,6 +81,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   o->technique.size = "256x256";
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
+  addShadowBudgetOption(*sub, o->technique);
   sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--out", o->out, outputsHelp())->capture_default_str();
