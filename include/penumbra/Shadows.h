@@ -19,6 +19,7 @@
 #include <penumbra/Scene.h>
 #include <penumbra/Timings.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -152,6 +153,11 @@ public:
 
   const LightFrusta& frusta() const;      ///< the last frame's views
   const PassTimings& timings() const;     ///< "shadow", "prefilter", "visibility" of the last frame
+  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filter created
+  /// during its passes and still holds (shadow maps, moment, mip, summed-area and pyramid
+  /// storage, baked fields, its debug images), counted where GL storage is allocated. The
+  /// visibility texture, the uniform blocks and the caller's surfaces are not the technique's.
+  std::size_t techniqueMemoryBytes() const;
   /// Every intermediate of the last frame a viewer can show: the visibility, then the filter's.
   std::vector<DebugImage> debugImages() const;
   /// The programs Penumbra compiled (for tools that reload shader sources while running).

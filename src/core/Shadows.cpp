@@ -62,6 +62,9 @@ struct Shadows::Impl {
   const Scene* cpuScene = nullptr;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  // What the filter allocates during its passes; a replaced filter's storage leaves the count
+  // when it is destroyed.
+  gl::MemoryAccount techniqueMemory;
   LightFrusta frusta;
   PassTimings timings;
   // The last frame's, for visibilityAt and bindFrameBlocks.
@@ -173,6 +176,7 @@ void Shadows::render(const ShadowFrameInputs& in) {
   im.bindBlocks();
 
   FrameContext ctx = im.frameContext();
+  const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();
   {
     ScopedPass pass(im.timer, "shadow");
@@ -228,6 +232,7 @@ std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points) 
   im.bindBlocks();
   FrameContext ctx = im.frameContext();
   ctx.setPoints(&in, &out, static_cast<int>(points.size()));
+  const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();  // a filter may time sub-passes; these times are not kept
   im.filter->computeVisibility(ctx);
   im.timer.endFrame();
@@ -243,6 +248,7 @@ ShaderLibrary& Shadows::shaders() { return mImpl->shaders; }
 
 const LightFrusta& Shadows::frusta() const { return mImpl->frusta; }
 const PassTimings& Shadows::timings() const { return mImpl->timings; }
+std::size_t Shadows::techniqueMemoryBytes() const { return static_cast<std::size_t>(mImpl->techniqueMemory.bytes()); }
 
 std::vector<DebugImage> Shadows::debugImages() const {
   std::vector<DebugImage> out = {{"visibility", &mImpl->visibility}};
