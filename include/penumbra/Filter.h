@@ -22,6 +22,14 @@ struct DebugImage {
   const gl::Texture* texture;    ///< 2D or 2D array (layer 0 shown)
 };
 
+/// Work a filter does once and keeps while the casters do not move (a baked distance field): in
+/// no frame's time, and valid only for static casters: a caster that moves makes it again.
+struct OneOffCost {
+  std::string what;      ///< what was made, e.g. "distance-field bake, 128 voxels on the longest side"
+  double seconds = 0.0;  ///< what making it took (read from a cache: what the original work took)
+  bool cached = false;   ///< this time it came from an on-disk cache (seconds is still the work's)
+};
+
 class Filter : public Parameterized {
 public:
   using Parameterized::Parameterized;
@@ -40,6 +48,9 @@ public:
   /// Writes V for every G-buffer pixel into the frame's visibility image.
   virtual void computeVisibility(FrameContext& frame) = 0;
   virtual std::vector<DebugImage> debugImages() const { return {}; }
+  /// What the filter made once for the current casters (after a frame); none for techniques
+  /// that redo all their work every frame.
+  virtual std::vector<OneOffCost> oneOffCosts() const { return {}; }
 };
 
 }  // namespace penumbra

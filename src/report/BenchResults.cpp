@@ -32,6 +32,24 @@ TimeStats timeStats(std::span<const double> samplesMs) {
   return {quantile(s, 0.5), quantile(s, kLow), quantile(s, kHigh)};
 }
 
+TimeStats shadowCostStats(const FrameSamples& frames) {
+  std::vector<double> sums;
+  for (const auto& [pass, samples] : frames) {
+    if (std::find_if(std::begin(kShadowCostPasses), std::end(kShadowCostPasses),
+                     [&](const char* p) { return pass == p; }) == std::end(kShadowCostPasses))
+      continue;
+    if (sums.size() < samples.size()) sums.resize(samples.size(), 0.0);
+    for (size_t i = 0; i < samples.size(); ++i) sums[i] += samples[i];
+  }
+  return timeStats(sums);
+}
+
+double BenchRow::oneOffSeconds() const {
+  double s = 0.0;
+  for (const OneOffCost& c : oneOff) s += c.seconds;
+  return s;
+}
+
 TimeStats BenchRow::time(std::string_view pass) const {
   for (const PassStats& p : passes)
     if (p.name == pass) return p.ms;

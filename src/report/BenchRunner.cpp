@@ -132,7 +132,13 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.height = set.height;
       row.shadowMapSize = set.shadowMapSize;
       row.frames = frames;
-      for (const std::string& name : samples.order) row.passes.push_back({name, timeStats(samples.ms[name])});
+      for (const std::string& name : samples.order) {
+        row.passes.push_back({name, timeStats(samples.ms[name])});
+        if (name != kTotalPass) row.frameMs.emplace_back(name, samples.ms[name]);
+      }
+      row.shadowCost = shadowCostStats(row.frameMs);
+      row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
+      row.oneOff = renderer.filter().oneOffCosts();
       row.metrics = cmp.metrics;
       if (c.inGrid) {
         const std::string scene = fileStem(renderer.scene().name);
@@ -150,9 +156,9 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       }
       results.rows.push_back(std::move(row));
       if (options.verbose)
-        std::fprintf(stderr, "bench: %s %s %s %s: visibility %.2f ms, RMSE %.4f (%d frames, %.1f s)\n", c.scene.c_str(),
-                     c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
-                     results.rows.back().time("visibility").median, cmp.metrics.rmse, frames,
+        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f (%d frames, %.1f s)\n",
+                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
+                     results.rows.back().shadowCost.median, results.rows.back().memoryMiB(), cmp.metrics.rmse, frames,
                      std::chrono::duration<double>(Clock::now() - configStart).count());
     } catch (const std::exception& e) {
       results.skipped.push_back({c, e.what(), true});

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +110,63 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
     EXPECT_LT(row["rmse"].get<double>(), 0.5);
   }
   EXPECT_EQ(json["rows"][0]["gl_renderer"], json["machine"]["gl_renderer"]);
+}
+
+// The whole cost of every row of the quick run: shadow_cost_ms_* are the quantiles of the
+// per-frame sum of the shadow, prefilter and visibility passes (docs/bench.md states the rule),
+// recomputed here from the frame samples results.json carries; shadow_memory_mb is there for
+// every row; one-off costs only where a technique made something once (sdf's bake).
+TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
+  const std::string dir = freshDir("bench-cost");
+  const RunResult r = runPenumbra("bench --quick --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  const nlohmann::json& rows = json["rows"];
+  ASSERT_GT(rows.size(), 0u);
+  ASSERT_EQ(json["frame_ms"].size(), rows.size());
+  // The report's own interpolation rule (BenchResults.h timeStats): linear between ranks.
+  auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const size_t lo = static_cast<size_t>(pos), hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (v[hi] - v[lo]) * (pos - static_cast<double>(lo));
+  };
+  constexpr double kRounding = 1e-9;  // ms: the sums are formed in another order here
+  size_t sdfRows = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const nlohmann::json& row = rows[i];
+    const nlohmann::json& frames = json["frame_ms"][i];
+    const std::string what = row["scene"].get<std::string>() + " " + row["projection"].get<std::string>() + " " +
+                             row["filter"].get<std::string>() + " " + row["params"].get<std::string>();
+    std::vector<double> sums(static_cast<size_t>(row["frames"].get<double>()), 0.0);
+    for (const char* pass : {"shadow", "prefilter", "visibility"}) {
+      const std::vector<double> ms = frames.at(pass).get<std::vector<double>>();
+      ASSERT_EQ(ms.size(), sums.size()) << what << " " << pass;
+      for (size_t f = 0; f < ms.size(); ++f) sums[f] += ms[f];
+      // The samples are those behind the pass's own columns.
+      EXPECT_NEAR(quantile(ms, 0.5), row[std::string(pass) + "_ms_median"].get<double>(), kRounding) << what << " " << pass;
+    }
+    EXPECT_NEAR(row["shadow_cost_ms_median"].get<double>(), quantile(sums, 0.5), kRounding) << what;
+    EXPECT_NEAR(row["shadow_cost_ms_p10"].get<double>(), quantile(sums, 0.1), kRounding) << what;
+    EXPECT_NEAR(row["shadow_cost_ms_p90"].get<double>(), quantile(sums, 0.9), kRounding) << what;
+    EXPECT_GT(row["shadow_cost_ms_median"].get<double>(), 0.0) << what;
+
+    ASSERT_TRUE(row["shadow_memory_mb"].is_number()) << what;
+    EXPECT_GT(row["shadow_memory_mb"].get<double>(), 0.0) << what << ": every technique keeps a map or a field";
+    if (row["filter"] == "hard" && row["projection"] == "uniform") {
+      const double map = row["shadow_map"].get<double>();
+      EXPECT_DOUBLE_EQ(row["shadow_memory_mb"].get<double>(), map * map * 4.0 / (1024.0 * 1024.0))
+          << "hard keeps one 32-bit depth map";
+    }
+    if (row["filter"] == "sdf") {
+      ++sdfRows;
+      EXPECT_GT(row["one_off_s"].get<double>(), 0.0) << what;
+      EXPECT_NE(row["one_off_what"].get<std::string>().find("static casters only"), std::string::npos) << what;
+    } else {
+      EXPECT_TRUE(row["one_off_s"].is_null()) << what;
+    }
+  }
+  EXPECT_GT(sdfRows, 0u) << "the quick run has sdf rows";
 }
 
 TEST(BenchCli, UnknownSweepKeyIsAUsageError) {

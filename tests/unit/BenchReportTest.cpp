@@ -110,6 +110,19 @@ TEST(BenchStats, MedianAndPercentilesInterpolate) {
   EXPECT_DOUBLE_EQ(timeStats({}).median, 0.0);
 }
 
+TEST(BenchStats, ShadowCostIsTheQuantileOfPerFrameSumsOfTheCorePasses) {
+  // Three frames: one with a slow shadow pass, one with a slow visibility pass. The passes'
+  // medians (1 + 0 + 1 = 2 ms) miss that two of the three frames cost 11 ms; the per-frame sums
+  // {2, 11, 11} do not. The G-buffer and lit passes are not the technique's.
+  const FrameSamples frames = {{"gbuffer", {100, 100, 100}}, {"shadow", {1, 10, 1}}, {"prefilter", {0, 0, 0}},
+                               {"visibility", {1, 1, 10}}, {"lit", {50, 50, 50}}};
+  const TimeStats cost = shadowCostStats(frames);
+  EXPECT_DOUBLE_EQ(cost.median, 11.0);
+  EXPECT_DOUBLE_EQ(cost.p10, 2.0 + 0.2 * 9.0);  // position 0.2 between 2 and 11
+  EXPECT_DOUBLE_EQ(cost.p90, 11.0);
+  EXPECT_DOUBLE_EQ(shadowCostStats({}).median, 0.0);
+}
+
 TEST(BenchStats, ParetoFrontKeepsOnlyUndominatedPoints) {
   //                          0    1    2    3    4
   const std::vector<double> x = {1.0, 2.0, 3.0, 2.5, 0.5};

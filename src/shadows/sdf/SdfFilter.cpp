@@ -131,4 +131,10 @@ void SdfFilter::computeVisibility(FrameContext& frame) {
 
 std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice}}; }
 
+std::vector<OneOffCost> SdfFilter::oneOffCosts() const {
+  if (!mHaveField) return {};
+  return {{fmt::format("distance-field bake, {}x{}x{} voxels", mGrid.dims.x, mGrid.dims.y, mGrid.dims.z),
+           mGrid.stats.bakeSeconds, mGrid.stats.fromCache}};
+}
+
 }  // namespace penumbra
