@@ -61,9 +61,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "(light.size applies to all; e.g. pcss.filterSamples=8:64:4)");
   sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
-  sub->add_option("--size", o->size, "image size WxH (default 256x144; --quick 96x64)");
-  sub->add_option("--shadow-map", o->shadowMap, "shadow-map texels per side (default 1024; --quick 512)")->check(CLI::Range(16, 16384));
-  sub->add_option("--samples", o->samples, "reference light samples per pixel (default 256; --quick 36)")
+  sub->add_option("--size", o->size, fmt::format("image size WxH (default {}, as render and compare; --quick 96x64)", defaultSizeText()));
+  sub->add_option("--shadow-map", o->shadowMap,
+                  "shadow-map texels per side (default: each scene's own, as render and compare; --quick 512)")
+      ->check(CLI::Range(16, 16384));
+  sub->add_option("--samples", o->samples,
+                  fmt::format("reference light samples per pixel (default {}, as compare; --quick 36)", ReferenceOptions{}.samples))
       ->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--max-seconds", o->maxSeconds, "stop timing a configuration after this many seconds (default 4)")
       ->check(CLI::Range(0.0, 3600.0));

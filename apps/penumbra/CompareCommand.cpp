@@ -69,14 +69,13 @@ std::string outputsHelp() {
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     TechniqueOptions technique;
-    int samples = 256;
+    int samples = ReferenceOptions{}.samples;  // as bench and the viewer's heatmap
     std::string out = "compare";
     bool json = false, noCache = false;
     int shimmer = 0;
     std::optional<std::uintmax_t> cacheMaxMb;
   };
   auto o = std::make_shared<Options>();
-  o->technique.size = "256x256";
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
   sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")

@@ -65,6 +65,31 @@ std::vector<std::string> BenchResults::passNames() const {
   return names;
 }
 
+namespace {
+
+// A word as a POSIX shell reads it: as is when it has only safe characters, else single-quoted.
+std::string shellWord(const std::string& word) {
+  const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                            "0123456789._/:,=+-") == std::string::npos;
+  if (safe) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+std::string compareCommand(const BenchResults& results, const BenchRow& row) {
+  const BenchConfig& c = row.config;
+  std::string cmd = fmt::format("penumbra compare --scene {} --projection {} --filter {}", shellWord(c.scene),
+                                shellWord(c.projection), shellWord(c.filter));
+  for (const auto& [key, value] : c.params) cmd += " --set " + shellWord(key + "=" + value);
+  cmd += fmt::format(" --size {}x{} --shadow-map {} --samples {}", row.width, row.height, row.shadowMapSize,
+                     results.settings.referenceSamples);
+  if (!results.settings.camera.empty()) cmd += " --camera " + shellWord(results.settings.camera);
+  return cmd;
+}
+
 double loadAverage() {
   std::ifstream in("/proc/loadavg");
   double load = -1.0;

@@ -110,6 +110,11 @@ struct BenchResults {
   std::vector<std::string> passNames() const;
 };
 
+/// The `penumbra compare` command line that renders `row`'s configuration on the same pixels
+/// with the same map and reference samples: it prints the row's metrics (to every digit: the
+/// frames are deterministic) and one frame's pass times. Text that a shell would split is quoted.
+std::string compareCommand(const BenchResults& results, const BenchRow& row);
+
 /// Fills cpu, os, hardwareThreads, date and loadStart (not the GL fields or the command).
 MachineInfo describeMachine();
 /// The 1-minute load average, or -1 where /proc/loadavg cannot be read.

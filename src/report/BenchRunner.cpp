@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -69,7 +70,6 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   results.machine.glVendor = context.info().vendor;
 
   Renderer renderer;
-  const RenderOptions render{.width = set.width, .height = set.height, .shadowMapSize = set.shadowMapSize, .debugView = 0};
   std::optional<std::string> currentScene, currentLight;
   std::unique_ptr<ReferenceTracer> tracer;
   std::map<std::string, ReferenceResult> references;  // by light key, for the current scene
@@ -90,6 +90,8 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
       currentLight = light;
     }
+    const RenderOptions render{.width = set.width, .height = set.height,
+                               .shadowMapSize = set.shadowMapSize.value_or(s.scene.shadow.mapSize), .debugView = 0};
     const auto configStart = Clock::now();
     try {
       renderer.setTechnique(std::move(s.projection), std::move(s.filter));
@@ -130,7 +132,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.lightSize = renderer.scene().light().size;
       row.width = set.width;
       row.height = set.height;
-      row.shadowMapSize = set.shadowMapSize;
+      row.shadowMapSize = render.shadowMapSize;
       row.frames = frames;
       for (const std::string& name : samples.order) {
         row.passes.push_back({name, timeStats(samples.ms[name])});
@@ -166,7 +168,11 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     }
     bar.advance(1);
   }
-  results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, context.info().softwareRenderer);
+  // Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
+  int microMapSize = set.shadowMapSize.value_or(0);
+  for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
+  if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
+  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, context.info().softwareRenderer);
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
   results.machine.loadEnd = loadAverage();
   return results;

@@ -63,11 +63,12 @@ std::string header(const BenchResults& r) {
       r.rows.size(), refused, failed, r.seconds);
   h += fmt::format(
       "<p>Each configuration: {} warm-up frame(s) (the first compiles the shaders), then up to {} timed frames "
-      "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}², "
+      "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}, "
       "reference {} light samples per pixel (Embree). Clock: <b>{}</b> on <b>{}</b>; compare times only as ratios "
       "within one run. Load average {:.2f} at the start, {:.2f} at the end, on {} hardware threads: other work on "
       "the machine inflates times and makes them drift.</p>\n",
-      s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height, s.shadowMapSize, s.referenceSamples,
+      s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height,
+      s.shadowMapSize ? fmt::format("{}²", *s.shadowMapSize) : std::string("at each scene's own size"), s.referenceSamples,
       esc(m.clock), esc(m.glRenderer), m.loadStart, m.loadEnd, m.hardwareThreads);
   if (!s.camera.empty())
     h += fmt::format("<p>Camera: <code>--camera {}</code> (position : target : vertical field of view in degrees), "

@@ -9,7 +9,7 @@
 namespace penumbra::report {
 namespace {
 
-constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: shadow cost, memory, one-off costs, frame_ms
+constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: shadow cost, memory, one-off costs, frame_ms, compare_command
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -40,7 +40,7 @@ std::vector<std::string> tableColumns(const BenchResults& results) {
   for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what"}) cols.emplace_back(c);
   for (const std::string& pass : results.passNames())
     for (const char* suffix : kStatSuffixes) cols.push_back(pass + suffix);
-  for (const char* c : {"image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
+  for (const char* c : {"compare_command", "image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
   return cols;
 }
 
@@ -70,6 +70,7 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
       cells.insert(cells.end(), {num(it->ms.median), num(it->ms.p10), num(it->ms.p90)});
     }
   }
+  cells.emplace_back(compareCommand(results, r));
   for (const std::string* s : {&r.imagePath, &r.heatmapPath, &r.referencePath, &results.machine.clock,
                                &results.machine.glRenderer})
     cells.emplace_back(*s);
@@ -105,7 +106,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
                   {"date", m.date}, {"command", m.command}};
   j["settings"] = {{"width", s.width},
                    {"height", s.height},
-                   {"shadow_map", s.shadowMapSize},
+                   {"shadow_map", s.shadowMapSize ? nlohmann::json(*s.shadowMapSize) : nlohmann::json(nullptr)},
                    {"warmup_frames", s.warmupFrames},
                    {"timed_frames", s.timedFrames},
                    {"max_seconds_per_config", s.maxSecondsPerConfig},

@@ -14,6 +14,8 @@
 #include "viewer/ShaderWatcher.h"
 #include "viewer/ViewSession.h"
 
+#include <penumbra/Reference.h>
+
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -110,7 +112,7 @@ private:
   HeatmapJob mHeatmap;
   std::optional<HeatmapResult> mHeatmapResult;
   gl::Texture mHeatmapTexture;
-  int mHeatmapSamples = 64;
+  int mHeatmapSamples = ReferenceOptions{}.samples;  ///< as compare and bench: the same ruler
   std::optional<int> mHeatmapRequest;  ///< samples; started once this frame is rendered
 
   // Layout (window pixels, origin lower-left) and cameras.

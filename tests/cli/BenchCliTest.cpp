@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -167,6 +168,48 @@ TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
     }
   }
   EXPECT_GT(sdfRows, 0u) << "the quick run has sdf rows";
+}
+
+// Each row carries the compare command that reproduces it: run as printed, compare measures the
+// same pixels with the same map and reference, and prints the row's metrics to the fourth digit
+// (the frames are deterministic, so in fact to every digit).
+TEST(BenchCli, EveryRowReproducesWithItsCompareCommand) {
+  const std::string dir = freshDir("bench-reproduce");
+  const RunResult r = runPenumbra("bench --scenes pen --filters hard,pcss,vssm --projections uniform,csm "
+                                  "--sweep light.size=0.05:0.1:2 --size 96x64 --shadow-map 512 --samples 16 --frames 1 "
+                                  "--out out",
+                                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  ASSERT_EQ(json["rows"].size(), 3u * 2u * 2u);
+  auto fourDigits = [](double v) { return std::lround(v * 1e4); };
+  for (const nlohmann::json& row : json["rows"]) {
+    const std::string command = row["compare_command"].get<std::string>();
+    ASSERT_EQ(command.rfind("penumbra compare ", 0), 0u) << command;
+    const RunResult c = runPenumbra(command.substr(std::string("penumbra ").size()) + " --json --out imgs", dir);
+    ASSERT_EQ(c.exitCode, 0) << command << "\n" << c.err;
+    const nlohmann::json cmp = nlohmann::json::parse(c.out);
+    for (const char* metric : {"rmse", "penumbra_rmse", "leak_pct", "overdark_pct", "umbra_leak_pct"})
+      EXPECT_EQ(fourDigits(cmp[metric].get<double>()), fourDigits(row[metric].get<double>())) << command << ": " << metric;
+    EXPECT_EQ(cmp["pixels"].get<double>(), row["pixels"].get<double>()) << command;
+    EXPECT_EQ(cmp["shadow_map"].get<double>(), row["shadow_map"].get<double>()) << command;
+  }
+}
+
+// With no size, map or sample options, bench measures what render and compare show by default:
+// the same image size, each scene's own map and the same reference samples.
+TEST(BenchCli, DefaultsAreThoseOfCompare) {
+  const std::string dir = freshDir("bench-defaults");
+  const RunResult r = runPenumbra("bench --scenes pen --filters hard --projections uniform --frames 1 --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json row = nlohmann::json::parse(slurp(dir + "/out/results.json"))["rows"][0];
+  const RunResult c = runPenumbra("compare --scene pen --filter hard --projection uniform --json --out imgs", dir);
+  ASSERT_EQ(c.exitCode, 0) << c.err;
+  const nlohmann::json cmp = nlohmann::json::parse(c.out);
+  for (const char* key : {"width", "height", "shadow_map", "rmse", "pixels"})
+    EXPECT_EQ(cmp[key].get<double>(), row[key].get<double>()) << key;
+  EXPECT_NE(row["compare_command"].get<std::string>().find("--samples " + std::to_string(cmp["reference_samples"].get<int>())),
+            std::string::npos);
 }
 
 TEST(BenchCli, UnknownSweepKeyIsAUsageError) {
