@@ -5,6 +5,7 @@
 
 #include "platform/Context.h"
 #include "report/BenchRunner.h"
+#include "report/ChoosingPage.h"
 #include "report/HtmlReport.h"
 #include "report/ResultsIO.h"
 
@@ -47,6 +48,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     std::optional<double> maxSeconds;
     std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
+    std::string choosing;  ///< "" = <out>/choosing.md
     bool quick = false, noCache = false, verbose = false;
   };
   auto o = std::make_shared<Options>();
@@ -74,6 +76,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "the view of the run's one scene (--scenes NAME): X,Y,Z:TX,TY,TZ[:FOV], position and target in "
                   "metres, vertical field of view in degrees (default: each scene's own camera)");
   sub->add_option("--out", o->out, "output folder")->capture_default_str();
+  sub->add_option("--choosing", o->choosing,
+                  "where to write the recommendation page, Markdown (default: OUT/choosing.md; the repository's is "
+                  "docs/choosing.md)");
   sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
   addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
@@ -128,6 +133,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     results.machine.command = commandLine();
     report::writeResults(dir, results);
     report::writeHtmlReport(dir, results);
+    report::writeChoosingPage(o->choosing.empty() ? dir / "choosing.md" : std::filesystem::path(o->choosing), dir, results);
 
     size_t failed = 0;
     for (const report::SkippedConfig& k : results.skipped)

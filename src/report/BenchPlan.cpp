@@ -160,9 +160,10 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
   BenchPlan light{.name = "light-size", .scenes = {"pen"}, .projections = {"uniform"}, .filters = filterIds(),
                   .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5}}};
   if (quick) {
-    // Seconds, not minutes: small images and maps, few frames, a noisier reference, two scenes
-    // and two projections (enough for every chart, table and the grid).
-    matrix.scenes = {"boxes", "pen"};
+    // Seconds, not minutes: small images and maps, few frames, a noisier reference, the scenes
+    // of the recommendation's situations (Recommendation.h) and two projections (enough for
+    // every chart, table, recommendation and the grid).
+    matrix.scenes = {"boxes", "pen", "fence", "city"};
     matrix.projections = {"uniform", "csm"};
     settings.width = 96;
     settings.height = 64;

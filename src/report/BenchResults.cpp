@@ -120,12 +120,13 @@ MachineInfo describeMachine() {
 std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y) {
   std::vector<size_t> order(x.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  // Ascending x, ties by ascending y: a point is on the front when its y beats every earlier one.
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
+  // Ascending x, ties by ascending y, then index: a point is on the front when its y beats every
+  // earlier one, or when it repeats the last front point exactly (neither dominates the other).
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
   std::vector<size_t> front;
   double bestY = std::numeric_limits<double>::infinity();
   for (const size_t i : order)
-    if (y[i] < bestY) {
+    if (y[i] < bestY || (!front.empty() && y[i] == y[front.back()] && x[i] == x[front.back()])) {
       front.push_back(i);
       bestY = y[i];
     }

@@ -121,7 +121,8 @@ MachineInfo describeMachine();
 double loadAverage();
 
 /// Indices of the rows on the Pareto front of (x, y), both minimised: no other point is at
-/// least as good in both and better in one. Ascending x.
+/// least as good in both and better in one (exact duplicates of a front point are on it too).
+/// Ascending x.
 std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y);
 
 }  // namespace penumbra::report

@@ -1,5 +1,6 @@
 #include "report/HtmlReport.h"
 
+#include "report/ChoosingPage.h"
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 
@@ -24,6 +25,7 @@ td small { color: #777; }
 .grid td, .grid th { text-align: center; } .grid img { display: block; image-rendering: pixelated; }
 .note { color: #555; } .front { font-weight: bold; } .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: middle; }
 code { background: #f4f4f4; padding: 1px 4px; } .wide { overflow-x: auto; } td.why { white-space: pre-wrap; max-width: 640px; } td.wrap { white-space: normal; }
+td.cmd, th.cmd { white-space: normal; min-width: 300px; max-width: 480px; }
 )";
 
 // Image-grid thumbnails are shown at most this wide (pixels); a click opens the full picture.
@@ -56,7 +58,7 @@ std::string header(const BenchResults& r) {
   const BenchSettings& s = r.settings;
   size_t refused = 0, failed = 0;
   for (const SkippedConfig& k : r.skipped) (k.failed ? failed : refused)++;
-  std::string h = "<h1>Penumbra bench: shadow techniques, quality against cost</h1>\n";
+  std::string h = "<h1>Penumbra bench: shadow techniques, quality against whole cost and memory</h1>\n";
   h += fmt::format(
       "<p>{} configurations measured, {} refused as unsupported pairs, {} failed; {:.0f} s in all. Raw data: "
       "<a href=\"results.csv\">results.csv</a>, <a href=\"results.json\">results.json</a>.</p>\n",
@@ -74,7 +76,7 @@ std::string header(const BenchResults& r) {
     h += fmt::format("<p>Camera: <code>--camera {}</code> (position : target : vertical field of view in degrees), "
                      "not the scene's own.</p>\n",
                      esc(s.camera));
-  h += "<p class=\"note\">Contents: <a href=\"#quality\">1. quality vs whole cost and memory</a> · <a href=\"#light\">2. cost vs light "
+  h += "<p class=\"note\">Contents: <a href=\"#choose\">which technique?</a> · <a href=\"#quality\">1. quality vs whole cost and memory</a> · <a href=\"#light\">2. cost vs light "
        "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
   return h;
 }
@@ -299,7 +301,7 @@ std::string htmlReport(const BenchResults& r) {
                   "<link rel=\"icon\" href=\"data:,\"><style>";
   h += kStyle;
   h += "</style></head><body>\n";
-  h += header(r) + qualitySection(r) + lightSection(r) + gridSection(r);
+  h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + gridSection(r);
   h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + ratioTable(r) + resultsTables(r) + skippedTable(r) + machineTable(r);
   return h + "</body></html>\n";
 }

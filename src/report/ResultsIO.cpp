@@ -1,5 +1,7 @@
 #include "report/ResultsIO.h"
 
+#include "report/Recommendation.h"
+
 #include <penumbra/Files.h>
 
 #include <fmt/format.h>
@@ -9,7 +11,7 @@
 namespace penumbra::report {
 namespace {
 
-constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: shadow cost, memory, one-off costs, frame_ms, compare_command
+constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: shadow cost, memory, one-off costs, frame_ms, compare_command, recommendations
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -134,6 +136,22 @@ nlohmann::json resultsJson(const BenchResults& results) {
     nlohmann::json frames = nlohmann::json::object();
     for (const auto& [pass, samples] : r.frameMs) frames[pass] = samples;
     j["frame_ms"].push_back(std::move(frames));
+  }
+  // The recommendation (Recommendation.h), rows as indices into "rows".
+  j["recommendations"] = nlohmann::json::array();
+  for (const SituationPicks& p : recommend(results)) {
+    nlohmann::json s = {{"situation", p.situation->id},
+                        {"title", p.situation->title},
+                        {"scene", p.situation->scene},
+                        {"metric", metricKey(p.situation->metric)},
+                        {"static_casters", p.situation->staticCasters},
+                        {"candidates", p.candidates},
+                        {"front", p.front},
+                        {"best_error", p.bestError},
+                        {"acceptable_error", p.acceptableError},
+                        {"acceptable_factor", kAcceptableErrorFactor}};
+    for (const Budget b : kBudgets) s[budgetKey(b)] = p.pick(b) ? nlohmann::json(*p.pick(b)) : nlohmann::json(nullptr);
+    j["recommendations"].push_back(std::move(s));
   }
   j["micro"] = nlohmann::json::array();
   for (const MicroResult& mr : results.micro)

@@ -212,6 +212,67 @@ TEST(BenchCli, DefaultsAreThoseOfCompare) {
             std::string::npos);
 }
 
+// The recommendation of the quick run, checked against its own rows: for every situation the
+// three picks follow the stated rule (Recommendation.h) and lie on the whole-cost Pareto front of
+// the candidates, recomputed here by brute force; the report and choosing.md show them.
+TEST(BenchCli, QuickRecommendationNamesPicksOnTheWholeCostParetoFront) {
+  const std::string dir = freshDir("bench-recommend");
+  const RunResult r = runPenumbra("bench --quick --out out --choosing choosing.md", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  const nlohmann::json& rows = json["rows"];
+  const std::string html = slurp(dir + "/out/report.html"), page = slurp(dir + "/choosing.md");
+  EXPECT_FALSE(fs::exists(dir + "/out/choosing.md")) << "--choosing moves the page";
+  EXPECT_NE(page.find("](out/report.html)"), std::string::npos) << "the page links the report relative to itself";
+  ASSERT_EQ(json["recommendations"].size(), 4u) << "contact-hardening, wide sun, thin casters, static";
+  for (const nlohmann::json& rec : json["recommendations"]) {
+    const std::string situation = rec["situation"], scene = rec["scene"], metric = rec["metric"];
+    const bool staticCasters = rec["static_casters"];
+    // Candidates: the scene's rows at its own light; one-off work only where casters are static.
+    std::vector<size_t> candidates;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const nlohmann::json& row = rows[i];
+      if (row["scene"] != scene || row["params"].get<std::string>().find("light.") != std::string::npos) continue;
+      if (!staticCasters && !row["one_off_s"].is_null()) continue;
+      candidates.push_back(i);
+    }
+    ASSERT_FALSE(candidates.empty()) << situation << ": the quick run measures " << scene;
+    EXPECT_EQ(rec["candidates"].get<std::vector<size_t>>(), candidates) << situation;
+    auto cost = [&](size_t i) { return rows[i]["shadow_cost_ms_median"].get<double>(); };
+    auto error = [&](size_t i) { return rows[i][metric].get<double>(); };
+    auto dominated = [&](size_t i) {
+      return std::any_of(candidates.begin(), candidates.end(), [&](size_t j) {
+        return cost(j) <= cost(i) && error(j) <= error(i) && (cost(j) < cost(i) || error(j) < error(i));
+      });
+    };
+    double best = error(candidates[0]);
+    for (const size_t i : candidates) best = std::min(best, error(i));
+    const double acceptable = 2.0 * best;
+    EXPECT_DOUBLE_EQ(rec["acceptable_error"].get<double>(), acceptable) << situation;
+    double cheapestCost = 1e300;
+    for (const size_t i : candidates)
+      if (error(i) <= acceptable) cheapestCost = std::min(cheapestCost, cost(i));
+    for (const char* budget : {"cheapest_acceptable", "balanced", "best"}) {
+      ASSERT_TRUE(rec[budget].is_number()) << situation << " " << budget;
+      const size_t pick = rec[budget].get<size_t>();
+      const std::string name = situation + " " + budget + ": " + rows[pick]["filter"].get<std::string>() + " · " +
+                               rows[pick]["projection"].get<std::string>();
+      EXPECT_NE(std::find(candidates.begin(), candidates.end(), pick), candidates.end()) << name;
+      EXPECT_FALSE(dominated(pick)) << name << " is not on the whole-cost Pareto front";
+      EXPECT_LE(error(pick), acceptable) << name;
+      // The report and the page name the pick with its reproducing command.
+      const std::string command = rows[pick]["compare_command"].get<std::string>();
+      EXPECT_NE(page.find(command), std::string::npos) << name;
+      EXPECT_NE(html.find(command), std::string::npos) << name;
+    }
+    EXPECT_DOUBLE_EQ(error(rec["best"].get<size_t>()), best) << situation;
+    EXPECT_DOUBLE_EQ(cost(rec["cheapest_acceptable"].get<size_t>()), cheapestCost) << situation;
+    EXPECT_NE(html.find("id=\"choose-" + situation + "\""), std::string::npos) << situation;
+    EXPECT_NE(page.find("<a id=\"" + situation + "\">"), std::string::npos) << situation;
+  }
+  EXPECT_NE(page.find(json["machine"]["gl_renderer"].get<std::string>()), std::string::npos) << "the machine is named";
+}
+
 TEST(BenchCli, UnknownSweepKeyIsAUsageError) {
   const RunResult r = runPenumbra("bench --filters hard --sweep pcss.filterSamples=4:8:2");
   EXPECT_EQ(r.exitCode, 2) << r.err;
