@@ -8,6 +8,7 @@
 #include "metrics/Shimmer.h"
 #include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"
+#include "report/Sheet.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Exr.h>
@@ -28,29 +29,13 @@
 namespace penumbra::app {
 namespace {
 
-// The four images in a 2 × 2 sheet.
-ColorImage sheet(const std::vector<const ColorImage*>& images) {
-  const int w = images[0]->width, h = images[0]->height;
-  ColorImage out;
-  out.width = 2 * w;
-  out.height = 2 * h;
-  out.rgba.assign(static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 4, 0);
-  for (size_t k = 0; k < images.size() && k < 4; ++k) {
-    const int ox = static_cast<int>(k % 2) * w, oy = static_cast<int>(k / 2) * h;
-    for (int y = 0; y < h; ++y)
-      std::copy_n(images[k]->rgba.begin() + static_cast<std::ptrdiff_t>(y) * w * 4, static_cast<size_t>(w) * 4,
-                  out.rgba.begin() + (static_cast<std::ptrdiff_t>(oy + y) * out.width + ox) * 4);
-  }
-  return out;
-}
-
 /// Every file compare writes into --out, in the order --help names them.
 constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"technique.png", "the frame lit with the technique's V"},
     {"reference.png", "the same frame lit with V_ref"},
     {"heatmap.png", "V - V_ref on a grey of V_ref: leaks red, over-darkening blue"},
     {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong"},
-    {"sheet.png", "the four above, 2 x 2"},
+    {"sheet.png", "technique, reference, heatmap and a 4x zoom of its worst region, titled, with the colour legend and the metrics"},
     {"texel-density.png", "screen pixels per shadow-map texel"},
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
@@ -117,7 +102,17 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     constexpr float kApproximationFullScaleV = 0.1f;
     const ColorImage approx = errorHeatmap(ref.visibility, ref.visibilityCosWeighted, ref.litMask, ref.width, ref.height,
                                            nullptr, HeatmapOptions{kApproximationFullScaleV});
-    const ColorImage all = sheet({&technique, &reference, &heat, &approx});
+    const ColorImage all = report::compareSheet(
+        {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = cmp.visibility, .vRef = ref.visibility,
+         .mask = ref.litMask, .heatmapFullScaleDeltaV = report::kLabHeatmap.fullScaleDeltaV,
+         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), s.scene.name),
+         .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", ref.samplesPerPixel),
+         .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
+                                 "{:.2f}%) · over-dark {:.2f}% over {} lit pixels",
+                                 m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
+                     fmt::format("{}×{} pixels, shadow map {}², light size {:g} · --camera {}", gbuffer.width,
+                                 gbuffer.height, s.render.shadowMapSize, s.scene.light().size,
+                                 cameraArgument(s.scene.camera))}});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},

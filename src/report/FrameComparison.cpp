@@ -9,7 +9,7 @@ FrameComparison compareFrame(Renderer& renderer, const ReferenceResult& ref, boo
   if (images) {
     c.technique = renderer.readColor();
     c.reference = renderer.shadeWithVisibility(ref.visibility);
-    c.heatmap = errorHeatmap(c.visibility, ref.visibility, ref.litMask, ref.width, ref.height, &c.technique);
+    c.heatmap = errorHeatmap(c.visibility, ref.visibility, ref.litMask, ref.width, ref.height, &c.technique, kLabHeatmap);
   }
   return c;
 }
