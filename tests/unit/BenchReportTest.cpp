@@ -19,14 +19,14 @@ namespace {
 TEST(BenchPlan, SweepParsesAndSpacesValuesEvenly) {
   const Sweep s = parseSweep("light.size=0.02:0.2:4");
   EXPECT_EQ(s.key, "light.size");
-  const ParamDesc numeric{"light.size", "", "", 0.0f, 0.0f, 10.0f, 0.0f};
+  const ParamDesc numeric{"light.size", "", "", "m", 0.0f, 0.0f, 10.0f, 0.0f};
   const std::vector<float> v = s.values(numeric);
   ASSERT_EQ(v.size(), 4u);
   EXPECT_FLOAT_EQ(v[0], 0.02f);
   EXPECT_FLOAT_EQ(v[1], 0.08f);
   EXPECT_FLOAT_EQ(v[3], 0.2f);
   // Integer parameters round and drop repeats: 1, 1.5, 2, 2.5, 3 → 1, 2, 3.
-  const ParamDesc integer{"x.n", "", "", 1.0f, 1.0f, 64.0f, 1.0f};
+  const ParamDesc integer{"x.n", "", "", "taps", 1.0f, 1.0f, 64.0f, 1.0f};
   EXPECT_EQ(parseSweep("x.n=1:3:5").values(integer), (std::vector<float>{1.0f, 2.0f, 3.0f}));
 }
 

@@ -21,7 +21,7 @@ constexpr ParamDesc kParams[] = {
     {"esm.exponent", "Exponent",
      "c of the warp exp(c (2z - 1)) of linear depth z, V = E[exp(2c (z - t))]: larger makes the test sharper and "
      "darkens contacts again, smaller softens and lightens them; at most 86, where exp(c) and exp(-c) are the "
-     "extreme normal 32-bit floats",
+     "extreme normal 32-bit floats", "factor",
      kDefaultExponent, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32, 0.0f},
     footprintWidthParam("esm.filterTexels"),
     footprintParam("esm.footprint"),

@@ -16,7 +16,7 @@ constexpr ParamDesc kParams[] = {
     negativeExponentParam("evsm-soft.negativeExponent"),
     {"evsm-soft.minVariance", "Min variance",
      "floor of the depth variance in texels² (as vssm.minVariance), taken through each warp's slope: keeps receivers "
-     "from shadowing themselves",
+     "from shadowing themselves", "texels²",
      3.0f, 0.0f, 256.0f, 0.0f},
     bleedReductionParam("evsm-soft.bleedReduction"),
     softMinRadiusParam("evsm-soft.minRadiusTexels"),

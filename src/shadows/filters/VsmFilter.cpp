@@ -12,7 +12,7 @@ namespace {
 
 constexpr ParamDesc kParams[] = {
     {"vsm.minVariance", "Min variance",
-     "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers",
+     "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers", "texels²",
      4.0f, 0.0f, 64.0f, 0.0f},
     bleedReductionParam("vsm.bleedReduction"),
     footprintWidthParam("vsm.filterTexels"),

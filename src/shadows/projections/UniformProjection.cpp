@@ -12,7 +12,7 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"uniform.marginTexels", "Margin", "border added around the fitted region, in texels of the map", 2.0f, 0.0f, 64.0f, 1.0f},
+    {"uniform.marginTexels", "Margin", "border added around the fitted region, in texels of the map", "texels", 2.0f, 0.0f, 64.0f, 1.0f},
 };
 constexpr float kMinNearM = 0.01f;          // a spot map's nearest near plane
 constexpr float kMinNearFractionOfFar = 1e-3f;
