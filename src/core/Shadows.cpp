@@ -251,7 +251,7 @@ const PassTimings& Shadows::timings() const { return mImpl->timings; }
 std::size_t Shadows::techniqueMemoryBytes() const { return static_cast<std::size_t>(mImpl->techniqueMemory.bytes()); }
 
 std::vector<DebugImage> Shadows::debugImages() const {
-  std::vector<DebugImage> out = {{"visibility", &mImpl->visibility}};
+  std::vector<DebugImage> out = {{"visibility", &mImpl->visibility, "V: 1 = lit, 0 = in shadow"}};
   for (const DebugImage& d : mImpl->filter->debugImages()) out.push_back(d);
   return out;
 }

@@ -56,6 +56,8 @@ void EsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/esm.glsl"));
 }
 
-std::vector<DebugImage> EsmFilter::debugImages() const { return {{"esm-warp", &mMaps.moments()}}; }
+std::vector<DebugImage> EsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.moments(), "exp(c·(2z − 1)) of the linear light depth z (esm.exponent = c)"}};
+}
 
 }  // namespace penumbra

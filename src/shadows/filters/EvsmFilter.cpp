@@ -60,6 +60,8 @@ void EvsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm.glsl"));
 }
 
-std::vector<DebugImage> EvsmFilter::debugImages() const { return {{"evsm-moments", &mMaps.moments()}}; }
+std::vector<DebugImage> EvsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
+}
 
 }  // namespace penumbra

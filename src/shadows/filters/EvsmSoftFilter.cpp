@@ -64,7 +64,8 @@ void EvsmSoftFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> EvsmSoftFilter::debugImages() const {
-  std::vector<DebugImage> out{{"evsm-soft-moments", &mMaps.moments()}};
+  std::vector<DebugImage> out{{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+                              {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

@@ -39,6 +39,6 @@ void HardFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl", *this));
 }
 
-std::vector<DebugImage> HardFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+std::vector<DebugImage> HardFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}}; }
 
 }  // namespace penumbra

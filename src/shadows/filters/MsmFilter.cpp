@@ -62,6 +62,8 @@ void MsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl", *this));
 }
 
-std::vector<DebugImage> MsmFilter::debugImages() const { return {{"msm-moments", &mMaps.color()}}; }
+std::vector<DebugImage> MsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.color(), "moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)"}};
+}
 
 }  // namespace penumbra

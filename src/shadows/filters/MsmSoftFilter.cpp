@@ -46,6 +46,7 @@ void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl", defines));
 }
 
-std::vector<DebugImage> MsmSoftFilter::debugImages() const { return {{"msm-soft-depth", &mMaps.depth()}}; }
+std::vector<DebugImage> MsmSoftFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
+}
 
 }  // namespace penumbra

@@ -63,6 +63,6 @@ void PcfFilter::computeVisibility(FrameContext& frame) {
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
 }
 
-std::vector<DebugImage> PcfFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+std::vector<DebugImage> PcfFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}}; }
 
 }  // namespace penumbra

@@ -62,7 +62,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> PcssFilter::debugImages() const {
-  std::vector<DebugImage> out = {{"shadow-map", &mMaps.depth()}};
+  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

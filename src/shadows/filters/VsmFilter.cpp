@@ -47,6 +47,8 @@ void VsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl", *this));
 }
 
-std::vector<DebugImage> VsmFilter::debugImages() const { return {{"vsm-moments", &mMaps.color()}}; }
+std::vector<DebugImage> VsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"}};
+}
 
 }  // namespace penumbra

@@ -73,11 +73,8 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
-  std::vector<DebugImage> out;
-  if (fromSat())
-    out.push_back({"vssm-depth", &mMaps.depth()});
-  else
-    out.push_back({"vssm-moments", &mMaps.color()});
+  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
+  if (!fromSat()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

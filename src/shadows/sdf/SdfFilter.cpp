@@ -129,7 +129,8 @@ void SdfFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/sdf/sdf.glsl"));
 }
 
-std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice}}; }
+std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice, "signed distance to the nearest caster (m) in the field's middle z slice; < 0 inside"}};
+}
 
 std::vector<OneOffCost> SdfFilter::oneOffCosts() const {
   if (!mHaveField) return {};
