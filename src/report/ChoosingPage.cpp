@@ -72,9 +72,11 @@ std::string htmlCode(std::string_view text) {
 std::string errorText(double v) { return fmt::format("{:.4f}", v); }
 // The metric shown beside the one that decides.
 ErrorMetric otherMetric(ErrorMetric m) { return m == ErrorMetric::Rmse ? ErrorMetric::PenumbraRmse : ErrorMetric::Rmse; }
-std::string costText(const TimeStats& t) { return fmt::format("{:.3g} ({:.3g}–{:.3g})", t.median, t.p10, t.p90); }
+std::string costText(const TimeStats& t) {
+  return fmt::format("{} ({}–{})", numberText(t.median), numberText(t.p10), numberText(t.p90));
+}
 std::string oneOffCell(const BenchRow& r) {
-  return r.oneOff.empty() ? "—" : fmt::format("{:.3g} s bake (static casters only)", r.oneOffSeconds());
+  return r.oneOff.empty() ? "—" : fmt::format("{} s bake (static casters only)", numberText(r.oneOffSeconds()));
 }
 
 std::vector<size_t> pickedRows(const SituationPicks& p) {
@@ -148,9 +150,9 @@ std::string recommendationHtml(const BenchResults& r, const std::vector<Situatio
     for (const Budget b : kBudgets) {
       const BenchRow& row = r.rows[*p.pick(b)];
       h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l\"><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td>"
-                       "<td>{:.3g}</td><td class=\"l wrap\">{}</td><td class=\"l cmd\"><code>{}</code></td></tr>\n",
+                       "<td>{}</td><td class=\"l wrap\">{}</td><td class=\"l cmd\"><code>{}</code></td></tr>\n",
                        budgetName(b), escapeXml(rowLabel(row)), errorText(situationError(s.metric, row)),
-                       errorText(situationError(otherMetric(s.metric), row)), costText(row.shadowCost), row.memoryMiB(),
+                       errorText(situationError(otherMetric(s.metric), row)), costText(row.shadowCost), numberText(row.memoryMiB()),
                        escapeXml(oneOffCell(row)),
                        escapeXml(compareCommand(r, row)));
     }
@@ -198,10 +200,9 @@ std::string choosingMarkdown(const BenchResults& r, const std::vector<SituationP
                      metricName(s.metric), metricName(otherMetric(s.metric)));
     for (const Budget b : kBudgets) {
       const BenchRow& row = r.rows[*p.pick(b)];
-      m += fmt::format("| {} | **{}** | {} | {} | {} | {:.3g} | {} | `{}` |\n", budgetName(b), rowLabel(row),
+      m += fmt::format("| {} | **{}** | {} | {} | {} | {} | {} | `{}` |\n", budgetName(b), rowLabel(row),
                        errorText(situationError(s.metric, row)), errorText(situationError(otherMetric(s.metric), row)),
-                       costText(row.shadowCost),
-                       row.memoryMiB(), oneOffCell(row), compareCommand(r, row));
+                       costText(row.shadowCost), numberText(row.memoryMiB()), oneOffCell(row), compareCommand(r, row));
     }
     m += "\nRe-time these three: `" + benchCommand(r, pickedRows(p)) + "`.";
     if (!p.excluded.empty()) {
@@ -236,7 +237,7 @@ std::string choosingMarkdown(const BenchResults& r, const std::vector<SituationP
       }
       const BenchRow& row = r.rows[*i];
       const double e = situationError(p.situation->metric, row);
-      m += fmt::format(" {:.4f} · {:.3g} ms · {:.3g} MiB ({}){} |", e, row.shadowCost.median, row.memoryMiB(),
+      m += fmt::format(" {:.4f} · {} ms · {} MiB ({}){} |", e, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
                        row.config.projection, e <= p.acceptableError ? " ✓" : "");
     }
     m += "\n";

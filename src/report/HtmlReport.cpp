@@ -33,14 +33,9 @@ constexpr int kThumbWidthPx = 320;
 
 std::string esc(std::string_view s) { return escapeXml(s); }
 
-// Milliseconds with about three significant digits, never in exponent form.
-std::string msText(double v) {
-  const double a = std::abs(v);
-  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
-}
 
 std::string ms(const TimeStats& t) {
-  return fmt::format("{} <small>{}–{}</small>", msText(t.median), msText(t.p10), msText(t.p90));
+  return fmt::format("{} <small>{}–{}</small>", numberText(t.median), numberText(t.p10), numberText(t.p90));
 }
 
 // Passes run the same way whatever the technique (docs/design.md): left out of the ratio table.
@@ -86,7 +81,7 @@ std::string frontText(const BenchResults& r, const std::vector<size_t>& front, b
   for (size_t k = 0; k < front.size(); ++k) {
     const BenchRow& row = r.rows[front[k]];
     h += fmt::format("{}<span class=\"front\">{}</span> ({}, RMSE {:.4f})", k ? " → " : "", esc(rowLabel(row)),
-                     memory ? fmt::format("{:.3g} MiB", row.memoryMiB()) : fmt::format("{:.3g} ms", row.shadowCost.median),
+                     memory ? numberText(row.memoryMiB()) + " MiB" : numberText(row.shadowCost.median) + " ms",
                      row.metrics.rmse);
   }
   return h;
@@ -152,9 +147,9 @@ std::string gridSection(const BenchResults& r) {
                            esc(path), thumbW, thumbH, esc(alt), row.width, row.height);
       };
       rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %"
-                          "<br>whole cost {:.3g} ms<br>memory {:.3g} MiB{}</td>",
+                          "<br>whole cost {} ms<br>memory {} MiB{}</td>",
                           esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
-                          row.metrics.umbraLeakPct, row.metrics.overDarkPct, row.shadowCost.median, row.memoryMiB(),
+                          row.metrics.umbraLeakPct, row.metrics.overDarkPct, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
                           row.oneOff.empty() ? "" : fmt::format("<br>+ {:.3g} s bake<br><small>(static casters only)</small>",
                                                                 row.oneOffSeconds()));
       rows += img(row.imagePath, row.config.filter + " " + row.config.projection) +

@@ -24,7 +24,7 @@ size_t indexIn(const std::vector<T>& list, const T& value) {
 }
 
 std::string timeText(const TimeStats& t) {
-  return fmt::format("{:.3g} ms (p10–p90 {:.3g}–{:.3g})", t.median, t.p10, t.p90);
+  return fmt::format("{} ms (p10–p90 {}–{})", numberText(t.median), numberText(t.p10), numberText(t.p90));
 }
 
 // Legend entries for the filters and projections that occur in `rows`, in registry order.
@@ -44,6 +44,11 @@ std::vector<LegendEntry> legendFor(const BenchResults& results, const std::vecto
 }
 
 }  // namespace
+
+std::string numberText(double v) {
+  const double a = std::abs(v);
+  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
+}
 
 std::string lightParams(const BenchRow& row) {
   std::string out;
@@ -138,7 +143,8 @@ BarChart passBars(const BenchResults& results, std::vector<size_t> rows, const s
       bar.segments.push_back({r.time(pass).median, color, fmt::format("{}: {} {}", rowLabel(r), pass, timeText(r.time(pass)))});
     bar.mark = r.shadowCost.median;
     bar.markTooltip = fmt::format("{}: whole cost {}", rowLabel(r), timeText(r.shadowCost));
-    bar.valueText = fmt::format("{:.3g} ms · {:.3g} MiB{}", r.shadowCost.median, r.memoryMiB(), r.oneOff.empty() ? "" : " + bake");
+    bar.valueText = fmt::format("{} ms · {} MiB{}", numberText(r.shadowCost.median), numberText(r.memoryMiB()),
+                                r.oneOff.empty() ? "" : " + bake");
     b.bars.push_back(std::move(bar));
   }
   return b;

@@ -19,6 +19,9 @@ inline constexpr const char* kCostName = "shadow + prefilter + visibility";
 inline constexpr std::pair<const char*, const char*> kPassColors[] = {
     {"shadow", "#56B4E9"}, {"prefilter", "#E69F00"}, {"visibility", "#009E73"}};
 
+/// A time or size with about three significant digits, never in exponent form ("1030", "61.6", "2.87").
+std::string numberText(double v);
+
 /// A row's light.* parameters as text ("" when it uses the scene's own light).
 std::string lightParams(const BenchRow& row);
 /// A row's parameters other than light.* as text.
