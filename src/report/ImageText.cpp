@@ -48,6 +48,12 @@ uint8_t blend(uint8_t dst, uint8_t src, int coverage) {
 
 }  // namespace
 
+std::vector<int> utf8Codepoints(std::string_view utf8) {
+  std::vector<int> out;
+  for (size_t i = 0; i < utf8.size();) out.push_back(nextCodepoint(utf8, i));
+  return out;
+}
+
 struct TextPainter::Font {
   stbtt_fontinfo info{};
   float scale = 1.0f;

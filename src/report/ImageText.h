@@ -9,11 +9,15 @@
 #include <memory>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace penumbra::report {
 
 /// The embedded font file's bytes (DejaVu Sans, TrueType).
 std::span<const unsigned char> embeddedFont();
+
+/// The code points of UTF-8 text; an invalid byte reads as U+FFFD.
+std::vector<int> utf8Codepoints(std::string_view utf8);
 
 using Rgb = std::array<uint8_t, 3>;
 
