@@ -44,12 +44,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;
     std::optional<std::string> size, camera;
-    std::optional<int> shadowMap, frames, warmup, samples;
+    std::optional<int> shadowMap, frames, warmup, samples, microRounds;
     std::optional<double> maxSeconds;
     std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
     std::string choosing;  ///< "" = <out>/choosing.md
-    bool quick = false, noCache = false, verbose = false;
+    bool quick = false, noCache = false, verbose = false, microOnly = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -82,6 +82,11 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
   addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
+  sub->add_flag("--micro-only", o->microOnly,
+                "only the micro-benchmarks (prefilters against a copy, each filter's visibility pass against its minimal "
+                "kernel) at --size and --shadow-map: no configurations, no references");
+  sub->add_option("--micro-rounds", o->microRounds, "timed rounds of the micro-benchmarks (default 9; --quick 3)")
+      ->check(CLI::Range(1, 1000));
   sub->add_flag("--verbose", o->verbose, "one line per configuration on stderr instead of the progress bar");
   commands.push_back({sub, [o] {
     report::BenchSettings settings;
@@ -100,10 +105,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     if (o->frames) settings.timedFrames = *o->frames;
     if (o->warmup) settings.warmupFrames = *o->warmup;
     if (o->samples) settings.referenceSamples = *o->samples;
+    if (o->microRounds) settings.microRepetitions = *o->microRounds;
     if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
     settings.useCache = !o->noCache;
     settings.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
-    const std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
+    std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
+    if (o->microOnly) configs.clear();
     if (o->camera) {
       // A viewpoint belongs to one scene: the same coordinates would look at nothing in another.
       std::vector<std::string> scenes;
@@ -116,7 +123,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       settings.camera = *o->camera;
     }
 
+    checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
+    checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
     const report::SetupFactory factory = [o](const report::BenchConfig& c) {
       TechniqueOptions t;
       t.camera = o->camera;
@@ -125,7 +134,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       t.projection = c.projection;
       for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
       Setup s = makeSetup(t);
-      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter)};
+      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
     };
     const std::filesystem::path dir(o->out);
     report::BenchResults results =

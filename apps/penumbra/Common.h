@@ -36,6 +36,7 @@ struct Setup {
   Scene scene;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  std::unique_ptr<Parameterized> contact = makeContactShadows();  ///< "contact.*"
   RenderOptions render;
 };
 
@@ -51,6 +52,27 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what);
 /// The cap in bytes that --cache-max-mb gave, or nothing.
 std::optional<std::uintmax_t> cacheCapBytes(const std::optional<std::uintmax_t>& mib);
+
+/// Checks an output file (`option` names it in the message: "--out: x/: is a folder, not a
+/// file") or output folder before any work, so that no run writes one output and then fails on
+/// the next (penumbra/Files.h). Throws penumbra::Error (exit 1).
+void checkOutput(const char* option, const std::string& path);
+void checkOutputDir(const char* option, const std::string& path);
+
+/// Host memory (RAM) read back per pixel by each command, besides the renderer's GPU targets
+/// (Renderer::screenBytes). render: the colour image, its flipped copy and the PNG encoder's rows
+/// (+ the visibility and its copy with --visibility); compare: the G-buffer read back, the
+/// reference's buffers and the five images, measured as the peak at 2048² and 4096² (218 B per
+/// pixel in all) less the 48 on the GPU.
+inline constexpr uint64_t kRenderHostBytesPerPixel = 16, kVisibilityHostBytesPerPixel = 8;
+inline constexpr uint64_t kCompareHostBytesPerPixel = 170;
+
+/// Refuses (penumbra::Error, exit 1) an image size whose targets and read-backs cannot fit, with
+/// the estimate and a size that would: before anything is allocated (a 16384² render took minutes
+/// and more memory than the machine had). On a software renderer (llvmpipe) the targets live in
+/// host memory too; a GPU's free memory is checked where the driver tells it
+/// (GL_NVX_gpu_memory_info, GL_ATI_meminfo). Needs the context current.
+void checkImageFits(const gl::Context& context, int width, int height, uint64_t hostBytesPerPixel);
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

@@ -73,8 +73,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
   commands.push_back({sub, [o] {
+    checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     renderer.render(s.render);  // warm-up: the first frame includes shader compilation

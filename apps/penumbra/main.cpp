@@ -6,9 +6,67 @@
 
 #include <penumbra/Error.h>
 
-#include <cstdio>
+#include <fmt/format.h>
 
-int main(int argc, char** argv) {
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <string_view>
+
+namespace {
+
+/// Length of the valid UTF-8 sequence at the start of `s`, or 0 (RFC 3629: no overlong forms, no
+/// surrogates, nothing above U+10FFFF).
+size_t utf8Length(std::string_view s) {
+  const auto byte = [&](size_t i) { return static_cast<unsigned char>(s[i]); };
+  const unsigned char c = byte(0);
+  size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // the second byte's range
+  if (c >= 0xC2 && c <= 0xDF) n = 2;
+  else if (c >= 0xE0 && c <= 0xEF) { n = 3; lo = c == 0xE0 ? 0xA0 : 0x80; hi = c == 0xED ? 0x9F : 0xBF; }
+  else if (c >= 0xF0 && c <= 0xF4) { n = 4; lo = c == 0xF0 ? 0x90 : 0x80; hi = c == 0xF4 ? 0x8F : 0xBF; }
+  if (n == 0 || s.size() < n || byte(1) < lo || byte(1) > hi) return 0;
+  for (size_t i = 2; i < n; ++i)
+    if (byte(i) < 0x80 || byte(i) > 0xBF) return 0;
+  return n;
+}
+
+/// An error message as one line of text: messages quote what files hold (names, strings), and a
+/// control character (an ANSI escape, a newline) or a stray byte must not reach the terminal.
+std::string printable(std::string_view message) {
+  std::string out;
+  for (size_t i = 0; i < message.size();) {
+    const auto c = static_cast<unsigned char>(message[i]);
+    if (c >= 0x20 && c < 0x7F) {
+      out += message[i++];
+    } else if (const size_t n = c >= 0x80 ? utf8Length(message.substr(i)) : 0; n > 0) {
+      out.append(message.substr(i, n));
+      i += n;
+    } else {
+      out += fmt::format("\\x{:02x}", c);
+      ++i;
+    }
+  }
+  return out;
+}
+
+void printError(const char* message) { std::fprintf(stderr, "penumbra: %s\n", printable(message).c_str()); }
+
+// Output that never arrived is a failure: `penumbra list > /dev/full` must not exit 0. stdout
+// is block-buffered when it is not a terminal, so most write errors appear only here.
+int flushStdout(int code) {
+  std::cout.flush();  // synchronised with stdio: its text is in stdout's buffer
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout) {
+    std::fprintf(stderr, "penumbra: cannot write to standard output (%s)\n", errno != 0 ? std::strerror(errno) : "write error");
+    return code == 0 ? 1 : code;
+  }
+  return code;
+}
+
+int run(int argc, char** argv) {
   CLI::App app{"Penumbra: real-time shadow techniques, rendered and measured against a ray-traced reference.\n"
                "With no subcommand, renders the default scene to penumbra.png."};
   app.require_subcommand(0, 1);
@@ -22,7 +80,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", e.what());
+    std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", printable(e.what()).c_str());
     return 2;
   }
   try {
@@ -30,10 +88,14 @@ int main(int argc, char** argv) {
       if (c.app->parsed()) return c.run();
     return commands.front().run();
   } catch (const penumbra::Error& e) {
-    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    printError(e.what());
     return e.kind() == penumbra::ErrorKind::Usage ? 2 : 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    printError(e.what());
     return 1;
   }
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return flushStdout(run(argc, argv)); }

@@ -126,8 +126,9 @@ in vec3 v_ws;
 in vec3 v_normal;
 layout(location = 3) uniform vec3 u_cameraPosition;
 layout(location = 4) uniform vec3 u_albedo;
-layout(location = 5) uniform vec4 u_lightDirection;  // w: 1 = spot
-layout(location = 6) uniform vec4 u_lightPosition;   // w: cos(cone half angle)
+layout(location = 5) uniform vec4 u_lightDirection;  // w: 0 = sun, 1 = spot, 2 = point
+layout(location = 6) uniform vec4 u_lightPosition;   // w: unused
+layout(location = 9) uniform vec4 u_lightCone;       // x: cos outer, y: cos inner half angle, z: range (0 = none)
 layout(location = 7) uniform vec3 u_radiance;
 layout(location = 8) uniform vec3 u_ambient;
 layout(binding = 0) uniform sampler2D s_visibility;
@@ -141,13 +142,19 @@ void main() {
   if (dot(g, toCamera) < 0.0) g = -g;
   vec3 n = normalize(v_normal);
   if (dot(n, g) < 0.0) n = -n;
-  bool spot = u_lightDirection.w > 0.5;
-  vec3 l = spot ? normalize(u_lightPosition.xyz - v_ws) : -u_lightDirection.xyz;
+  bool positional = u_lightDirection.w > 0.5, spot = abs(u_lightDirection.w - 1.0) < 0.5;
+  vec3 l = positional ? normalize(u_lightPosition.xyz - v_ws) : -u_lightDirection.xyz;
   vec3 radiance = u_radiance;
-  if (spot) {
+  if (positional) {
     vec3 d = u_lightPosition.xyz - v_ws;
-    float cone = smoothstep(u_lightPosition.w, u_lightPosition.w + 0.05, dot(-l, u_lightDirection.xyz));
-    radiance *= cone / max(dot(d, d), 1e-4);
+    float falloff = 1.0;
+    if (u_lightCone.z > 0.0) {  // the range window (1 - (d/range)^4)^2
+      float x = length(d) / u_lightCone.z;
+      float w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+      falloff *= w * w;
+    }
+    if (spot) falloff *= smoothstep(u_lightCone.x, u_lightCone.y, dot(-l, u_lightDirection.xyz));
+    radiance *= falloff / max(dot(d, d), 1e-4);
   }
   vec3 h = normalize(l + normalize(toCamera));
   float NoL = max(dot(n, l), 0.0);
@@ -332,10 +339,11 @@ int run(const Options& o) {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glUseProgram(lit);
-  const bool spot = light.type == penumbra::LightType::Spot;
+  const float kind = light.type == penumbra::LightType::Spot ? 1.0f : light.type == penumbra::LightType::Point ? 2.0f : 0.0f;
   const glm::vec3 dir = glm::normalize(light.direction);
-  glProgramUniform4f(lit, 5, dir.x, dir.y, dir.z, spot ? 1.0f : 0.0f);
-  glProgramUniform4f(lit, 6, light.position.x, light.position.y, light.position.z, std::cos(light.coneAngleRad));
+  glProgramUniform4f(lit, 5, dir.x, dir.y, dir.z, kind);
+  glProgramUniform4f(lit, 6, light.position.x, light.position.y, light.position.z, 0.0f);
+  glProgramUniform4f(lit, 9, std::cos(light.coneAngleRad), std::cos(light.innerConeAngleRad), light.rangeM, 0.0f);
   glProgramUniform3fv(lit, 7, 1, glm::value_ptr(light.color * light.intensity));
   glProgramUniform3fv(lit, 8, 1, glm::value_ptr(scene.ambient));
   glBindTextureUnit(0, shadows.visibilityTexture());

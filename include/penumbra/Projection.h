@@ -5,6 +5,7 @@
 #include <penumbra/Scene.h>
 
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -39,6 +40,12 @@ public:
   using Parameterized::Parameterized;
   virtual std::string_view id() const = 0;
   virtual std::string_view description() const = 0;
+  /// Empty when this projection can place views for `light`; otherwise the reason, shown to the
+  /// user (a pair that cannot work is refused, never rendered wrong).
+  virtual std::string incompatibility(const Light& light) const {
+    (void)light;
+    return {};
+  }
   /// The light's view(s) for this camera. `aspect` = width / height of the image; `mapSize` =
   /// texels per side of each map (fits add margins and snap in whole texels).
   virtual LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light,

@@ -17,9 +17,14 @@ std::vector<std::string> filterIds();
 std::unique_ptr<Projection> makeProjection(std::string_view id);
 std::unique_ptr<Filter> makeFilter(std::string_view id);
 
-/// Applies "key=value" settings: `light.*` to the scene, the rest to the projection or the
-/// filter that declares the key. Throws a usage Error for an unknown key or a bad value.
+/// The add-on parameter group every filter can take: contact shadows ("contact.*",
+/// docs/contact.md), with its defaults.
+std::unique_ptr<Parameterized> makeContactShadows();
+
+/// Applies "key" → "value" settings: "light.size" to the scene's first light, the others to
+/// the projection, the filter or `addOns` (makeContactShadows) by key. Usage Error for a key
+/// none of them has.
 void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
-                 Projection& projection, Filter& filter);
+                 Projection& projection, Filter& filter, Parameterized* addOns = nullptr);
 
 }  // namespace penumbra

@@ -9,6 +9,7 @@
 #include <penumbra/Shadows.h>
 #include <penumbra/Timings.h>
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -34,6 +35,10 @@ public:
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
+
+  /// GPU bytes of what a frame of width × height allocates per pixel (G-buffer, colour, the
+  /// core's visibility), for a check before rendering. Shadow maps and filter tables come on top.
+  static uint64_t screenBytes(int width, int height);
 
   /// Uploads the scene's geometry (once per scene, not per frame).
   void setScene(const Scene& scene);

@@ -24,6 +24,9 @@ struct Mesh {
   std::vector<uint32_t> indices;  ///< three per triangle
   Aabb bounds() const;
   size_t triangleCount() const { return indices.size() / 3; }
+  /// True when at least one triangle has a non-zero area (a mesh of degenerate triangles, whose
+  /// corners lie on one line, draws no pixel and casts no shadow).
+  bool hasArea() const;
 };
 
 /// RGBA8 texture in memory (row 0 = top), used for base colour and alpha masks.
@@ -54,19 +57,53 @@ struct Object {
 /// "distant light" and the reference's cone sampling degenerates.
 inline constexpr float kMaxSunAngularRadiusRad = 0.5f;
 
-enum class LightType { Directional, Spot };
+/// Largest light colour component and ambient radiance (linear RGB), for scene files and glTF
+/// alike: colour × intensity × the BRDF then stays far inside float range (a colour of 1e38
+/// overflowed to a black image).
+inline constexpr float kMaxRadiance = 1e6f;
+
+/// A sun (a direction), a spot (a sphere shining into a cone) or a point light (a sphere shining
+/// everywhere).
+enum class LightType { Directional, Spot, Point };
+
+/// What a scene file may set per light, over the scene's technique (docs/scenes.md).
+struct LightShadowSettings {
+  int mapSize = 0;  ///< texels per side of this light's maps; 0 = the technique's (--shadow-map)
+  /// "key" → "value" of the technique's parameters, for this light only.
+  std::vector<std::pair<std::string, std::string>> params;
+};
+
+/// Largest spot cone half angle (rad): a cone near a hemisphere has no useful single frustum
+/// (a point light shadows every direction instead).
+inline constexpr float kMaxSpotConeRad = 1.4f;
 
 struct Light {
   LightType type = LightType::Directional;
-  glm::vec3 position{0.0f, 10.0f, 0.0f};   ///< spot only, metres
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit, from the light toward the scene
-  glm::vec3 color{1.0f};                   ///< linear RGB
-  float intensity = 3.0f;                  ///< irradiance scale (sun) or intensity at 1 m (spot)
-  float coneAngleRad = 0.6f;               ///< spot half angle, (0, pi/2)
-  /// Physical size for soft shadows: spot = sphere radius in metres, sun = angular radius in
-  /// radians. 0 = a point/delta light (hard shadows).
+  glm::vec3 position{0.0f, 10.0f, 0.0f};   ///< spot and point, metres
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit, from the light toward the scene (sun, spot)
+  glm::vec3 color{1.0f};                   ///< linear RGB, each in [0, kMaxRadiance]
+  float intensity = 3.0f;                  ///< irradiance scale (sun) or intensity at 1 m (spot, point)
+  /// Spot: the cone's outer half angle (no light beyond it), (0, kMaxSpotConeRad] …
+  float coneAngleRad = 0.6f;
+  /// … and its inner half angle (full light within it), [0, coneAngleRad]; between the two the
+  /// light falls off smoothly (smoothstep of the cosine).
+  float innerConeAngleRad = 0.5f;
+  /// Spot and point: no light and no shadow beyond this distance (m), where the light has faded
+  /// smoothly to 0 (glTF's KHR_lights_punctual window); 0 = unlimited (inverse square only).
+  float rangeM = 0.0f;
+  /// Physical size for soft shadows: spot and point = sphere radius in metres, sun = angular
+  /// radius in radians. 0 = a point/delta light (hard shadows).
   float size = 0.0f;
+  bool castsShadow = true;     ///< false: the light shines but casts no shadow (V = 1)
+  LightShadowSettings shadow;  ///< per-light overrides of the scene's technique
 };
+
+/// Spot and point lights have a position (their light comes from a sphere there).
+inline bool isPositional(const Light& l) { return l.type != LightType::Directional; }
+
+/// The light's unshadowed strength toward a receiver at `ws` relative to its value without
+/// falloff: the spot's cone falloff times the range window, in [0, 1] (1 for a sun).
+float lightFalloff(const Light& light, const glm::vec3& ws);
 
 /// Every world-space coordinate (vertices, the camera's position and target) stays within ±1e6 m
 /// (as the scene file's shape sizes): beyond that the float maths of the shadow passes stops
@@ -81,6 +118,11 @@ struct Camera {
   float nearM = 0.05f;
   float farM = 200.0f;
 
+  /// "" when the camera defines a view; otherwise what is wrong: the target on the position, an
+  /// up vector that is zero, not finite or along the view direction (a camera looking straight
+  /// down with the default up renders nothing meaningful). Scene files, --camera and
+  /// Scene::validate() check it.
+  std::string viewProblem() const;
   glm::mat4 viewFromWorld() const;
   /// Reversed-Z, [0,1] clip depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)): near → 1, far → 0.
   glm::mat4 clipFromView(float aspect) const;
@@ -118,14 +160,15 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   ShadowSettings shadow;
-  glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB)
+  glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB), each in [0, kMaxRadiance]
 
   const Light& light() const;  ///< the shadow-casting light (the first one); throws if none
   Aabb bounds() const;         ///< world bounds of every object
   Aabb casterBounds() const;   ///< world bounds of shadow casters
   SceneExtent extent() const;  ///< every object's world bounds (one pass over the vertices)
   size_t triangleCount() const;
-  /// Throws penumbra::Error if indices are out of range, positions not finite, etc.
+  /// Throws penumbra::Error if indices are out of range, positions not finite, no triangle has
+  /// an area, the camera defines no view, etc.
   void validate() const;
 };
 

@@ -2,6 +2,7 @@
 // Getting scenes: built-in names and scene files (JSON). Errors name the file and the field.
 #include <penumbra/Scene.h>
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,11 +16,18 @@ std::string_view builtinSceneDescription(std::string_view name);
 /// Builds a built-in scene; throws a usage Error for an unknown name.
 Scene makeBuiltinScene(std::string_view name);
 
-/// Loads a scene JSON file. Throws Error("file: field: problem") on any bad input.
-Scene loadSceneFile(const std::filesystem::path& path);
+/// How a load reports on itself. Nothing is printed by the loaders; a tool shows what it likes.
+struct LoadOptions {
+  /// Called on the loading thread for each model file: with 0 when it starts, with increasing
+  /// fractions while it is parsed and converted, with 1 when it is loaded. Empty: no reports.
+  std::function<void(const std::filesystem::path& file, double fraction)> progress;
+};
 
-/// A built-in name or a path to a scene file.
-Scene loadScene(const std::string& nameOrPath);
+/// Loads a scene JSON file. Throws Error("file: field: problem") on any bad input.
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options = {});
+
+/// A built-in name, a scene file (.json) or a model file (.gltf, .glb, .obj).
+Scene loadScene(const std::string& nameOrPath, const LoadOptions& options = {});
 
 /// The --camera argument "X,Y,Z:TX,TY,TZ[:FOV]" (metres, vertical field of view in degrees) →
 /// `base` with that position, target and, if given, field of view; up, near and far stay. Throws

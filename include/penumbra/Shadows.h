@@ -120,12 +120,15 @@ public:
   /// if the pair cannot work with it; render() checks the pair against its light every frame.
   void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter,
                     const Light* light = nullptr);
-  /// By id (penumbra list names them) with "key" → "value" parameters; usage Errors name what
-  /// is unknown or out of range.
+  /// By id (penumbra list names them) with "key" → "value" parameters (the projection's, the
+  /// filter's and "contact.*"); usage Errors name what is unknown or out of range.
   void setTechnique(std::string_view projectionId, std::string_view filterId,
                     const std::vector<std::pair<std::string, std::string>>& params = {});
   Projection& projection();
   Filter& filter();
+  /// Contact shadows, the add-on any filter can take ("contact.*" parameters, docs/contact.md):
+  /// off by default; setParam("contact.shadows", "on") turns them on.
+  Parameterized& contactShadows();
 
   /// The casters (validated: buffers exist and hold the ranges drawn) and the world bounds of
   /// the receivers that cast no shadow (a ground that is not in `casters`): the light's views
@@ -152,9 +155,10 @@ public:
   void bindFrameBlocks() const;
 
   const LightFrusta& frusta() const;      ///< the last frame's views
-  const PassTimings& timings() const;     ///< "shadow", "prefilter", "visibility" of the last frame
-  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filter created
-  /// during its passes and still holds (shadow maps, moment, mip, summed-area and pyramid
+  /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame
+  const PassTimings& timings() const;
+  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filter (and the
+  /// contact pass, when on) created during its passes and still holds (shadow maps, moment, mip, summed-area and pyramid
   /// storage, baked fields, its debug images), counted where GL storage is allocated. The
   /// visibility texture, the uniform blocks and the caller's surfaces are not the technique's.
   std::size_t techniqueMemoryBytes() const;

@@ -10,17 +10,41 @@ layout(std430, binding = PN_SSBO_OBJECTS) readonly buffer ObjectBlock { ObjectGp
 
 const float kPi = 3.14159265358979;
 
-// The light's kind: a compile-time constant in the visibility pass (PN_LIGHT_KIND, from
-// FrameContext), read from the frame block elsewhere.
-bool isSpotLight() {
+// The light's kind (PN_LIGHT_*): a compile-time constant in the visibility pass (PN_LIGHT_KIND,
+// from FrameContext), read from the frame block elsewhere.
+int lightKind() {
 #ifdef PN_LIGHT_KIND
-  return PN_LIGHT_KIND == PN_LIGHT_SPOT;
+  return PN_LIGHT_KIND;
 #else
-  return u_frame.lightDirection.w == float(PN_LIGHT_SPOT);
+  return int(u_frame.lightDirection.w);
 #endif
 }
+bool isSpotLight() { return lightKind() == PN_LIGHT_SPOT; }
+bool isPointLight() { return lightKind() == PN_LIGHT_POINT; }
+// Spot and point lights: light from a sphere at u_frame.lightPosition.
+bool isPositionalLight() { return lightKind() != PN_LIGHT_SUN; }
 
 // Unit vector from a surface point toward the light's centre.
 vec3 toLight(vec3 wsPosition) {
-  return isSpotLight() ? normalize(u_frame.lightPosition.xyz - wsPosition) : -u_frame.lightDirection.xyz;
+  return isPositionalLight() ? normalize(u_frame.lightPosition.xyz - wsPosition) : -u_frame.lightDirection.xyz;
+}
+
+// The light's unshadowed strength at wsPosition relative to its value without falloff: the
+// spot's cone (smoothstep between the outer and inner cosines) times the range window
+// (1 − (d/range)^4)^2; 1 for a sun. The same as lightFalloff() in C++ (src/scene/Scene.cpp).
+float lightFalloff(vec3 wsPosition) {
+  if (!isPositionalLight()) return 1.0;
+  vec3 d = wsPosition - u_frame.lightPosition.xyz;
+  float f = 1.0;
+  if (u_frame.lightCone.z > 0.0) {
+    float x = length(d) / u_frame.lightCone.z;
+    float w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+    f *= w * w;
+  }
+  if (isSpotLight()) {
+    float cosAxis = dot(normalize(d), u_frame.lightDirection.xyz);
+    float lo = u_frame.lightCone.x, hi = u_frame.lightCone.y;
+    f *= hi > lo ? smoothstep(lo, hi, cosAxis) : step(lo, cosAxis);
+  }
+  return f;
 }

@@ -113,6 +113,20 @@ int shadowViewAtDepth(float viewDepth) {
   return n - 1;
 }
 
+// A point light's cube face for the direction d from the light (+X, −X, +Y, −Y, +Z, −Z: the
+// order of UniformProjection's faces): its dominant axis.
+int cubeFace(vec3 d) {
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x > 0.0 ? 0 : 1;
+  if (a.y >= a.z) return d.y > 0.0 ? 2 : 3;
+  return d.z > 0.0 ? 4 : 5;
+}
+
+// The view that covers ws: a point light's face by direction, a cascade by camera depth.
+int shadowViewFor(vec3 ws) {
+  return isPointLight() ? cubeFace(ws - u_frame.lightPosition.xyz) : shadowViewAtDepth(cameraViewDepth(ws));
+}
+
 // Set by the visibility pass while it evaluates one side of a cascade blend (-1: by depth).
 // Filters need not know: every one of them asks selectShadowView.
 int g_forcedShadowView = -1;
@@ -122,7 +136,7 @@ int selectShadowView(vec3 ws) {
 #if defined(PN_SHADOW_VIEWS) && PN_SHADOW_VIEWS == 1
   return 0;
 #else
-  return g_forcedShadowView >= 0 ? g_forcedShadowView : shadowViewAtDepth(cameraViewDepth(ws));
+  return g_forcedShadowView >= 0 ? g_forcedShadowView : shadowViewFor(ws);
 #endif
 }
 
@@ -142,12 +156,12 @@ ShadowViewBlend shadowViewBlend(vec3 ws) {
 #if defined(PN_SHADOW_VIEWS) && PN_SHADOW_VIEWS == 1
   b.first = b.second = 0;
 #else
-  float depth = cameraViewDepth(ws);
-  b.first = shadowViewAtDepth(depth);
+  b.first = shadowViewFor(ws);
   b.second = b.first;
 #if !defined(PN_CASCADE_BLEND) || PN_CASCADE_BLEND
+  float depth = cameraViewDepth(ws);
   float band = u_shadow.views[b.first].extent.z;
-  if (b.first < shadowViewCount() - 1 && band > 0.0) {
+  if (!isPointLight() && b.first < shadowViewCount() - 1 && band > 0.0) {
     float start = u_shadow.views[b.first].range.w - band;
     if (depth > start) {
       b.second = b.first + 1;

@@ -1,5 +1,6 @@
 #pragma once
-// Inputs of the visibility pass. A filter's GLSL file includes this and defines
+// Inputs of the visibility pass (and of passes that follow it over the same surfaces: contact
+// shadows). A filter's GLSL file includes this and defines
 //   float shadowVisibility(SurfacePoint s);   // 0 = shadowed … 1 = lit
 // and passes/visibility.comp.glsl calls it for every pixel that faces the light.
 #include "common/shadow.glsl"
@@ -14,6 +15,28 @@ struct SurfacePoint {
   float NoL;       // dot(geoNormal, toLight) > 0
   ivec2 pixel;
 };
+
+// The pixel's world position; w = 1 where there is geometry, 0 on background.
+vec4 surfacePosition(ivec2 px) {
+#ifdef PN_SURFACE_FROM_DEPTH
+  // An engine's depth texture (bound where the position texture would be): unprojected through
+  // the inverse of its own camera matrices, at the pixel's centre.
+  float stored = texelFetch(s_gbufPosition, px, 0).r;
+  if (stored == u_frame.depthInfo.z) return vec4(0.0);
+  vec2 ndcXY = (vec2(px) + 0.5) / vec2(u_frame.screen.xy) * 2.0 - 1.0;
+  vec4 ws = u_frame.worldFromClip * vec4(ndcXY, u_frame.depthInfo.x * stored + u_frame.depthInfo.y, 1.0);
+  return vec4(ws.xyz / ws.w, 1.0);
+#else
+  return texelFetch(s_gbufPosition, px, 0);
+#endif
+}
+
+// Camera distance along the view axis (m) of the surface at px; far beyond anything on background.
+float surfaceViewDepth(ivec2 px) {
+  vec4 pos = surfacePosition(px);
+  const float kBackgroundM = 1e30;  // farther than any surface
+  return pos.w > 0.5 ? cameraViewDepth(pos.xyz) : kBackgroundM;
+}
 
 // Tangent of the angle between the normal and the light, clamped: slope-scaled biases use it.
 float slopeTangent(SurfacePoint s) {

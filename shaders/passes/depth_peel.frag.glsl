@@ -4,6 +4,7 @@
 //                    the surface's depth changes across one texel, for texels with no second layer.
 //   PN_PEEL_LAYER 1: the nearest surface strictly behind layer 0 (bound at PN_TEX_FILTER0).
 #include "common/frame.glsl"
+#include "common/material.glsl"
 
 layout(location = PN_LOC_VIEW) uniform int u_view;
 in vec3 v_wsPosition;
@@ -27,6 +28,9 @@ void main() {
 #else
   float first = texelFetch(s_firstLayer, ivec3(ivec2(gl_FragCoord.xy), u_view), 0).r;
   if (depth <= first + kPeelEpsilonDepth) discard;
+#endif
+#ifndef PN_OPAQUE_CASTERS
+  alphaTest(v_uv);
 #endif
   gl_FragDepth = clamp(depth, 0.0, 1.0);
 }

@@ -19,7 +19,9 @@ layout(location = 0) out vec4 o_moments;
 void main() {
   float z = clamp(dot(u_shadow.views[u_view].depthPlane, vec4(v_wsPosition, 1.0)), 0.0, 1.0);
   vec2 dz = vec2(dFdx(z), dFdy(z));  // before the alpha test's discard: derivatives need the quad
+#ifndef PN_OPAQUE_CASTERS
   alphaTest(v_uv);
+#endif
   gl_FragDepth = z;
   vec2 c = u_warp.warp.xy;
   vec4 m = expWarpMoments(z, c.x, c.y);

@@ -20,4 +20,9 @@ void main() {
   v_wsNormal = mat3(o.normalFromObject) * a_normal;
   v_uv = a_uv;
   gl_Position = u_view < 0 ? u_frame.clipFromWorld * ws : u_shadow.views[u_view].clipFromWorld * ws;
+#ifdef PN_LINEAR_RASTER_DEPTH
+  // An orthographic shadow view (w = 1): clip z is the linear light depth itself, which the
+  // rasteriser interpolates exactly (affine) and clamps to [0, 1] (depth clamping is on).
+  gl_Position.z = dot(u_shadow.views[u_view].depthPlane, ws);
+#endif
 }

@@ -11,10 +11,10 @@ layout(binding = PN_TEX_GBUF_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = PN_TEX_GBUF_ALBEDO) uniform sampler2D s_gbufAlbedo;
 layout(binding = PN_TEX_VISIBILITY) uniform sampler2D s_visibility;
 layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
-layout(location = PN_LOC_LEVEL) uniform int u_debugView;
+// PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes; PN_LIGHT_KIND: the light's kind.
+const int kDebugView = PN_DEBUG_VIEW;
 
 const float kSpecularStrength = 0.25;  // share of the direct light reflected specularly
-const float kSpotEdgeSoftness = 0.05;  // cos range over which the spot cone fades out
 
 vec3 acesApprox(vec3 x) {  // Narkowicz's fit of the ACES filmic curve
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
@@ -27,7 +27,7 @@ vec3 toSrgb(vec3 c) {
 vec3 debugTint(ivec2 px, vec3 ws, vec3 shaded) {
   const float kBaseShade = 0.35;  // darkest a shadowed surface gets under the tint
   float shade = kBaseShade + (1.0 - kBaseShade) * dot(shaded, vec3(0.2126, 0.7152, 0.0722));
-  if (u_debugView == PN_VIEW_CASCADES) {
+  if (kDebugView == PN_VIEW_CASCADES) {
     ShadowViewBlend b = shadowViewBlend(ws);
     return shade * mix(cascadeColor(b.first).rgb, cascadeColor(b.second).rgb, b.weight);
   }
@@ -44,18 +44,16 @@ void main() {
   if (pos.w < 0.5) {
     float t = float(px.y) / float(u_frame.screen.y);
     color = mix(vec3(0.55, 0.6, 0.65), vec3(0.25, 0.4, 0.65), t);  // sky gradient (display-referred)
-  } else if (u_debugView == PN_VIEW_VISIBILITY) {
+  } else if (kDebugView == PN_VIEW_VISIBILITY) {
     color = vec3(v);
   } else {
     vec3 n = texelFetch(s_gbufNormal, px, 0).xyz;
     vec3 albedo = texelFetch(s_gbufAlbedo, px, 0).rgb;
     vec3 l = toLight(pos.xyz);
     vec3 radiance = u_frame.lightRadiance.rgb;
-    if (isSpotLight()) {
+    if (isPositionalLight()) {
       vec3 d = u_frame.lightPosition.xyz - pos.xyz;
-      float cosAxis = dot(-l, u_frame.lightDirection.xyz);
-      float cone = smoothstep(u_frame.lightPosition.w, u_frame.lightPosition.w + kSpotEdgeSoftness, cosAxis);
-      radiance *= cone / max(dot(d, d), 1e-4);
+      radiance *= lightFalloff(pos.xyz) / max(dot(d, d), 1e-4);
     }
     vec3 h = normalize(l + normalize(u_frame.cameraPosition.xyz - pos.xyz));
     float NoL = max(dot(n, l), 0.0);
@@ -64,7 +62,7 @@ void main() {
     vec3 hdr = u_frame.ambient.rgb * albedo + v * direct;
     color = toSrgb(acesApprox(hdr));
   }
-  if (pos.w > 0.5 && (u_debugView == PN_VIEW_CASCADES || u_debugView == PN_VIEW_TEXEL_DENSITY))
+  if (pos.w > 0.5 && (kDebugView == PN_VIEW_CASCADES || kDebugView == PN_VIEW_TEXEL_DENSITY))
     color = debugTint(px, pos.xyz, color);
   imageStore(i_color, px, vec4(color, 1.0));
 }

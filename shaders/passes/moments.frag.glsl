@@ -6,7 +6,9 @@
 //            texel, 1/4 (dz/dx^2 + dz/dy^2), to z^2 (Lauritzen's bias: a tilted receiver's own
 //            moments no longer shadow it).
 //          PN_MOMENTS_QUANTIZED (4 moments): store the optimised 16-bit basis (moments.glsl).
+//          PN_OPAQUE_CASTERS: no alpha test (FrameContext's pass for opaque casters).
 #include "common/frame.glsl"
+#include "common/material.glsl"
 #include "common/moments.glsl"
 
 layout(location = PN_LOC_VIEW) uniform int u_view;
@@ -21,12 +23,18 @@ void main() {
 #if PN_MOMENT_COUNT == 2
   float z2 = z * z;
 #ifdef PN_MOMENT_SLOPE_VARIANCE
-  vec2 dz = vec2(dFdx(z), dFdy(z));
+  vec2 dz = vec2(dFdx(z), dFdy(z));  // before the alpha test's discard: derivatives need the quad
   z2 += 0.25 * dot(dz, dz);
+#endif
+#ifndef PN_OPAQUE_CASTERS
+  alphaTest(v_uv);
 #endif
   o_moments = vec4(z, z2, 0.0, 0.0);
 #elif PN_MOMENT_COUNT == 4
   vec4 b = depthMoments(z);
+#ifndef PN_OPAQUE_CASTERS
+  alphaTest(v_uv);
+#endif
 #ifdef PN_MOMENTS_QUANTIZED
   b = quantizeMoments16(b);
 #endif

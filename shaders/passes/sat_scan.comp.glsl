@@ -11,14 +11,17 @@
 //     (seeded with the top carry), scans them serially along the row and keeps those partial sums; (b) SAT_ROWS threads scan one row's SAT_THREADS segment totals each
 //     (exclusive, from the row's carry out of earlier chunks) in shared memory; (c) each thread
 //     stores S = its segment's offset + its partial sums. Everything is linear in the texel count
-//     (work-efficient); 3 barriers per block.
+//     (work-efficient); 2 barriers per block (the segment totals are double-buffered).
 // Passes 0 and 2 read the map in 2x2 texel gathers (one fetch per 4 texels; on llvmpipe the build
 // went from 1.4-1.8x to 1.4-1.5x a copy), so SAT_BAND, SAT_ROWS and SAT_PER_THREAD are even (SatBuilder asserts it).
 // Traffic per texel: the map is read by pass 0 and pass 2 (4 B each), the table written once (16 B
 // per pair), the carries 4 * 16 B per pair per SAT_BAND texels. The table is a storage buffer
 // (common/sat.glsl gives its layout): a plain store, where an RGBA32UI imageStore measured more
-// than the rest of the pass on llvmpipe. Sums are exact 64-bit fixed point (sat.glsl). SAT_PAIRS:
-// moment pairs per texel (1: z, z^2; 2: z..z^4), table layer view * SAT_PAIRS + p.
+// than the rest of the pass on llvmpipe, whose storage-buffer and shared-memory accesses are a loop
+// over the SIMD lanes, one scalar per 32-bit word (64-bit words measured slower): pass 2's table
+// stores are 0.7 of a copy's time of the same map, (b) 0.14 (SatBuilder.cpp's ScanShape). Sums are
+// exact 64-bit fixed point (sat.glsl). SAT_PAIRS: moment pairs per texel (1: z, z^2; 2: z..z^4),
+// table layer view * SAT_PAIRS + p.
 #extension GL_ARB_gpu_shader_int64 : enable
 #ifdef GL_ARB_gpu_shader_int64
 #define PN_NATIVE_INT64 1  // 64-bit additions in hardware words where the driver has them
@@ -123,8 +126,10 @@ void main() {
 }
 
 #else
-// (b)'s data: per block row, each thread's segment total, then its exclusive offset.
-shared Sum s_segment[SAT_PAIRS][SAT_ROWS][SAT_THREADS];
+// (b)'s data: per block row, each thread's segment total, then its exclusive offset. Two buffers,
+// alternating from block to block: a block's (a) writes the buffer that the block before last read
+// in (c), two barriers ago, so (c) needs no barrier after it.
+shared Sum s_segments[2][SAT_PAIRS][SAT_ROWS][SAT_THREADS];
 // Per band row: the row's sum over the chunks already done (columns x' < the chunk's start).
 shared Sum s_rowCarry[SAT_PAIRS][SAT_BAND];
 
@@ -133,13 +138,15 @@ void main() {
   int tid = int(gl_LocalInvocationID.x), band = int(gl_WorkGroupID.y), view = int(gl_WorkGroupID.z);
   int y0 = band * SAT_BAND;
   for (int i = tid; i < SAT_PAIRS * SAT_BAND; i += SAT_THREADS) s_rowCarry[i / SAT_BAND][i % SAT_BAND] = sumZero();
+  int block = 0;  // blocks done so far: the parity picks the s_segments buffer
   for (int x0 = 0; x0 < size.x; x0 += SAT_THREADS * SAT_PER_THREAD) {
     int xs = x0 + tid * SAT_PER_THREAD;  // this thread's first column
     Sum column[SAT_PER_THREAD][SAT_PAIRS];  // sum over rows y' <= the current row (whole map)
     for (int c = 0; c < SAT_PER_THREAD; ++c)
       for (int p = 0; p < SAT_PAIRS; ++p)
         column[c][p] = xs + c < size.x ? sumOfWords(b_carry[carryIndex(size, view, band, xs + c, p)]) : sumZero();
-    for (int r0 = 0; r0 < SAT_BAND; r0 += SAT_ROWS) {
+    for (int r0 = 0; r0 < SAT_BAND; r0 += SAT_ROWS, ++block) {
+      int slot = block & 1;
       // (a) Segment totals of SAT_ROWS rows.
       Sum partial[SAT_ROWS][SAT_PER_THREAD][SAT_PAIRS];
       float depths[2][SAT_PER_THREAD];
@@ -157,7 +164,7 @@ void main() {
             partial[r][c][p] = run[p];
           }
         }
-        for (int p = 0; p < SAT_PAIRS; ++p) s_segment[p][r][tid] = run[p];
+        for (int p = 0; p < SAT_PAIRS; ++p) s_segments[slot][p][r][tid] = run[p];
       }
       barrier();
       // (b) One thread per row: exclusive scan of the row's segment totals, from its carry.
@@ -165,8 +172,8 @@ void main() {
         for (int p = 0; p < SAT_PAIRS; ++p) {
           Sum offset = s_rowCarry[p][r0 + tid];
           for (int t = 0; t < SAT_THREADS; ++t) {
-            Sum total = s_segment[p][tid][t];
-            s_segment[p][tid][t] = offset;
+            Sum total = s_segments[slot][p][tid][t];
+            s_segments[slot][p][tid][t] = offset;
             offset = sumAdd(offset, total);
           }
           s_rowCarry[p][r0 + tid] = offset;
@@ -177,12 +184,12 @@ void main() {
       for (int r = 0; r < SAT_ROWS; ++r) {
         int y = y0 + r0 + r;
         for (int p = 0; p < SAT_PAIRS; ++p) {
-          Sum offset = s_segment[p][r][tid];
+          Sum offset = s_segments[slot][p][r][tid];
+          int row = satIndex(size, view * SAT_PAIRS + p, ivec2(xs, y));
           for (int c = 0; c < SAT_PER_THREAD; ++c)
-            if (xs + c < size.x && y < size.y) b_sat[satIndex(size, view * SAT_PAIRS + p, ivec2(xs + c, y))] = sumWords(sumAdd(offset, partial[r][c][p]));
+            if (xs + c < size.x && y < size.y) b_sat[row + c] = sumWords(sumAdd(offset, partial[r][c][p]));
         }
       }
-      barrier();  // the next block overwrites s_segment
     }
   }
 }

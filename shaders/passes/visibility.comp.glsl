@@ -51,21 +51,6 @@ void main() {
 
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
 
-// The pixel's world position; w = 1 where there is geometry, 0 on background.
-vec4 surfacePosition(ivec2 px) {
-#ifdef PN_SURFACE_FROM_DEPTH
-  // An engine's depth texture (bound where the position texture would be): unprojected through
-  // the inverse of its own camera matrices, at the pixel's centre.
-  float stored = texelFetch(s_gbufPosition, px, 0).r;
-  if (stored == u_frame.depthInfo.z) return vec4(0.0);
-  vec2 ndcXY = (vec2(px) + 0.5) / vec2(u_frame.screen.xy) * 2.0 - 1.0;
-  vec4 ws = u_frame.worldFromClip * vec4(ndcXY, u_frame.depthInfo.x * stored + u_frame.depthInfo.y, 1.0);
-  return vec4(ws.xyz / ws.w, 1.0);
-#else
-  return texelFetch(s_gbufPosition, px, 0);
-#endif
-}
-
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;

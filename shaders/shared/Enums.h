@@ -3,6 +3,7 @@
 
 #define PN_LIGHT_SUN 0
 #define PN_LIGHT_SPOT 1
+#define PN_LIGHT_POINT 2
 
 // hard.bias
 #define PN_BIAS_NONE 0

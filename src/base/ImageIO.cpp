@@ -1,5 +1,7 @@
-// PNG files through stb (the stb_image and stb_image_write implementations live here, once).
+// PNG files through stb (the stb_image and stb_image_write implementations live here, once;
+// stb_image decodes PNG only, base/StbImageFormats.h says why).
 #include "base/AtomicFile.h"
+#include "base/StbImageFormats.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
@@ -8,7 +10,6 @@
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wunused-function"

@@ -1,5 +1,7 @@
 #include "core/FrameBlocks.h"
 
+#include "frame/FrameContext.h"
+
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
@@ -15,9 +17,9 @@ gpu::FrameUniforms frameUniforms(const ShadowCamera& camera, const Light& light,
   f.clipFromWorld = camera.clipFromView * camera.viewFromWorld;
   f.worldFromClip = glm::inverse(f.clipFromWorld);
   f.cameraPosition = glm::vec4(camera.fit.position, 1.0f);
-  const bool spot = light.type == LightType::Spot;
-  f.lightDirection = glm::vec4(glm::normalize(light.direction), spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
-  f.lightPosition = glm::vec4(light.position, std::cos(light.coneAngleRad));
+  f.lightDirection = glm::vec4(glm::normalize(light.direction), shaderLightKind(light));
+  f.lightPosition = glm::vec4(light.position, 0.0f);
+  f.lightCone = glm::vec4(std::cos(light.coneAngleRad), std::cos(light.innerConeAngleRad), light.rangeM, 0.0f);
   f.lightRadiance = glm::vec4(light.color * light.intensity, light.size);
   f.screen = glm::ivec4(screen.x, screen.y, frameIndex, 0);
   f.sceneInfo = glm::vec4(sceneRadiusM, 0, 0, 0);

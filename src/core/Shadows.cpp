@@ -13,6 +13,7 @@
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
+#include "shadows/contact/ContactShadows.h"
 #include "shared/Bindings.h"
 #include "shared/VisibilityPoints.h"
 
@@ -65,6 +66,7 @@ struct Shadows::Impl {
   // What the filter allocates during its passes; a replaced filter's storage leaves the count
   // when it is destroyed.
   gl::MemoryAccount techniqueMemory;
+  ContactShadows contact;
   LightFrusta frusta;
   PassTimings timings;
   // The last frame's, for visibilityAt and bindFrameBlocks.
@@ -82,6 +84,8 @@ struct Shadows::Impl {
     shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
   }
   void checkPair(const Light& l) const {
+    if (const std::string why = projection->incompatibility(l); !why.empty())
+      throw usageError(fmt::format("--projection {} is not supported for this light: {}", projection->id(), why));
     const std::string why = filter->incompatibility(projection->id(), l);
     if (!why.empty())
       throw usageError(fmt::format("--filter {} with --projection {} is not supported: {}", filter->id(), projection->id(), why));
@@ -122,6 +126,8 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
       projection->setParam(key, std::string_view(value));
     else if (filter->hasParam(key))
       filter->setParam(key, std::string_view(value));
+    else if (mImpl->contact.hasParam(key))
+      mImpl->contact.setParam(key, std::string_view(value));
     else
       throw usageError(fmt::format("unknown parameter '{}' for projection {} and filter {}", key, projectionId, filterId));
   }
@@ -130,6 +136,7 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
 
 Projection& Shadows::projection() { return *mImpl->projection; }
 Filter& Shadows::filter() { return *mImpl->filter; }
+Parameterized& Shadows::contactShadows() { return mImpl->contact; }
 
 void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aabb> receiverBounds) {
   mImpl->casters.set(casters);
@@ -195,6 +202,10 @@ void Shadows::render(const ShadowFrameInputs& in) {
   {
     ScopedPass pass(im.timer, "visibility");
     im.filter->computeVisibility(ctx);
+  }
+  if (im.contact.enabled()) {
+    ScopedPass pass(im.timer, "contact");
+    im.contact.apply(ctx);
   }
   gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
   gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);

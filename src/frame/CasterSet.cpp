@@ -112,19 +112,24 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
   if (!objects.empty()) mObjects.upload(objects.data(), objects.size() * sizeof(gpu::ObjectGpu));
 }
 
-void CasterSet::draw(GLuint program) const {
+void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram) const {
   mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
-  for (size_t i = 0; i < mDraws.size(); ++i) {
-    const CasterMesh& m = mDraws[i].mesh;
-    glBindVertexArray(mVaos[mDraws[i].vao].id());
-    glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
-    if (m.alphaTexture != 0) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
-    if (m.indexBuffer != 0)
-      glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count), GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * sizeof(uint32_t)),
-                               m.baseVertex);
-    else
-      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(m.firstIndex), static_cast<GLsizei>(m.count));
+  for (const bool masked : {false, true}) {
+    const GLuint program = masked ? maskedProgram : opaqueProgram;
+    glUseProgram(program);
+    for (size_t i = 0; i < mDraws.size(); ++i) {
+      const CasterMesh& m = mDraws[i].mesh;
+      if ((m.alphaTexture != 0) != masked) continue;
+      glBindVertexArray(mVaos[mDraws[i].vao].id());
+      glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
+      if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
+      if (m.indexBuffer != 0)
+        glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count), GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * sizeof(uint32_t)),
+                                 m.baseVertex);
+      else
+        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(m.firstIndex), static_cast<GLsizei>(m.count));
+    }
   }
 }
 

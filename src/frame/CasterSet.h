@@ -19,9 +19,10 @@ public:
   /// hold the ranges drawn, textures exist) and throws a usage penumbra::Error naming the first
   /// bad one. Vertex arrays are kept across calls for layouts seen before.
   void set(std::span<const CasterMesh> casters);
-  /// Draws every caster with `program` (in use; PN_LOC_OBJECT set per draw, an alpha-tested
-  /// caster's texture at PN_TEX_BASECOLOR); leaves the last vertex array bound.
-  void draw(GLuint program) const;
+  /// Draws the opaque casters with `opaqueProgram`, then the alpha-tested ones with
+  /// `maskedProgram` (their texture at PN_TEX_BASECOLOR); PN_LOC_OBJECT set per draw. Leaves
+  /// the last program and vertex array bound.
+  void draw(GLuint opaqueProgram, GLuint maskedProgram) const;
   /// Each caster's world bounds, in order (for SceneExtent).
   std::vector<SceneExtent::Body> bodies() const;
   size_t size() const { return mDraws.size(); }

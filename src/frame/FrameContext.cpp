@@ -8,19 +8,36 @@
 
 namespace penumbra {
 
-const gl::Program& FrameContext::shadowProgram(std::string_view fragment, const ShaderDefines& defines) {
+FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragment, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "shadow pass " + std::string(fragment);
   d.vertex = {"passes/geometry.vert.glsl"};
   d.fragment = {std::string(fragment)};
   d.defines = defines;
-  return mShaders.program(d);
+  bool orthographic = true;
+  for (const ShadowView& v : mFrusta.views) orthographic = orthographic && !v.perspective && !v.warped;
+  if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
+  ShadowPrograms p;
+  p.masked = &mShaders.program(d);
+  d.label += " (opaque)";
+  d.defines.set("PN_OPAQUE_CASTERS");
+  p.opaque = &mShaders.program(d);
+  return p;
+}
+
+int shaderLightKind(const Light& light) {
+  switch (light.type) {
+    case LightType::Spot: return PN_LIGHT_SPOT;
+    case LightType::Point: return PN_LIGHT_POINT;
+    case LightType::Directional: break;
+  }
+  return PN_LIGHT_SUN;
 }
 
 ShaderDefines FrameContext::frameDefines() const {
   ShaderDefines d;
   d.set("PN_SHADOW_VIEWS", viewCount());
-  d.set("PN_LIGHT_KIND", mLight.type == LightType::Spot ? PN_LIGHT_SPOT : PN_LIGHT_SUN);
+  d.set("PN_LIGHT_KIND", shaderLightKind(mLight));
   // Perspective and warped are two facts (psm's view of a spot light is both); each is compiled
   // in when every view agrees on it.
   bool allPerspective = true, nonePerspective = true, allWarped = true, noneWarped = true;
@@ -55,8 +72,24 @@ const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, 
   return visibilityProgram(filterFile, all.merge(defines));
 }
 
-void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor) {
-  program.use();
+const gl::Program& FrameContext::screenProgram(std::string_view file, const Parameterized& params) {
+  PN_CHECK(!mPoints, "a screen pass has no screen in points mode");
+  ProgramDesc d;
+  d.label = "screen " + std::string(file);
+  d.compute = {std::string(file)};
+  d.defines = frameDefines();
+  if (mSurface == SurfaceSource::Depth) d.defines.set("PN_SURFACE_FROM_DEPTH");
+  for (const auto& [name, value] : params.compileTimeConstants()) d.defines.set(std::string(name), value);
+  return mShaders.program(d);
+}
+
+void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor) {
+  // Clip z in [0, 1] is the window depth: what PN_LINEAR_RASTER_DEPTH's clip z (the linear light
+  // depth) needs; with gl_FragDepth written it does not matter. The caller's mode comes back.
+  GLint depthMode = GL_ZERO_TO_ONE, origin = GL_LOWER_LEFT;
+  glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode);
+  glGetIntegerv(GL_CLIP_ORIGIN, &origin);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -69,15 +102,13 @@ void FrameContext::renderViews(ShadowMapArray& maps, const gl::Program& program,
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
     if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
-    drawCasters(program, v);
+    glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);
+    glProgramUniform1i(programs.masked->id(), PN_LOC_VIEW, v);
+    mCasters.draw(programs.opaque->id(), programs.masked->id());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glDisable(GL_DEPTH_CLAMP);
-}
-
-void FrameContext::drawCasters(const gl::Program& program, int view) const {
-  glProgramUniform1i(program.id(), PN_LOC_VIEW, view);
-  mCasters.draw(program.id());
+  glClipControl(static_cast<GLenum>(origin), static_cast<GLenum>(depthMode));
 }
 
 void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
@@ -86,7 +117,7 @@ void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
   mFilterBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
 }
 
-void FrameContext::dispatchScreen(const gl::Program& program) const {
+void FrameContext::dispatchScreen(const gl::Program& program, bool readVisibility) const {
   if (mPoints) {
     mPoints->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINTS);
     mPointVisibility->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINT_VISIBILITY);
@@ -94,7 +125,7 @@ void FrameContext::dispatchScreen(const gl::Program& program) const {
     return;
   }
   PN_ASSERT(mVisibility != nullptr);
-  mVisibility->bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
+  mVisibility->bindImage(PN_IMG_VISIBILITY, readVisibility ? GL_READ_WRITE : GL_WRITE_ONLY);
   dispatch2D(program, mScreen.x, mScreen.y, PN_SCREEN_GROUP);
 }
 

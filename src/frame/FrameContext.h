@@ -16,6 +16,9 @@
 
 namespace penumbra {
 
+/// The light's kind as the shaders name it: PN_LIGHT_SUN, PN_LIGHT_SPOT or PN_LIGHT_POINT.
+int shaderLightKind(const Light& light);
+
 /// Where the visibility pass finds each pixel's surface (bound at PN_TEX_GBUF_POSITION and
 /// PN_TEX_GBUF_GEONORMAL by the core before the pass).
 enum class SurfaceSource {
@@ -57,9 +60,19 @@ public:
   PassTimer& timer() { return mTimer; }
 
   const gl::Program& program(const ProgramDesc& desc) { return mShaders.program(desc); }
-  /// Shadow-pass program: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
-  const gl::Program& shadowProgram(std::string_view fragment = "passes/shadow_depth.frag.glsl",
-                                   const ShaderDefines& defines = {});
+  /// The programs of a shadow pass: one for alpha-tested casters and one for opaque casters
+  /// (compiled with PN_OPAQUE_CASTERS: no alpha test, so early depth tests stay on).
+  struct ShadowPrograms {
+    const gl::Program* masked;
+    const gl::Program* opaque;
+  };
+  /// Shadow-pass programs: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
+  /// The default depth-only pass over orthographic views (a sun's uniform map or cascades) is
+  /// built with PN_LINEAR_RASTER_DEPTH: linear light depth is affine there, so the rasteriser's
+  /// own depth (the view's depth plane as clip z) is what the map stores and no fragment writes
+  /// gl_FragDepth.
+  ShadowPrograms shadowProgram(std::string_view fragment = kDepthOnlyFragment, const ShaderDefines& defines = {});
+  static constexpr std::string_view kDepthOnlyFragment = "passes/shadow_depth.frag.glsl";
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
   /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
   /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
@@ -67,6 +80,9 @@ public:
   /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
   const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
                                        const ShaderDefines& defines = {});
+  /// A screen pass of the frame's own (one GLSL file with its main) over the same surfaces as
+  /// the visibility pass, built like it: frameDefines(), the SurfaceSource, `params`' constants.
+  const gl::Program& screenProgram(std::string_view file, const Parameterized& params);
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
   /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
   ShaderDefines frameDefines() const;
@@ -74,17 +90,16 @@ public:
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
   /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the
   /// near plane still cast), no culling (thin and open casters cast from both sides).
-  void renderViews(ShadowMapArray& maps, const gl::Program& program, const glm::vec4& clearColor = glm::vec4(1.0f));
-  /// Draws every shadow caster into the bound framebuffer for shadow view `view`.
-  void drawCasters(const gl::Program& program, int view) const;
+  void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
   void setFilterBlockBytes(const void* data, size_t bytes);
 
-  /// Binds the visibility image, then runs `program` once per pixel (the surfaces are bound).
+  /// Binds the visibility image (write-only, or read-write for a pass that changes what the
+  /// visibility pass wrote), then runs `program` once per pixel (the surfaces are bound).
   /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
-  void dispatchScreen(const gl::Program& program) const;
+  void dispatchScreen(const gl::Program& program, bool readVisibility = false) const;
 
   /// Points mode, used by Renderer::visibilityAt: visibilityProgram() compiles the pass with
   /// PN_VISIBILITY_POINTS (positions from `points`, a PointBlock of shared/VisibilityPoints.h,

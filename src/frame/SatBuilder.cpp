@@ -13,19 +13,24 @@
 namespace penumbra {
 namespace {
 
-// Work-group shape (sat_scan.comp.glsl). Bands of 32 rows: the carries cost 4 · 16 B per pair
-// per 32 texels (2 B/texel) and a 2048² map still gives 64 groups per view. 64 threads of 4
-// columns (chunks of 256 columns), blocks of 4 rows for one moment pair (2 for two). On llvmpipe
-// (8-wide SIMD, a group's lanes switched at each barrier, a block's partial sums kept in per-lane
-// arrays in memory) small blocks won: before the map was read by gathers, the build of a 2048²
-// (z, z²) map measured 1.5–1.9× a copy with 4-row blocks, 1.5–2.1× with 8 and 1.9–2.3× with 16
-// (5 processes each); 128 threads or 8 columns were no better, 2 columns or 64-row bands worse.
+// Work-group shape (sat_scan.comp.glsl). Bands of 64 rows: the carries cost 4 · 16 B per pair per
+// 64 texels (1 B/texel) and a 2048² map still gives 32 groups per view. 64 threads of 8 columns
+// (chunks of 512 columns), blocks of 4 rows for one moment pair (2 for two). On llvmpipe (8-wide
+// SIMD, a group's lanes switched at each barrier, storage-buffer and shared-memory accesses a loop
+// over the lanes, a block's partial sums kept in per-lane arrays in memory) 8 columns halve step
+// (b), a serial walk over one row's segment totals per block: for a 2048² (z, z²) map the build
+// went from 1.86-1.90x a copy (CPU time, 4 columns, 32-row bands) to 1.57-1.61x (8 columns, 64-row
+// bands, (b)'s buffers doubled so a block needs 2 barriers, not 3); 4 moments 3.7x to 3.0x the RG32F
+// copy. 16 columns, 32 or 128 threads, 8-row blocks were slower; 128-row bands 3 % faster but half
+// the groups. Earlier, with 4 columns: 4-row blocks 1.5–1.9× a copy, 8 rows 1.5–2.1×, 16 rows
+// 1.9–2.3× (wall clock, 5 processes each).
 struct ScanShape {
   int band, pairRows, threads, perThread;  // pairRows: block rows · moment pairs
   constexpr int rows(int pairs) const { return pairRows / pairs; }
-  constexpr int sharedBytes(int pairs) const { return pairs * (rows(pairs) * threads + band) * 16; }
+  // (b)'s two buffers of segment totals and the row carries
+  constexpr int sharedBytes(int pairs) const { return pairs * (2 * rows(pairs) * threads + band) * 16; }
 };
-constexpr ScanShape kScanShape{32, 4, 64, 4};
+constexpr ScanShape kScanShape{64, 4, 64, 8};
 constexpr int kMinSharedBytes = 32768;  // GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's required minimum
 static_assert(kScanShape.band % kScanShape.rows(1) == 0 && kScanShape.band % kScanShape.rows(2) == 0 &&
               kScanShape.rows(1) <= kScanShape.threads);

@@ -29,7 +29,7 @@ std::string glErrorText(GLenum e) {
     case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
     case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
     case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY (the shadow maps and the filter's tables may not fit: try a smaller --shadow-map)";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try a smaller --shadow-map or --size)";
     case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
     case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
     case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";

@@ -1,5 +1,7 @@
 #include "gl/Objects.h"
 
+#include "gl/Debug.h"
+
 #include <penumbra/Error.h>
 
 #include <algorithm>
@@ -166,7 +168,11 @@ void Framebuffer::finish(int colorCount) {
   else
     glNamedFramebufferDrawBuffers(mId, colorCount, buffers);
   const GLenum status = glCheckNamedFramebufferStatus(mId, GL_FRAMEBUFFER);
-  PN_CHECK(status == GL_FRAMEBUFFER_COMPLETE, fmt::format("framebuffer incomplete (status 0x{:04x})", status));
+  if (status == GL_FRAMEBUFFER_COMPLETE) return;
+  // A texture whose storage could not be allocated leaves its framebuffer incomplete: report the
+  // driver's error (out of memory, with advice) rather than the status it caused.
+  throwIfGlError("a framebuffer's attachments");
+  throw Error(fmt::format("framebuffer incomplete (status 0x{:04x})", status));
 }
 
 // ---- VertexArray, Program, Query ---------------------------------------------------------

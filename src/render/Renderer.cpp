@@ -22,12 +22,33 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 
 namespace penumbra {
 
 namespace {
 constexpr int kMaxScreenSide = 16384;
+
+/// The screen targets the renderer allocates per frame size, with their texel sizes (for
+/// Renderer::screenBytes).
+struct ScreenTarget {
+  const char* label;
+  GLenum format;
+  uint64_t bytesPerTexel;
+};
+constexpr ScreenTarget kScreenTargets[] = {
+    {"gbuffer position", GL_RGBA32F, 16}, {"gbuffer normal", GL_RGBA16F, 8}, {"gbuffer geometric normal", GL_RGBA16F, 8},
+    {"gbuffer albedo", GL_RGBA8, 4},      {"gbuffer triangle", GL_RG32UI, 8},
+    {"gbuffer depth", GL_DEPTH_COMPONENT32F, 4}, {"color", GL_RGBA8, 4}};
+// The core's own per-pixel texture: the visibility (R32F).
+constexpr uint64_t kCoreBytesPerPixel = 4;
 }  // namespace
+
+uint64_t Renderer::screenBytes(int width, int height) {
+  uint64_t perPixel = kCoreBytesPerPixel;
+  for (const ScreenTarget& t : kScreenTargets) perPixel += t.bytesPerTexel;
+  return perPixel * static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+}
 
 struct Renderer::Impl {
   Scene scene;
@@ -48,26 +69,24 @@ struct Renderer::Impl {
     if (s == size) return;
     PN_CHECK(s.x > 0 && s.y > 0 && s.x <= kMaxScreenSide && s.y <= kMaxScreenSide,
              fmt::format("image size {}x{} is outside 1..{}", s.x, s.y, kMaxScreenSide));
-    auto make = [&](const char* label, GLenum format) {
-      gl::Texture t(label, {GL_TEXTURE_2D, format, s.x, s.y, 1, 1});
-      t.setSampling(GL_NEAREST, GL_NEAREST);
-      return t;
-    };
-    position = make("gbuffer position", GL_RGBA32F);
-    normal = make("gbuffer normal", GL_RGBA16F);
-    geoNormal = make("gbuffer geometric normal", GL_RGBA16F);
-    albedo = make("gbuffer albedo", GL_RGBA8);
-    triangle = make("gbuffer triangle", GL_RG32UI);
-    depth = make("gbuffer depth", GL_DEPTH_COMPONENT32F);
-    color = make("color", GL_RGBA8);
-    gbuffer = gl::Framebuffer("gbuffer");
-    gbuffer.attach(GL_COLOR_ATTACHMENT0, position);
-    gbuffer.attach(GL_COLOR_ATTACHMENT1, normal);
-    gbuffer.attach(GL_COLOR_ATTACHMENT2, geoNormal);
-    gbuffer.attach(GL_COLOR_ATTACHMENT3, albedo);
-    gbuffer.attach(GL_COLOR_ATTACHMENT4, triangle);
-    gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
-    gbuffer.finish(5);
+    gl::Texture* targets[] = {&position, &normal, &geoNormal, &albedo, &triangle, &depth, &color};  // kScreenTargets' order
+    static_assert(std::size(kScreenTargets) == std::size(targets));
+    try {
+      for (size_t i = 0; i < std::size(kScreenTargets); ++i) {
+        *targets[i] = gl::Texture(kScreenTargets[i].label, {GL_TEXTURE_2D, kScreenTargets[i].format, s.x, s.y, 1, 1});
+        targets[i]->setSampling(GL_NEAREST, GL_NEAREST);
+      }
+      gbuffer = gl::Framebuffer("gbuffer");
+      gbuffer.attach(GL_COLOR_ATTACHMENT0, position);
+      gbuffer.attach(GL_COLOR_ATTACHMENT1, normal);
+      gbuffer.attach(GL_COLOR_ATTACHMENT2, geoNormal);
+      gbuffer.attach(GL_COLOR_ATTACHMENT3, albedo);
+      gbuffer.attach(GL_COLOR_ATTACHMENT4, triangle);
+      gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
+      gbuffer.finish(5);
+    } catch (const Error& e) {
+      throw Error(fmt::format("the {}x{} image's targets: {}", s.x, s.y, e.what()));
+    }
     size = s;
   }
 
@@ -171,8 +190,10 @@ void Renderer::runLitPass() {
   ProgramDesc d;
   d.label = "lit";
   d.compute = {"passes/lit.comp.glsl"};
+  // Built per debug view and light kind: the shaded image runs none of the debug code.
+  d.defines.set("PN_DEBUG_VIEW", im.debugView);
+  d.defines.set("PN_LIGHT_KIND", shaderLightKind(im.scene.light()));
   const gl::Program& program = shaders().program(d);
-  glProgramUniform1i(program.id(), PN_LOC_LEVEL, im.debugView);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);

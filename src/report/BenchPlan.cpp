@@ -31,6 +31,8 @@ std::optional<ParamDesc> findDesc(std::string_view key, const Projection& projec
     if (d.key == key) return d;
   for (const ParamDesc& d : filter.paramDescs())
     if (d.key == key) return d;
+  for (const ParamDesc& d : makeContactShadows()->paramDescs())
+    if (d.key == key) return d;
   return std::nullopt;
 }
 
@@ -159,6 +161,10 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
                    .filters = filterIds(), .sweeps = {}};
   BenchPlan light{.name = "light-size", .scenes = {"pen"}, .projections = {"uniform"}, .filters = filterIds(),
                   .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5}}};
+  // Contact shadows off and on, with the filters they are most often paired with, on the
+  // scenes where casters stand on receivers.
+  BenchPlan contact{.name = "contact", .scenes = {"boxes", "pen", "grazing"}, .projections = {"uniform"},
+                    .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2}}};
   if (quick) {
     // Seconds, not minutes: small images and maps, few frames, a noisier reference, the scenes
     // of the recommendation's situations (Recommendation.h) and two projections (enough for
@@ -174,7 +180,8 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
     settings.referenceSamples = 36;
     settings.microRepetitions = 3;
   }
-  return {matrix, light};
+  if (quick) contact.scenes = {"boxes"};
+  return {matrix, light, contact};
 }
 
 }  // namespace penumbra::report

@@ -8,6 +8,7 @@
 #include <penumbra/Metrics.h>
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,9 +32,10 @@ struct PassStats {
   TimeStats ms;
 };
 
-/// The passes a technique runs every frame (the core's: docs/design.md): their sum is its frame
-/// cost of shadowing. The G-buffer and lit passes are the same for every technique.
-inline constexpr const char* kShadowCostPasses[] = {"shadow", "prefilter", "visibility"};
+/// The passes a technique runs every frame (the core's: docs/design.md), "contact" only when
+/// contact shadows are on: their sum is its frame cost of shadowing. The G-buffer and lit passes
+/// are the same for every technique.
+inline constexpr const char* kShadowCostPasses[] = {"shadow", "prefilter", "visibility", "contact"};
 
 /// Per pass, the time of each timed frame (ms), in frame order.
 using FrameSamples = std::vector<std::pair<std::string, std::vector<double>>>;
@@ -76,15 +78,19 @@ struct SkippedConfig {
   bool failed = false;  ///< false: refused as an unsupported pair; true: an error during the run
 };
 
-/// A timed building block outside the frame (e.g. a summed-area table against a plain copy of
-/// the same texture).
+/// A timed building block outside the frame, next to its baseline: a summed-area table against
+/// a plain copy of the same texture, a filter's visibility pass against its minimal lookup
+/// kernel (docs/bench.md, "Micro-benchmarks").
 struct MicroResult {
-  std::string name;         ///< "copy", "mip chain", "sat"
-  std::string description;  ///< what was timed, on what texture
-  std::string baseline;     ///< name of the result it is compared with (a copy of its texture); "" = none
+  std::string name;         ///< "copy RG32F", "SAT build, 2 moments", "visibility: hard", …
+  std::string description;  ///< what was timed, on what data
+  std::string baseline;     ///< name of the result it is compared with; "" = none
   TimeStats ms;
-  int repetitions = 0;
-  std::string error;  ///< non-empty: the block failed (GL error, …) and was not timed
+  int repetitions = 0;  ///< timed rounds
+  std::string error;    ///< non-empty: the block failed (GL error, …) and was not timed
+  /// Its time over its baseline's, per round (the two ran in the same round): median and
+  /// 10th/90th percentiles. Empty without a baseline, or when either failed.
+  std::optional<TimeStats> ratio;
 };
 
 struct MachineInfo {

@@ -1,9 +1,12 @@
 #include "report/BenchRunner.h"
 
 #include "platform/Context.h"
+#include "frame/PassTimer.h"
 #include "base/ProgressBar.h"
 #include "report/FrameComparison.h"
 #include "report/MicroBenchmarks.h"
+#include "report/ReferenceBaseline.h"
+#include "report/VisibilityBaselines.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
@@ -95,6 +98,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     const auto configStart = Clock::now();
     try {
       renderer.setTechnique(std::move(s.projection), std::move(s.filter));
+      renderer.shadows().contactShadows() = *s.contact;
     } catch (const Error& e) {
       if (e.kind() != ErrorKind::Usage) throw;
       results.skipped.push_back({c, e.what(), false});
@@ -172,7 +176,13 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   int microMapSize = set.shadowMapSize.value_or(0);
   for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
   if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
-  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, context.info().softwareRenderer);
+  const bool cpuClock = context.info().softwareRenderer;
+  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
+  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,
+                                                .rounds = set.microRepetitions, .cpuClock = cpuClock}))
+    results.micro.push_back(std::move(m));
+  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
+  if (results.machine.clock.empty()) results.machine.clock = PassTimer(cpuClock).endFrame().clock;  // no frame ran: its name
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
   results.machine.loadEnd = loadAverage();
   return results;

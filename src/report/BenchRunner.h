@@ -6,6 +6,7 @@
 #include "report/BenchResults.h"
 
 #include <penumbra/Filter.h>
+#include <penumbra/Registry.h>
 #include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
 
@@ -26,6 +27,7 @@ struct BenchSetup {
   Scene scene;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  std::unique_ptr<Parameterized> contact = makeContactShadows();  ///< "contact.*"
 };
 using SetupFactory = std::function<BenchSetup(const BenchConfig&)>;
 

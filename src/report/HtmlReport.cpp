@@ -163,20 +163,23 @@ std::string gridSection(const BenchResults& r) {
 }
 
 std::string microTable(const BenchResults& r) {
-  std::string h = "<h3>Building blocks: prefilters against a plain copy of the same texture</h3>\n";
+  std::string h = "<h3>Building blocks against their baselines</h3>\n";
   if (r.micro.empty()) return h + "<p class=\"note\">No micro-benchmarks in this run.</p>\n";
+  h += "<p class=\"note\">Each row next to its baseline, interleaved round by round; the ratio is taken within a round "
+       "(median, p10–p90 over the rounds). Prefilters against a plain copy of the same texture; each filter's visibility "
+       "pass against its minimal lookup kernel: the pass's overhead over its own arithmetic (docs/bench.md).</p>\n";
   h += "<table><tr><th class=\"l\">what</th><th class=\"l\">timed</th><th>median ms <small>p10–p90</small></th>"
-       "<th>× its copy</th></tr>\n";
+       "<th>× its baseline <small>p10–p90</small></th></tr>\n";
   for (const MicroResult& m : r.micro) {
-    std::string ratio = "—";
     if (!m.error.empty()) {
       h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td colspan=\"2\" class=\"l wrap\">failed: {}</td></tr>\n",
                        esc(m.name), esc(m.description), esc(m.error));
       continue;
     }
-    for (const MicroResult& b : r.micro)
-      if (!m.baseline.empty() && b.name == m.baseline && b.ms.median > 0 && b.error.empty())
-        ratio = fmt::format("<span title=\"{}\">{:.1f} ×</span>", esc(b.name), m.ms.median / b.ms.median);
+    const std::string ratio =
+        m.ratio ? fmt::format("<span title=\"{}\">{:.2f} ×</span> <small>{:.2f}–{:.2f}</small>", esc(m.baseline), m.ratio->median,
+                              m.ratio->p10, m.ratio->p90)
+                : "—";
     h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
                      esc(m.description), ms(m.ms), ratio);
   }

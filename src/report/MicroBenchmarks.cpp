@@ -20,14 +20,6 @@
 namespace penumbra::report {
 namespace {
 
-// One building block: `prepare` makes its textures (untimed) and returns the timed work.
-struct MicroBenchmark {
-  const char* name;
-  const char* baseline;  // the copy of the same texture layout it is compared with
-  std::function<std::string(int mapSize)> describe;
-  std::function<std::function<void()>(int mapSize)> prepare;
-};
-
 gl::Texture filled(const char* label, GLenum target, GLenum format, int size, int levels, GLenum clearFormat,
                    GLenum clearType) {
   gl::Texture t(label, {target, format, size, size, 1, levels});
@@ -104,82 +96,113 @@ struct SatFixture {
   }
 };
 
-MicroBenchmark satBuild(const char* name, const char* baseline, int moments) {
-  return {name, baseline,
-          [moments](int n) {
-            return fmt::format("SatBuilder::build: the summed-area table of {} depth moments of a {}x{} R32F map", moments, n, n);
-          },
-          [moments](int n) -> std::function<void()> {
-            auto f = std::make_shared<SatFixture>(n, moments);
-            return [f, moments] { f->sat.build(f->shaders, f->depth, moments); };
+// The build of a table and the copy of that table share one fixture (made by whichever is
+// prepared first): one table in memory, not two.
+using SharedSat = std::shared_ptr<std::shared_ptr<SatFixture>>;
+std::shared_ptr<SatFixture> satFixture(const SharedSat& shared, int n, int moments) {
+  if (!*shared) *shared = std::make_shared<SatFixture>(n, moments);
+  return *shared;
+}
+
+MicroItem satBuild(const char* baseline, int n, int moments, bool cpuClock, const SharedSat& shared) {
+  std::string name = fmt::format("SAT build, {} moments", moments);
+  return {name, fmt::format("SatBuilder::build: the summed-area table of {} depth moments of a {}x{} R32F map", moments, n, n),
+          baseline, [=] {
+            auto f = satFixture(shared, n, moments);
+            return timedWork(cpuClock, name, [f, moments] { f->sat.build(f->shaders, f->depth, moments); });
           }};
 }
 
-MicroBenchmark satCopy(const char* name, int moments) {
-  return {name, "",
-          [moments](int n) {
-            return fmt::format("compute-shader copy of that table ({} moments: {}x{} uvec4 in a storage buffer, {} layer(s))",
-                               moments, n, n, moments / 2);
-          },
-          [moments](int n) -> std::function<void()> {
-            auto f = std::make_shared<SatFixture>(n, moments);
+MicroItem satCopy(int n, int moments, bool cpuClock, const SharedSat& shared) {
+  std::string name = fmt::format("copy SAT table, {} moments", moments);
+  return {name,
+          fmt::format("compute-shader copy of that table ({} moments: {}x{} uvec4 in a storage buffer, {} layer(s))",
+                      moments, n, n, moments / 2),
+          "", [=] {
+            auto f = satFixture(shared, n, moments);
             // The table lives in the fixture: share its ownership with the copy.
-            return copyOf(std::shared_ptr<const gl::Buffer>(f, &f->sat.table()));
+            return timedWork(cpuClock, name, copyOf(std::shared_ptr<const gl::Buffer>(f, &f->sat.table())));
           }};
-}
-
-// VSM's mip chain of RG32F moments and the summed-area tables of vssm (2 moments) and msm-soft
-// (4 moments), each after a plain copy of the same texture.
-const std::vector<MicroBenchmark>& microBenchmarks() {
-  static const std::vector<MicroBenchmark> list = {
-      {"copy RG32F", "",
-       [](int n) { return fmt::format("compute-shader copy of a {0}x{0} RG32F texture (the (z, z²) map of vsm, level 0)", n); },
-       [](int n) -> std::function<void()> {
-         return copyOf(std::make_shared<gl::Texture>(filled("micro copy source", GL_TEXTURE_2D, GL_RG32F, n, 1, GL_RG, GL_FLOAT)));
-       }},
-      {"mip chain RG32F", "copy RG32F",
-       [](int n) { return fmt::format("MipBuilder::build: the full box-filter chain of a {0}x{0} RG32F texture", n); },
-       [](int n) -> std::function<void()> {
-         constexpr int kFullChain = 0;
-         auto t = std::make_shared<gl::Texture>(filled("micro mip chain", GL_TEXTURE_2D, GL_RG32F, n, kFullChain, GL_RG, GL_FLOAT));
-         return [t] { MipBuilder::build(*t); };
-       }},
-      satCopy("copy SAT table, 2 moments", 2),
-      // The yardstick for the SAT: a copy of the (z, z²) map it summarises (RG32F).
-      satBuild("SAT build, 2 moments", "copy RG32F", 2),
-      satCopy("copy SAT table, 4 moments", 4),
-      satBuild("SAT build, 4 moments", "copy SAT table, 4 moments", 4),
-  };
-  return list;
 }
 
 }  // namespace
 
-std::vector<MicroResult> runMicroBenchmarks(int mapSize, int repetitions, bool cpuClock) {
-  std::vector<MicroResult> out;
-  PassTimer timer(cpuClock);
-  for (const MicroBenchmark& m : microBenchmarks()) {
-    // A block that fails is recorded with its error and the others still run: the bench's
-    // configurations are measured by then, and the report must not be lost with it.
+std::function<double()> timedWork(bool cpuClock, std::string name, std::function<void()> work) {
+  auto timer = std::make_shared<PassTimer>(cpuClock);
+  return [timer, name = std::move(name), work = std::move(work)] {
+    timer->beginFrame();
+    timer->begin(name);
+    work();
+    timer->end();
+    return timer->endFrame().total();
+  };
+}
+
+std::vector<MicroResult> runMicroItems(const std::vector<MicroItem>& items, int rounds) {
+  struct State {
+    std::function<double()> work;
+    std::vector<double> ms;
+    std::string error;
+  };
+  std::vector<State> state(items.size());
+  // A block that fails is recorded with its error and the others still run: the bench's
+  // configurations are measured by then, and the report must not be lost with it.
+  auto attempt = [&](size_t i, const std::function<void()>& step) {
+    if (!state[i].error.empty()) return;
     try {
-      const std::function<void()> work = m.prepare(mapSize);
-      work();  // untimed: first use of a code path (and of the memory) costs extra
-      gl::throwIfGlError(m.name);
-      std::vector<double> ms;
-      for (int i = 0; i < repetitions; ++i) {
-        timer.beginFrame();
-        timer.begin(m.name);
-        work();
-        timer.end();
-        ms.push_back(timer.endFrame().total());
-      }
-      gl::throwIfGlError(m.name);
-      out.push_back({m.name, m.describe(mapSize), m.baseline, timeStats(ms), repetitions, ""});
-    } catch (const Error& e) {
-      out.push_back({m.name, m.describe(mapSize), m.baseline, TimeStats{}, 0, e.what()});
+      step();
+      gl::throwIfGlError(items[i].name.c_str());
+    } catch (const std::exception& e) {
+      state[i].error = e.what();
+      state[i].ms.clear();
     }
+  };
+  for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].work = items[i].prepare(); });
+  for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].work(); });  // untimed
+  for (int r = 0; r < rounds; ++r)
+    for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].ms.push_back(state[i].work()); });
+
+  std::vector<MicroResult> out;
+  for (size_t i = 0; i < items.size(); ++i) {
+    const MicroItem& m = items[i];
+    const State& s = state[i];
+    MicroResult r{m.name, m.description, m.baseline, timeStats(s.ms), s.error.empty() ? rounds : 0, s.error, {}};
+    for (size_t b = 0; b < items.size(); ++b) {
+      if (m.baseline.empty() || items[b].name != m.baseline || !s.error.empty() || !state[b].error.empty()) continue;
+      std::vector<double> ratios;
+      for (size_t k = 0; k < s.ms.size() && k < state[b].ms.size(); ++k)
+        if (state[b].ms[k] > 0.0) ratios.push_back(s.ms[k] / state[b].ms[k]);
+      if (!ratios.empty()) r.ratio = timeStats(ratios);
+    }
+    out.push_back(std::move(r));
   }
   return out;
+}
+
+// VSM's mip chain of RG32F moments and the summed-area tables of vssm (2 moments) and msm-soft
+// (4 moments), each with a plain copy of the same texture.
+std::vector<MicroResult> runMicroBenchmarks(int n, int repetitions, bool cpuClock) {
+  const SharedSat sat2 = std::make_shared<std::shared_ptr<SatFixture>>();
+  const SharedSat sat4 = std::make_shared<std::shared_ptr<SatFixture>>();
+  const std::vector<MicroItem> items = {
+      {"copy RG32F", fmt::format("compute-shader copy of a {0}x{0} RG32F texture (the (z, z²) map of vsm, level 0)", n), "",
+       [=] {
+         return timedWork(cpuClock, "copy RG32F",
+                          copyOf(std::make_shared<gl::Texture>(filled("micro copy source", GL_TEXTURE_2D, GL_RG32F, n, 1, GL_RG, GL_FLOAT))));
+       }},
+      {"mip chain RG32F", fmt::format("MipBuilder::build: the full box-filter chain of a {0}x{0} RG32F texture", n), "copy RG32F",
+       [=] {
+         constexpr int kFullChain = 0;
+         auto t = std::make_shared<gl::Texture>(filled("micro mip chain", GL_TEXTURE_2D, GL_RG32F, n, kFullChain, GL_RG, GL_FLOAT));
+         return timedWork(cpuClock, "mip chain RG32F", [t] { MipBuilder::build(*t); });
+       }},
+      satCopy(n, 2, cpuClock, sat2),
+      // The yardstick for the SAT: a copy of the (z, z²) map it summarises (RG32F).
+      satBuild("copy RG32F", n, 2, cpuClock, sat2),
+      satCopy(n, 4, cpuClock, sat4),
+      satBuild("copy SAT table, 4 moments", n, 4, cpuClock, sat4),
+  };
+  return runMicroItems(items, repetitions);
 }
 
 }  // namespace penumbra::report

@@ -11,7 +11,9 @@
 namespace penumbra::report {
 namespace {
 
-constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: shadow cost, memory, one-off costs, frame_ms, compare_command, recommendations
+// 2: umbra_leak_pct; 3: micro[].ratio; 4: shadow cost, memory, one-off costs, frame_ms, compare_command,
+// recommendations
+constexpr int kFormatVersion = 4;
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -79,12 +81,16 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   return cells;
 }
 
+namespace {
+void csvLine(std::string& out, const std::vector<std::string>& fields) {
+  for (size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
+  out += "\r\n";
+}
+}  // namespace
+
 std::string resultsCsv(const BenchResults& results) {
   std::string out;
-  auto line = [&](const std::vector<std::string>& fields) {
-    for (size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
-    out += "\r\n";
-  };
+  auto line = [&](const std::vector<std::string>& fields) { csvLine(out, fields); };
   std::vector<std::string> header;
   for (const std::string& c : tableColumns(results)) header.push_back(csvField(c));
   line(header);
@@ -92,6 +98,22 @@ std::string resultsCsv(const BenchResults& results) {
     std::vector<std::string> fields;
     for (const Cell& c : tableRow(results, r)) fields.push_back(csvField(c));
     line(fields);
+  }
+  return out;
+}
+
+std::string microCsv(const BenchResults& results) {
+  std::string out;
+  csvLine(out, {"name", "baseline", "ms_median", "ms_p10", "ms_p90", "ratio_median", "ratio_p10", "ratio_p90", "repetitions",
+                "error", "description", "clock", "gl_renderer"});
+  auto number = [](bool present, double v) { return present ? csvField(Cell(v)) : std::string(); };
+  for (const MicroResult& m : results.micro) {
+    const bool timed = m.error.empty();
+    const TimeStats ratio = m.ratio.value_or(TimeStats{});
+    csvLine(out, {csvField(Cell(m.name)), csvField(Cell(m.baseline)), number(timed, m.ms.median), number(timed, m.ms.p10),
+                  number(timed, m.ms.p90), number(m.ratio.has_value(), ratio.median), number(m.ratio.has_value(), ratio.p10),
+                  number(m.ratio.has_value(), ratio.p90), number(true, m.repetitions), csvField(Cell(m.error)),
+                  csvField(Cell(m.description)), csvField(Cell(results.machine.clock)), csvField(Cell(results.machine.glRenderer))});
   }
   return out;
 }
@@ -156,6 +178,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
   j["micro"] = nlohmann::json::array();
   for (const MicroResult& mr : results.micro)
     j["micro"].push_back({{"name", mr.name}, {"description", mr.description}, {"baseline", mr.baseline}, {"ms", statsJson(mr.ms)},
+                          {"ratio", mr.ratio ? statsJson(*mr.ratio) : nlohmann::json(nullptr)},
                           {"repetitions", mr.repetitions}, {"error", mr.error}});
   return j;
 }
@@ -163,6 +186,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
 void writeResults(const std::filesystem::path& dir, const BenchResults& results) {
   writeTextFile(dir / "results.csv", resultsCsv(results));
   writeTextFile(dir / "results.json", resultsJson(results).dump(1) + "\n");
+  writeTextFile(dir / "micro.csv", microCsv(results));
 }
 
 }  // namespace penumbra::report

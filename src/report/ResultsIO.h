@@ -31,12 +31,16 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& row);
 /// RFC 4180 CSV: a header line, one line per row; numbers in shortest round-trip form (parsing
 /// the text gives back the same double), empty for no value.
 std::string resultsCsv(const BenchResults& results);
+/// The micro table (BenchResults::micro), one line per row: name, baseline, ms_{median,p10,p90},
+/// ratio_{median,p10,p90} (its time over its baseline's, empty without one), repetitions, error,
+/// description, clock, gl_renderer. Same CSV rules as resultsCsv.
+std::string microCsv(const BenchResults& results);
 /// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
 ///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "micro": [...]}; rows
 ///  hold numbers as numbers, null for no value.
 nlohmann::json resultsJson(const BenchResults& results);
 
-/// Writes results.csv and results.json into dir (each atomically).
+/// Writes results.csv, results.json and micro.csv into dir (each atomically).
 void writeResults(const std::filesystem::path& dir, const BenchResults& results);
 
 }  // namespace penumbra::report

@@ -4,9 +4,25 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
+namespace {
+constexpr float kMinViewLengthM = 1e-6f;  // the target closer to the position than this: no view direction
+constexpr float kMinSinViewToUp = 1e-4f;  // sine of the angle between view and up: below it, no up in the image
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+std::string Camera::viewProblem() const {
+  const glm::vec3 view = target - position;
+  if (!finite(view) || !(glm::length(view) >= kMinViewLengthM)) return "the target is the position";
+  if (!finite(up) || !(glm::length(up) > 0.0f)) return fmt::format("the up vector ({}, {}, {}) is zero or not finite", up.x, up.y, up.z);
+  if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(up))) >= kMinSinViewToUp))
+    return fmt::format("the view is along the up vector ({}, {}, {}): no direction is up in the image", up.x, up.y, up.z);
+  return "";
+}
 
 glm::mat4 Camera::viewFromWorld() const { return glm::lookAt(position, target, up); }
 
@@ -20,6 +36,26 @@ glm::mat4 Camera::clipFromView(float aspect) const {
   m[2][3] = -1.0f;
   m[3][2] = nearM;
   return m;
+}
+
+float lightFalloff(const Light& light, const glm::vec3& ws) {
+  if (!isPositional(light)) return 1.0f;
+  const glm::vec3 d = ws - light.position;
+  const float distanceM = glm::length(d);
+  float f = 1.0f;
+  if (light.rangeM > 0.0f) {
+    // KHR_lights_punctual's recommended window: (1 − (d / range)^4)^2, clamped.
+    const float x = distanceM / light.rangeM;
+    const float w = std::clamp(1.0f - x * x * x * x, 0.0f, 1.0f);
+    f *= w * w;
+  }
+  if (light.type == LightType::Spot && distanceM > 0.0f) {
+    const float cosAxis = glm::dot(d / distanceM, glm::normalize(light.direction));
+    const float lo = std::cos(light.coneAngleRad), hi = std::cos(light.innerConeAngleRad);
+    const float t = hi > lo ? std::clamp((cosAxis - lo) / (hi - lo), 0.0f, 1.0f) : (cosAxis >= lo ? 1.0f : 0.0f);
+    f *= t * t * (3.0f - 2.0f * t);  // smoothstep, as the lit pass
+  }
+  return f;
 }
 
 const Light& Scene::light() const {
@@ -86,10 +122,23 @@ void Scene::validate() const {
     PN_CHECK(m.baseColorTexture < static_cast<int>(images.size()),
              fmt::format("{}: material '{}': texture index out of range", where, m.name));
   PN_CHECK(triangleCount() > 0, fmt::format("{}: the scene has zero triangles", where));
+  PN_CHECK(std::any_of(objects.begin(), objects.end(), [&](const Object& o) { return meshes[o.mesh].hasArea(); }),
+           fmt::format("{}: every triangle has zero area (its corners lie on one line): nothing would be drawn", where));
   for (const Light& l : lights) {
     PN_CHECK(glm::length(l.direction) > 0.0f, fmt::format("{}: a light has a zero direction", where));
     PN_CHECK(l.size >= 0.0f, fmt::format("{}: a light has a negative size", where));
+    PN_CHECK(l.rangeM >= 0.0f && std::isfinite(l.rangeM), fmt::format("{}: a light has a negative range", where));
+    if (l.type == LightType::Spot)
+      PN_CHECK(l.coneAngleRad > 0.0f && l.coneAngleRad <= kMaxSpotConeRad && l.innerConeAngleRad >= 0.0f &&
+                   l.innerConeAngleRad <= l.coneAngleRad,
+               fmt::format("{}: a spot light's cone angles (inner {} rad, outer {} rad) are not 0 <= inner <= outer <= {}",
+                           where, l.innerConeAngleRad, l.coneAngleRad, kMaxSpotConeRad));
+    PN_CHECK(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(l.color, glm::vec3(kMaxRadiance))),
+             fmt::format("{}: a light's colour is outside [0, {}]", where, kMaxRadiance));
   }
+  PN_CHECK(glm::all(glm::greaterThanEqual(ambient, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(ambient, glm::vec3(kMaxRadiance))),
+           fmt::format("{}: the ambient radiance is outside [0, {}]", where, kMaxRadiance));
+  if (const std::string problem = camera.viewProblem(); !problem.empty()) throw Error(fmt::format("{}: camera: {}", where, problem));
 }
 
 }  // namespace penumbra

@@ -67,6 +67,15 @@ Aabb Mesh::bounds() const {
   return b;
 }
 
+bool Mesh::hasArea() const {
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    if (indices[t] >= vertices.size() || indices[t + 1] >= vertices.size() || indices[t + 2] >= vertices.size()) continue;
+    const glm::vec3 a = vertices[indices[t]].position, b = vertices[indices[t + 1]].position, c = vertices[indices[t + 2]].position;
+    if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
+  }
+  return false;
+}
+
 Mesh makePlane(float sizeX, float sizeZ) {
   Mesh m;
   m.name = "plane";

@@ -13,6 +13,7 @@
 #include "shadows/filters/MsmSoftFilter.h"
 #include "shadows/filters/VsmFilter.h"
 #include "shadows/filters/VssmFilter.h"
+#include "shadows/contact/ContactShadows.h"
 #include "shadows/projections/CascadedProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
@@ -82,8 +83,10 @@ std::vector<std::string> filterIds() { return ids(filters()); }
 std::unique_ptr<Projection> makeProjection(std::string_view id) { return make(projections(), id, "projection"); }
 std::unique_ptr<Filter> makeFilter(std::string_view id) { return make(filters(), id, "filter"); }
 
+std::unique_ptr<Parameterized> makeContactShadows() { return std::make_unique<ContactShadows>(); }
+
 void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
-                 Projection& projection, Filter& filter) {
+                 Projection& projection, Filter& filter, Parameterized* addOns) {
   for (const auto& [key, value] : settings) {
     if (key == "light.size") {
       const float v = parseParamValue(sceneParamDescs()[0], value);
@@ -96,6 +99,8 @@ void applyParams(const std::vector<std::pair<std::string, std::string>>& setting
       projection.setParam(key, std::string_view(value));
     } else if (filter.hasParam(key)) {
       filter.setParam(key, std::string_view(value));
+    } else if (addOns && addOns->hasParam(key)) {
+      addOns->setParam(key, std::string_view(value));
     } else {
       throw usageError(fmt::format("unknown parameter '{}' for --projection {} --filter {} (penumbra list shows them all)",
                                    key, projection.id(), filter.id()));

@@ -85,7 +85,7 @@ glm::vec3 lightAimPoint(const Light& light, const Aabb& sceneBounds) {
 }
 
 glm::vec2 lightAngles(const Light& light, const glm::vec3& aim) {
-  const glm::vec3 toLight = light.type == LightType::Spot ? glm::normalize(light.position - aim)
+  const glm::vec3 toLight = isPositional(light) ? glm::normalize(light.position - aim)
                                                           : -glm::normalize(light.direction);
   return {std::atan2(toLight.x, toLight.z), std::asin(std::clamp(toLight.y, -1.0f, 1.0f))};
 }
@@ -93,7 +93,7 @@ glm::vec2 lightAngles(const Light& light, const glm::vec3& aim) {
 void setLightAngles(Light& light, const glm::vec3& aim, float azimuthRad, float elevationRad) {
   const float e = std::clamp(elevationRad, kMinLightElevationRad, kMaxLightElevationRad);
   const glm::vec3 toLight = unitFromAngles(azimuthRad, e);
-  if (light.type == LightType::Spot) {
+  if (isPositional(light)) {
     const float distanceM = glm::length(light.position - aim);
     light.position = aim + distanceM * toLight;
   }

@@ -292,8 +292,8 @@ void Viewer::drawLightCameraPanel() {
   const Light& light = scene.light();
   const glm::vec3 aim = lightAimPoint(light, scene.bounds());
   glm::vec2 deg = glm::degrees(lightAngles(light, aim));
-  hint(light.type == LightType::Spot ? "spot light: right-drag in the view moves it around the point it lights"
-                                      : "sun: right-drag in the view turns it");
+  hint(isPositional(light) ? "spot or point light: right-drag in the view moves it around the point it lights"
+                           : "sun: right-drag in the view turns it");
   bool moved = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
   moved |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
   if (moved) {

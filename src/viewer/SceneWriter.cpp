@@ -62,16 +62,26 @@ Json objectJson(const Scene& scene, const Object& o) {
 
 Json lightJson(const Light& l) {
   Json j;
-  const bool spot = l.type == LightType::Spot;
-  j["type"] = spot ? "spot" : "sun";
-  j["direction"] = tidyVec(glm::normalize(l.direction));
-  if (spot) {
+  j["type"] = l.type == LightType::Spot ? "spot" : l.type == LightType::Point ? "point" : "sun";
+  if (l.type != LightType::Point) j["direction"] = tidyVec(glm::normalize(l.direction));
+  if (isPositional(l)) {
     j["position"] = tidyVec(l.position);
-    j["coneAngleDeg"] = tidy(glm::degrees(l.coneAngleRad));
+    if (l.rangeM > 0.0f) j["range"] = tidy(l.rangeM);
+  }
+  if (l.type == LightType::Spot) {
+    j["outerConeDeg"] = tidy(glm::degrees(l.coneAngleRad));
+    j["innerConeDeg"] = tidy(glm::degrees(l.innerConeAngleRad));
   }
   j["size"] = tidy(l.size);
   j["color"] = tidyVec(l.color);
   j["intensity"] = tidy(l.intensity);
+  if (!l.castsShadow) j["castsShadow"] = false;
+  if (l.shadow.mapSize > 0 || !l.shadow.params.empty()) {
+    Json s;
+    if (l.shadow.mapSize > 0) s["mapSize"] = l.shadow.mapSize;
+    for (const auto& [key, value] : l.shadow.params) s["params"][key] = value;
+    j["shadow"] = s;
+  }
   return j;
 }
 

@@ -92,7 +92,7 @@ bool Viewer::execute(const ScriptAction& a) {
       if (glm::length(xyz) <= 0.0f) throw usageError("the direction must not be zero");
       light.direction = glm::normalize(xyz);
     } else {
-      if (light.type != LightType::Spot) throw usageError("the light is a sun: it has a direction, not a position");
+      if (!isPositional(light)) throw usageError("the light is a sun: it has a direction, not a position");
       light.position = xyz;
     }
   } else if (v == "view") {

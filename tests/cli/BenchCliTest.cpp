@@ -114,7 +114,8 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
 }
 
 // The whole cost of every row of the quick run: shadow_cost_ms_* are the quantiles of the
-// per-frame sum of the shadow, prefilter and visibility passes (docs/bench.md states the rule),
+// per-frame sum of the shadow, prefilter and visibility passes, and the contact pass where contact
+// shadows are on (docs/bench.md states the rule),
 // recomputed here from the frame samples results.json carries; shadow_memory_mb is there for
 // every row; one-off costs only where a technique made something once (sdf's bake).
 TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
@@ -140,7 +141,8 @@ TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
     const std::string what = row["scene"].get<std::string>() + " " + row["projection"].get<std::string>() + " " +
                              row["filter"].get<std::string>() + " " + row["params"].get<std::string>();
     std::vector<double> sums(static_cast<size_t>(row["frames"].get<double>()), 0.0);
-    for (const char* pass : {"shadow", "prefilter", "visibility"}) {
+    for (const char* pass : {"shadow", "prefilter", "visibility", "contact"}) {
+      if (std::string(pass) == "contact" && !frames.contains(pass)) continue;  // contact shadows off
       const std::vector<double> ms = frames.at(pass).get<std::vector<double>>();
       ASSERT_EQ(ms.size(), sums.size()) << what << " " << pass;
       for (size_t f = 0; f < ms.size(); ++f) sums[f] += ms[f];
@@ -271,6 +273,44 @@ TEST(BenchCli, QuickRecommendationNamesPicksOnTheWholeCostParetoFront) {
     EXPECT_NE(page.find("<a id=\"" + situation + "\">"), std::string::npos) << situation;
   }
   EXPECT_NE(page.find(json["machine"]["gl_renderer"].get<std::string>()), std::string::npos) << "the machine is named";
+}
+
+// bench --micro-only: the micro table alone, in micro.csv and results.json alike. Every block runs
+// (each lookup kernel passed its check against its pass), and each visibility pass has its
+// ratio to its kernel: the table the visibility shaders are measured with (docs/bench.md).
+TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
+  const std::string dir = freshDir("bench-micro");
+  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  EXPECT_TRUE(json["rows"].empty());
+  const std::vector<std::vector<std::string>> csv = parseCsv(slurp(dir + "/out/micro.csv"));
+  ASSERT_EQ(csv.size() - 1, json["micro"].size());
+  const std::vector<std::string>& header = csv[0];
+  auto column = [&](const std::string& name) { return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+  size_t passes = 0;
+  for (size_t i = 0; i < json["micro"].size(); ++i) {
+    const nlohmann::json& m = json["micro"][i];
+    const std::string name = m["name"];
+    EXPECT_EQ(m["error"], "") << name;
+    EXPECT_EQ(csv[i + 1][column("name")], name);
+    EXPECT_GT(m["ms"]["median"].get<double>(), 0.0) << name;
+    if (m["baseline"] == "") {
+      EXPECT_TRUE(m["ratio"].is_null()) << name;
+      EXPECT_TRUE(csv[i + 1][column("ratio_median")].empty()) << name;
+      continue;
+    }
+    ASSERT_TRUE(m["ratio"].is_object()) << name;
+    EXPECT_GT(m["ratio"]["median"].get<double>(), 0.0) << name;
+    EXPECT_LE(m["ratio"]["p10"].get<double>(), m["ratio"]["median"].get<double>()) << name;
+    EXPECT_EQ(std::strtod(csv[i + 1][column("ratio_median")].c_str(), nullptr), m["ratio"]["median"].get<double>()) << name;
+    if (name.starts_with("visibility: ")) {
+      ++passes;
+      EXPECT_TRUE(m["baseline"].get<std::string>().starts_with("lookup: ")) << name;
+    }
+  }
+  EXPECT_EQ(passes, 6u) << "hard, pcf, pcf with hardware compare, vsm, vssm, msm";
+  EXPECT_NE(json["machine"]["clock"], "");
 }
 
 TEST(BenchCli, UnknownSweepKeyIsAUsageError) {

@@ -16,11 +16,12 @@ std::string freshDir(const std::string& name) {
   return dir.string();
 }
 
-RunResult runPenumbra(const std::string& args, const std::string& workDir, const std::string& launcher) {
+RunResult runPenumbra(const std::string& args, const std::string& workDir, const std::string& launcher,
+                      const std::string& stdoutTo) {
   // Each run gets its own folder: CTest runs tests in parallel processes.
   static int counter = 0;
   const std::string dir = workDir.empty() ? freshDir("run-" + std::to_string(counter++)) : workDir;
-  const std::string outFile = dir + "/.stdout", errFile = dir + "/.stderr";
+  const std::string outFile = stdoutTo.empty() ? dir + "/.stdout" : stdoutTo, errFile = dir + "/.stderr";
   const std::string cmd = "cd '" + dir + "' && " + launcher + " '" PENUMBRA_BINARY "' " + args + " > '" + outFile + "' 2> '" + errFile + "' < /dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
@@ -31,7 +32,7 @@ RunResult runPenumbra(const std::string& args, const std::string& workDir, const
     ss << in.rdbuf();
     return ss.str();
   };
-  r.out = slurp(outFile);
+  if (stdoutTo.empty()) r.out = slurp(outFile);
   r.err = slurp(errFile);
   return r;
 }

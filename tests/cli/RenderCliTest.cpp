@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -40,6 +41,111 @@ TEST(RenderCli, MissingSceneFileExits1NamingIt) {
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("/no/such/scene.json"), std::string::npos) << r.err;
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+// The reproduction: `printf 'v nan 0 0\n...' > t.obj; penumbra render --scene t.obj` exited 0.
+TEST(RenderCli, ObjWithNanExits1NamingTheLine) {
+  const std::string dir = freshDir("obj-nan");
+  std::ofstream(dir + "/t.obj") << "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const RunResult r = runPenumbra("render --scene t.obj --size 16x16", dir);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "penumbra: t.obj: line 1: v: 'nan' is not a finite number\n");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
+}
+
+// A scene file's shadow.filter or shadow.params that the registry refuses is bad input in that
+// file (exit 1 naming file and field, as docs/scenes.md says), not a bad command line (exit 2).
+TEST(RenderCli, SceneFileTechniqueErrorsExit1NamingFileAndField) {
+  const std::string bad = std::string(PENUMBRA_TEST_DATA) + "/bad/";
+  RunResult r = runPenumbra("render --size 16x16 --scene " + bad + "scene_bad_filter.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("scene_bad_filter.json: shadow.filter: unknown filter 'blurry'"), std::string::npos) << r.err;
+  r = runPenumbra("render --size 16x16 --scene " + bad + "scene_param_out_of_range.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("scene_param_out_of_range.json: shadow.params.hard.slopeBias: "), std::string::npos) << r.err;
+  // The same mistakes on the command line stay usage errors.
+  EXPECT_EQ(runPenumbra("render --size 16x16 --set hard.slopeBias=99").exitCode, 2);
+}
+
+// `--scene DIR` printed a libstdc++ text without the file.
+TEST(RenderCli, SceneThatIsAFolderIsNamed) {
+  const std::string dir = freshDir("scene-folder");
+  std::filesystem::create_directories(dir + "/models.json");
+  const RunResult r = runPenumbra("render --size 16x16 --scene models.json", dir);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "penumbra: models.json: is a folder, not a scene or model file\n");
+}
+
+// Messages quote what files hold; a terminal escape or a newline in a glTF string reached the
+// terminal as it was.
+TEST(RenderCli, MessagesCarryNoControlCharacters) {
+  const RunResult r = runPenumbra("render --size 16x16 --scene " + std::string(PENUMBRA_TEST_DATA) + "/bad/control_chars.gltf");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("alphaMode: '\\x1b[2J\\x0aOPAQUE' is not OPAQUE"), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+// msm at a 16384² map said "framebuffer incomplete" where vssm said out of memory with advice.
+// An address-space limit makes llvmpipe's allocation fail at once (a GPU's memory is not bound
+// by it, so the test runs on software renderers only).
+TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
+  const RunResult probe = runPenumbra("render --size 16x16 --verbose");
+  if (probe.err.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not a software renderer: " << probe.err;
+  constexpr const char* kLimit = "ulimit -v 3000000 &&";  // KiB: 3 GB, a 16384² moment map needs 4 GiB
+  const RunResult r = runPenumbra("render --size 16x16 --filter msm --shadow-map 16384", "", kLimit);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try a smaller --shadow-map"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+}
+
+// A 2 M-triangle load took 12 s without a word: a large model file is announced when it starts
+// and when it is loaded (with a bar between them on a terminal).
+TEST(RenderCli, LargeModelLoadsAreAnnounced) {
+  const std::string dir = freshDir("large-obj");
+  constexpr int kGrid = 600;  // 360 000 quads, ~17 MiB of OBJ: just above the 16 MiB announced
+  {
+    std::ofstream obj(dir + "/big.obj");
+    obj << "# " << std::string(1 << 20, '-') << "\n";  // a comment pads the file past the size announced
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; j <= kGrid; ++j) obj << "v " << i * 0.01 << " " << (i * 7 + j * 3) % 5 * 0.02 << " " << j * 0.01 << "\n";
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const int a = i * (kGrid + 1) + j + 1;
+        obj << "f " << a << " " << a + kGrid + 1 << " " << a + kGrid + 2 << " " << a + 1 << "\n";
+      }
+  }
+  ASSERT_GE(std::filesystem::file_size(dir + "/big.obj"), 16u << 20);
+  const RunResult r = runPenumbra("render --scene big.obj --size 16x16 --shadow-map 256", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("penumbra: loading big.obj ("), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" MiB)\npenumbra: loaded big.obj in "), std::string::npos) << r.err;
+  // Small files load silently.
+  EXPECT_EQ(runPenumbra("render --scene " + std::string(PENUMBRA_TEST_DATA) + "/models/box.obj --size 16x16").err, "");
+}
+
+// --size 16384x16384 was accepted where 8192² already took 66 s and 3.8 GB: the size is checked
+// against the driver and the memory before anything is allocated, with a size that would fit.
+// The limits here are llvmpipe's (one texture ≤ 1 GiB, textures in host memory); a GPU with the
+// memory would render these sizes.
+TEST(RenderCli, ImageSizeThatCannotFitIsRefusedBeforeRendering) {
+  const RunResult probe = runPenumbra("render --size 16x16 --verbose");
+  if (probe.err.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not llvmpipe: " << probe.err;
+  RunResult r = runPenumbra("render --size 16384x16384");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--size 16384x16384: llvmpipe"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cannot make a render target that large"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("8192x8192 or smaller would fit"), std::string::npos) << r.err;
+  constexpr const char* kLimit = "ulimit -v 3000000 &&";  // KiB: 3 GB, 8192² needs 4.5 GiB
+  r = runPenumbra("render --size 8192x8192", "", kLimit);
+  EXPECT_EQ(r.exitCode, 1);
+  // Renderer::screenBytes (its targets) plus the read-backs: 4.5 GiB at 8192² (72 B per pixel).
+  EXPECT_NE(r.err.find("--size 8192x8192: the image needs about 4.5 GiB"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("or smaller would fit"), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+  r = runPenumbra("compare --size 4096x4096 --samples 1", "", kLimit);  // compare reads back far more
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--size 4096x4096: the image needs about"), std::string::npos) << r.err;
 }
 
 TEST(RenderCli, UnknownFilterExits2) {
@@ -83,6 +189,22 @@ TEST(RenderCli, VisibilityExrAndDump) {
   EXPECT_LT(*std::min_element(v.begin(), v.end()), 0.1f);
   for (const char* f : {"color.png", "visibility.exr", "gbuffer-normal.png", "gbuffer-albedo.png", "shadow-map.exr", "shadow-map.png"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/d/" + f)) << f;
+}
+
+// --repeat renders the same frame several times and writes the last, the same image as one
+// render; --verbose then times the renders after the first (the first compiles the shaders).
+TEST(RenderCli, RepeatWritesTheSameImageAndTimesTheWarmFrames) {
+  const std::string dir = freshDir("frames");
+  RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --out one.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --repeat 3 --verbose --out three.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0;
+  EXPECT_EQ(readPng(dir + "/one.png", w, h), readPng(dir + "/three.png", w, h));
+  EXPECT_NE(r.err.find("medians of the 2 frames after the first"), std::string::npos) << r.err;
+  for (const char* pass : {"gbuffer", "shadow", "prefilter", "visibility", "lit"})
+    EXPECT_NE(r.err.find(std::string("penumbra: ") + pass), std::string::npos) << pass << "\n" << r.err;
+  EXPECT_EQ(runPenumbra("render --repeat 0").exitCode, 2);
 }
 
 // The distance field's bake reports its time and memory; a second run reads the cache silently.

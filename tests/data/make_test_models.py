@@ -7,10 +7,18 @@ Outputs (all committed; rerun after editing this script):
   models/alpha_quad.gltf   ground + alpha-masked quad (a 4x4 texture with holes) under a
                            KHR_lights_punctual sun whose size is in the light's extras, + a camera
   models/box.obj, box.mtl  a unit cube with a red Kd material
+  models/quantized_box.gltf  a unit box as gltfpack writes it (KHR_mesh_quantization): SHORT
+                           normalised positions scaled back by the node, BYTE normals, USHORT
+                           texture coordinates scaled back by KHR_texture_transform
+  models/textured_quads.gltf  alpha_quad's masked quad over a ground whose colour is a JPEG
+                           checker under KHR_texture_transform, with a WebP normal map that
+                           nothing decodes (Penumbra ignores normal maps)
   scenes/obj_and_gltf.json a scene file that places the OBJ and the glTF side by side
   bad/*                    files every loader must reject with one clear error (docs/scenes.md)
-  fuzz/gltf/*, fuzz/scene/* seed corpora for the libFuzzer targets
-Only the standard library is used (PNG and GLB are written by hand).
+  fuzz/gltf/*, fuzz/obj/*, fuzz/scene/* seed corpora for the libFuzzer targets
+The compressed glTF files (Draco, meshopt) come from tests/support/CompressedModels.cpp
+(penumbra_make_compressed_models tests/data).
+Only the standard library is used (PNG, JPEG and GLB are written by hand).
 """
 import base64
 import json
@@ -50,6 +58,86 @@ def mask_png():
             row += [220, 40, 30, 255] if c == "X" else [0, 0, 0, 0]
         rows.append(row)
     return png(4, 4, rows)
+
+
+# The ground texture of textured_quads.gltf: 4 x 4 blocks of 8 x 8 texels, row 0 = the image's
+# top row. Asymmetric under flips and quarter turns, so a wrong transform shows.
+CHECKER = ["ABAA",
+           "BBAB",
+           "ABBB",
+           "AABA"]
+CHECKER_RGB = {"A": (230, 200, 40), "B": (30, 60, 190)}
+CHECKER_BLOCK = 8
+# KHR_texture_transform of the ground: uv' = offset + rotate(rotation) (scale * uv).
+GROUND_UV_SCALE = [2.0, 2.0]
+GROUND_UV_ROTATION = 1.5707963267948966  # a quarter turn: u' = 2v, v' = -2u
+GROUND_UV_OFFSET = [0.0, 0.0]
+
+
+def jpeg_blocks(width, height, block_rgb):
+    """Baseline JPEG (4:4:4, quantisation 1) of an image whose 8 x 8 blocks are each one colour:
+    only DC coefficients, so a few lines encode it exactly. block_rgb(bx, by) -> (r, g, b)."""
+    def segment(marker, payload):
+        return struct.pack(">BBH", 0xFF, marker, len(payload) + 2) + payload
+
+    def canonical(counts, symbols):  # JPEG Huffman codes from the per-length counts
+        codes, code, k = {}, 0, 0
+        for length in range(1, 17):
+            for _ in range(counts[length - 1]):
+                codes[symbols[k]] = (code, length)
+                code += 1
+                k += 1
+            code <<= 1
+        return codes
+    dc_counts = [0, 1, 5, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0]  # ITU T.81 table K.3
+    dc_symbols = list(range(12))
+    ac_counts = [1] + [0] * 15  # one code: end of block
+    ac_symbols = [0x00]
+    dc_codes, ac_codes = canonical(dc_counts, dc_symbols), canonical(ac_counts, ac_symbols)
+
+    bits = []
+    def put(value, length):
+        bits.extend((value >> (length - 1 - i)) & 1 for i in range(length))
+    def put_dc(diff):
+        category = abs(diff).bit_length()
+        put(*dc_codes[category])
+        if category:
+            put(diff if diff >= 0 else diff + (1 << category) - 1, category)
+    previous = [0, 0, 0]
+    for by in range(height // 8):
+        for bx in range(width // 8):
+            r, g, b = block_rgb(bx, by)
+            ycc = (0.299 * r + 0.587 * g + 0.114 * b,
+                   -0.168736 * r - 0.331264 * g + 0.5 * b + 128,
+                   0.5 * r - 0.418688 * g - 0.081312 * b + 128)
+            for c in range(3):
+                dc = 8 * (int(round(ycc[c])) - 128)  # the DCT's DC term of a flat block
+                put_dc(dc - previous[c])
+                previous[c] = dc
+                put(*ac_codes[0x00])
+    bits.extend([1] * (-len(bits) % 8))
+    scan = bytearray()
+    for i in range(0, len(bits), 8):
+        byte = int("".join(map(str, bits[i:i + 8])), 2)
+        scan.append(byte)
+        if byte == 0xFF:
+            scan.append(0x00)  # byte stuffing
+    return (b"\xFF\xD8"
+            + segment(0xE0, b"JFIF\x00\x01\x01\x00\x00\x01\x00\x01\x00\x00")
+            + segment(0xDB, b"\x00" + bytes([1] * 64))
+            + segment(0xC0, struct.pack(">BHHB", 8, height, width, 3) + b"".join(bytes([c, 0x11, 0]) for c in (1, 2, 3)))
+            + segment(0xC4, b"\x00" + bytes(dc_counts) + bytes(dc_symbols))
+            + segment(0xC4, b"\x10" + bytes(ac_counts) + bytes(ac_symbols))
+            + segment(0xDA, b"\x03" + b"".join(bytes([c, 0x00]) for c in (1, 2, 3)) + b"\x00\x3F\x00")
+            + bytes(scan) + b"\xFF\xD9")
+
+
+def checker_jpeg():
+    return jpeg_blocks(4 * CHECKER_BLOCK, 4 * CHECKER_BLOCK, lambda bx, by: CHECKER_RGB[CHECKER[by][bx]])
+
+
+# The first bytes of a WebP file: enough for a loader to see what it is, nothing to decode.
+WEBP_HEADER = b"RIFF\x1a\x00\x00\x00WEBPVP8L\x0d\x00\x00\x00\x2f\x00\x00\x00\x10\x07\x10\x11\x11\x88\x88\xfe\x07\x00"
 
 
 class Gltf:
@@ -122,6 +210,67 @@ def alpha_quad_gltf():
                     extensions={"KHR_lights_punctual": {"light": 0}}),
              g.node(name="camera", camera=0, translation=[0.0, 5.5, 4.6], rotation=[s50, 0.0, 0.0, c50])]
     g.doc["scenes"][0]["nodes"] = roots
+    return g.finish_embedded()
+
+
+def textured_quads_gltf():
+    """alpha_quad.gltf with a JPEG-textured ground (KHR_texture_transform) and a WebP normal map."""
+    g = json.loads(alpha_quad_gltf())
+    g["images"].append({"uri": "data:image/jpeg;base64," + base64.b64encode(checker_jpeg()).decode()})
+    g["images"].append({"uri": "data:image/webp;base64," + base64.b64encode(WEBP_HEADER).decode()})
+    g["textures"] += [{"source": 1}, {"source": 2}]
+    ground = g["materials"][0]
+    ground["pbrMetallicRoughness"]["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
+    ground["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1, "extensions": {"KHR_texture_transform": {
+        "offset": GROUND_UV_OFFSET, "rotation": GROUND_UV_ROTATION, "scale": GROUND_UV_SCALE}}}
+    ground["normalTexture"] = {"index": 2}
+    g["extensionsUsed"] += ["KHR_texture_transform"]
+    g["extensionsRequired"] = ["KHR_texture_transform"]
+    g["asset"]["generator"] = "penumbra tests/data/make_test_models.py"
+    return json.dumps(g, indent=1).encode()
+
+
+# quantized_box.gltf: positions in [-1, 1] as normalised SHORT, the node scales them by half a
+# metre; texture coordinates in [0, 1] as normalised USHORT, KHR_texture_transform scales by 2.
+QUANT_BOX_HALF_M = 0.5
+QUANT_UV_SCALE = 2.0
+
+
+def quantized_box_gltf():
+    g = Gltf()
+    faces = [((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((0, 0, -1), (-1, 0, 0), (0, 1, 0)), ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+             ((-1, 0, 0), (0, 0, 1), (0, 1, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1))]
+    pos, nrm, uv, idx = [], [], [], []
+    for n, u, v in faces:
+        base = len(pos)
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            pos.append([n[i] + su * u[i] + sv * v[i] for i in range(3)])
+            nrm.append(n)
+            uv.append(((su + 1) / 2, (1 - sv) / 2))
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    def packed(fmt, rows, pad):  # one element per stride, padded to 4 bytes as the extension requires
+        return b"".join(struct.pack("<" + fmt, *r) + b"\x00" * pad for r in rows)
+    def view(data, stride):
+        index = g.view(data)
+        g.doc["bufferViews"][index]["byteStride"] = stride
+        return index
+    q_pos = [[round(c * 32767) for c in p] for p in pos]
+    q_nrm = [[round(c * 127) for c in n] for n in nrm]
+    q_uv = [[round(c * 65535) for c in t] for t in uv]
+    acc = g.doc["accessors"]
+    acc.append({"bufferView": view(packed("3h", q_pos, 2), 8), "componentType": 5122, "normalized": True, "count": 24, "type": "VEC3",
+                "min": [-32767] * 3, "max": [32767] * 3})
+    acc.append({"bufferView": view(packed("3b", q_nrm, 1), 4), "componentType": 5120, "normalized": True, "count": 24, "type": "VEC3"})
+    acc.append({"bufferView": view(packed("2H", q_uv, 0), 4), "componentType": 5123, "normalized": True, "count": 24, "type": "VEC2"})
+    indices = g.accessor("H", idx, "SCALAR", 5123)
+    g.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(mask_png()).decode()}]
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["materials"] = [{"name": "quantized", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {
+        "KHR_texture_transform": {"scale": [QUANT_UV_SCALE, QUANT_UV_SCALE]}}}}}]
+    g.doc["meshes"].append({"name": "box", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
+                                                            "indices": indices, "material": 0}]})
+    g.doc["scenes"][0]["nodes"] = [g.node(name="box", mesh=0, scale=[QUANT_BOX_HALF_M] * 3, translation=[0, QUANT_BOX_HALF_M, 0])]
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_mesh_quantization", "KHR_texture_transform"]
     return g.finish_embedded()
 
 
@@ -204,6 +353,8 @@ def bad_files():
     out["nan_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (nan, 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
     out["inf_position.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (float("inf"), 0.0, 0.0), (0.0, 1.0, 0.0)])[1]
     out["index_out_of_range.gltf"] = triangle_gltf(indices=(0, 1, 99))[1]
+    # Triangles whose corners lie on one line draw nothing: an empty image with exit 0 once.
+    out["degenerate_triangles.gltf"] = triangle_gltf([(0.0, 0.0, 0.0), (1.0, 1.0, 1.0), (2.0, 2.0, 2.0)])[1]
     out["zero_triangles.gltf"] = triangle_gltf(mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=1))[1]
     out["missing_buffer.gltf"] = triangle_gltf(mutate=lambda d: None)[1].replace(
         b'"uri": "data:application/octet-stream;base64,', b'"uri": "no_such_file.bin", "x": "')
@@ -229,6 +380,7 @@ def bad_files():
         d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(header + mask_png()[33:]).decode()}]
         d["textures"] = [{"source": 0}]
         d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        d["meshes"][0]["primitives"][0]["material"] = 0  # images are decoded when a material uses them
     out["huge_image.gltf"] = triangle_gltf(mutate=huge_image)[1]
 
     def deep(d):
@@ -239,13 +391,28 @@ def bad_files():
         d["nodes"][0]["scale"] = [1e30, 1e30, 1e30]
     out["huge_coordinates.gltf"] = triangle_gltf(mutate=huge_scale)[1]
 
+    g, _ = triangle_gltf()  # a base-colour texture in a format Penumbra does not decode, in a buffer view
+    g.doc["images"] = [{"bufferView": g.view(WEBP_HEADER), "mimeType": "image/webp"}]
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    g.doc["meshes"][0]["primitives"][0]["material"] = 0
+    out["webp_base_colour.gltf"] = g.finish_embedded()
+
+    def bad_transform(d):
+        d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(mask_png()).decode()}]
+        d["textures"] = [{"source": 0}]
+        d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {
+            "KHR_texture_transform": {"rotation": "a quarter turn"}}}}}]
+        d["meshes"][0]["primitives"][0]["material"] = 0
+    out["bad_texture_transform.gltf"] = triangle_gltf(mutate=bad_transform)[1]
+
     def sparse(d):
         d["accessors"][0]["sparse"] = {"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
                                        "values": {"bufferView": 0}}
     out["sparse_accessor.gltf"] = triangle_gltf(mutate=sparse)[1]
 
     def required_ext(d):
-        d["extensionsUsed"] = d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+        d["extensionsUsed"] = d["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]  # instances Penumbra would not place
     out["required_extension.gltf"] = triangle_gltf(mutate=required_ext)[1]
 
     def bad_light(d):
@@ -257,6 +424,17 @@ def bad_files():
         d["bufferViews"][0]["byteStride"] = 4
     out["stride_too_small.gltf"] = triangle_gltf(mutate=stride)[1]
 
+    def terminal_escape(d):  # a string the message quotes: an ANSI "clear screen" and a newline
+        d["materials"] = [{"alphaMode": "\u001b[2J\nOPAQUE"}]
+        d["meshes"][0]["primitives"][0]["material"] = 0
+    out["control_chars.gltf"] = triangle_gltf(mutate=terminal_escape)[1]
+
+    # glTF 1.0 (named and refused) and members tinygltf requires: its own messages named no field.
+    out["gltf1.gltf"] = json.dumps({"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}},
+                                    "nodes": {"root": {"meshes": ["box"]}}}, indent=1)
+    out["empty_object.gltf"] = b"{}"
+    out["missing_byte_length.gltf"] = triangle_gltf(mutate=lambda d: d["bufferViews"][0].pop("byteLength"))[1]
+    out["primitive_without_attributes.gltf"] = triangle_gltf(mutate=lambda d: d["meshes"][0]["primitives"].append({"mode": 4}))[1]
     out["not_json.gltf"] = b'{"asset": {"version": "2.0"}, "meshes": [ {"primitives": '
     out["empty.glb"] = b""
     good_glb = triangle_glb()
@@ -266,8 +444,18 @@ def bad_files():
 
     out["index_out_of_range.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n"
     out["inf_position.obj"] = "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"
+    out["degenerate_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 4 4 1\n"
     out["zero_triangles.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n"
     out["missing_mtl.obj"] = "mtllib no_such.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    # tinyobjloader reads what it cannot parse as 0: each of these loaded silently once.
+    out["nan_position.obj"] = "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    out["letters_position.obj"] = "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n"
+    out["huge_index.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"
+    # tinyobjloader converts a skin weight's joint id (its own `vw` extension) to int unchecked:
+    # undefined behaviour found by fuzzing. Penumbra reads no `vw`; the face is out of range.
+    out["skin_weight_overflow.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e40 0.5\nf 1 2 4\n"
+    out["nan_kd.obj"] = "mtllib nan_kd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl black\nf 1 2 3\n"
+    out["nan_kd.mtl"] = "newmtl black\nKd nan 0.5 0.5\n"
 
     base = {"lights": [{"type": "sun"}], "objects": [{"shape": "plane"}]}
     def scene(obj):
@@ -280,11 +468,30 @@ def bad_files():
     out["scene_model_not_a_model.json"] = scene({"file": "scene_missing_model.json"})
     out["scene_number_overflow.json"] = scene({"shape": "box", "translate": [0, 0, 0]}).replace("[\n    0,", "[\n    1e999,", 1)
     out["scene_huge_translate.json"] = scene({"shape": "box", "translate": [1e20, 0, 0]})
+
+    def with_top(**fields):
+        s = json.loads(json.dumps(base))
+        s.update(fields)
+        return json.dumps(s, indent=1)
+    # Each of these rendered an empty, black or garbage image with exit 0, or exited 2 without
+    # naming the file.
+    out["scene_camera_down.json"] = with_top(camera={"position": [0, 10, 0], "target": [0, 0, 0]})
+    out["scene_camera_zero_up.json"] = with_top(camera={"position": [0, 2, 5], "up": [0, 0, 0]})
+    out["scene_camera_up_along_view.json"] = with_top(camera={"position": [0, 0, 5], "up": [0, 0, -2]})
+    out["scene_light_color_huge.json"] = with_top(lights=[{"type": "sun", "color": [1e38, 1, 1]}])
+    out["scene_light_color_negative.json"] = with_top(lights=[{"type": "sun", "color": [1, -0.5, 1]}])
+    out["scene_ambient_huge.json"] = with_top(ambient=[1e38, 0, 0])
+    out["scene_bad_filter.json"] = with_top(shadow={"filter": "blurry"})
+    out["scene_bad_param.json"] = with_top(shadow={"params": {"hard.nothing": 1}})
+    out["scene_param_out_of_range.json"] = with_top(shadow={"params": {"hard.slopeBias": 99}})
+    out["scene_binary.json"] = mask_png()  # not JSON: the message must not echo its bytes
     return out
 
 
 def main():
     write("models/alpha_quad.gltf", alpha_quad_gltf())
+    write("models/textured_quads.gltf", textured_quads_gltf())
+    write("models/quantized_box.gltf", quantized_box_gltf())
     write("models/box.obj", BOX_OBJ)
     write("models/box.mtl", BOX_MTL)
     write("scenes/obj_and_gltf.json", json.dumps(SCENE, indent=1) + "\n")
@@ -295,7 +502,14 @@ def main():
     write("fuzz/gltf/triangle.glb", triangle_glb())
     write("fuzz/gltf/strip.gltf", triangle_gltf(indices=(0, 1, 2, 1), mutate=lambda d: d["meshes"][0]["primitives"][0].update(mode=5))[1])
     write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
+    write("fuzz/gltf/textured_quads.gltf", textured_quads_gltf())  # the JPEG decoder and KHR_texture_transform
+    write("fuzz/gltf/quantized_box.gltf", quantized_box_gltf())
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
+    write("fuzz/obj/box.obj", BOX_OBJ)
+    write("fuzz/obj/box.mtl", BOX_MTL)
+    write("fuzz/obj/quad_with_uv_and_normals.obj",  # vt, vn, negative indices, a polygon, o/g, usemtl
+          "# seed\nmtllib box.mtl\no quad\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "vn 0 1 0\ng top\nusemtl red\nf -4/1/1 -3/2/1 -2/3/1 -1/4/1\nf 1//1 3//1 2//1\n")
     write("fuzz/scene/obj_and_gltf.json", json.dumps(SCENE).replace("../models/", "models/"))
     write("fuzz/scene/number_overflow.json", bad_files()["scene_number_overflow.json"])  # found by fuzzing
     write("fuzz/scene/shapes.json", json.dumps({

@@ -54,35 +54,9 @@ TEST(HardShadow, GrazingAcneWithoutBiasAndNoneWithSlopeBias) {
   EXPECT_LE(acneSlope, 0.005);
 }
 
-// Peter-panning: a bias moves receivers toward the light, so floor points just behind a
-// caster's contact read lit. A truly shadowed floor point whose occluder is t metres away along
-// the light ray is lit only if the bias exceeds t; seen in the map's plane that detachment spans
-// t · tan(elevation). The largest such span among wrongly lit pixels is the gap, in texels.
+// Peter-panning, as TestGeometry's contactGapTexels measures it, for the hard filter.
 double contactGapTexels(const Scene& scene, const std::vector<std::pair<std::string, std::string>>& params) {
-  const RenderResult r = renderScene(scene, "uniform", "hard", params, kSize, kSize, 2048);
-  const ShadowView& view = r.frusta.views.at(0);
-  const float texelM = std::max(view.extent.x, view.extent.y) / 2048.0f;
-  const glm::vec3 toSun = -scene.light().direction;
-  const float tanElevation = toSun.y / glm::length(glm::vec2(toSun.x, toSun.z));
-  CasterTriangles tris(scene);
-  // Jitter across the light's direction only: keeps the aliased lateral shadow edges out but
-  // keeps the points right behind the contact, where peter-panning shows.
-  constexpr float kJitterM = 0.04f;
-  const glm::vec3 across = glm::normalize(glm::cross(glm::vec3(0, 1, 0), toSun));
-  constexpr float kStartM = 1e-3f;
-  double gap = 0.0;
-  size_t shadowed = 0;
-  for (size_t i = 0; i < r.visibility.size(); ++i) {
-    const glm::vec3 p(r.gbuffer.position[i]);
-    if (!onFloor(r.gbuffer.position[i])) continue;
-    if (tris.robustOcclusion(scene, p, {0, 1, 0}, kJitterM, across) != 1.0f) continue;
-    ++shadowed;
-    if (r.visibility[i] < 0.5f) continue;
-    const float t = tris.nearestHit(p + glm::vec3(0, kStartM, 0), toSun, 0.0f, 1e30f);
-    gap = std::max(gap, static_cast<double>(t * tanElevation / texelM));
-  }
-  EXPECT_GT(shadowed, 500u) << "the camera must see the box's shadow";
-  return gap;
+  return contactGapTexels(scene, renderScene(scene, "uniform", "hard", params, kSize, kSize, 2048), 2048);
 }
 
 TEST(HardShadow, SlopeBiasShadowStillTouchesTheBox) {

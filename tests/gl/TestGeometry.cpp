@@ -98,4 +98,30 @@ std::vector<uint8_t> floorNearCasters(const Scene& scene, const GBufferData& g, 
   return band;
 }
 
+double contactGapTexels(const Scene& scene, const RenderResult& r, int mapSize) {
+  const ShadowView& view = r.frusta.views.at(0);
+  const float texelM = std::max(view.extent.x, view.extent.y) / static_cast<float>(mapSize);
+  const glm::vec3 toSun = -scene.light().direction;
+  const float tanElevation = toSun.y / glm::length(glm::vec2(toSun.x, toSun.z));
+  CasterTriangles tris(scene);
+  // Jitter across the light's direction only: keeps the aliased lateral shadow edges out but
+  // keeps the points right behind the contact, where peter-panning shows.
+  constexpr float kJitterM = 0.04f;
+  const glm::vec3 across = glm::normalize(glm::cross(glm::vec3(0, 1, 0), toSun));
+  constexpr float kStartM = 1e-3f;
+  double gap = 0.0;
+  size_t shadowed = 0;
+  for (size_t i = 0; i < r.visibility.size(); ++i) {
+    const glm::vec3 p(r.gbuffer.position[i]);
+    if (!onFloor(r.gbuffer.position[i])) continue;
+    if (tris.robustOcclusion(scene, p, {0, 1, 0}, kJitterM, across) != 1.0f) continue;
+    ++shadowed;
+    if (r.visibility[i] < 0.5f) continue;
+    const float t = tris.nearestHit(p + glm::vec3(0, kStartM, 0), toSun, 0.0f, 1e30f);
+    gap = std::max(gap, static_cast<double>(t * tanElevation / texelM));
+  }
+  EXPECT_GT(shadowed, 500u) << "the camera must see the box's shadow";
+  return gap;
+}
+
 }  // namespace penumbra::test

@@ -2,6 +2,8 @@
 // CPU ray casting against a scene's triangles, for tests that need a geometric truth without
 // the Embree reference: is the segment from a point toward the light blocked by a caster? And
 // the floor pixels that are robustly in or out of a hard shadow, picked with it.
+#include "GlFixture.h"
+
 #include <penumbra/Renderer.h>
 #include <penumbra/Scene.h>
 
@@ -47,5 +49,12 @@ FloorProbes floorProbes(const Scene& scene, const GBufferData& g, size_t perKind
 /// directions from a little above the floor.
 std::vector<uint8_t> floorNearCasters(const Scene& scene, const GBufferData& g, std::span<const uint8_t> mask,
                                       float bandM);
+
+/// Peter-panning: a bias moves receivers toward the light, so floor points just behind a
+/// caster's contact read lit. A truly shadowed floor point whose occluder is t metres away along
+/// the sun's ray is lit only if the bias exceeds t; seen in the map's plane that detachment spans
+/// t · tan(elevation). The largest such span among wrongly lit (V >= 0.5) floor pixels of `r`
+/// (a sun scene, one uniform view of mapSize texels) is the gap, in texels.
+double contactGapTexels(const Scene& scene, const RenderResult& r, int mapSize);
 
 }  // namespace penumbra::test

@@ -23,7 +23,7 @@ test -f "$tmp/prefix/lib/cmake/Penumbra/PenumbraConfig.cmake"
 echo "== Penumbra::shadows' link interface"
 links=$(grep -h 'INTERFACE_LINK_LIBRARIES' "$tmp/prefix/lib/cmake/Penumbra/Penumbra_shadowsTargets.cmake")
 echo "$links" | sed 's/^ */  /'
-if echo "$links" | grep -Eiw 'egl|glfw|glfw3|imgui|embree|tbb|openexr|imath|penumbra_reference|penumbra_bake'; then
+if echo "$links" | grep -Eiw 'egl|glfw|glfw3|imgui|embree|tbb|openexr|imath|penumbra_reference|penumbra_bake|turbojpeg|draco|meshoptimizer'; then
   echo "FAIL: Penumbra::shadows links one of EGL, GLFW, ImGui, Embree, TBB, OpenEXR" >&2
   exit 1
 fi
@@ -49,13 +49,13 @@ cmake -S "$source/tests/install/reference_consumer" -B "$tmp/consumer" "${genera
 cmake --build "$tmp/consumer" > "$tmp/consumer-build.log"
 "$tmp/consumer/reference_consumer"
 
-echo "== pkg-config penumbra"
+echo "== pkg-config penumbra-scenes (and penumbra under it)"
 cat > "$tmp/pc.cpp" <<'CPP'
 #include <penumbra/SceneIO.h>
 #include <cstdio>
 int main() { std::printf("%zu built-in scenes\n", penumbra::builtinSceneNames().size()); }
 CPP
-flags=$(PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig" pkg-config --cflags --libs penumbra)
+flags=$(PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig" pkg-config --cflags --libs penumbra-scenes)
 echo "  $flags"
 # shellcheck disable=SC2086
 c++ -std=c++20 "$tmp/pc.cpp" -o "$tmp/pc" $flags
@@ -73,7 +73,7 @@ if echo "$outputs" | grep -Eq '(^|/)(penumbra|penumbra_asan|penumbra_unit_tests|
   echo "FAIL: a tool or test is built with the tools off" >&2
   exit 1
 fi
-for wanted in penumbra_core penumbra_reference penumbra_bake; do
+for wanted in penumbra_core penumbra_sceneio penumbra_reference penumbra_bake; do
   echo "$libraries" | grep -qx "$wanted" || { echo "FAIL: library $wanted missing" >&2; exit 1; }
 done
 echo "$outputs" | grep -qx penumbra_example_engine || { echo "FAIL: the example is not built" >&2; exit 1; }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # expect_error.sh PENUMBRA FILE: runs `PENUMBRA render --scene FILE --size 32x32` (the
 # AddressSanitizer + UBSan build) and passes only if it exits 1 with exactly one stderr line that
-# starts "penumbra: " and names FILE, writes no image, and no sanitizer reported anything.
+# starts "penumbra: " and names FILE, is text (UTF-8, no control characters: no bytes of the file
+# echoed), writes no image, and no sanitizer reported anything.
 set -u
 bin=$1
 file=$2
@@ -18,6 +19,8 @@ fail() { echo "FAIL $file: $1"; echo "--- exit code $rc, stderr:"; cat "$tmp/std
 grep -qE "Sanitizer|runtime error:" "$tmp/stderr" && fail "sanitizer report"
 [ "$rc" -eq 1 ] || fail "exit code $rc, expected 1"
 [ "$(wc -l <"$tmp/stderr")" -eq 1 ] || fail "expected exactly one line on stderr"
+iconv -f UTF-8 -t UTF-8 "$tmp/stderr" >/dev/null 2>&1 || fail "the message is not UTF-8 text (raw bytes?)"
+LC_ALL=C grep -q $'[\x01-\x08\x0b-\x1f\x7f]' "$tmp/stderr" && fail "the message holds control characters"
 case "$err" in "penumbra: "*) ;; *) fail "the line does not start with 'penumbra: '" ;; esac
 name=$(basename "$file")
 case "$err" in *"$name"*) ;; *) fail "the message does not name $name" ;; esac

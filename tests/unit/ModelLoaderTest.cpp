@@ -1,23 +1,29 @@
 // Model files without GL: what the glTF and OBJ loaders read (hierarchy, strips, materials,
 // alpha masks, lights from KHR_lights_punctual with extras.size, cameras), the default light and
 // camera, the scene-file "file" hook, and one clear error for every file in tests/data/bad/.
-#include "scene/loaders/GltfLoader.h"
-#include "scene/loaders/ModelImport.h"
-#include "scene/loaders/ObjLoader.h"
+#include "CompressedModels.h"
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/ModelImport.h"
+#include "sceneio/loaders/ObjLoader.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 using namespace penumbra;
 namespace fs = std::filesystem;
@@ -202,7 +208,7 @@ TEST(ModelLoader, NodeTransformsCompose) {
 TEST(ModelLoader, PunctualLightsAndTheirSize) {
   const std::string lights = R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [
       {"type": "spot", "intensity": 5, "spot": {"outerConeAngle": 0.5}, "extras": {"size": 0.25}},
-      {"type": "point", "extras": {"size": 0.1}}]}},)";
+      {"type": "point", "range": 12, "extras": {"size": 0.1}}]}},)";
   const std::string nodes = R"([{"mesh": 0},
       {"translation": [0, 4, 0], "rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 0}}},
       {"translation": [3, 0.5, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}}])";
@@ -212,14 +218,16 @@ TEST(ModelLoader, PunctualLightsAndTheirSize) {
   EXPECT_EQ(spot.type, LightType::Spot);
   EXPECT_NEAR(spot.size, 0.25f, 1e-7f);
   EXPECT_NEAR(spot.coneAngleRad, 0.5f, 1e-6f);
+  EXPECT_EQ(spot.innerConeAngleRad, 0.0f);  // KHR_lights_punctual's default inner angle
+  EXPECT_EQ(spot.rangeM, 0.0f);             // no range given: unlimited
   EXPECT_NEAR(spot.position.y, 4.0f, 1e-6f);
   EXPECT_NEAR(spot.direction.y, -1.0f, 1e-5f);
-  // The point light becomes a spot light aimed at the middle of the scene's bounds.
+  // The point light stays a point light, with its position and range.
   const Light& point = m.scene.lights[1];
-  EXPECT_EQ(point.type, LightType::Spot);
+  EXPECT_EQ(point.type, LightType::Point);
   EXPECT_NEAR(point.size, 0.1f, 1e-7f);
-  const glm::vec3 toCenter = glm::normalize(m.scene.bounds().center() - point.position);
-  EXPECT_NEAR(glm::dot(point.direction, toCenter), 1.0f, 1e-5f);
+  EXPECT_EQ(point.position, glm::vec3(3.0f, 0.5f, 0.0f));
+  EXPECT_EQ(point.rangeM, 12.0f);
   // A sun's size is an angle: 0.7 rad is refused, naming the field.
   const std::string bigSun = R"("extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "extras": {"size": 0.7}}]}},)";
   const std::string e = gltfError(meshGltf(kSquare, {0, 1, 2}, "", R"([{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 0}}}])", "[0]", bigSun));
@@ -227,13 +235,24 @@ TEST(ModelLoader, PunctualLightsAndTheirSize) {
 }
 
 TEST(ModelLoader, EveryBadFileGetsOneErrorNamingIt) {
+  // These load: their mistake is a technique choice, which the CLI checks against the registry
+  // (tests/loaders runs every bad file through the CLI).
+  const std::set<std::string> techniqueErrors = {"scene_bad_filter.json", "scene_bad_param.json", "scene_param_out_of_range.json"};
   size_t files = 0;
   for (const fs::directory_entry& f : fs::directory_iterator(kData / "bad")) {
     ++files;
+    if (techniqueErrors.count(f.path().filename().string())) {
+      EXPECT_NO_THROW(loadScene(f.path().string())) << f.path();
+      continue;
+    }
     const std::string e = errorOf([&] { loadScene(f.path().string()); });
     ASSERT_FALSE(e.empty()) << f.path() << " was accepted";
     EXPECT_NE(e.find(f.path().filename().string()), std::string::npos) << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+    // control_chars.gltf quotes a newline from the file; the CLI prints it escaped
+    // (RenderCli.MessagesCarryNoControlCharacters).
+    if (f.path().filename() != "control_chars.gltf") {
+      EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+    }
   }
   EXPECT_GE(files, 15u);
 }
@@ -255,4 +274,261 @@ TEST(ModelLoader, ErrorsNameTheProblem) {
   EXPECT_NE(err("missing_buffer.gltf").find("no_such_file.bin"), std::string::npos);
   EXPECT_NE(err("bad_light_size.gltf").find("extras.size"), std::string::npos);
   EXPECT_NE(err("empty.glb").find("empty"), std::string::npos);
+}
+
+// tinyobjloader reads a number it cannot parse as 0 and an overflowing index as anything: each
+// of these loaded silently once (a vertex at 0, a black material, the last vertex).
+TEST(ModelLoader, ObjNumbersThatAreNotNumbersNameTheirLine) {
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("nan_position.obj").find("nan_position.obj: line 1: v: 'nan' is not a finite number"), std::string::npos)
+      << err("nan_position.obj");
+  EXPECT_NE(err("letters_position.obj").find("line 2: v: 'zero' is not a finite number"), std::string::npos);
+  EXPECT_NE(err("inf_position.obj").find("line 2: v: '1e999' is not a finite number"), std::string::npos);
+  EXPECT_NE(err("huge_index.obj").find("line 4: f: '99999999999999999999' is not an index"), std::string::npos)
+      << err("huge_index.obj");
+  EXPECT_NE(err("nan_kd.obj").find("nan_kd.obj: mtllib 'nan_kd.mtl': line 2: Kd: 'nan' is not a finite number"), std::string::npos)
+      << err("nan_kd.obj");
+  auto objError = [](const std::string& text) {
+    return errorOf([&] { loaders::loadObjFromMemory(text, "mem.obj", ""); });
+  };
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_NE(objError(triangle + "vn inf 0 1\nf 1//1 2//1 3//1\n").find("line 4: vn: 'inf'"), std::string::npos);
+  EXPECT_NE(objError(triangle + "vt 0.5 x\nf 1/1 2/1 3/1\n").find("line 4: vt: 'x'"), std::string::npos);
+  EXPECT_NE(objError(triangle + "f 0 1 2\n").find("line 4: f: '0' is not an index"), std::string::npos);
+  EXPECT_NE(objError(triangle + "f 1/ 2 3\n").find("line 4: f: '1/' ends in '/'"), std::string::npos);
+  EXPECT_NE(objError("v 0 0\n").find("line 1: v: 2 numbers"), std::string::npos);
+  // What real files hold still loads: comments, tabs, CRLF, '+', exponents, relative indices, w.
+  EXPECT_EQ(objError("# c\r\nv\t+0 0 0 1\r\nv 1e0 0 0 # x\r\nv 0 1 0\r\nvt 0 0\r\nf -3/1 -2/1 -1/1\r\n"), "");
+}
+
+// A 2 M-triangle load took 12 s without a word: the loaders report their progress (the CLI
+// shows it for large files), from 0 when a file starts to 1 when it is loaded, increasing.
+TEST(ModelLoader, ProgressIsReportedWhileAFileLoads) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-progress-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  constexpr int kGrid = 300;  // 90 000 quads: 180 000 triangles, a 4 MB file
+  {
+    std::ofstream obj(dir / "grid.obj");
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; j <= kGrid; ++j) obj << "v " << i << " 0 " << j << "\n";
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const int a = i * (kGrid + 1) + j + 1;
+        obj << "f " << a << " " << a + kGrid + 1 << " " << a + kGrid + 2 << " " << a + 1 << "\n";
+      }
+  }
+  for (const fs::path& file : {dir / "grid.obj", kData / "models/alpha_quad.gltf"}) {
+    std::vector<double> seen;
+    const loaders::Model m = loaders::loadModelFile(file, {.progress = [&](const fs::path& f, double x) {
+      EXPECT_EQ(f, file);
+      seen.push_back(x);
+    }});
+    ASSERT_GE(seen.size(), 3u) << file;
+    EXPECT_EQ(seen.front(), 0.0);
+    EXPECT_EQ(seen.back(), 1.0);
+    for (size_t i = 1; i < seen.size(); ++i) EXPECT_GT(seen[i], seen[i - 1]) << file << " report " << i;
+    if (file.extension() == ".obj") {
+      EXPECT_GE(seen.size(), 50u) << "a 4 MB file is reported in steps";
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// A file of only degenerate triangles rendered an empty image with exit 0.
+TEST(ModelLoader, OnlyDegenerateTrianglesAreRefused) {
+  for (const char* name : {"degenerate_triangles.obj", "degenerate_triangles.gltf"}) {
+    const std::string e = errorOf([&] { loadScene((kData / "bad" / name).string()); });
+    EXPECT_NE(e.find(std::string(name) + ": every triangle has zero area"), std::string::npos) << e;
+  }
+  // Inside a scene file, placed next to shapes that draw, such a model is still an error.
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-degenerate-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  std::ofstream(dir / "s.json") << R"({"lights": [{"type": "sun"}], "objects": [{"shape": "box"}, {"file": "flat.obj"}]})";
+  const std::string e = errorOf([&] { loadScene((dir / "s.json").string()); });
+  EXPECT_NE(e.find("objects[1].file"), std::string::npos) << e;
+  EXPECT_NE(e.find("every triangle has zero area"), std::string::npos) << e;
+  fs::remove_all(dir);
+}
+
+// JPEG base-colour textures decode (they were refused), KHR_texture_transform is folded into the
+// texture coordinates, and an image no material's base colour uses (a WebP normal map) is never
+// decoded. tests/data/make_test_models.py writes the file.
+TEST(ModelLoader, JpegTextureTransformAndUnusedImages) {
+  const loaders::Model m = loaders::loadModelFile(kData / "models/textured_quads.gltf");
+  const Scene& s = m.scene;
+  ASSERT_EQ(s.images.size(), 2u) << "the mask and the JPEG; the WebP normal map is never decoded";
+  const Object& ground = s.objects[0];
+  const Material& mat = s.materials[ground.material];
+  ASSERT_GE(mat.baseColorTexture, 0);
+  const Image& jpeg = s.images[static_cast<size_t>(mat.baseColorTexture)];
+  ASSERT_EQ(jpeg.width, 32);
+  ASSERT_EQ(jpeg.height, 32);
+  const char* const checker[4] = {"ABAA", "BBAB", "ABBB", "AABA"};
+  const glm::ivec3 colours[2] = {{230, 200, 40}, {30, 60, 190}};
+  constexpr int kJpegTolerance = 2;  // YCbCr rounding
+  for (int by = 0; by < 4; ++by)
+    for (int bx = 0; bx < 4; ++bx) {
+      const glm::ivec3 want = colours[checker[by][bx] == 'A' ? 0 : 1];
+      const size_t texel = static_cast<size_t>(4 * ((8 * by + 4) * 32 + 8 * bx + 4));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(jpeg.rgba[texel + static_cast<size_t>(c)], want[c], kJpegTolerance) << bx << "," << by;
+    }
+  // uv (0,0) at (-3, 0, -3) across the 6 m ground; the transform: scale 2, a quarter turn.
+  for (const Vertex& v : s.meshes[ground.mesh].vertices) {
+    const glm::vec2 uv((v.position.x + 3.0f) / 6.0f, (v.position.z + 3.0f) / 6.0f);
+    EXPECT_NEAR(v.uv.x, 2.0f * uv.y, 1e-5f) << v.position.x << "," << v.position.z;
+    EXPECT_NEAR(v.uv.y, -2.0f * uv.x, 1e-5f) << v.position.x << "," << v.position.z;
+  }
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("webp_base_colour.gltf").find("textures[0] (images[0]): WebP is not an image format Penumbra decodes (PNG, JPEG)"),
+            std::string::npos) << err("webp_base_colour.gltf");
+  EXPECT_NE(err("bad_texture_transform.gltf")
+                .find("materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation: expected a finite number"),
+            std::string::npos) << err("bad_texture_transform.gltf");
+}
+
+// glTF 1.0 was not named; tinygltf's own messages carried no field ("{}" gave "JSON string too
+// short."): the members it requires are checked first, naming the field.
+TEST(ModelLoader, GltfStructureErrorsNameTheField) {
+  const fs::path bad = kData / "bad";
+  auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
+  EXPECT_NE(err("gltf1.gltf").find("gltf1.gltf: asset.version: '1.0': a glTF 1.0 file: Penumbra reads glTF 2.0 only"), std::string::npos)
+      << err("gltf1.gltf");
+  EXPECT_NE(err("glb_version1.glb").find("a binary glTF 1.0 file (GLB version 1)"), std::string::npos) << err("glb_version1.glb");
+  EXPECT_NE(err("empty_object.gltf").find("empty_object.gltf: asset: missing"), std::string::npos) << err("empty_object.gltf");
+  EXPECT_NE(err("missing_byte_length.gltf").find("bufferViews[0].byteLength: missing"), std::string::npos) << err("missing_byte_length.gltf");
+  EXPECT_NE(err("primitive_without_attributes.gltf").find("meshes[0].primitives[1].attributes: missing"), std::string::npos)
+      << err("primitive_without_attributes.gltf");
+  EXPECT_NE(gltfError(R"({"asset": {"version": "2.0"}, "accessors": [{"count": 3, "type": "VEC3"}]})").find("accessors[0].componentType: missing"),
+            std::string::npos);
+  EXPECT_NE(gltfError(R"({"asset": {"version": "2.0"}, "nodes": {"a": {}}})").find("collections keyed by name are glTF 1.0"), std::string::npos);
+  EXPECT_NE(gltfError(R"({"asset": {"version": 2}})").find("asset.version: expected a string"), std::string::npos);
+}
+
+// KHR_mesh_quantization as gltfpack writes it: SHORT positions (normalised, 8-byte stride) that
+// the node scales back, BYTE normals (4-byte stride), USHORT texture coordinates that
+// KHR_texture_transform scales back. tests/data/make_test_models.py writes the file.
+TEST(ModelLoader, QuantizedMeshesReadBackTheirValues) {
+  const Scene s = loadScene((kData / "models/quantized_box.gltf").string());
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Aabb b = s.bounds();
+  EXPECT_NEAR(b.lo.y, 0.0f, 1e-4f);  // SHORT ±32767 → ±1, × 0.5 m, lifted by 0.5 m
+  EXPECT_NEAR(b.hi.y, 1.0f, 1e-4f);
+  EXPECT_NEAR(b.lo.x, -0.5f, 1e-4f);
+  const Mesh& m = s.meshes[s.objects[0].mesh];
+  ASSERT_EQ(m.vertices.size(), 24u);
+  constexpr float kByteNormalStep = 1.0f / 127.0f;
+  for (const Vertex& v : m.vertices) {
+    // Each face's normal is its position's one coordinate at ±1 (before the node's scale).
+    const glm::vec3 face = glm::round(v.normal);
+    EXPECT_NEAR(glm::length(v.normal), 1.0f, kByteNormalStep);
+    EXPECT_NEAR(glm::dot(face, v.position), 1.0f, 1e-4f) << "normal (" << v.normal.x << "," << v.normal.y << "," << v.normal.z << ")";
+    // USHORT 0 or 65535 → 0 or 1, scaled by 2 by the texture transform.
+    for (float c : {v.uv.x, v.uv.y}) EXPECT_TRUE(std::abs(c) < 1e-6f || std::abs(c - 2.0f) < 1e-6f) << c;
+  }
+  // An integer NORMAL must be normalised (the extension allows only normalised BYTE and SHORT).
+  std::ifstream in(kData / "models/quantized_box.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string normalAccessor = R"("componentType": 5120,
+   "normalized": true)";
+  const size_t at = text.find(normalAccessor);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, normalAccessor.size(), R"("componentType": 5120,
+   "normalized": false)");
+  const std::string e = gltfError(text);
+  EXPECT_NE(e.find("accessors[1]: a BYTE or SHORT NORMAL must be normalized (KHR_mesh_quantization)"), std::string::npos) << e;
+}
+
+namespace {
+
+loaders::Model loadGlb(const std::vector<uint8_t>& bytes) { return loaders::loadGltfFromMemory(bytes, "mem.glb", ""); }
+
+std::vector<uint8_t> readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+// EXT_meshopt_compression (what gltfpack -c writes): vertex and index codecs, the octahedral
+// normal filter and the fallback buffer without data. The decoded mesh is the original, vertex
+// for vertex (the codecs are lossless; the 8-bit normal filter is not). Texture coordinates are
+// decoded too but only read under a base-colour texture, which these materials do not have.
+TEST(ModelLoader, MeshoptDecodesToTheOriginalGeometry) {
+  const test::BoxGeometry g = test::boxGeometry();
+  const loaders::Model m = loadGlb(test::meshoptBoxGlb());
+  ASSERT_EQ(m.scene.meshes.size(), 2u);
+  for (const auto& [mesh, part] : {std::pair{&m.scene.meshes[0], &g.box}, std::pair{&m.scene.meshes[1], &g.ground}}) {
+    ASSERT_EQ(mesh->vertices.size(), part->positions.size() / 3);
+    EXPECT_EQ(mesh->indices, part->indices);
+    for (size_t i = 0; i < mesh->vertices.size(); ++i) {
+      const Vertex& v = mesh->vertices[i];
+      EXPECT_EQ(v.position, glm::make_vec3(&part->positions[3 * i])) << i;
+      EXPECT_NEAR(glm::distance(v.normal, glm::make_vec3(&part->normals[3 * i])), 0.0f, 2.0f / 127.0f) << i;
+    }
+  }
+  EXPECT_EQ(readBytes(kData / "models/meshopt_box.glb"), test::meshoptBoxGlb()) << "rerun penumbra_make_compressed_models tests/data";
+}
+
+// KHR_draco_mesh_compression through Google's Draco decoder (it was refused: "accessor[0] invalid
+// bufferView"). Draco reorders and quantises (14-bit positions, 10-bit normals, 12-bit texture
+// coordinates): every original triangle is found again within the quantisation step.
+TEST(ModelLoader, DracoDecodesToTheOriginalGeometry) {
+  const test::BoxGeometry g = test::boxGeometry();
+  const loaders::Model m = loadGlb(test::dracoBoxGlb());
+  ASSERT_EQ(m.scene.meshes.size(), 2u);
+  constexpr float kPositionToleranceM = 1e-3f, kNormalTolerance = 1e-2f;
+  for (const auto& [mesh, part] : {std::pair{&m.scene.meshes[0], &g.box}, std::pair{&m.scene.meshes[1], &g.ground}}) {
+    ASSERT_EQ(mesh->triangleCount(), part->indices.size() / 3);
+    for (size_t t = 0; t < part->indices.size(); t += 3) {
+      bool found = false;
+      for (size_t u = 0; u < mesh->indices.size() && !found; u += 3)
+        for (int rotation = 0; rotation < 3 && !found; ++rotation) {
+          bool same = true;
+          for (size_t c = 0; c < 3 && same; ++c) {
+            const uint32_t original = part->indices[t + c];
+            const Vertex& v = mesh->vertices[mesh->indices[u + (c + static_cast<size_t>(rotation)) % 3]];
+            same = glm::distance(v.position, glm::make_vec3(&part->positions[3 * original])) < kPositionToleranceM &&
+                   glm::distance(v.normal, glm::make_vec3(&part->normals[3 * original])) < kNormalTolerance;
+          }
+          found = same;
+        }
+      EXPECT_TRUE(found) << "original triangle " << t / 3 << " not found after decoding";
+    }
+  }
+  EXPECT_EQ(readBytes(kData / "models/draco_box.glb"), test::dracoBoxGlb()) << "rerun penumbra_make_compressed_models tests/data";
+}
+
+// Broken compressed data is refused naming the extension's field (tests/data/bad, written by
+// penumbra_make_compressed_models from the same code).
+TEST(ModelLoader, BrokenCompressedDataNamesTheField) {
+  const std::map<std::string, std::string> expected = {
+      {"draco_truncated.glb", "primitives[0].extensions.KHR_draco_mesh_compression: Draco cannot decode it"},
+      {"draco_missing_attribute.glb", "KHR_draco_mesh_compression.attributes.NORMAL: the Draco data has no attribute 77"},
+      {"draco_count_mismatch.glb", "accessors[0].count: 3, the Draco mesh has 24 points"},
+      {"meshopt_corrupt.glb", "bufferViews[0].extensions.EXT_meshopt_compression: meshoptimizer cannot decode it"},
+      {"meshopt_count_mismatch.glb", "bufferViews[0].byteLength: 288, but 1000 elements of 12 bytes"}};
+  const auto files = test::brokenCompressedFiles();
+  ASSERT_EQ(files.size(), expected.size());
+  for (const auto& [name, bytes] : files) {
+    EXPECT_EQ(readBytes(kData / "bad" / name), bytes) << name << ": rerun penumbra_make_compressed_models tests/data";
+    const std::string e = errorOf([&] { loadGlb(bytes); });
+    EXPECT_NE(e.find(expected.at(name)), std::string::npos) << name << ": " << e;
+  }
+}
+
+// Statements Penumbra ignores never reach tinyobjloader, which parses some of them with unchecked
+// conversions (a `vw` joint id of 1e40 became an int: undefined behaviour, found by fuzzing), and
+// lines end where tinyobjloader ends them (a lone CR too), so a statement cannot hide there.
+TEST(ModelLoader, ObjStatementsPenumbraIgnoresAreNotParsed) {
+  auto objError = [](const std::string& text) { return errorOf([&] { loaders::loadObjFromMemory(text, "mem.obj", ""); }); };
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_EQ(objError(triangle + "vw 0 1e40 0.5\nt tag 1/0/0 99999999999\ns 99999999999999999999\nl 1 2\nf 1 2 3\n"), "");
+  EXPECT_NE(objError("v 0 0 0\rv nan 0 0\rv 0 1 0\rf 1 2 3\r").find("line 2: v: 'nan'"), std::string::npos);
+  EXPECT_NE(objError("# a comment\rv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999\n").find("line 5: f: '99999999999'"),
+            std::string::npos);
+  const std::string e = errorOf([&] { loadScene((kData / "bad" / "skin_weight_overflow.obj").string()); });
+  EXPECT_NE(e.find("vertex index 4 is out of range (3 vertices)"), std::string::npos) << e;
 }

@@ -212,11 +212,9 @@ TEST(Reference, SplitApproximationErrorMatchesClosedForm) {
   // than the light's surface (1 m away) along every ray it blocks.
   addObject(s, "occluder", makePlane(3.3f, 6.0f), glm::vec3(0.8f),
             glm::translate(glm::mat4(1.0f), {-1.35f, 0.3f, 0.0f}));
-  Light light;
-  light.type = LightType::Spot;
+  Light light;  // a point light: no cone, no falloff
+  light.type = LightType::Point;
   light.position = glm::vec3(std::sqrt(2.0f), std::sqrt(2.0f), 0.0f) * (distanceM / 2.0f);
-  light.direction = {0.0f, -1.0f, 0.0f};
-  light.coneAngleRad = 1.5f;
   light.intensity = 5.0f;
   light.size = radiusM;
   // A second point, (10, 0, 0), sees the whole light (its rays pass y = 0.3 at x > 3).

@@ -8,6 +8,8 @@
 // sphere leaves many texels unused.
 // Neighbouring cascades overlap by a blend band where the visibility pass mixes the two.
 // Artifacts: a resolution step at each split (hidden by the band), N shadow passes.
+#include "shadows/projections/LightSpace.h"
+
 #include <penumbra/Projection.h>
 
 #include <vector>
@@ -33,6 +35,8 @@ public:
   std::string_view description() const override {
     return "cascaded maps over practical splits of the view depth; stabilised, with a blend band";
   }
+  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };

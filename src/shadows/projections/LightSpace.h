@@ -4,10 +4,19 @@
 #include <penumbra/Projection.h>
 
 #include <array>
+#include <string>
 #include <span>
 #include <vector>
 
 namespace penumbra {
+
+/// Why a one-view (or cascaded) projection cannot shadow `light`: a point light's map is a cube,
+/// which only the uniform projection makes. Empty for other lights.
+inline std::string pointLightIncompatibility(const Light& light) {
+  return light.type == LightType::Point
+             ? "a point light shines every way: its shadows are six cube faces, which --projection uniform makes"
+             : std::string();
+}
 
 /// A right-handed view matrix at `eye` looking along `forward` (any up that is not parallel).
 glm::mat4 lightViewMatrix(const glm::vec3& eye, const glm::vec3& forward);

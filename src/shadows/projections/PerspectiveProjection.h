@@ -11,6 +11,8 @@
 // degenerates (a view wider than kMaxHalfAngle from the PPS light even after sliding back) the
 // projection falls back to `uniform`'s fit. Artifacts: quality depends strongly on the light
 // direction; the map changes with every camera move (edges crawl).
+#include "shadows/projections/LightSpace.h"
+
 #include <penumbra/Projection.h>
 
 #include <span>
@@ -49,6 +51,8 @@ public:
   std::string_view description() const override {
     return "one map taken in the camera's post-perspective space (virtual camera slide-back)";
   }
+  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };

@@ -9,6 +9,8 @@
 // rasterisation and lookup positions are warped. Degenerates (falls back to `uniform`'s fit)
 // when the camera looks along the light. Artifacts: texels are stretched along the trapezoid's
 // sides; as the camera turns the trapezoid changes every frame (no snapping: edges crawl).
+#include "shadows/projections/LightSpace.h"
+
 #include <penumbra/Projection.h>
 
 #include <vector>
@@ -22,6 +24,8 @@ public:
   std::string_view description() const override {
     return "one map warped by a trapezoid around the view frustum in light space (80% focus rule)";
   }
+  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
 };

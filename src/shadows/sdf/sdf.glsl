@@ -92,7 +92,7 @@ float penumbraK(vec3 ws) {
   if (u_sdf.mode.y == PN_SDF_K_MANUAL) return u_sdf.march.x;
   float size = u_frame.lightRadiance.w;
   float tanAlpha;
-  if (isSpotLight()) {
+  if (isPositionalLight()) {
     float sinAlpha = min(size / max(distance(u_frame.lightPosition.xyz, ws), kTinyM), 1.0);
     tanAlpha = sinAlpha / sqrt(max(1.0 - sinAlpha * sinAlpha, kTinyM));
   } else {
@@ -114,7 +114,7 @@ float shadowVisibility(SurfacePoint s) {
   vec3 origin = s.ws + s.geoNormal * (u_sdf.march.z * voxelM);
   vec3 dir;
   float tLight;
-  if (isSpotLight()) {
+  if (isPositionalLight()) {
     vec3 toCentre = u_frame.lightPosition.xyz - origin;
     float distanceM = length(toCentre);
     dir = toCentre / max(distanceM, kTinyM);

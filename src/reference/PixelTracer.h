@@ -1,0 +1,255 @@
+#pragma once
+// The reference's per-pixel machinery (ReferenceTracer.cpp, RayBenchmark.cpp): the light's shared
+// values, what each receiving pixel skips and ignores, and the tracer of one pixel, which casts a
+// soft light's samples as one coherent stream of rays (EmbreeScene::Bundle).
+#include "base/Hash.h"
+#include "reference/EmbreeScene.h"
+#include "reference/LightSampling.h"
+
+#include <penumbra/Reference.h>
+#include <penumbra/Scene.h>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/constants.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace penumbra::reference {
+
+// Self-intersection without moving a shadow (docs/reference.md, "Rays"). A shadow ray starts
+// exactly at the G-buffer position p, which the rasteriser interpolated in float32 and so lies a
+// few float spacings off the true surface. Two rules keep the ray from hitting that surface:
+//  1. the receiver's own triangle (GBufferData::triangle) is skipped: a flat triangle cannot
+//     shadow its own points toward directions above its plane, so every hit on it is rounding;
+//  2. hits lower than δ above the receiver's plane are ignored: t_near = δ / (N·ω) along the ray,
+//     δ = kPositionToleranceUlps float spacings of the largest magnitude p was computed from (its
+//     own coordinates, and its triangle's world vertices with the transform's terms). Such a hit
+//     is within p's own error of the surface: a neighbouring triangle near a shared edge, or the
+//     receiver itself where its triangle is not known.
+// Neither moves a shadow edge cast by anything that rises more than δ above the receiver (1 mm
+// 1 km from the origin, 2 µm within 1 m of it), where an origin lifted by ε along N moved every
+// edge by ε / tan(elevation) (the old ε = 1e-4 × scene size moved a 2 km scene's by 0.14 m).
+// A G-buffer normal shorter than this is not a normal (an unwritten pixel): the pixel is unlit.
+constexpr float kMinNormalLength = 1e-6f;
+
+/// What every pixel shares for one light.
+struct LightSetup {
+  bool directional = true;
+  bool soft = false;
+  glm::vec3 centre{0.0f};             // spot: sphere centre (m)
+  glm::vec3 toLight{0.0f, 1.0f, 0.0f};  // sun: unit direction toward the sun
+  glm::vec3 spotAxis{0.0f, -1.0f, 0.0f};
+  float cosCone = 0.0f;               // spot: cos of the cone's outer half angle (point: −2, no cone)
+  float radiusM = 0.0f;               // spot, point: sphere radius
+  float rangeM = 0.0f;                // spot, point: no light beyond it (0 = unlimited)
+  Light light;                        // the light itself: its falloff scales the shading
+  float sunCapHeight = 0.0f;          // sun: 1 − cos(angular radius)
+  glm::vec3 power{1.0f};              // colour × intensity: E at normal incidence (sun) or I (spot)
+  glm::vec3 radiance{0.0f};           // soft lights: uniform emitted radiance L_e
+};
+
+/// The light's values every pixel shares. Throws penumbra::Error for a light the reference cannot
+/// sample (a negative size, a zero direction, a sun wider than a hemisphere, a bad cone).
+LightSetup setupLight(const Light& light);
+
+
+/// One triangle as a receiver: the plane its points lie on, and the largest magnitude among the
+/// float terms that make its world-space vertices, |M|·(|v|, 1): the GPU's transform and
+/// interpolation round at that magnitude, even where the result is small.
+struct ReceiverTriangle {
+  glm::vec3 normal{0.0f};  // unit; zero for a degenerate triangle
+  float magnitude = 0.0f;
+};
+
+/// Per object of the scene (casters or not: every object receives), per triangle of its mesh.
+std::vector<std::vector<ReceiverTriangle>> receiverTriangles(const Scene& scene);
+
+/// What the tracer knows of one receiving pixel beyond its position and normal.
+struct Receiver {
+  reference::TriangleId triangle;  // skipped by its rays; TriangleId::kNoObject = unknown
+  float errorM = 0.0f;             // δ: hits lower than this above its plane are its own
+  // Its triangle's plane, turned to the G-buffer normal's side; zero = unknown (then the G-buffer
+  // normal stands in, which the rasteriser derived from rounded positions and stored in 16 bits).
+  glm::vec3 planeNormal{0.0f};
+};
+
+/// Per pixel of g: the triangle its rays skip, its plane and δ (position tolerance, m), from
+/// receiverTriangles(scene). Throws when the G-buffer names a triangle the scene does not have (a
+/// G-buffer of another scene).
+std::vector<Receiver> receiversOf(const GBufferData& g, const std::vector<std::vector<ReceiverTriangle>>& triangles);
+
+struct PixelOut {
+  bool lit = false;
+  float visibility = 0.0f, visibilityCos = 0.0f;
+  glm::vec3 exact{0.0f}, split{0.0f};
+};
+
+/// A soft light's samples of one pixel that lie above its horizon, in sample order: N·ω, and the
+/// index of the sample's ray in `bundle` (-1: the ray never rises above the receiver's float
+/// error, so nothing it meets can shadow: not traced).
+struct SoftSamples {
+  std::vector<float> cosTheta;
+  std::vector<int> ray;
+  EmbreeScene::Bundle bundle;
+};
+
+class PixelTracer {
+public:
+  PixelTracer(const EmbreeScene& scene, const LightSetup& light, int samples, uint32_t seed)
+      : mScene(scene), mLight(light), mSamples(samples),
+        mColumns(reference::strataColumns(samples)), mRows(samples / mColumns), mSeed(seed) {}
+
+  PixelOut trace(size_t pixel, const glm::vec3& origin, const glm::vec3& normalIn, const glm::vec3& albedo,
+                 const Receiver& receiver) const {
+    PixelOut out;
+    glm::vec3 n;
+    float distanceM = 0.0f;
+    if (!facesLight(origin, normalIn, n, distanceM)) return out;
+    out.lit = true;
+    const glm::vec3 brdf = albedo * glm::one_over_pi<float>();
+
+    if (!soft(distanceM)) return traceHard(out, origin, n, brdf, receiver);
+
+    // The pixel's rays, one coherent stream through Embree (the samples' order is kept: the sums
+    // below add in it, so the result does not depend on how Embree groups the rays).
+    thread_local SoftSamples samples;
+    softSamples(pixel, origin, n, receiver, distanceM, samples);
+    mScene.occluded(samples.bundle, receiver.triangle);
+    const size_t above = samples.cosTheta.size();
+    float sumV = 0.0f, sumCos = 0.0f, sumCosV = 0.0f;
+    for (size_t k = 0; k < above; ++k) {
+      const int ray = samples.ray[k];
+      const float v = ray >= 0 && samples.bundle.blocked(static_cast<size_t>(ray)) ? 0.0f : 1.0f;
+      const float cosTheta = samples.cosTheta[k];
+      sumV += v;
+      sumCos += cosTheta;
+      sumCosV += cosTheta * v;
+    }
+    const float capHeight = this->capHeight(distanceM);
+    out.visibility = above > 0 ? sumV / static_cast<float>(above) : 0.0f;
+    out.visibilityCos = sumCos > 0.0f ? sumCosV / sumCos : out.visibility;
+    // Uniform over the cone: ∫ f dω ≈ (Ω / N) Σ f, with Ω = 2π(1 − cos α).
+    const float weight = glm::two_pi<float>() * capHeight / static_cast<float>(mSamples);
+    // The spot cone's and the range's falloff, taken at the receiver (constant over the light).
+    const float falloff = lightFalloff(mLight.light, origin);
+    out.exact = brdf * mLight.radiance * (falloff * weight * sumCosV);
+    out.split = brdf * mLight.radiance * (falloff * weight * sumCos * out.visibility);
+    return out;
+  }
+
+  /// A pixel's unit normal and its distance to a spot light's centre (inf for the sun); false where
+  /// the light cannot reach it (no normal, outside the spot's cone, facing away from the centre).
+  bool facesLight(const glm::vec3& origin, const glm::vec3& normalIn, glm::vec3& n, float& distanceM) const {
+    const float normalLength = glm::length(normalIn);
+    if (!(normalLength > kMinNormalLength)) return false;
+    n = normalIn / normalLength;
+    glm::vec3 axis = mLight.toLight;
+    distanceM = std::numeric_limits<float>::infinity();
+    if (!mLight.directional) {
+      const glm::vec3 toCentre = mLight.centre - origin;
+      distanceM = glm::length(toCentre);
+      if (!(distanceM > 0.0f)) return false;
+      axis = toCentre / distanceM;
+      if (glm::dot(-axis, mLight.spotAxis) < mLight.cosCone) return false;  // outside the spot cone
+      if (mLight.rangeM > 0.0f && distanceM >= mLight.rangeM) return false;  // beyond its range
+    }
+    return glm::dot(n, axis) > 0.0f;  // faces the light's centre
+  }
+
+  /// Whether a pixel that faces the light (facesLight) is lit softly: by softSamples' rays.
+  bool soft(float distanceM) const { return mLight.soft && distanceM > mLight.radiusM; }
+
+  /// The soft light's samples of one pixel (distanceM: to a spot light's centre, inf for the sun),
+  /// from the pixel's own random stream: the same rays on every call.
+  void softSamples(size_t pixel, const glm::vec3& origin, const glm::vec3& n, const Receiver& receiver, float distanceM,
+                   SoftSamples& out) const {
+    out.cosTheta.clear();
+    out.ray.clear();
+    out.bundle.clear();
+    const glm::vec3 axis = mLight.directional ? mLight.toLight : glm::normalize(mLight.centre - origin);
+    const reference::Frame frame = reference::frameAround(axis);
+    const float capHeight = this->capHeight(distanceM);
+    reference::Pcg32 rng(Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
+    for (int row = 0; row < mRows; ++row) {
+      for (int column = 0; column < mColumns; ++column) {
+        const glm::vec2 u{(static_cast<float>(column) + rng.uniform()) / static_cast<float>(mColumns),
+                          (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows)};
+        const glm::vec3 dir = frame.toWorld(reference::coneDirection(reference::concentricDisk(u), capHeight));
+        const float cosTheta = glm::dot(n, dir);
+        if (cosTheta <= 0.0f) continue;
+        out.cosTheta.push_back(cosTheta);
+        const float tNear = nearEnd(dir, cosTheta, receiver), tFar = rayLength(origin, dir);
+        if (tNear < tFar) {
+          out.ray.push_back(static_cast<int>(out.bundle.size()));
+          out.bundle.add(origin, dir, tNear, tFar);
+        } else {
+          out.ray.push_back(-1);
+        }
+      }
+    }
+  }
+
+private:
+  float capHeight(float distanceM) const {
+    return mLight.directional ? mLight.sunCapHeight : reference::sphereOneMinusCos(mLight.radiusM, distanceM);
+  }
+
+  PixelOut traceHard(PixelOut out, const glm::vec3& origin, const glm::vec3& n, const glm::vec3& brdf,
+                     const Receiver& receiver) const {
+    glm::vec3 dir = mLight.toLight;
+    float length = std::numeric_limits<float>::infinity();
+    glm::vec3 irradiance = mLight.power;
+    if (!mLight.directional) {
+      const glm::vec3 toCentre = mLight.centre - origin;
+      length = glm::length(toCentre);
+      dir = toCentre / length;
+      // A point inside a spherical light is lit by all of it; the point-light law at r = R
+      // keeps the value finite (such pixels are not a case the shadow maps can be judged on).
+      const float r = std::max(length, mLight.radiusM);
+      irradiance = mLight.power * (lightFalloff(mLight.light, origin) / (r * r));
+      if (mLight.soft) length = 0.0f;
+    }
+    const float cosTheta = std::max(0.0f, glm::dot(n, dir));
+    const float v = length > 0.0f && occluded(origin, dir, cosTheta, length, receiver) ? 0.0f : 1.0f;
+    out.visibility = out.visibilityCos = v;
+    out.exact = out.split = brdf * irradiance * (cosTheta * v);
+    return out;
+  }
+
+  /// Where a ray from the receiver along dir (cosTheta = N·dir > 0) starts: past anything within
+  /// its error of its plane. The ray's height above that plane is t·cos; a ray that never rises
+  /// above δ (its true cos ≤ 0, beside a G-buffer normal a hair off) starts at inf: nothing it
+  /// meets is distinguishable from the receiver's surface.
+  static float nearEnd(const glm::vec3& dir, float cosTheta, const Receiver& receiver) {
+    const bool knowsPlane = receiver.planeNormal != glm::vec3(0.0f);
+    const float cosPlane = knowsPlane ? glm::dot(receiver.planeNormal, dir) : cosTheta;
+    return cosPlane > 0.0f ? receiver.errorM / cosPlane : std::numeric_limits<float>::infinity();
+  }
+
+  /// Whether a caster blocks the ray from the receiver along dir before tFar, other than the
+  /// receiver's own triangle and anything within its error of its plane.
+  bool occluded(const glm::vec3& origin, const glm::vec3& dir, float cosTheta, float tFar,
+                const Receiver& receiver) const {
+    const float tNear = nearEnd(dir, cosTheta, receiver);
+    return tNear < tFar && mScene.occluded(origin, dir, tNear, tFar, receiver.triangle);
+  }
+
+  /// Rays end where they enter the spherical light: casters behind it do not shadow.
+  float rayLength(const glm::vec3& origin, const glm::vec3& dir) const {
+    if (mLight.directional) return std::numeric_limits<float>::infinity();
+    const glm::vec3 toCentre = mLight.centre - origin;
+    const float along = glm::dot(toCentre, dir);
+    const glm::vec3 perpendicular = toCentre - along * dir;  // stable where R ≪ distance
+    const float halfChord2 = mLight.radiusM * mLight.radiusM - glm::dot(perpendicular, perpendicular);
+    return along - std::sqrt(std::max(0.0f, halfChord2));
+  }
+
+  const EmbreeScene& mScene;
+  const LightSetup& mLight;
+  int mSamples, mColumns, mRows;
+  uint32_t mSeed;
+};
+
+}  // namespace penumbra::reference

@@ -1,0 +1,60 @@
+#include "report/ReferenceBaseline.h"
+
+#include "report/MicroBenchmarks.h"
+#include "reference/RayBenchmark.h"
+
+#include <penumbra/Registry.h>
+#include <penumbra/Renderer.h>
+#include <penumbra/SceneIO.h>
+
+#include <fmt/format.h>
+
+#include <memory>
+
+namespace penumbra::report {
+namespace {
+
+constexpr double kMsPerSecond = 1e3;
+
+// boxes' G-buffer from Penumbra's renderer (the technique does not matter: only the G-buffer is
+// read) and the rays the reference casts on it.
+std::shared_ptr<reference::RayBenchmark> makeBenchmark(int width, int height) {
+  const Scene scene = makeBuiltinScene("boxes");
+  Renderer renderer;
+  renderer.setScene(scene);
+  renderer.setTechnique(makeProjection("uniform"), makeFilter("hard"));
+  constexpr int kMapSize = 512;  // any: the G-buffer does not depend on it
+  renderer.render({.width = width, .height = height, .shadowMapSize = kMapSize, .debugView = 0});
+  return std::make_shared<reference::RayBenchmark>(scene, renderer.readGBuffer(), scene.light(), kReferenceBaselineSamples);
+}
+
+}  // namespace
+
+std::vector<MicroResult> runReferenceBaseline(int width, int height, int rounds) {
+  auto shared = std::make_shared<std::shared_ptr<reference::RayBenchmark>>();
+  auto get = [shared, width, height] {
+    if (!*shared) *shared = makeBenchmark(width, height);
+    return *shared;
+  };
+  const std::string where = fmt::format("boxes at {}x{}, its sun at {} samples a pixel", width, height, kReferenceBaselineSamples);
+  constexpr const char* kPlainLoop = "reference: plain Embree loop";
+  // One row: a RayBenchmark run (seconds) timed in milliseconds.
+  auto row = [&](const char* name, const std::string& what, const char* baseline, double (reference::RayBenchmark::*run)() const) {
+    return MicroItem{name, fmt::format("{} ({}; wall clock)", what, where), baseline, [get, run] {
+                       auto b = get();
+                       return std::function<double()>([b, run] { return kMsPerSecond * ((*b).*run)(); });
+                     }};
+  };
+  const std::vector<MicroItem> items = {
+      row(kPlainLoop, "the reference's rays, recorded up front, each pixel's one coherent rtcOccluded1M stream skipping its triangle, rows over every core",
+          "", &reference::RayBenchmark::tracePlainLoop),
+      row("reference: plain loop generating the rays",
+          "the same rays generated per pixel by the tracer's own generator and cast as the plain loop casts them, nothing summed or kept",
+          kPlainLoop, &reference::RayBenchmark::traceGeneratingLoop),
+      row("reference: ReferenceTracer::trace", "the same rays generated, cast and summed by the reference, cache off", kPlainLoop,
+          &reference::RayBenchmark::traceReference),
+  };
+  return runMicroItems(items, rounds);
+}
+
+}  // namespace penumbra::report

@@ -1,0 +1,209 @@
+// Shared model-file plumbing: format dispatch, limits, default light and camera, placing a model
+// inside a scene file. The format parsers live in GltfLoader.cpp and ObjLoader.cpp.
+#include "sceneio/loaders/ModelImport.h"
+
+#include "sceneio/loaders/GltfLoader.h"
+#include "sceneio/loaders/ObjLoader.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <system_error>
+
+namespace penumbra::loaders {
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool finiteMatrix(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// Default camera framing: looking down at the model from the front right, its bounding sphere
+// inside the vertical field of view with this much room to spare.
+constexpr float kFramingMargin = 1.15f;
+const glm::vec3 kDefaultViewDirection{0.55f, 0.45f, 1.0f};   // from the model toward the camera
+const glm::vec3 kDefaultSunDirection{-0.4f, -1.0f, -0.3f};   // toward the scene
+constexpr float kMinFramedRadiusM = 1e-3f;                    // a point-sized model still gets a view
+constexpr float kMinNearM = 1e-4f;                            // the scene file's smallest near plane
+
+}  // namespace
+
+// Reports closer together than a hundredth of the load would only cost time.
+constexpr double kProgressStep = 0.01;
+
+ProgressReport::ProgressReport(const LoadOptions& options, std::filesystem::path file)
+    : mOptions(options), mFile(std::move(file)) {
+  if (mOptions.progress) mOptions.progress(mFile, 0.0);
+}
+
+void ProgressReport::update(uint64_t done, uint64_t total) {
+  if (!mOptions.progress || total == 0) return;
+  const double fraction = mFrom + (mTo - mFrom) * std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
+  if (fraction - mLast >= kProgressStep) report(fraction);
+}
+
+void ProgressReport::report(double fraction) {
+  if (!mOptions.progress || fraction <= mLast) return;
+  mLast = fraction;
+  mOptions.progress(mFile, fraction);
+}
+
+void fail(const std::string& file, const std::string& field, const std::string& problem) {
+  if (field.empty()) throw Error(fmt::format("{}: {}", file, problem));
+  throw Error(fmt::format("{}: {}: {}", file, field, problem));
+}
+
+bool isModelFile(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".gltf" || ext == ".glb" || ext == ".obj";
+}
+
+std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what, uint64_t maxBytes) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) fail(what, "", fmt::format("cannot open {} (no such file)", path.string()));
+  if (std::filesystem::is_directory(status)) fail(what, "", fmt::format("{} is a folder, not a file", path.string()));
+  if (!std::filesystem::is_regular_file(status)) fail(what, "", fmt::format("{} is not a regular file", path.string()));
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) fail(what, "", fmt::format("cannot read the size of {}", path.string()));
+  if (size > maxBytes)
+    fail(what, "", fmt::format("{} is {} bytes, more than the {} byte limit", path.string(), size, maxBytes));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(what, "", fmt::format("cannot open {} (not readable)", path.string()));
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    fail(what, "", fmt::format("cannot read {} (read error)", path.string()));
+  return bytes;
+}
+
+Model loadModelFile(const std::filesystem::path& path, const LoadOptions& options) {
+  const std::string ext = lowerExtension(path);
+  ProgressReport progress(options, path);
+  Model model;
+  if (ext == ".gltf" || ext == ".glb") model = loadGltf(path, progress);
+  else if (ext == ".obj") model = loadObj(path, progress);
+  else fail(path.string(), "", "not a model file (.gltf, .glb or .obj)");
+  model.scene.sourceFile = path;
+  checkSceneLimits(model.scene, path.string());
+  const bool drawsSomething = std::any_of(model.scene.objects.begin(), model.scene.objects.end(),
+                                          [&](const Object& o) { return model.scene.meshes[o.mesh].hasArea(); });
+  if (!drawsSomething) fail(path.string(), "", "every triangle has zero area (its corners lie on one line): nothing would be drawn");
+  progress.finish();
+  return model;
+}
+
+Scene loadModelScene(const std::filesystem::path& path, const LoadOptions& options) {
+  Model model = loadModelFile(path, options);
+  addDefaultLightAndCamera(model.scene, model.hasCamera);
+  model.scene.validate();
+  return std::move(model.scene);
+}
+
+void addDefaultLightAndCamera(Scene& scene, bool hasCamera) {
+  const Aabb bounds = scene.bounds();
+  if (scene.lights.empty()) {
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(kDefaultSunDirection);
+    sun.size = kDefaultSunAngularRadiusRad;
+    scene.lights.push_back(sun);
+  }
+  if (hasCamera || bounds.empty()) return;
+  Camera& cam = scene.camera;
+  const float radius = std::max(bounds.radius(), kMinFramedRadiusM);
+  const float distance = kFramingMargin * radius / std::sin(0.5f * cam.fovYRad);
+  cam.target = bounds.center();
+  cam.position = cam.target + glm::normalize(kDefaultViewDirection) * distance;
+  cam.up = {0.0f, 1.0f, 0.0f};
+  cam.nearM = std::max(kMinNearM, 0.5f * (distance - radius));
+  cam.farM = 2.0f * (distance + radius);
+}
+
+void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromModel, bool castsShadow,
+                 const std::string& name, const std::string& where) {
+  const auto meshBase = static_cast<uint32_t>(scene.meshes.size());
+  const auto materialBase = static_cast<uint32_t>(scene.materials.size());
+  const int imageBase = static_cast<int>(scene.images.size());
+  scene.meshes.insert(scene.meshes.end(), model.meshes.begin(), model.meshes.end());
+  scene.images.insert(scene.images.end(), model.images.begin(), model.images.end());
+  for (Material m : model.materials) {
+    if (m.baseColorTexture >= 0) m.baseColorTexture += imageBase;
+    scene.materials.push_back(std::move(m));
+  }
+  for (Object o : model.objects) {
+    o.name = name + "/" + o.name;
+    o.mesh += meshBase;
+    o.material += materialBase;
+    o.worldFromObject = worldFromModel * o.worldFromObject;
+    o.castsShadow = o.castsShadow && castsShadow;
+    scene.objects.push_back(std::move(o));
+  }
+  checkSceneLimits(scene, where);
+}
+
+void checkSceneLimits(const Scene& scene, const std::string& file) {
+  uint64_t vertices = 0, triangles = 0;
+  for (const Mesh& m : scene.meshes) {
+    vertices += m.vertices.size();
+    triangles += m.triangleCount();
+  }
+  if (vertices > kMaxVertices) fail(file, "", fmt::format("{} vertices, more than the limit of {}", vertices, kMaxVertices));
+  if (triangles > kMaxTriangles) fail(file, "", fmt::format("{} triangles, more than the limit of {}", triangles, kMaxTriangles));
+  if (scene.objects.size() > kMaxObjects)
+    fail(file, "", fmt::format("{} placed meshes, more than the limit of {}", scene.objects.size(), kMaxObjects));
+  if (scene.images.size() > kMaxImages)
+    fail(file, "", fmt::format("{} images, more than the limit of {}", scene.images.size(), kMaxImages));
+  uint64_t imageBytes = 0;
+  for (const Image& im : scene.images) imageBytes += im.rgba.size();
+  if (imageBytes > kMaxImageBytes)
+    fail(file, "", fmt::format("{} bytes of decoded images, more than the limit of {}", imageBytes, kMaxImageBytes));
+  // World coordinates: the corners of each mesh's box under its transform. A box within the
+  // limit bounds every vertex of an affine transform of the mesh.
+  std::vector<Aabb> meshBounds;
+  meshBounds.reserve(scene.meshes.size());
+  for (const Mesh& m : scene.meshes) meshBounds.push_back(m.bounds());
+  for (const Object& o : scene.objects) {
+    if (!finiteMatrix(o.worldFromObject)) fail(file, o.name, "its world transform is not finite");
+    if (o.mesh >= meshBounds.size()) continue;  // Scene::validate names this one
+    const Aabb b = meshBounds[o.mesh].transformed(o.worldFromObject);
+    if (b.empty()) continue;
+    for (const glm::vec3& c : {b.lo, b.hi})
+      for (int i = 0; i < 3; ++i)
+        if (!(std::abs(c[i]) <= kMaxCoordinateM))
+          fail(file, o.name, fmt::format("world-space coordinate {} is not finite or beyond ±{} m", c[i], kMaxCoordinateM));
+  }
+}
+
+void makeFlatNormals(Mesh& mesh) {
+  std::vector<Vertex> flat;
+  flat.reserve(mesh.indices.size());
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    Vertex v[3] = {mesh.vertices[mesh.indices[t]], mesh.vertices[mesh.indices[t + 1]], mesh.vertices[mesh.indices[t + 2]]};
+    const glm::vec3 n = glm::cross(v[1].position - v[0].position, v[2].position - v[0].position);
+    const float len = glm::length(n);
+    // A degenerate triangle covers no pixel; any unit normal will do.
+    const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    for (Vertex& x : v) {
+      x.normal = unit;
+      flat.push_back(x);
+    }
+  }
+  mesh.vertices = std::move(flat);
+  mesh.indices.resize(mesh.vertices.size());
+  for (size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = static_cast<uint32_t>(i);
+}
+
+}  // namespace penumbra::loaders
