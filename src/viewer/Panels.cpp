@@ -30,6 +30,10 @@ constexpr float kMinSidebarWidthPx = 160.0f;
 constexpr float kMaxSidebarFraction = 0.5f;  // the panels never take more than half the window
 constexpr float kStatusLines = 2.0f;         // the status line's fixed height; longer text: tooltip
 constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in font heights
+// ViewSession::paramGroups() is Scene, Projection, Filter, Contact shadows: the first two sit
+// with the scene and technique choices, the filter's own and the contact pass's in a tab of
+// their own (together they would run past 720 px).
+constexpr size_t kTechniqueTabGroups = 2;
 constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 // DejaVu Sans at this size: as tall as ImGui's default font's lines, readable at 100 % scale.
@@ -212,6 +216,7 @@ void Viewer::drawPanels() {
       if (!ImGui::BeginTabItem(p.title, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0)) continue;
       switch (p.panel) {
         case Panel::Technique: drawTechniquePanel(); break;
+        case Panel::Filter: drawParams(kTechniqueTabGroups, mSession.paramGroups().size()); break;
         case Panel::LightCamera: drawLightCameraPanel(); break;
         case Panel::Views: drawViewsPanel(); break;
         case Panel::Timings: drawTimingPanel(); break;
@@ -265,11 +270,14 @@ void Viewer::drawTechniquePanel() {
   }
   ImGui::SliderFloat("Render scale", &mRenderScale, 0.25f, 1.0f, "%.2f × view");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("render at this fraction of the view's size (faster on software GL)");
-  drawParams();
+  drawParams(0, kTechniqueTabGroups);
+  hint("the filter's own parameters and contact shadows: the Filter tab");
 }
 
-void Viewer::drawParams() {
-  for (const ParamGroup& g : mSession.paramGroups()) {
+void Viewer::drawParams(size_t first, size_t last) {
+  const std::vector<ParamGroup> groups = mSession.paramGroups();
+  for (size_t i = first; i < std::min(last, groups.size()); ++i) {
+    const ParamGroup& g = groups[i];
     ImGui::Separator();
     ImGui::TextDisabled("%s", g.title.c_str());
     if (g.descs.empty()) ImGui::TextDisabled("(no parameters)");

@@ -20,7 +20,7 @@ struct Verb {
 };
 
 // The panels' script names (Viewer.h kPanels; checked against them by the viewer's test).
-constexpr std::string_view kPanelIds[] = {"technique", "light", "views", "timings", "tools"};
+constexpr std::string_view kPanelIds[] = {"technique", "filter", "light", "views", "timings", "tools"};
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
@@ -38,7 +38,7 @@ constexpr Verb kVerbs[] = {
     {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view (kept across filter switches)"},
     {"flip", 0, 0, "", "as the R key: technique <-> reference (the heatmap is traced first if needed)"},
     {"split", 1, 2, "FILTER [PROJECTION] | off", "split view: the right half shows that technique (projection: the current)"},
-    {"panel", 1, 1, "technique|light|views|timings|tools", "open that panel's tab"},
+    {"panel", 1, 1, "technique|filter|light|views|timings|tools", "open that panel's tab"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
@@ -78,7 +78,7 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "layout")
     fail(a, "expected gl-objects, technique, timings or layout");
   if (a.verb == "panel" && std::none_of(std::begin(kPanelIds), std::end(kPanelIds), [&](std::string_view p) { return p == sub; }))
-    fail(a, "expected technique, light, views, timings or tools");
+    fail(a, "expected technique, filter, light, views, timings or tools");
   if (a.verb == "split" && sub == "off" && a.args.size() != 1) fail(a, "expected split off");
   if (a.verb == "camera") {
     const size_t n = sub == "orbit" ? 4 : sub == "look" ? 7 : sub == "mode" ? 2 : 0;

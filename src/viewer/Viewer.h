@@ -49,13 +49,14 @@ inline constexpr const char* kNoInset = "none";
 bool isLitView(std::string_view name);
 
 /// The panel groups, one tab each; the script's `panel NAME` opens one.
-enum class Panel { Technique, LightCamera, Views, Timings, Tools };
+enum class Panel { Technique, Filter, LightCamera, Views, Timings, Tools };
 struct PanelInfo {
   Panel panel;
   const char* id;     ///< script name
   const char* title;  ///< tab label
 };
 inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Technique"},
+                                        {Panel::Filter, "filter", "Filter"},
                                         {Panel::LightCamera, "light", "Light"},
                                         {Panel::Views, "views", "Views"},
                                         {Panel::Timings, "timings", "Timings"},
@@ -127,7 +128,8 @@ private:
   void drawPanels();
   void drawOverlay();  ///< the heatmap's progress, over the view
   void drawTechniquePanel();
-  void drawParams();
+  /// The parameter groups [first, last) of ViewSession::paramGroups().
+  void drawParams(size_t first, size_t last);
   void drawLightCameraPanel();
   void drawViewsPanel();
   void drawViewSettings(const char* id, ViewState& view, bool allowNone);
@@ -167,7 +169,7 @@ private:
   // Layout (window pixels, origin lower-left) and cameras.
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
-  float mSidebarWidth = 360.0f;
+  float mSidebarWidth = 380.0f;
   float mRenderScale = 1.0f;
   bool mFly = false;
   bool mDragInView = false;  ///< a mouse drag that started over the view

@@ -321,9 +321,9 @@ TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
   SKIP_WITHOUT_XVFB();
   const std::string dir = freshDir("viewer-panels");
   std::string script = "scene city\nprojection csm\nfilter evsm-soft\ninset shadow-map\nwait 2\n";
-  const std::vector<std::string> panels = {"technique", "light", "views", "timings", "tools"};
+  const std::vector<std::string> panels = {"technique", "filter", "light", "views", "timings", "tools"};
   for (const std::string& p : panels) script += "panel " + p + "\nwait 2\nprint layout\nscreenshot-window panel-" + p + ".png\n";
-  script += "panel technique\n";
+  script += "panel filter\n";
   for (const std::string& f : filterIds()) script += "filter " + f + "\nwait 2\nprint layout\n";
   // sdf keeps no shadow-map: the inset waits for the next filter that has one.
   script += "filter sdf\nwait 1\nfilter pcss\nwait 1\nscreenshot plain.png\nsplit vsm\nwait 1\nscreenshot split.png\nsplit off\n"
