@@ -11,10 +11,9 @@
 
 namespace penumbra::report {
 
-/// Height of the title band above each tile, and of the legend + metrics band at the bottom
-/// (pixels): what the sheet adds to its 2 × 2 tiles.
+/// Height of the title band above each tile (pixels). Below the 2 × 2 tiles a footer holds the
+/// legend and the metrics, as tall as their lines need at the sheet's width.
 inline constexpr int kSheetTitleBandPx = 28;
-inline constexpr int kSheetFooterBandPx = 96;
 /// The fourth tile shows the heatmap region with the most error at this magnification.
 inline constexpr int kSheetZoom = 4;
 
@@ -31,8 +30,9 @@ struct SheetInputs {
   std::vector<std::string> metrics;  ///< one line each, written under the legend
 };
 
-/// The sheet: width 2·w, height 2·(h + kSheetTitleBandPx) + kSheetFooterBandPx for w × h images.
-/// Throws penumbra::Error when the images' sizes differ.
+/// The sheet: width 2·w, height 2·(h + kSheetTitleBandPx) + the footer's for w × h images; text
+/// is made smaller (and metrics wrapped at " · ") to fit a narrow sheet. Throws penumbra::Error
+/// when the images' sizes differ.
 ColorImage compareSheet(const SheetInputs& in);
 
 }  // namespace penumbra::report

@@ -37,8 +37,8 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
 }
 
 // sheet.png reads on its own: a title band over each of its four tiles and a footer with the
-// heatmap's colour legend and the metrics, so it is taller than the 2 × 2 images by exactly those
-// bands, and each band carries text (dark pixels on the light background).
+// heatmap's colour legend and the metrics, so it is taller than the 2 × 2 images by those bands,
+// and each band carries text (dark pixels on the light background).
 TEST(CompareCli, SheetHasTitledTilesALegendAndTheMetrics) {
   const std::string dir = freshDir("compare-sheet");
   const RunResult r = runPenumbra("compare --scene fence --filter vsm --size 320x180 --shadow-map 512 --samples 4 --out imgs", dir);
@@ -46,10 +46,10 @@ TEST(CompareCli, SheetHasTitledTilesALegendAndTheMetrics) {
   int w = 0, h = 0, sw = 0, sh = 0;
   (void)penumbra::readPng(dir + "/imgs/technique.png", w, h);
   const std::vector<uint8_t> sheet = penumbra::readPng(dir + "/imgs/sheet.png", sw, sh);
-  using penumbra::report::kSheetFooterBandPx;
   using penumbra::report::kSheetTitleBandPx;
+  constexpr int kMinFooterPx = 60;  // the legend's bar and labels and at least one line of metrics
   ASSERT_EQ(sw, 2 * w);
-  ASSERT_EQ(sh, 2 * (h + kSheetTitleBandPx) + kSheetFooterBandPx) << "the tiles plus two title bands and the footer";
+  ASSERT_GE(sh, 2 * (h + kSheetTitleBandPx) + kMinFooterPx) << "the tiles plus two title bands and the footer";
   // Ink: pixels much darker than the sheet's light background, in a band of rows and columns.
   auto ink = [&](int x0, int x1, int y0, int y1) {
     int n = 0;
