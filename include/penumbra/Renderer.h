@@ -53,30 +53,36 @@ public:
   const Scene& scene() const;
   Projection& projection();
   Filter& filter();
-  const LightFrusta& frusta() const;
+  /// The views of light `light` in the last frame.
+  const LightFrusta& frusta(size_t light = 0) const;
+  /// Lights of the last frame (the scene's, each with its own maps and visibility layer).
+  size_t lightCount() const;
   /// gbuffer, shadow, prefilter, visibility, lit: the last frame's passes in the order they ran.
   const PassTimings& timings() const;
   ShaderLibrary& shaders();
   /// The core this renderer runs its shadows with.
   Shadows& shadows();
 
-  /// Re-runs the lit pass of the last frame with another visibility (width × height, row 0 =
-  /// bottom; e.g. the reference's) and returns the image. The frame's own V is restored after.
+  /// Re-runs the lit pass of the last frame with other visibilities, one per light (width ×
+  /// height each, row 0 = bottom; e.g. the reference's) and returns the image. The frame's own V
+  /// is restored after.
+  ColorImage shadeWithVisibility(const std::vector<std::vector<float>>& perLight);
+  /// The same for a frame of one light.
   ColorImage shadeWithVisibility(std::span<const float> visibility);
 
   /// V of the active filter at world points, with the last frame's shadow maps, views and
   /// camera: the visibility pass run over a point list instead of the G-buffer (the filter's own
   /// computeVisibility, in FrameContext's points mode). 0 for points facing away from the light.
   /// For measurements that keep world points fixed while the camera moves (shimmer).
-  std::vector<float> visibilityAt(std::span<const SurfaceSample> points);
+  std::vector<float> visibilityAt(std::span<const SurfaceSample> points, size_t light = 0);
   /// Runs a compute shader (a shader-library key) once per pixel of the last frame, with the
   /// frame and shadow blocks and the G-buffer bound, writing an r32f image at PN_IMG_OUTPUT;
   /// returns it (width × height, row 0 = bottom). For screen-space measurements such as the
   /// texel density (metrics/TexelDensity.h).
   std::vector<float> computeScreenScalar(const std::string& computeShader);
 
-  /// Visibility of the last frame, width × height floats, row 0 = bottom.
-  std::vector<float> readVisibility() const;
+  /// Visibility of light `light` in the last frame, width × height floats, row 0 = bottom.
+  std::vector<float> readVisibility(size_t light = 0) const;
   GBufferData readGBuffer() const;
   ColorImage readColor() const;
   /// The last frame's colour on the GPU (RGBA8 holding sRGB-encoded values, row 0 = bottom),

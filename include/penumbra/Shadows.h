@@ -1,8 +1,9 @@
 #pragma once
 // Penumbra inside an engine (docs/embedding.md): a shadow technique run on the caller's OpenGL
 // 4.5 context. The engine gives its camera, its depth and normal textures, its lights and its
-// casters (meshes in its own buffers); Penumbra renders the light's shadow maps, prefilters them
-// and writes a visibility texture (R32F, 1 = lit) that the engine samples in its own lighting.
+// casters (meshes in its own buffers); Penumbra renders each light's shadow maps, prefilters them
+// and writes one visibility layer per light (R32F, 1 = lit) that the engine samples in its own
+// lighting.
 // Penumbra creates no context, and restores the GL state it changes (RestoreState below).
 //
 //   penumbra::Shadows shadows;                        // a GL 4.5 context is current
@@ -95,13 +96,30 @@ enum class RestoreState {
   None,
 };
 
+/// Most lights one Shadows object shadows in a frame.
+inline constexpr size_t kMaxShadowedLights = 16;
+
 struct ShadowFrameInputs {
   ShadowCamera camera;
   ShadowSurfaces surfaces;
-  /// The lights; lights[0] casts the shadows (one shadowed light today: more are refused).
+  /// The lights, 1..kMaxShadowedLights, each with its own maps and visibility layer (in this
+  /// order). Light::castsShadow false: its layer is 1 everywhere it is not behind itself. A
+  /// light's `shadow` settings override the map size and the technique's parameters for it.
   std::span<const Light> lights;
-  int mapSize = 2048;  ///< texels per side of each shadow map, 1..GL_MAX_TEXTURE_SIZE
+  int mapSize = 2048;  ///< texels per side of each shadow map (a light's own mapSize wins), 1..GL_MAX_TEXTURE_SIZE
+  /// Texels that every light's maps together may hold (0 = no budget): each light then gets a
+  /// share by its importance on screen, never more than it asks for (lightReports() says what).
+  int64_t mapBudgetTexels = 0;
   RestoreState restore = RestoreState::All;
+};
+
+/// What one light got in the last frame.
+struct LightShadowReport {
+  int requestedMapSize = 0;  ///< the light's own mapSize, or the frame's
+  int mapSize = 0;           ///< what the budget gave it (= requested without a budget)
+  int views = 0;             ///< maps: 1, a cascade each, 6 for a point light's cube
+  double importance = 0.0;   ///< its share of the screen, in (0, 1] (the budget's weight)
+  int64_t texels() const { return static_cast<int64_t>(views) * mapSize * mapSize; }
 };
 
 /// Runs one technique (projection × filter) on the caller's context. Not thread-safe; every call
@@ -116,14 +134,17 @@ public:
   Shadows(const Shadows&) = delete;
   Shadows& operator=(const Shadows&) = delete;
 
-  /// Replaces the technique. With a `light`, throws a usage Error (and keeps the old technique)
-  /// if the pair cannot work with it; render() checks the pair against its light every frame.
+  /// Replaces the technique, the one every light uses (with its own overrides). With a `light`,
+  /// throws a usage Error (and keeps the old technique) if the pair cannot work with it; render()
+  /// checks the pair against every light every frame.
   void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter,
                     const Light* light = nullptr);
   /// By id (penumbra list names them) with "key" → "value" parameters (the projection's, the
   /// filter's and "contact.*"); usage Errors name what is unknown or out of range.
   void setTechnique(std::string_view projectionId, std::string_view filterId,
                     const std::vector<std::pair<std::string, std::string>>& params = {});
+  /// The technique every light uses: parameters set here reach every light's copy at the next
+  /// render(), under the light's own overrides.
   Projection& projection();
   Filter& filter();
   /// Contact shadows, the add-on any filter can take ("contact.*" parameters, docs/contact.md):
@@ -141,29 +162,39 @@ public:
   /// Renders the shadow maps, prefilters them and writes the visibility texture.
   void render(const ShadowFrameInputs& inputs);
 
+  /// Lights of the last frame.
+  size_t lightCount() const;
   /// V of light `light` for the last frame: an R32F 2D texture of the surfaces' size, 1 = lit,
-  /// 0 where the surface faces away from the light, 1 on background pixels. Owned by Penumbra.
+  /// 0 where the surface faces away from the light, 1 on background pixels. Owned by Penumbra
+  /// (a view of one layer of visibilityArrayTexture()).
   uint32_t visibilityTexture(size_t light = 0) const;
+  /// Every light's V: an R32F 2D array texture, layer i = light i.
+  uint32_t visibilityArrayTexture() const;
   /// The same, read back (row 0 = bottom).
   std::vector<float> readVisibility(size_t light = 0) const;
-  /// V at world points with the last frame's maps (the visibility pass over a point list).
-  std::vector<float> visibilityAt(std::span<const SurfaceSample> points);
+  /// V of `light` at world points with the last frame's maps (the visibility pass over a point list).
+  std::vector<float> visibilityAt(std::span<const SurfaceSample> points, size_t light = 0);
 
   /// Binds Penumbra's frame and shadow-view blocks (PN_UBO_FRAME, PN_UBO_SHADOW of
-  /// shaders/shared/Bindings.h) as the last render() filled them, for a pass of the caller's
-  /// that includes shaders/common/shadow.glsl (a debug view of the cascades, say).
-  void bindFrameBlocks() const;
+  /// shaders/shared/Bindings.h) for `light` as the last render() filled them, for a pass of the
+  /// caller's that includes shaders/common/shadow.glsl (a debug view of the cascades, say).
+  void bindFrameBlocks(size_t light = 0) const;
 
-  const LightFrusta& frusta() const;      ///< the last frame's views
-  /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame
+  const LightFrusta& frusta(size_t light = 0) const;  ///< the last frame's views of `light`
+  /// What each light got in the last frame (map size, views, importance).
+  const std::vector<LightShadowReport>& lightReports() const;
+  /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame, each the sum
+  /// over the lights
   const PassTimings& timings() const;
-  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filter (and the
-  /// contact pass, when on) created during its passes and still holds (shadow maps, moment, mip, summed-area and pyramid
-  /// storage, baked fields, its debug images), counted where GL storage is allocated. The
-  /// visibility texture, the uniform blocks and the caller's surfaces are not the technique's.
+  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filters (one copy
+  /// per light) and the contact pass, when on, created during their passes and still hold (shadow
+  /// maps, moment, mip, summed-area and pyramid storage, baked fields, debug images), counted where
+  /// GL storage is allocated. The visibility array, the uniform blocks and the caller's surfaces
+  /// are not the technique's.
   std::size_t techniqueMemoryBytes() const;
-  /// Every intermediate of the last frame a viewer can show: the visibility, then the filter's.
-  std::vector<DebugImage> debugImages() const;
+  /// Every intermediate of the last frame a viewer can show for `light`: its visibility, then its
+  /// filter's maps.
+  std::vector<DebugImage> debugImages(size_t light = 0) const;
   /// The programs Penumbra compiled (for tools that reload shader sources while running).
   ShaderLibrary& shaders();
 

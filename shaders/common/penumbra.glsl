@@ -32,7 +32,7 @@ float viewDistanceM(int view, float depth) {
 vec3 pointOnLightRay(int view, vec3 wsReceiver, float zM) {
   float receiverM = lightDistance(view, wsReceiver);
   if (isPerspectiveView(view)) {
-    vec3 light = u_frame.lightPosition.xyz;
+    vec3 light = u_frame.light.position.xyz;
     return light + (wsReceiver - light) * (zM / max(receiverM, kMinLightDistanceM));
   }
   return wsReceiver + toLight(wsReceiver) * (receiverM - zM);

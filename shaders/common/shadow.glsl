@@ -124,7 +124,7 @@ int cubeFace(vec3 d) {
 
 // The view that covers ws: a point light's face by direction, a cascade by camera depth.
 int shadowViewFor(vec3 ws) {
-  return isPointLight() ? cubeFace(ws - u_frame.lightPosition.xyz) : shadowViewAtDepth(cameraViewDepth(ws));
+  return isPointLight() ? cubeFace(ws - u_frame.light.position.xyz) : shadowViewAtDepth(cameraViewDepth(ws));
 }
 
 // Set by the visibility pass while it evaluates one side of a cascade blend (-1: by depth).

@@ -23,7 +23,7 @@ bool softReceiver(SurfacePoint s, float minRadiusTexels, float maxRadiusTexels, 
     return false;
   }
   r.coord = coordInsideMap(r.view, s, r.coord, ivec2(shadowMapSize()));
-  r.lightSize = u_frame.lightRadiance.w;
+  r.lightSize = u_frame.light.radiance.w;
   float texelUv = 1.0 / shadowMapSize();
   r.minRadiusUv = vec2(minRadiusTexels * texelUv);
   r.maxRadiusUv = vec2(maxRadiusTexels * texelUv);

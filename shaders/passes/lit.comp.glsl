@@ -1,5 +1,6 @@
-// Lit pass, identical for every technique: ambient + V · direct (Lambert + Blinn-Phong),
-// an ACES-style tone map and sRGB encoding. The subject of Penumbra is V, so shading stays simple.
+// Lit pass, identical for every technique: ambient + Σ over the lights of V_i · direct_i (Lambert
+// + Blinn-Phong), an ACES-style tone map and sRGB encoding. The subject of Penumbra is V, so
+// shading stays simple. V_i is layer i of the visibility array.
 #include "common/frame.glsl"
 #include "common/texel_density.glsl"
 #include "shared/DebugColors.h"
@@ -9,9 +10,13 @@ layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_gbufPosition;
 layout(binding = PN_TEX_GBUF_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = PN_TEX_GBUF_ALBEDO) uniform sampler2D s_gbufAlbedo;
-layout(binding = PN_TEX_VISIBILITY) uniform sampler2D s_visibility;
+layout(binding = PN_TEX_VISIBILITY) uniform sampler2DArray s_visibility;
+layout(std430, binding = PN_SSBO_LIGHTS) readonly buffer LightsBlock {
+  ivec4 u_lightCount;  // x: lights
+  LightGpu u_lights[];
+};
 layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
-// PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes; PN_LIGHT_KIND: the light's kind.
+// PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes.
 const int kDebugView = PN_DEBUG_VIEW;
 
 const float kSpecularStrength = 0.25;  // share of the direct light reflected specularly
@@ -39,28 +44,37 @@ void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
   vec4 pos = texelFetch(s_gbufPosition, px, 0);
-  float v = texelFetch(s_visibility, px, 0).r;
   vec3 color;
   if (pos.w < 0.5) {
     float t = float(px.y) / float(u_frame.screen.y);
     color = mix(vec3(0.55, 0.6, 0.65), vec3(0.25, 0.4, 0.65), t);  // sky gradient (display-referred)
-  } else if (kDebugView == PN_VIEW_VISIBILITY) {
-    color = vec3(v);
   } else {
     vec3 n = texelFetch(s_gbufNormal, px, 0).xyz;
     vec3 albedo = texelFetch(s_gbufAlbedo, px, 0).rgb;
-    vec3 l = toLight(pos.xyz);
-    vec3 radiance = u_frame.lightRadiance.rgb;
-    if (isPositionalLight()) {
-      vec3 d = u_frame.lightPosition.xyz - pos.xyz;
-      radiance *= lightFalloff(pos.xyz) / max(dot(d, d), 1e-4);
+    vec3 toCamera = normalize(u_frame.cameraPosition.xyz - pos.xyz);
+    vec3 hdr = u_frame.ambient.rgb * albedo;
+    // The visibility view: each light's V weighted by its unshadowed light here (what the
+    // metrics call the combined V; a single light's own V).
+    float weightedV = 0.0, weights = 0.0;
+    for (int i = 0; i < u_lightCount.x; ++i) {
+      LightGpu light = u_lights[i];
+      float v = texelFetch(s_visibility, ivec3(px, i), 0).r;
+      vec3 l = toLightOf(light, pos.xyz);
+      vec3 radiance = light.radiance.rgb;
+      if (isPositional(light)) {
+        vec3 d = light.position.xyz - pos.xyz;
+        radiance *= lightFalloffOf(light, pos.xyz) / max(dot(d, d), 1e-4);
+      }
+      vec3 h = normalize(l + toCamera);
+      float NoL = max(dot(n, l), 0.0);
+      float specular = kSpecularStrength * pow(max(dot(n, h), 0.0), 48.0) * step(0.0, NoL);
+      hdr += v * (albedo * NoL + specular) * radiance;
+      float w = NoL * dot(radiance, vec3(0.2126, 0.7152, 0.0722));
+      weightedV += w * v;
+      weights += w;
     }
-    vec3 h = normalize(l + normalize(u_frame.cameraPosition.xyz - pos.xyz));
-    float NoL = max(dot(n, l), 0.0);
-    float specular = kSpecularStrength * pow(max(dot(n, h), 0.0), 48.0) * step(0.0, NoL);
-    vec3 direct = (albedo * NoL + specular) * radiance;
-    vec3 hdr = u_frame.ambient.rgb * albedo + v * direct;
-    color = toSrgb(acesApprox(hdr));
+    color = kDebugView == PN_VIEW_VISIBILITY ? vec3(weights > 0.0 ? weightedV / weights : texelFetch(s_visibility, ivec3(px, 0), 0).r)
+                                             : toSrgb(acesApprox(hdr));
   }
   if (pos.w > 0.5 && (kDebugView == PN_VIEW_CASCADES || kDebugView == PN_VIEW_TEXEL_DENSITY))
     color = debugTint(px, pos.xyz, color);

@@ -5,19 +5,25 @@
 
 PN_GPU_BEGIN
 
+// One light as every pass sees it: the frame's shadowing light (FrameUniforms::light) and each
+// light of the lit pass's list (PN_SSBO_LIGHTS).
+struct LightGpu {
+  vec4 direction;  // xyz: unit, from the light toward the scene; w: PN_LIGHT_*
+  vec4 position;   // xyz: spot or point position (m); w: unused
+  vec4 radiance;   // rgb: colour × intensity; w: light size (sphere radius m | sun angular radius rad)
+  vec4 cone;       // x: cos(spot outer half angle), y: cos(inner half angle), z: range (m, 0 = none), w: unused
+};
+
 struct FrameUniforms {
   mat4 clipFromWorld;    // the camera's projection × view (Penumbra's own: reversed-Z)
   mat4 viewFromWorld;
   mat4 worldFromClip;    // inverse of clipFromWorld: unprojects the depth texture (PN_SURFACE_FROM_DEPTH)
   vec4 cameraPosition;   // xyz: world (m)
-  vec4 lightDirection;   // xyz: unit, from the light toward the scene; w: PN_LIGHT_*
-  vec4 lightPosition;    // xyz: spot or point position (m); w: unused
-  vec4 lightRadiance;    // rgb: colour × intensity; w: light size (spot radius m | sun angular radius rad)
+  LightGpu light;        // the light this pass shadows
   vec4 ambient;          // rgb: ambient radiance
   ivec4 screen;          // x, y: size in pixels; z: frame index; w: unused
   vec4 sceneInfo;        // x: scene bounding radius (m); yzw: unused
   vec4 depthInfo;        // ndc.z = x · stored depth + y; z: the stored depth of background pixels; w: unused
-  vec4 lightCone;        // x: cos(spot outer half angle), y: cos(inner half angle), z: range (m, 0 = none), w: unused
 };
 
 struct ObjectGpu {
@@ -31,6 +37,7 @@ PN_GPU_END
 
 #ifdef __cplusplus
 static_assert(sizeof(penumbra::gpu::FrameUniforms) == 3 * 64 + 9 * 16, "std140 size of FrameUniforms");
-static_assert(offsetof(penumbra::gpu::FrameUniforms, lightRadiance) == 192 + 48, "std140 offset");
+static_assert(sizeof(penumbra::gpu::LightGpu) == 4 * 16, "std140/std430 size of LightGpu");
+static_assert(offsetof(penumbra::gpu::FrameUniforms, light) == 192 + 16, "std140 offset");
 static_assert(sizeof(penumbra::gpu::ObjectGpu) == 2 * 64 + 2 * 16, "std430 size of ObjectGpu");
 #endif

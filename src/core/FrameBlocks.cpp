@@ -10,6 +10,15 @@
 
 namespace penumbra::core {
 
+gpu::LightGpu lightGpu(const Light& light) {
+  gpu::LightGpu l{};
+  l.direction = glm::vec4(glm::normalize(light.direction), shaderLightKind(light));
+  l.position = glm::vec4(light.position, 0.0f);
+  l.radiance = glm::vec4(light.color * light.intensity, light.size);
+  l.cone = glm::vec4(std::cos(light.coneAngleRad), std::cos(light.innerConeAngleRad), light.rangeM, 0.0f);
+  return l;
+}
+
 gpu::FrameUniforms frameUniforms(const ShadowCamera& camera, const Light& light, glm::ivec2 screen, int frameIndex,
                                  float sceneRadiusM) {
   gpu::FrameUniforms f{};
@@ -17,10 +26,7 @@ gpu::FrameUniforms frameUniforms(const ShadowCamera& camera, const Light& light,
   f.clipFromWorld = camera.clipFromView * camera.viewFromWorld;
   f.worldFromClip = glm::inverse(f.clipFromWorld);
   f.cameraPosition = glm::vec4(camera.fit.position, 1.0f);
-  f.lightDirection = glm::vec4(glm::normalize(light.direction), shaderLightKind(light));
-  f.lightPosition = glm::vec4(light.position, 0.0f);
-  f.lightCone = glm::vec4(std::cos(light.coneAngleRad), std::cos(light.innerConeAngleRad), light.rangeM, 0.0f);
-  f.lightRadiance = glm::vec4(light.color * light.intensity, light.size);
+  f.light = lightGpu(light);
   f.screen = glm::ivec4(screen.x, screen.y, frameIndex, 0);
   f.sceneInfo = glm::vec4(sceneRadiusM, 0, 0, 0);
   // Stored depth → ndc.z, and the stored depth of the far plane (where nothing was drawn): 1,

@@ -10,6 +10,8 @@
 
 namespace penumbra::core {
 
+/// One light as the shaders read it (its kind, direction, position, radiance, cone and range).
+gpu::LightGpu lightGpu(const Light& light);
 /// The camera, the shadowing light, the screen and how to unproject the depth texture.
 gpu::FrameUniforms frameUniforms(const ShadowCamera& camera, const Light& light, glm::ivec2 screen, int frameIndex,
                                  float sceneRadiusM);

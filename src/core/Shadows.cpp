@@ -1,12 +1,16 @@
-// The engine-facing core (penumbra/Shadows.h): projection → shadow pass → prefilter →
-// visibility, against the caller's camera, surfaces and casters. No technique-specific branch
-// lives here: the Projection and the Filter do that work.
+// The engine-facing core (penumbra/Shadows.h): for each light, projection → shadow pass →
+// prefilter → visibility (→ contact shadows), against the caller's camera, surfaces and casters,
+// into that light's layer of the visibility array. No technique-specific branch lives here: the
+// Projection and the Filter do that work. Each light has its own technique objects (their maps
+// are its own): light 0 runs the technique set with setTechnique itself, the others copies of it,
+// and a light's own shadow settings are applied over its copy for its frame.
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
 #include <penumbra/Shadows.h>
 
 #include "core/FrameBlocks.h"
 #include "core/GlState.h"
+#include "core/ShadowBudget.h"
 #include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
 #include "frame/PassTimer.h"
@@ -49,15 +53,25 @@ void checkTexture(uint32_t name, const char* what) {
 
 }  // namespace
 
+/// One light's technique and what its last frame made.
+struct LightSlot {
+  std::unique_ptr<Projection> ownProjection;  ///< lights 1..: a copy of the technique's projection
+  std::unique_ptr<Filter> ownFilter;          ///< … and filter (light 0 runs the technique's own)
+  Light light;
+  LightFrusta frusta;
+  gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
+  gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
+  gl::Texture visibilityView;  ///< its layer of the visibility array, as a 2D texture
+  int mapSize = 0;
+};
+
 struct Shadows::Impl {
   ShaderLibrary shaders;
   PassTimer timer{gl::isSoftwareRenderer(gl::glString(GL_RENDERER))};
-  gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
-  gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
   gl::Buffer filterBlock{"filter block", kFilterBlockBytes};
   // Engine textures are read through this sampler, whatever their own sampling state.
   gl::Sampler surfaceSampler{"surface sampler", {GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, false}};
-  gl::Texture visibility;
+  gl::Texture visibility;  ///< 2D array, one layer per light
   CasterSet casters;
   SceneExtent extent;
   const Scene* cpuScene = nullptr;
@@ -67,28 +81,144 @@ struct Shadows::Impl {
   // when it is destroyed.
   gl::MemoryAccount techniqueMemory;
   ContactShadows contact;
-  LightFrusta frusta;
+  std::vector<std::unique_ptr<LightSlot>> slots;
+  std::vector<LightShadowReport> reports;
   PassTimings timings;
-  // The last frame's, for visibilityAt and bindFrameBlocks.
-  Light light;
-  int mapSize = 0;
   glm::ivec2 screen{0};
   SurfaceSource surface = SurfaceSource::Position;
   int frameIndex = 0;
 
-  FrameContext frameContext() {
-    return FrameContext({light, cpuScene, frusta, mapSize, screen, surface, shaders, casters, filterBlock, timer, &visibility});
+  Projection& projectionOf(size_t i) { return i == 0 ? *projection : *slots[i]->ownProjection; }
+  Filter& filterOf(size_t i) { return i == 0 ? *filter : *slots[i]->ownFilter; }
+  const Filter& filterOf(size_t i) const { return i == 0 ? *filter : *slots[i]->ownFilter; }
+
+  FrameContext frameContext(size_t i) {
+    LightSlot& s = *slots[i];
+    return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
+                         &visibility, static_cast<int>(i)});
   }
-  void bindBlocks() const {
-    frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-    shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
+  void bindBlocks(size_t i) const {
+    slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+    slots[i]->shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
   }
-  void checkPair(const Light& l) const {
+  void checkPair(const Light& l, const std::string& which = "") const {
     if (const std::string why = projection->incompatibility(l); !why.empty())
-      throw usageError(fmt::format("--projection {} is not supported for this light: {}", projection->id(), why));
+      throw usageError(fmt::format("--projection {} is not supported for {}: {}", projection->id(),
+                                   which.empty() ? "this light" : which, why));
     const std::string why = filter->incompatibility(projection->id(), l);
     if (!why.empty())
-      throw usageError(fmt::format("--filter {} with --projection {} is not supported: {}", filter->id(), projection->id(), why));
+      throw usageError(fmt::format("{}--filter {} with --projection {} is not supported: {}", which.empty() ? "" : which + ": ",
+                                   filter->id(), projection->id(), why));
+  }
+
+  /// One slot per light, with copies of the technique for lights 1.. (remade when the technique
+  /// or the count changes; kept otherwise: the copies' maps stay allocated).
+  void ensureSlots(size_t count) {
+    const bool sameTechnique = slots.size() < 2 || (slots[1]->ownProjection->id() == projection->id() &&
+                                                     slots[1]->ownFilter->id() == filter->id());
+    if (slots.size() == count && sameTechnique) return;
+    if (!sameTechnique) slots.clear();
+    while (slots.size() > count) slots.pop_back();
+    while (slots.size() < count) {
+      auto s = std::make_unique<LightSlot>();
+      if (!slots.empty()) {
+        s->ownProjection = makeProjection(projection->id());
+        s->ownFilter = makeFilter(filter->id());
+      }
+      slots.push_back(std::move(s));
+    }
+  }
+
+  void ensureVisibility(glm::ivec2 size, int layers) {
+    if (visibility && visibility.width() == size.x && visibility.height() == size.y && visibility.layers() == layers) return;
+    for (auto& s : slots) s->visibilityView = gl::Texture();
+    visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, layers, 1});
+    visibility.setSampling(GL_NEAREST, GL_NEAREST);
+    for (size_t i = 0; i < slots.size(); ++i) {
+      slots[i]->visibilityView = gl::Texture::layerView(fmt::format("visibility of light {}", i), visibility, static_cast<int>(i));
+      slots[i]->visibilityView.setSampling(GL_NEAREST, GL_NEAREST);
+    }
+  }
+
+  /// The light's own settings over its technique for this frame: its copy's parameters are the
+  /// technique's, then its overrides; light 0's overrides go on the technique itself and come off
+  /// after the frame (the returned snapshot).
+  std::optional<std::pair<Parameterized, Parameterized>> applySettings(size_t i, const Light& light) {
+    Projection& p = projectionOf(i);
+    Filter& f = filterOf(i);
+    std::optional<std::pair<Parameterized, Parameterized>> snapshot;
+    if (i > 0) {
+      static_cast<Parameterized&>(p) = static_cast<const Parameterized&>(*projection);
+      static_cast<Parameterized&>(f) = static_cast<const Parameterized&>(*filter);
+    } else if (!light.shadow.params.empty()) {
+      snapshot.emplace(static_cast<const Parameterized&>(p), static_cast<const Parameterized&>(f));
+    }
+    for (const auto& [key, value] : light.shadow.params) {
+      if (p.hasParam(key)) p.setParam(key, std::string_view(value));
+      else if (f.hasParam(key)) f.setParam(key, std::string_view(value));
+      else
+        throw usageError(fmt::format("light {}: shadow.params.{}: not a parameter of --projection {} or --filter {}", i, key,
+                                     p.id(), f.id()));
+    }
+    return snapshot;
+  }
+
+  /// How many maps light i's projection makes for it (with its own settings).
+  int viewCount(size_t i, const Light& light, const ShadowCamera& camera, int mapSize) {
+    const auto snapshot = applySettings(i, light);
+    const int views = static_cast<int>(projectionOf(i).computeFrusta(camera.fit, camera.aspect, light, extent, mapSize).views.size());
+    restore(i, snapshot);
+    return views;
+  }
+
+  void restore(size_t i, const std::optional<std::pair<Parameterized, Parameterized>>& snapshot) {
+    if (!snapshot) return;
+    static_cast<Parameterized&>(projectionOf(i)) = snapshot->first;
+    static_cast<Parameterized&>(filterOf(i)) = snapshot->second;
+  }
+
+  void renderLight(size_t i, const ShadowFrameInputs& in) {
+    LightSlot& slot = *slots[i];
+    const ShadowSurfaces& s = in.surfaces;
+    slot.frameBlock.upload(core::frameUniforms(in.camera, slot.light, screen, frameIndex, extent.bounds().radius()));
+    if (!slot.light.castsShadow) {  // lit wherever the light reaches: V = 1 in its layer
+      const float one = 1.0f;
+      glClearTexSubImage(visibility.id(), 0, 0, 0, static_cast<GLint>(i), screen.x, screen.y, 1, GL_RED, GL_FLOAT, &one);
+      return;
+    }
+    const auto snapshot = applySettings(i, slot.light);
+    Projection& projectionI = projectionOf(i);
+    Filter& filterI = filterOf(i);
+    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, extent, slot.mapSize);
+    slot.shadowBlock.upload(core::shadowUniforms(slot.frusta, slot.mapSize));
+    bindBlocks(i);
+    FrameContext ctx = frameContext(i);
+    {
+      ScopedPass pass(timer, "shadow");
+      filterI.renderShadowMaps(ctx);
+    }
+    gl::throwIfGlError("the shadow pass");
+    {
+      ScopedPass pass(timer, "prefilter");
+      filterI.prefilter(ctx);
+    }
+    gl::throwIfGlError("the prefilter pass");
+    glBindTextureUnit(PN_TEX_GBUF_POSITION, surface == SurfaceSource::Position ? s.position : s.depth);
+    glBindTextureUnit(PN_TEX_GBUF_GEONORMAL, s.normal);
+    surfaceSampler.bindUnit(PN_TEX_GBUF_POSITION);
+    surfaceSampler.bindUnit(PN_TEX_GBUF_GEONORMAL);
+    {
+      ScopedPass pass(timer, "visibility");
+      filterI.computeVisibility(ctx);
+    }
+    if (contact.enabled()) {
+      ScopedPass pass(timer, "contact");
+      contact.apply(ctx);
+    }
+    gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
+    gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);
+    gl::throwIfGlError("the visibility pass");
+    restore(i, snapshot);
   }
 };
 
@@ -98,6 +228,7 @@ Shadows::Shadows() {
   mImpl = std::make_unique<Impl>();
   mImpl->projection = makeProjection("uniform");
   mImpl->filter = makeFilter("hard");
+  mImpl->ensureSlots(1);  // light 0 exists before the first frame (its debug images are listed)
 }
 
 Shadows::~Shadows() = default;
@@ -149,8 +280,8 @@ void Shadows::setCasterGeometry(const Scene* scene) { mImpl->cpuScene = scene; }
 void Shadows::render(const ShadowFrameInputs& in) {
   Impl& im = *mImpl;
   if (in.lights.empty()) throw usageError("Shadows::render: no light (ShadowFrameInputs::lights is empty)");
-  if (in.lights.size() > 1)
-    throw usageError(fmt::format("Shadows::render: {} lights given; one Shadows object shadows one light", in.lights.size()));
+  if (in.lights.size() > kMaxShadowedLights)
+    throw usageError(fmt::format("Shadows::render: {} lights given; at most {}", in.lights.size(), kMaxShadowedLights));
   const ShadowSurfaces& s = in.surfaces;
   if (s.width < 1 || s.height < 1 || s.width > kMaxSurfaceSide || s.height > kMaxSurfaceSide)
     throw usageError(fmt::format("image size {}x{} is outside 1..{}", s.width, s.height, kMaxSurfaceSide));
@@ -160,75 +291,75 @@ void Shadows::render(const ShadowFrameInputs& in) {
   checkTexture(s.normal, "normal");
   checkTexture(s.position, "position");
   const int maxSize = gl::maxTextureSize();
-  if (in.mapSize < 1 || in.mapSize > maxSize)
-    throw Error(fmt::format("shadow map size {} is outside 1..{} (the driver's maximum texture size)", in.mapSize, maxSize));
-  const Light& light = in.lights.front();
-  im.checkPair(light);
+  const auto checkMapSize = [maxSize](int size, const std::string& what) {
+    if (size < 1 || size > maxSize)
+      throw Error(fmt::format("{}shadow map size {} is outside 1..{} (the driver's maximum texture size)", what, size, maxSize));
+  };
+  checkMapSize(in.mapSize, "");
+  const bool several = in.lights.size() > 1;
+  for (size_t i = 0; i < in.lights.size(); ++i) {
+    const Light& l = in.lights[i];
+    const std::string which = several ? fmt::format("light {}", i) : "";
+    if (l.castsShadow) im.checkPair(l, which);
+    if (l.shadow.mapSize > 0) checkMapSize(l.shadow.mapSize, which.empty() ? "" : which + ": ");
+  }
   // An error the caller's own calls left is theirs: say so, rather than blame a pass below.
   gl::throwIfGlError("the caller's GL calls before Shadows::render");
 
   const StateScope scope(in.restore);
   core::setPassDefaults();
-  im.light = light;
-  im.mapSize = in.mapSize;
+  im.ensureSlots(in.lights.size());
   im.screen = {s.width, s.height};
   im.surface = s.position != 0 ? SurfaceSource::Position : SurfaceSource::Depth;
-  if (im.visibility.width() != s.width || im.visibility.height() != s.height || !im.visibility) {
-    im.visibility = gl::Texture("visibility", {GL_TEXTURE_2D, GL_R32F, s.width, s.height, 1, 1});
-    im.visibility.setSampling(GL_NEAREST, GL_NEAREST);
-  }
-  im.frusta = im.projection->computeFrusta(in.camera.fit, in.camera.aspect, light, im.extent, in.mapSize);
-  im.frameBlock.upload(core::frameUniforms(in.camera, light, im.screen, im.frameIndex++, im.extent.bounds().radius()));
-  im.shadowBlock.upload(core::shadowUniforms(im.frusta, in.mapSize));
-  im.bindBlocks();
+  im.ensureVisibility(im.screen, static_cast<int>(in.lights.size()));
 
-  FrameContext ctx = im.frameContext();
+  // The budget: each shadowed light's share by its importance on screen, counting the maps its
+  // projection makes for it (cascades, cube faces) at the size it asks for.
+  std::vector<core::BudgetRequest> requests;
+  const Aabb bounds = im.extent.bounds();
+  for (size_t i = 0; i < in.lights.size(); ++i) {
+    const Light& l = in.lights[i];
+    const int requested = l.shadow.mapSize > 0 ? l.shadow.mapSize : in.mapSize;
+    int views = 0;
+    if (l.castsShadow && in.mapBudgetTexels > 0) views = im.viewCount(i, l, in.camera, requested);
+    requests.push_back({requested, views, core::lightImportance(l, in.camera.fit, in.camera.aspect, bounds)});
+  }
+  const std::vector<int> sizes = core::allocateMapSizes(requests, in.mapBudgetTexels);
+  im.reports.assign(in.lights.size(), {});
   const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();
-  {
-    ScopedPass pass(im.timer, "shadow");
-    im.filter->renderShadowMaps(ctx);
+  for (size_t i = 0; i < in.lights.size(); ++i) {
+    LightSlot& slot = *im.slots[i];
+    slot.light = in.lights[i];
+    slot.mapSize = sizes[i];
+    im.renderLight(i, in);
+    im.reports[i] = {requests[i].requestedMapSize, sizes[i],
+                     slot.light.castsShadow ? static_cast<int>(slot.frusta.views.size()) : 0, requests[i].importance};
   }
-  gl::throwIfGlError("the shadow pass");
-  {
-    ScopedPass pass(im.timer, "prefilter");
-    im.filter->prefilter(ctx);
-  }
-  gl::throwIfGlError("the prefilter pass");
-  glBindTextureUnit(PN_TEX_GBUF_POSITION, im.surface == SurfaceSource::Position ? s.position : s.depth);
-  glBindTextureUnit(PN_TEX_GBUF_GEONORMAL, s.normal);
-  im.surfaceSampler.bindUnit(PN_TEX_GBUF_POSITION);
-  im.surfaceSampler.bindUnit(PN_TEX_GBUF_GEONORMAL);
-  {
-    ScopedPass pass(im.timer, "visibility");
-    im.filter->computeVisibility(ctx);
-  }
-  if (im.contact.enabled()) {
-    ScopedPass pass(im.timer, "contact");
-    im.contact.apply(ctx);
-  }
-  gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
-  gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);
-  gl::throwIfGlError("the visibility pass");
+  ++im.frameIndex;
   im.timings = im.timer.endFrame();
 }
 
+size_t Shadows::lightCount() const { return mImpl->slots.size(); }
+
 uint32_t Shadows::visibilityTexture(size_t light) const {
-  PN_CHECK(light == 0, fmt::format("visibilityTexture({}): one light is shadowed", light));
-  return mImpl->visibility.id();
+  PN_CHECK(light < mImpl->slots.size(), fmt::format("visibilityTexture({}): the last frame had {} lights", light, mImpl->slots.size()));
+  return mImpl->slots[light]->visibilityView.id();
 }
 
+uint32_t Shadows::visibilityArrayTexture() const { return mImpl->visibility.id(); }
+
 std::vector<float> Shadows::readVisibility(size_t light) const {
-  PN_CHECK(light == 0, fmt::format("readVisibility({}): one light is shadowed", light));
-  const gl::Texture& t = mImpl->visibility;
+  PN_CHECK(light < mImpl->slots.size(), fmt::format("readVisibility({}): the last frame had {} lights", light, mImpl->slots.size()));
+  const gl::Texture& t = mImpl->slots[light]->visibilityView;
   std::vector<float> v(static_cast<size_t>(t.width()) * static_cast<size_t>(t.height()));
   if (t) t.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
   return v;
 }
 
-std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points) {
+std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points, size_t light) {
   Impl& im = *mImpl;
-  PN_CHECK(im.mapSize > 0, "visibilityAt() before render()");
+  PN_CHECK(light < im.slots.size() && im.slots[light]->mapSize > 0, "visibilityAt() before render()");
   if (points.empty()) return {};
   const glm::ivec4 header(static_cast<int>(points.size()), PN_POINTS_GRID_WIDTH, 0, 0);
   std::vector<gpu::VisibilityPointGpu> data(points.size());
@@ -240,12 +371,12 @@ std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points) 
   gl::Buffer out("visibility at points", points.size() * sizeof(float));
   const StateScope scope(RestoreState::All);
   core::setPassDefaults();
-  im.bindBlocks();
-  FrameContext ctx = im.frameContext();
+  im.bindBlocks(light);
+  FrameContext ctx = im.frameContext(light);
   ctx.setPoints(&in, &out, static_cast<int>(points.size()));
   const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();  // a filter may time sub-passes; these times are not kept
-  im.filter->computeVisibility(ctx);
+  im.filterOf(light).computeVisibility(ctx);
   im.timer.endFrame();
   gl::throwIfGlError("the visibility pass at points");
   std::vector<float> v(points.size());
@@ -253,17 +384,25 @@ std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points) 
   return v;
 }
 
-void Shadows::bindFrameBlocks() const { mImpl->bindBlocks(); }
+void Shadows::bindFrameBlocks(size_t light) const {
+  PN_CHECK(light < mImpl->slots.size(), fmt::format("bindFrameBlocks({}): the last frame had {} lights", light, mImpl->slots.size()));
+  mImpl->bindBlocks(light);
+}
 
 ShaderLibrary& Shadows::shaders() { return mImpl->shaders; }
 
-const LightFrusta& Shadows::frusta() const { return mImpl->frusta; }
+const LightFrusta& Shadows::frusta(size_t light) const {
+  PN_CHECK(light < mImpl->slots.size(), fmt::format("frusta({}): the last frame had {} lights", light, mImpl->slots.size()));
+  return mImpl->slots[light]->frusta;
+}
+const std::vector<LightShadowReport>& Shadows::lightReports() const { return mImpl->reports; }
 const PassTimings& Shadows::timings() const { return mImpl->timings; }
 std::size_t Shadows::techniqueMemoryBytes() const { return static_cast<std::size_t>(mImpl->techniqueMemory.bytes()); }
 
-std::vector<DebugImage> Shadows::debugImages() const {
-  std::vector<DebugImage> out = {{"visibility", &mImpl->visibility, "V: 1 = lit, 0 = in shadow"}};
-  for (const DebugImage& d : mImpl->filter->debugImages()) out.push_back(d);
+std::vector<DebugImage> Shadows::debugImages(size_t light) const {
+  PN_CHECK(light < mImpl->slots.size(), fmt::format("debugImages({}): the last frame had {} lights", light, mImpl->slots.size()));
+  std::vector<DebugImage> out = {{"visibility", &mImpl->slots[light]->visibilityView, "V: 1 = lit, 0 = in shadow"}};
+  for (const DebugImage& d : mImpl->filterOf(light).debugImages()) out.push_back(d);
   return out;
 }
 

@@ -125,7 +125,7 @@ void FrameContext::dispatchScreen(const gl::Program& program, bool readVisibilit
     return;
   }
   PN_ASSERT(mVisibility != nullptr);
-  mVisibility->bindImage(PN_IMG_VISIBILITY, readVisibility ? GL_READ_WRITE : GL_WRITE_ONLY);
+  mVisibility->bindImageLayer(PN_IMG_VISIBILITY, readVisibility ? GL_READ_WRITE : GL_WRITE_ONLY, mVisibilityLayer);
   dispatch2D(program, mScreen.x, mScreen.y, PN_SCREEN_GROUP);
 }
 

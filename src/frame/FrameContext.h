@@ -38,7 +38,8 @@ struct FrameResources {
   const CasterSet& casters;
   gl::Buffer& filterBlock;
   PassTimer& timer;
-  const gl::Texture* visibility;
+  const gl::Texture* visibility;  ///< a 2D array: one layer per light
+  int visibilityLayer = 0;        ///< this frame's light
 };
 
 class FrameContext {
@@ -46,7 +47,7 @@ public:
   explicit FrameContext(const FrameResources& r)
       : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
-        mVisibility(r.visibility) {}
+        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
   /// gave none. Only techniques that bake the geometry (sdf) need them.
@@ -127,6 +128,7 @@ private:
   gl::Buffer& mFilterBlock;
   PassTimer& mTimer;
   const gl::Texture* mVisibility;
+  int mVisibilityLayer;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

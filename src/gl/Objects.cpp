@@ -126,6 +126,24 @@ void Texture::bindImage(GLuint unit, GLenum access, int level) const {
   const GLboolean layered = mDesc.target == GL_TEXTURE_2D ? GL_FALSE : GL_TRUE;
   glBindImageTexture(unit, mId, level, layered, 0, access, mDesc.format);
 }
+void Texture::bindImageLayer(GLuint unit, GLenum access, int layer, int level) const {
+  glBindImageTexture(unit, mId, level, GL_FALSE, layer, access, mDesc.format);
+}
+Texture Texture::layerView(std::string_view name, const Texture& array, int layer) {
+  PN_CHECK(array.desc().target == GL_TEXTURE_2D_ARRAY && layer >= 0 && layer < array.layers(),
+           fmt::format("texture view '{}': layer {} of a {}-layer array", name, layer, array.layers()));
+  Texture t;
+  t.mDesc = array.desc();
+  t.mDesc.target = GL_TEXTURE_2D;
+  t.mDesc.depth = 1;
+  GLuint id = 0;
+  glGenTextures(1, &id);  // a view needs a name without storage: glCreateTextures would give it one
+  glTextureView(id, GL_TEXTURE_2D, array.id(), t.mDesc.format, 0, static_cast<GLuint>(t.mDesc.levels),
+                static_cast<GLuint>(layer), 1);
+  t.adopt(id);
+  label(GL_TEXTURE, id, name);
+  return t;
+}
 void Texture::read(GLenum format, GLenum type, void* out, size_t bytes, int level) const {
   glGetTextureImage(mId, level, format, type, static_cast<GLsizei>(bytes), out);
 }

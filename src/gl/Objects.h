@@ -138,6 +138,11 @@ public:
   void setCompare(bool on);
   void bindUnit(GLuint unit) const { glBindTextureUnit(unit, mId); }
   void bindImage(GLuint unit, GLenum access, int level = 0) const;
+  /// Binds one layer of an array texture as a 2D image (image2D in the shader).
+  void bindImageLayer(GLuint unit, GLenum access, int layer, int level = 0) const;
+  /// A 2D texture that shows layer `layer` of a 2D array texture (glTextureView): the same
+  /// storage, no copy. The view must not outlive `array`.
+  static Texture layerView(std::string_view label, const Texture& array, int layer);
   /// Reads a whole level (all layers) as floats/bytes in `format`/`type`.
   void read(GLenum format, GLenum type, void* out, size_t bytes, int level = 0) const;
   /// Bytes of its storage: every level and layer at the bits per texel the driver reports for

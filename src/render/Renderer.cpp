@@ -57,6 +57,7 @@ struct Renderer::Impl {
   PassTimer timer{gl::isSoftwareRenderer(gl::glString(GL_RENDERER))};
   PassTimings timings;
   gl::Buffer frameBlock{"renderer frame block", sizeof(gpu::FrameUniforms)};
+  gl::Buffer lightsBlock;  ///< the lit pass's lights (PN_SSBO_LIGHTS): a count, then LightGpu[]
   // Screen targets
   glm::ivec2 size{0};
   gl::Texture position, normal, geoNormal, albedo, triangle, depth, color;
@@ -110,7 +111,7 @@ Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return mImpl->scene; }
 Projection& Renderer::projection() { return mImpl->shadows.projection(); }
 Filter& Renderer::filter() { return mImpl->shadows.filter(); }
-const LightFrusta& Renderer::frusta() const { return mImpl->shadows.frusta(); }
+const LightFrusta& Renderer::frusta(size_t light) const { return mImpl->shadows.frusta(light); }
 const PassTimings& Renderer::timings() const { return mImpl->timings; }
 ShaderLibrary& Renderer::shaders() { return mImpl->shadows.shaders(); }
 Shadows& Renderer::shadows() { return mImpl->shadows; }
@@ -169,7 +170,8 @@ void Renderer::render(const RenderOptions& options) {
   ShadowFrameInputs in;
   in.camera = im.camera();
   in.surfaces = {im.size.x, im.size.y, im.depth.id(), im.geoNormal.id(), im.position.id()};
-  in.lights = std::span<const Light>(&im.scene.light(), 1);
+  PN_CHECK(!im.scene.lights.empty(), "render(): the scene has no light");
+  in.lights = im.scene.lights;
   in.mapSize = options.shadowMapSize;
   in.restore = RestoreState::None;  // this renderer sets what each of its passes needs
   im.shadows.render(in);
@@ -190,14 +192,22 @@ void Renderer::runLitPass() {
   ProgramDesc d;
   d.label = "lit";
   d.compute = {"passes/lit.comp.glsl"};
-  // Built per debug view and light kind: the shaded image runs none of the debug code.
+  // Built per debug view: the shaded image runs none of the debug code.
   d.defines.set("PN_DEBUG_VIEW", im.debugView);
-  d.defines.set("PN_LIGHT_KIND", shaderLightKind(im.scene.light()));
   const gl::Program& program = shaders().program(d);
+  const glm::ivec4 count(static_cast<int>(im.scene.lights.size()), 0, 0, 0);
+  const size_t bytes = sizeof(count) + im.scene.lights.size() * sizeof(gpu::LightGpu);
+  if (im.lightsBlock.size() < bytes) im.lightsBlock = gl::Buffer("lit pass lights", bytes);
+  im.lightsBlock.upload(&count, sizeof(count));
+  for (size_t i = 0; i < im.scene.lights.size(); ++i) {
+    const gpu::LightGpu l = core::lightGpu(im.scene.lights[i]);
+    im.lightsBlock.upload(&l, sizeof(l), sizeof(count) + i * sizeof(l));
+  }
+  im.lightsBlock.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_LIGHTS);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
-  glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityTexture());
+  glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityArrayTexture());
   im.color.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   im.shadows.bindFrameBlocks();  // the shadow views: cascade and texel-density debug views
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -205,9 +215,9 @@ void Renderer::runLitPass() {
   gl::throwIfGlError("the lit pass");
 }
 
-std::vector<float> Renderer::visibilityAt(std::span<const SurfaceSample> points) {
+std::vector<float> Renderer::visibilityAt(std::span<const SurfaceSample> points, size_t light) {
   PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "visibilityAt() before render()");
-  return mImpl->shadows.visibilityAt(points);
+  return mImpl->shadows.visibilityAt(points, light);
 }
 
 std::vector<float> Renderer::computeScreenScalar(const std::string& computeShader) {
@@ -232,19 +242,30 @@ std::vector<float> Renderer::computeScreenScalar(const std::string& computeShade
   return v;
 }
 
-ColorImage Renderer::shadeWithVisibility(std::span<const float> visibility) {
+ColorImage Renderer::shadeWithVisibility(const std::vector<std::vector<float>>& perLight) {
   Impl& im = *mImpl;
   const size_t n = static_cast<size_t>(im.size.x) * static_cast<size_t>(im.size.y);
-  PN_CHECK(visibility.size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", visibility.size(), im.size.x, im.size.y));
-  const std::vector<float> own = readVisibility();
-  const GLuint v = im.shadows.visibilityTexture();
-  glTextureSubImage2D(v, 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, visibility.data());
+  PN_CHECK(perLight.size() == lightCount(), fmt::format("shadeWithVisibility: {} visibilities for {} lights", perLight.size(), lightCount()));
+  const GLuint array = im.shadows.visibilityArrayTexture();
+  const auto upload = [&](size_t layer, const std::vector<float>& v) {
+    PN_CHECK(v.size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", v.size(), im.size.x, im.size.y));
+    glTextureSubImage3D(array, 0, 0, 0, static_cast<GLint>(layer), im.size.x, im.size.y, 1, GL_RED, GL_FLOAT, v.data());
+  };
+  std::vector<std::vector<float>> own;
+  for (size_t i = 0; i < perLight.size(); ++i) own.push_back(readVisibility(i));
+  for (size_t i = 0; i < perLight.size(); ++i) upload(i, perLight[i]);
   runLitPass();
   ColorImage out = readColor();
-  glTextureSubImage2D(v, 0, 0, 0, im.size.x, im.size.y, GL_RED, GL_FLOAT, own.data());
+  for (size_t i = 0; i < own.size(); ++i) upload(i, own[i]);
   runLitPass();
   return out;
 }
+
+ColorImage Renderer::shadeWithVisibility(std::span<const float> visibility) {
+  return shadeWithVisibility(std::vector<std::vector<float>>{std::vector<float>(visibility.begin(), visibility.end())});
+}
+
+size_t Renderer::lightCount() const { return mImpl->shadows.lightCount(); }
 
 void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>& lights) {
   if (lights.empty()) throw usageError("setCameraAndLights: a scene needs at least one light");
@@ -264,7 +285,7 @@ std::vector<DebugImage> Renderer::debugImages() const {
   return out;
 }
 
-std::vector<float> Renderer::readVisibility() const { return mImpl->shadows.readVisibility(); }
+std::vector<float> Renderer::readVisibility(size_t light) const { return mImpl->shadows.readVisibility(light); }
 
 GBufferData Renderer::readGBuffer() const {
   GBufferData g;

@@ -7,6 +7,7 @@
 
 #include <penumbra/Error.h>
 #include <penumbra/Shadows.h>
+#include <fmt/format.h>
 
 #include <epoxy/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -227,11 +228,17 @@ TEST(ShadowsApi, NamesTheCallersMistakes) {
   EXPECT_NE(m.find("needs a uvOffset"), std::string::npos) << m;
 
   shadows.setCasters(std::span<const CasterMesh>(&scene.caster, 1));
-  const std::array<Light, 2> two{sun, sun};
+  std::vector<Light> tooMany(kMaxShadowedLights + 1, sun);
   ShadowFrameInputs in = surfaces.inputs(sun);
-  in.lights = two;
+  in.lights = tooMany;
   m = usageErrorFrom([&] { shadows.render(in); });
-  EXPECT_NE(m.find("2 lights given"), std::string::npos) << m;
+  EXPECT_NE(m.find(fmt::format("{} lights given; at most {}", kMaxShadowedLights + 1, kMaxShadowedLights)),
+            std::string::npos)
+      << m;
+  in = surfaces.inputs(sun);
+  in.lights = {};
+  m = usageErrorFrom([&] { shadows.render(in); });
+  EXPECT_NE(m.find("no light (ShadowFrameInputs::lights is empty)"), std::string::npos) << m;
   in = surfaces.inputs(sun);
   in.surfaces.normal = 0;
   m = usageErrorFrom([&] { shadows.render(in); });

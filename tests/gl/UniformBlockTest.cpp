@@ -40,8 +40,8 @@ TEST(UniformBlocks, DriverOffsetsMatchCpp) {
 layout(local_size_x = 1) in;
 layout(std430, binding = PN_SSBO_TEST) buffer Out { vec4 o[]; };
 void main() {
-  o[0] = u_frame.clipFromWorld[0] + u_frame.viewFromWorld[1] + u_frame.cameraPosition + u_frame.lightDirection +
-         u_frame.lightPosition + u_frame.lightRadiance + u_frame.ambient + vec4(u_frame.screen) + u_frame.sceneInfo +
+  o[0] = u_frame.clipFromWorld[0] + u_frame.viewFromWorld[1] + u_frame.cameraPosition + u_frame.light.direction +
+         u_frame.light.position + u_frame.light.radiance + u_frame.ambient + vec4(u_frame.screen) + u_frame.sceneInfo +
          u_frame.worldFromClip[3] + u_frame.depthInfo;
   o[1] = u_shadow.views[1].clipFromWorld[2] + u_shadow.views[1].depthPlane + u_shadow.views[1].range +
          u_shadow.views[1].extent + vec4(u_shadow.info);
@@ -68,7 +68,7 @@ void main() {
   using gpu::ShadowViewGpu;
   EXPECT_EQ(offsetOf(program, "u_frame.clipFromWorld"), GLint(offsetof(FrameUniforms, clipFromWorld)));
   EXPECT_EQ(offsetOf(program, "u_frame.cameraPosition"), GLint(offsetof(FrameUniforms, cameraPosition)));
-  EXPECT_EQ(offsetOf(program, "u_frame.lightRadiance"), GLint(offsetof(FrameUniforms, lightRadiance)));
+  EXPECT_EQ(offsetOf(program, "u_frame.light.radiance"), GLint(offsetof(FrameUniforms, light) + offsetof(gpu::LightGpu, radiance)));
   EXPECT_EQ(offsetOf(program, "u_frame.screen"), GLint(offsetof(FrameUniforms, screen)));
   EXPECT_EQ(offsetOf(program, "u_frame.sceneInfo"), GLint(offsetof(FrameUniforms, sceneInfo)));
   EXPECT_EQ(offsetOf(program, "u_frame.worldFromClip"), GLint(offsetof(FrameUniforms, worldFromClip)));

@@ -34,7 +34,7 @@ float shadowVisibility(SurfacePoint s) {
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
   coord = coordInsideMap(view, s, coord, ivec2(shadowMapSize()));
-  float lightSize = u_frame.lightRadiance.w;
+  float lightSize = u_frame.light.radiance.w;
   float t = coord.z - u_msmSoft.params.y;
   float texelUv = 1.0 / shadowMapSize();
   vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);

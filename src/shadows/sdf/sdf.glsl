@@ -90,10 +90,10 @@ vec2 boxInterval(vec3 origin, vec3 dir, vec3 lo, vec3 hi) {
 // so that k·d/t = 1 exactly where the ray clears every caster by the light's own angle.
 float penumbraK(vec3 ws) {
   if (u_sdf.mode.y == PN_SDF_K_MANUAL) return u_sdf.march.x;
-  float size = u_frame.lightRadiance.w;
+  float size = u_frame.light.radiance.w;
   float tanAlpha;
   if (isPositionalLight()) {
-    float sinAlpha = min(size / max(distance(u_frame.lightPosition.xyz, ws), kTinyM), 1.0);
+    float sinAlpha = min(size / max(distance(u_frame.light.position.xyz, ws), kTinyM), 1.0);
     tanAlpha = sinAlpha / sqrt(max(1.0 - sinAlpha * sinAlpha, kTinyM));
   } else {
     tanAlpha = tan(size);
@@ -115,12 +115,12 @@ float shadowVisibility(SurfacePoint s) {
   vec3 dir;
   float tLight;
   if (isPositionalLight()) {
-    vec3 toCentre = u_frame.lightPosition.xyz - origin;
+    vec3 toCentre = u_frame.light.position.xyz - origin;
     float distanceM = length(toCentre);
     dir = toCentre / max(distanceM, kTinyM);
-    tLight = distanceM - u_frame.lightRadiance.w;  // the light's sphere is not an occluder
+    tLight = distanceM - u_frame.light.radiance.w;  // the light's sphere is not an occluder
   } else {
-    dir = -u_frame.lightDirection.xyz;
+    dir = -u_frame.light.direction.xyz;
     tLight = 3.0e38;
   }
   // Nothing occludes outside the casters' bounds: the march is confined to them.
