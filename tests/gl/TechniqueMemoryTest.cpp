@@ -78,3 +78,17 @@ TEST(TechniqueMemory, AReplacedTechniqueReleasesItsStorage) {
   EXPECT_EQ(r->shadows().techniqueMemoryBytes(), 256u * 256u * 4u);
   EXPECT_LT(r->shadows().techniqueMemoryBytes(), vssm);
 }
+
+// Every light runs its own copy of the technique (its own maps): the count covers them all.
+TEST(TechniqueMemory, CountsEveryLightsCopyOfTheTechnique) {
+  Scene scene = loadScene("boxes");
+  Light second = scene.lights.at(0);
+  second.direction = glm::normalize(second.direction + glm::vec3(0.3f, 0.0f, 0.0f));
+  second.shadow.mapSize = 128;  // its own size, so its map is told apart from the first light's
+  Light unshadowed = second;
+  unshadowed.castsShadow = false;  // shines but keeps no map
+  scene.lights = {scene.lights.at(0), second, unshadowed};
+  std::unique_ptr<Renderer> r = makeTestRenderer(scene, "uniform", "hard");
+  r->render({.width = kWidth, .height = kHeight, .shadowMapSize = 256, .debugView = 0});
+  EXPECT_EQ(r->shadows().techniqueMemoryBytes(), 256u * 256u * 4u + 128u * 128u * 4u);
+}
