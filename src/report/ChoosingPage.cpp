@@ -143,13 +143,13 @@ std::string recommendationHtml(const BenchResults& r, const std::vector<Situatio
       continue;
     }
     h += fmt::format(" {}.</p>\n", escapeXml(acceptableText(r, p)));
-    h += fmt::format("<div class=\"wide\"><table><tr><th class=\"l\">budget</th><th class=\"l\">configuration</th>"
+    h += fmt::format("<div class=\"wide\"><table class=\"picks\"><tr><th class=\"l\">budget</th><th class=\"l\">configuration</th>"
                      "<th>{} (decides)</th><th>{}</th><th>whole cost ms <small>p10–p90</small></th><th>memory MiB</th>"
                      "<th class=\"l\">one-off</th><th class=\"l cmd\">reproduce the error (and one frame's times)</th></tr>\n",
                      metricName(s.metric), metricName(otherMetric(s.metric)));
     for (const Budget b : kBudgets) {
       const BenchRow& row = r.rows[*p.pick(b)];
-      h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l\"><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td>"
+      h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l wrap\"><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td>"
                        "<td>{}</td><td class=\"l wrap\">{}</td><td class=\"l cmd\"><code>{}</code></td></tr>\n",
                        budgetName(b), escapeXml(rowLabel(row)), errorText(situationError(s.metric, row)),
                        errorText(situationError(otherMetric(s.metric), row)), costText(row.shadowCost), numberText(row.memoryMiB()),

@@ -26,6 +26,8 @@ td small { color: #777; }
 .note { color: #555; } .front { font-weight: bold; } .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: middle; }
 code { background: #f4f4f4; padding: 1px 4px; } .wide { overflow-x: auto; } td.why { white-space: pre-wrap; max-width: 640px; } td.wrap { white-space: normal; }
 td.cmd, th.cmd { white-space: normal; min-width: 300px; max-width: 480px; }
+/* the recommendation: headings and names wrap so that the command column fits a 1280-pixel window */
+table.picks th { white-space: normal; } table.picks td.wrap { min-width: 120px; }
 )";
 
 // Image-grid thumbnails are shown at most this wide (pixels); a click opens the full picture.
