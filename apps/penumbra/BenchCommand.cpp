@@ -79,7 +79,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--choosing", o->choosing,
                   "where to write the recommendation page, Markdown (default: OUT/choosing.md; the repository's is "
                   "docs/choosing.md)");
-  sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
+  sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (the recommendation's four scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
   addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
   sub->add_flag("--micro-only", o->microOnly,
