@@ -8,6 +8,7 @@
 #include "metrics/Shimmer.h"
 #include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"
+#include "report/Sheet.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Exr.h>
@@ -28,29 +29,13 @@
 namespace penumbra::app {
 namespace {
 
-// The four images in a 2 × 2 sheet.
-ColorImage sheet(const std::vector<const ColorImage*>& images) {
-  const int w = images[0]->width, h = images[0]->height;
-  ColorImage out;
-  out.width = 2 * w;
-  out.height = 2 * h;
-  out.rgba.assign(static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 4, 0);
-  for (size_t k = 0; k < images.size() && k < 4; ++k) {
-    const int ox = static_cast<int>(k % 2) * w, oy = static_cast<int>(k / 2) * h;
-    for (int y = 0; y < h; ++y)
-      std::copy_n(images[k]->rgba.begin() + static_cast<std::ptrdiff_t>(y) * w * 4, static_cast<size_t>(w) * 4,
-                  out.rgba.begin() + (static_cast<std::ptrdiff_t>(oy + y) * out.width + ox) * 4);
-  }
-  return out;
-}
-
 /// Every file compare writes into --out, in the order --help names them.
 constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"technique.png", "the frame lit with the technique's V"},
     {"reference.png", "the same frame lit with V_ref"},
     {"heatmap.png", "V - V_ref on a grey of V_ref: leaks red, over-darkening blue"},
     {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong"},
-    {"sheet.png", "the four above, 2 x 2"},
+    {"sheet.png", "technique, reference, heatmap and a 4x zoom of its worst region, titled, with the colour legend and the metrics"},
     {"texel-density.png", "screen pixels per shadow-map texel"},
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
@@ -71,14 +56,13 @@ std::string outputsHelp() {
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     TechniqueOptions technique;
-    int samples = 256;
+    int samples = ReferenceOptions{}.samples;  // as bench and the viewer's heatmap
     std::string out = "compare";
     bool json = false, noCache = false;
     int shimmer = 0;
     std::optional<std::uintmax_t> cacheMaxMb;
   };
   auto o = std::make_shared<Options>();
-  o->technique.size = "256x256";
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
   addShadowBudgetOption(*sub, o->technique);
@@ -125,7 +109,26 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     constexpr float kApproximationFullScaleV = 0.1f;
     const ColorImage approx = errorHeatmap(combined.vRef, combined.vRefCosWeighted, combined.mask, width, height, nullptr,
                                            HeatmapOptions{kApproximationFullScaleV});
-    const ColorImage all = sheet({&technique, &reference, &heat, &approx});
+    double referenceSeconds = 0.0;
+    int referenceSamples = 0;
+    bool referenceCached = true;
+    for (const ReferenceResult& r : refs) {
+      referenceSeconds += r.traceSeconds;
+      referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
+      referenceCached = referenceCached && (r.fromCache || r.width == 0);
+    }
+    const std::string lightText = s.scene.lights.size() > 1 ? fmt::format("{} lights", s.scene.lights.size())
+                                                            : fmt::format("light size {:g}", s.scene.light().size);
+    const ColorImage all = report::compareSheet(
+        {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = combined.v, .vRef = combined.vRef,
+         .mask = combined.mask, .heatmapFullScaleDeltaV = report::kLabHeatmap.fullScaleDeltaV,
+         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), s.scene.name),
+         .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", referenceSamples),
+         .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
+                                 "{:.2f}%) · over-dark {:.2f}% over {} lit pixels",
+                                 m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
+                     fmt::format("{}×{} pixels, shadow map {}², {} · --camera {}", width, height,
+                                 s.render.shadowMapSize, lightText, cameraArgument(s.scene.camera))}});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
@@ -142,14 +145,6 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         exr(fmt::format("visibility-light{}.exr", l.index), l.visibility);
         if (l.castsShadow) exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
       }
-    double referenceSeconds = 0.0;
-    int referenceSamples = 0;
-    bool referenceCached = true;
-    for (const ReferenceResult& r : refs) {
-      referenceSeconds += r.traceSeconds;
-      referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
-      referenceCached = referenceCached && (r.fromCache || r.width == 0);
-    }
 
     const PassTimings t = renderer.timings();
     std::optional<ShimmerResult> shimmer;

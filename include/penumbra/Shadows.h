@@ -20,6 +20,7 @@
 #include <penumbra/Scene.h>
 #include <penumbra/Timings.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -185,6 +186,12 @@ public:
   /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame, each the sum
   /// over the lights
   const PassTimings& timings() const;
+  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filters (one copy
+  /// per light) and the contact pass, when on, created during their passes and still hold (shadow
+  /// maps, moment, mip, summed-area and pyramid storage, baked fields, debug images), counted where
+  /// GL storage is allocated. The visibility array, the uniform blocks and the caller's surfaces
+  /// are not the technique's.
+  std::size_t techniqueMemoryBytes() const;
   /// Every intermediate of the last frame a viewer can show for `light`: its visibility, then its
   /// filter's maps.
   std::vector<DebugImage> debugImages(size_t light = 0) const;

@@ -279,9 +279,9 @@ const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 std::vector<DebugImage> Renderer::debugImages() const {
   std::vector<DebugImage> core = mImpl->shadows.debugImages();
   std::vector<DebugImage> out = {core.front(),  // the visibility
-                                 {"gbuffer-depth", &mImpl->depth},
-                                 {"gbuffer-normal", &mImpl->normal},
-                                 {"gbuffer-albedo", &mImpl->albedo}};
+                                 {"gbuffer-depth", &mImpl->depth, "camera depth, reversed-Z: 1 = near plane, 0 = infinitely far"},
+                                 {"gbuffer-normal", &mImpl->normal, "world-space shading normal, x y z in [−1, 1]"},
+                                 {"gbuffer-albedo", &mImpl->albedo, "albedo, linear RGB"}};
   out.insert(out.end(), core.begin() + 1, core.end());
   return out;
 }

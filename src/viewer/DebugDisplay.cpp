@@ -59,7 +59,7 @@ DebugDisplay::DebugDisplay(ShaderLibrary& shaders)
       mRange("viewer display range", 2 * sizeof(uint32_t)), mVao("viewer fullscreen"),
       mSampler("viewer display sampler", {.minFilter = GL_NEAREST_MIPMAP_NEAREST, .magFilter = GL_NEAREST}) {}
 
-glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, const glm::ivec4& area) {
+glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, const glm::ivec4& area, const glm::ivec4* clip) {
   const std::string problem = displayProblem(texture);
   PN_CHECK(problem.empty(), problem);
   if (area.z <= 0 || area.w <= 0) return {s.lo, s.hi};
@@ -109,10 +109,15 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   glDisable(GL_BLEND);
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_CULL_FACE);
+  if (clip) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(clip->x, clip->y, clip->z, clip->w);
+  }
   p.use();
   glBindVertexArray(mVao.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
+  glDisable(GL_SCISSOR_TEST);
   gl::Sampler::unbindUnit(PN_VIEWER_TEX_SOURCE);
   gl::throwIfGlError("the viewer's display pass");
 

@@ -54,6 +54,7 @@ public:
   /// Camera and light edits: take effect at the next render().
   Camera& camera() { ++mVersion; return mScene.camera; }
   Light& light();
+  std::vector<Light>& lights() { ++mVersion; return mScene.lights; }
 
   /// Renders a width × height frame of the current state; `litView` = what the lit pass writes
   /// (RenderOptions::debugView). Throws Error on GL/shader failures.

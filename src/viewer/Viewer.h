@@ -14,6 +14,8 @@
 #include "viewer/ShaderWatcher.h"
 #include "viewer/ViewSession.h"
 
+#include <penumbra/Reference.h>
+
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -39,7 +41,26 @@ struct ViewerOptions {
 /// (RenderOptions::debugView: shaded, cascades, texel-density) are the colour output.
 inline constexpr const char* kShadedView = "shaded";
 inline constexpr const char* kHeatmapView = "heatmap";
+/// The same frame lit with the reference's V_ref (after a heatmap of this view): R flips to it.
+inline constexpr const char* kReferenceView = "reference";
 inline constexpr const char* kNoInset = "none";
+
+/// True for the lit pass's views (shaded, cascades, texel-density): the colour output.
+bool isLitView(std::string_view name);
+
+/// The panel groups, one tab each; the script's `panel NAME` opens one.
+enum class Panel { Technique, Filter, LightCamera, Views, Timings, Tools };
+struct PanelInfo {
+  Panel panel;
+  const char* id;     ///< script name
+  const char* title;  ///< tab label
+};
+inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Technique"},
+                                        {Panel::Filter, "filter", "Filter"},
+                                        {Panel::LightCamera, "light", "Light"},
+                                        {Panel::Views, "views", "Views"},
+                                        {Panel::Timings, "timings", "Timings"},
+                                        {Panel::Tools, "tools", "Tools"}};
 
 class Viewer {
 public:
@@ -58,6 +79,14 @@ private:
   struct ViewState {  // what one of the two view slots shows and how
     std::string name;
     DisplaySettings settings;
+    /// The name was found at least once: when a later technique lacks it (sdf has no
+    /// shadow-map), the slot waits for it instead of failing; a name never found is a typo.
+    bool seen = false;
+  };
+  /// Where the open panel's content ends, for `print layout` (window pixels).
+  struct PanelLayout {
+    std::string panel;
+    float contentBottom = 0.0f, windowHeight = 0.0f, scrollMax = 0.0f;
   };
 
   bool frame();
@@ -75,6 +104,11 @@ private:
   bool selectProjection(const std::string& id);
   bool selectFilter(const std::string& id);
   void startHeatmap(int samples);
+  void flipReference();  ///< R: technique ↔ reference (a heatmap first when there is none)
+  /// Split view: the right half of the view shows `filter` with `projection` ("" = off).
+  bool setSplit(const std::string& filter, const std::string& projection);
+  void renderSplit(int width, int height);
+  void setView(ViewState& view, const std::string& name, const char* slot);
   void screenshotView(const std::filesystem::path& path);
   void screenshotWindow(const std::filesystem::path& path);
   void saveSettings(const std::filesystem::path& path);
@@ -94,12 +128,23 @@ private:
   void drawPanels();
   void drawOverlay();  ///< the heatmap's progress, over the view
   void drawTechniquePanel();
-  void drawParams();
+  /// The parameter groups [first, last) of ViewSession::paramGroups().
+  void drawParams(size_t first, size_t last);
   void drawLightCameraPanel();
   void drawViewsPanel();
   void drawViewSettings(const char* id, ViewState& view, bool allowNone);
   void drawTimingPanel();
   void drawToolsPanel();
+  void drawSplitControls();
+  void loadFont();
+  std::string layoutText() const;  ///< `print layout`: the open panel's extent, the font's coverage
+
+  // Legends (Legends.cpp): what the colours of the main view and the inset mean.
+  void drawLegends();
+  /// The legend of one view slot, its corner at `anchor` (window pixels from the top-left) taken
+  /// at `pivot` (0..1 of its size), e.g. (0, 1) = lower-left.
+  void drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
+                  const glm::vec2& pivot);
 
   ViewerOptions mOptions;
   gl::WindowContext mWindow;
@@ -110,13 +155,21 @@ private:
   HeatmapJob mHeatmap;
   std::optional<HeatmapResult> mHeatmapResult;
   gl::Texture mHeatmapTexture;
-  int mHeatmapSamples = 64;
+  int mHeatmapSamples = ReferenceOptions{}.samples;  ///< as compare and bench: the same ruler
   std::optional<int> mHeatmapRequest;  ///< samples; started once this frame is rendered
+  gl::Texture mReferenceTexture;       ///< the heatmap's frame lit with V_ref
+  uint64_t mReferenceVersion = 0;      ///< ViewSession::version() it shows (0 = none)
+  bool mFlipWhenReady = false;         ///< R pressed before a heatmap of this view existed
+  std::unique_ptr<ViewSession> mSplit; ///< the right half's technique, when the view is split
+  std::string mSplitLabel;
+
+  std::optional<Panel> mSelectPanel;   ///< a tab to open on the next frame (script, keys)
+  PanelLayout mLayout;
 
   // Layout (window pixels, origin lower-left) and cameras.
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
-  float mSidebarWidth = 360.0f;
+  float mSidebarWidth = 380.0f;
   float mRenderScale = 1.0f;
   bool mFly = false;
   bool mDragInView = false;  ///< a mouse drag that started over the view
@@ -125,7 +178,7 @@ private:
   FlyCamera mFlyCamera;
   float mFlySpeedMps = 2.0f;
 
-  ViewState mMain{kShadedView, {}}, mInset{kNoInset, {}};
+  ViewState mMain{kShadedView, {}, true}, mInset{kNoInset, {}, true};
   glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};
 
   // Status line, timings.

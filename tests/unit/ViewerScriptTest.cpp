@@ -1,5 +1,6 @@
 // The viewer's script format (src/viewer/Script.h): what parses, and what fails with file:line.
 #include "viewer/Script.h"
+#include "viewer/Viewer.h"
 
 #include <penumbra/Error.h>
 
@@ -62,4 +63,14 @@ TEST(ViewerScript, HelpListsEveryAction) {
                 help.find(std::string("\n  ") + verb + "\n") != std::string::npos ||
                 help.rfind(std::string("  ") + verb + " ", 0) == 0)
         << verb;
+}
+
+// `panel NAME` takes exactly the viewer's tab ids; `split` a filter (and projection) or off.
+TEST(ViewerScript, PanelAndSplitActions) {
+  for (const viewer::PanelInfo& p : viewer::kPanels)
+    EXPECT_NO_THROW(viewer::parseScript(std::string("panel ") + p.id + "\n", "s.txt")) << p.id;
+  EXPECT_THROW(viewer::parseScript("panel sidebar\n", "s.txt"), Error);
+  EXPECT_NO_THROW(viewer::parseScript("split vsm\nsplit pcss csm\nsplit off\nflip\nprint layout\n", "s.txt"));
+  EXPECT_THROW(viewer::parseScript("split off now\n", "s.txt"), Error);
+  EXPECT_THROW(viewer::parseScript("split\n", "s.txt"), Error);
 }
