@@ -1,0 +1,39 @@
+// Sequences from the command line: render --frames writes numbered PNGs (and says what happened
+// to the MP4).
+#include "CliSupport.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+TEST(MotionCli, RenderFramesWritesANumberedSequence) {
+  const std::string dir = freshDir("frames-seq");
+  const RunResult r = runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 0.5 --out seq.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f : {"seq-0000.png", "seq-0001.png", "seq-0002.png"}) EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/seq-0003.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/seq.mp4") || r.out.find("ffmpeg is not on the PATH") != std::string::npos) << r.out;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> first = readPng(dir + "/seq-0000.png", w, h), last = readPng(dir + "/seq-0002.png", w, h);
+  EXPECT_NE(first, last) << "the ball rolled and the sun moved in 4 s";
+  // The first frame is the still frame (the sun's direction comes back from its azimuth and
+  // elevation within a float's rounding: a texel on an edge may differ).
+  ASSERT_EQ(runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --out still.png", dir).exitCode, 0);
+  const std::vector<uint8_t> still = readPng(dir + "/still.png", w, h);
+  ASSERT_EQ(still.size(), first.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < still.size(); i += 4) differ += still[i] != first[i] || still[i + 1] != first[i + 1] || still[i + 2] != first[i + 2];
+  EXPECT_LE(differ, still.size() / 4 / 100) << "pixels of frame 0 that differ from the still frame";
+}
+
+TEST(MotionCli, FramesExcludesTheSingleFrameOptions) {
+  EXPECT_EQ(runPenumbra("render --frames 2 --repeat 2").exitCode, 2);
+  EXPECT_EQ(runPenumbra("render --frames 0").exitCode, 2);
+  EXPECT_EQ(runPenumbra("render --frames 2 --fps 0").exitCode, 2);
+}
