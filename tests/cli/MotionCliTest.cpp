@@ -1,10 +1,11 @@
 // Sequences from the command line: render --frames writes numbered PNGs (and says what happened
-// to the MP4).
+// to the MP4), compare --frames adds the error-over-time keys to the JSON.
 #include "CliSupport.h"
 
 #include <penumbra/ImageIO.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <string>
@@ -36,4 +37,17 @@ TEST(MotionCli, FramesExcludesTheSingleFrameOptions) {
   EXPECT_EQ(runPenumbra("render --frames 2 --repeat 2").exitCode, 2);
   EXPECT_EQ(runPenumbra("render --frames 0").exitCode, 2);
   EXPECT_EQ(runPenumbra("render --frames 2 --fps 0").exitCode, 2);
+}
+
+TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
+  const std::string dir = freshDir("compare-frames");
+  const RunResult r = runPenumbra("compare --scene boxes --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 --json --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* k : {"frames", "flicker_pct", "rmse_mean", "rmse_worst_frame", "frame_rmse"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["frame_rmse"].size(), 3u);
+  EXPECT_GE(j["flicker_pct"].get<double>(), 0.0);
+  EXPECT_LT(j["rmse_worst_frame"].get<int>(), 3);
+  EXPECT_NEAR(j["frame_rmse"][0].get<double>(), j["rmse"].get<double>(), 1e-9) << "frame 0 is the compared frame";
 }
