@@ -15,10 +15,11 @@
 namespace penumbra::report {
 namespace {
 
-bool sameTransforms(const Scene& a, const Scene& b) {
-  for (size_t i = 0; i < a.objects.size(); ++i)
-    if (a.objects[i].worldFromObject != b.objects[i].worldFromObject) return false;
-  return true;
+std::vector<glm::mat4> transforms(const Scene& s) {
+  std::vector<glm::mat4> out;
+  out.reserve(s.objects.size());
+  for (const Object& o : s.objects) out.push_back(o.worldFromObject);
+  return out;
 }
 
 }  // namespace
@@ -31,7 +32,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
   SequenceComparison out;
   Scene posed = scene;
   std::unique_ptr<ReferenceTracer> tracer;
-  Scene traced;  // the pose the tracer was built for
+  std::vector<glm::mat4> traced;  // the objects' transforms the tracer was built with
   FlickerFrame previous;
   for (int f = 0; f < timing.frames; ++f) {
     SequenceFrame frame;
@@ -40,9 +41,10 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     renderer.setPose(posed);
     renderer.render(render);
     const GBufferData gbuffer = renderer.readGBuffer();
-    if (!tracer || !sameTransforms(traced, posed)) {
+    std::vector<glm::mat4> placed = transforms(posed);
+    if (!tracer || placed != traced) {
       tracer = std::make_unique<ReferenceTracer>(posed);
-      traced = posed;
+      traced = placed;
     }
     const std::vector<ReferenceResult> refs = traceLights(*tracer, gbuffer, posed.lights, reference);
     for (const ReferenceResult& r : refs) {
@@ -53,11 +55,8 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     frame.metrics = cmp.metrics;
     // Flicker on the first light that casts shadows (each light's own V and V_ref).
     const LightComparison& light = *std::find_if(cmp.lights.begin(), cmp.lights.end(), [](const LightComparison& l) { return l.castsShadow; });
-    std::vector<glm::mat4> transforms;
-    transforms.reserve(posed.objects.size());
-    for (const Object& o : posed.objects) transforms.push_back(o.worldFromObject);
     FlickerFrame now = makeFlickerFrame(gbuffer, posed.camera, light.visibility, refs[light.index].visibility,
-                                        refs[light.index].litMask, std::move(transforms));
+                                        refs[light.index].litMask, std::move(placed));
     if (f > 0) {
       const std::vector<FollowedPoint> points = followPoints(previous, now, flickerOptions);
       std::vector<SurfaceSample> samples;
