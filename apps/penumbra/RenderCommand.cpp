@@ -49,16 +49,37 @@ std::filesystem::path framePath(const std::filesystem::path& out, int frame) {
   return out.parent_path() / fmt::format("{}-{:04d}{}", out.stem().string(), frame, out.extension().string());
 }
 
+/// Each pass's median over `frames` (the renders after the first), on stderr.
+void printMedians(const PassTimings& last, const std::vector<PassTimings>& frames, const std::string& clock, const std::string& gpu) {
+  for (const auto& [pass, ms] : last.ms) {
+    std::vector<double> samples;
+    for (const PassTimings& t : frames) samples.push_back(t.get(pass));
+    std::fprintf(stderr, "penumbra: %-10s %8.2f ms\n", pass.c_str(), frames.empty() ? ms : report::timeStats(samples).median);
+  }
+  std::fprintf(stderr, "penumbra: times by %s on %s%s\n", clock.c_str(), gpu.c_str(),
+               frames.empty() ? " (one frame: includes shader compilation)"
+                              : fmt::format(" (medians of the {} frames after the first)", frames.size()).c_str());
+}
+
 /// Renders the sequence; returns the message line of what was written.
-std::string renderSequence(Renderer& renderer, const Setup& s, const std::string& out, int frames, float fps, float startS) {
+std::string renderSequence(Renderer& renderer, const Setup& s, const std::string& out, int frames, float fps, float startS,
+                           bool verbose, const std::string& gpu) {
   const std::filesystem::path first = framePath(out, 0);
   Scene posed = s.scene;
+  std::vector<PassTimings> warm;  // the frames after the first
   for (int f = 0; f < frames; ++f) {
     poseScene(posed, startS + static_cast<float>(f) / fps);
     renderer.setPose(posed);
     renderer.render(s.render);
+    if (f > 0) warm.push_back(renderer.timings());
     const ColorImage color = renderer.readColor();
     writePng(framePath(out, f), color.width, color.height, color.rgba);
+  }
+  if (verbose) {
+    printMedians(renderer.timings(), warm, renderer.timings().clock, gpu);
+    if (renderer.shadows().mapCaching())
+      std::fprintf(stderr, "penumbra: cached maps: %zu restored, %zu drawn\n", renderer.shadows().mapCacheStats().restored,
+                   renderer.shadows().mapCacheStats().rendered);
   }
   std::string written = fmt::format("wrote {} frames {}..{} at {} fps from {} s", frames, first.string(), framePath(out, frames - 1).string(), fps, startS);
   if (s.scene.animation.empty()) written += " (the scene has no animation: every frame is the same)";
@@ -85,6 +106,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
     int repeat = 1;
     std::optional<int> frames;
     float fps = 30.0f, timeS = 0.0f;
+    bool cacheMaps = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("render", "render one frame to a PNG (the default subcommand)");
@@ -107,6 +129,9 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::Range(-1e6, 1e6))
       ->capture_default_str();
   for (const char* single : {"--repeat", "--visibility", "--dump"}) frames->excludes(single);
+  sub->add_flag("--cache-maps", o->cacheMaps,
+                "cached shadow maps: each map keeps its static casters and draws only the animated ones over them while its view "
+                "stays (docs/embedding.md); --verbose then also counts the maps restored and drawn");
   commands.push_back({sub, [o] {
     checkOutput("--out", o->out);
     if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
@@ -117,9 +142,11 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
                    kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
+    renderer.shadows().setMapCaching(o->cacheMaps);
     if (o->frames) {
       checkOutput("--out", framePath(o->out, 0).string());
-      std::printf("%s\n", renderSequence(renderer, s, o->out, *o->frames, o->fps, o->timeS).c_str());
+      std::printf("%s\n", renderSequence(renderer, s, o->out, *o->frames, o->fps, o->timeS, o->technique.verbose,
+                                          context.info().renderer).c_str());
       return 0;
     }
     if (o->timeS != 0.0f) {
@@ -140,16 +167,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       writeExr(o->visibility, s.render.width, s.render.height, flipRows<float>(v, s.render.width, s.render.height));
     }
     if (!o->dump.empty()) renderer.dump(o->dump);
-    if (o->technique.verbose) {
-      for (const auto& [pass, ms] : renderer.timings().ms) {
-        std::vector<double> samples;
-        for (const PassTimings& t : warm) samples.push_back(t.get(pass));
-        std::fprintf(stderr, "penumbra: %-10s %8.2f ms\n", pass.c_str(), warm.empty() ? ms : report::timeStats(samples).median);
-      }
-      std::fprintf(stderr, "penumbra: times by %s on %s%s\n", renderer.timings().clock.c_str(), context.info().renderer.c_str(),
-                   warm.empty() ? " (one frame: includes shader compilation)"
-                                : fmt::format(" (medians of the {} frames after the first)", warm.size()).c_str());
-    }
+    if (o->technique.verbose) printMedians(renderer.timings(), warm, renderer.timings().clock, context.info().renderer);
     std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
                 s.scene.name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
     return 0;

@@ -101,6 +101,7 @@ void GpuScene::draw(GLuint program) const {
 
 std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
   std::vector<CasterMesh> out;
+  const std::vector<bool> moving = scene.animation.movingObjects(scene.objects.size());
   for (size_t i = 0; i < mDraws.size(); ++i) {
     const Draw& d = mDraws[i];
     if (!d.castsShadow || d.indexCount == 0) continue;
@@ -117,6 +118,7 @@ std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
     m.baseVertex = d.baseVertex;
     m.worldFromObject = o.worldFromObject;
     m.objectBounds = scene.meshes[o.mesh].bounds();
+    m.dynamic = moving[i];  // animated objects are dynamic casters (cached maps keep the rest)
     if (mat.alphaMask && mat.baseColorTexture >= 0) {
       m.alphaTexture = d.texture;
       m.alphaCutoff = mat.alphaCutoff;

@@ -51,3 +51,17 @@ TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
   EXPECT_LT(j["rmse_worst_frame"].get<int>(), 3);
   EXPECT_NEAR(j["frame_rmse"][0].get<double>(), j["rmse"].get<double>(), 1e-9) << "frame 0 is the compared frame";
 }
+
+// --cache-maps: the sequence's frames are the same images as without it; the boxes' sun sweeps,
+// so every frame's map is drawn anew (the sun's view changes), and --verbose says so.
+TEST(MotionCli, CacheMapsRendersTheSameSequence) {
+  const std::string dir = freshDir("frames-cache");
+  const std::string common = "render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 1 --verbose";
+  RunResult r = runPenumbra(common + " --cache-maps --out cached.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cached maps: 0 restored, 3 drawn"), std::string::npos) << r.err;
+  ASSERT_EQ(runPenumbra(common + " --out plain.png", dir).exitCode, 0);
+  int w = 0, h = 0;
+  for (const char* f : {"-0000.png", "-0001.png", "-0002.png"})
+    EXPECT_EQ(readPng(dir + "/cached" + f, w, h), readPng(dir + "/plain" + f, w, h)) << f;
+}
