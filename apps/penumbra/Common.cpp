@@ -26,7 +26,7 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--shadow-map", o.shadowMapSize, "shadow-map resolution in texels per side (default: the scene's own, 2048 for the built-in scenes)");
   app.add_option("--camera", o.camera,
                  "camera position and target in metres, and optionally the vertical field of view in degrees: "
-                 "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera)");
+                 "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera; given, it stays put in an animated scene)");
   app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
 }
 
@@ -169,7 +169,10 @@ Setup makeSetup(const TechniqueOptions& o) {
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
   applyParams(cli, s.scene, *s.projection, *s.filter, s.contact.get());
-  if (o.camera) s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
+  if (o.camera) {
+    s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
+    s.scene.animation.camera = {};  // the camera given stays where it is
+  }
   const auto [w, h] = parseSize(o.size);
   s.render.width = w;
   s.render.height = h;

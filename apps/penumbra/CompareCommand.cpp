@@ -9,7 +9,9 @@
 #include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"
 #include "report/Sheet.h"
+#include "report/SequenceComparison.h"
 
+#include <penumbra/Animation.h>
 #include <penumbra/Error.h>
 #include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
@@ -61,6 +63,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     bool json = false, noCache = false;
     int shimmer = 0;
     std::optional<std::uintmax_t> cacheMaxMb;
+    std::optional<int> frames;
+    float fps = 30.0f, timeS = 0.0f;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
@@ -75,9 +79,17 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--shimmer", o->shimmer,
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
+  sub->add_option("--frames", o->frames,
+                  "also render the animated scene's frames at --time, --time + 1/--fps, ... and compare each with its reference: "
+                  "rmse_mean, rmse_worst_frame and flicker_pct (followed surface points whose V changes by > 0.1 between consecutive "
+                  "frames while V_ref changes by < 0.02); the images and the other metrics are of the first frame")
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
+  sub->add_option("--time", o->timeS, "the scene's time in seconds of the (first) frame")->check(CLI::Range(-1e6, 1e6))->capture_default_str();
   commands.push_back({sub, [o] {
     checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
+    if (o->frames || o->timeS != 0.0f) poseScene(s.scene, o->timeS);  // unposed: the still scene exactly
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
@@ -153,6 +165,15 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       so.steps = o->shimmer;
       shimmer = measureShimmer(renderer, s.render, so);
     }
+    std::optional<report::SequenceComparison> sequence;
+    if (o->frames) {
+      ReferenceOptions sro = ro;
+      sro.progress = false;
+      const report::SequenceTiming timing{*o->frames, o->fps, o->timeS};
+      sequence = report::compareSequence(renderer, s.scene, s.render, timing, sro, {}, [&](int f) {
+        if (!o->json) std::fprintf(stderr, "penumbra: frame %d/%d (t = %.3f s) compared\n", f + 1, timing.frames, timing.timeS(f));
+      });
+    }
     const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
     if (o->json) {
       nlohmann::json j;
@@ -181,6 +202,19 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["shimmer_steps"] = shimmer->steps;
       }
       j["pixels"] = m.pixels;
+      if (sequence) {
+        j["frames"] = sequence->frames.size();
+        j["fps"] = o->fps;
+        j["time"] = o->timeS;
+        j["rmse_mean"] = sequence->rmseMean;
+        j["rmse_worst_frame"] = sequence->rmseWorstFrame;
+        j["rmse_worst"] = sequence->rmseWorst;
+        j["flicker_pct"] = sequence->flicker.pct();
+        j["flicker_followed"] = sequence->flicker.followed;
+        j["frame_rmse"] = nlohmann::json::array();
+        for (const report::SequenceFrame& f : sequence->frames) j["frame_rmse"].push_back(f.metrics.rmse);
+        j["sequence_reference_seconds"] = sequence->referenceSeconds;
+      }
       j["lights"] = nlohmann::json::array();
       for (const report::LightComparison& l : cmp.lights) {
         nlohmann::json jl;
@@ -236,6 +270,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
+    if (sequence)
+      std::printf("  %zu frames at %g fps from %g s: RMSE mean %.4f, worst %.4f at frame %zu; flicker %.4f%% of %zu followed points\n",
+                  sequence->frames.size(), o->fps, o->timeS, sequence->rmseMean, sequence->rmseWorst, sequence->rmseWorstFrame,
+                  sequence->flicker.pct(), sequence->flicker.followed);
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);

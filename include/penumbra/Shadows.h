@@ -159,6 +159,18 @@ public:
   /// scene must outlive its use.
   void setCasterGeometry(const Scene* scene);
 
+  /// Cached shadow maps (off by default): each map (cascade, view) keeps its static casters'
+  /// depth (and moments) and is restored from it while its view, the shadow pass's program and
+  /// parameters and the static casters are unchanged; the dynamic casters (CasterMesh::dynamic)
+  /// are drawn over it every frame. Prefilters then run on the result as before.
+  void setMapCaching(bool on);
+  bool mapCaching() const;
+  /// Maps (layers) restored from their cache, and rendered into it, since setMapCaching(true).
+  struct MapCacheStats {
+    size_t restored = 0, rendered = 0;
+  };
+  MapCacheStats mapCacheStats() const;
+
   /// Renders the shadow maps, prefilters them and writes the visibility texture.
   void render(const ShadowFrameInputs& inputs);
 

@@ -87,6 +87,7 @@ struct Shadows::Impl {
   glm::ivec2 screen{0};
   SurfaceSource surface = SurfaceSource::Position;
   int frameIndex = 0;
+  MapCacheState mapCache;
 
   Projection& projectionOf(size_t i) { return i == 0 ? *projection : *slots[i]->ownProjection; }
   Filter& filterOf(size_t i) { return i == 0 ? *filter : *slots[i]->ownFilter; }
@@ -95,7 +96,7 @@ struct Shadows::Impl {
   FrameContext frameContext(size_t i) {
     LightSlot& s = *slots[i];
     return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
-                         &visibility, static_cast<int>(i)});
+                         &visibility, static_cast<int>(i), &mapCache});
   }
   void bindBlocks(size_t i) const {
     slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -276,6 +277,15 @@ void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aa
 }
 
 void Shadows::setCasterGeometry(const Scene* scene) { mImpl->cpuScene = scene; }
+
+void Shadows::setMapCaching(bool on) {
+  if (on && !mImpl->mapCache.on) mImpl->mapCache = {};
+  mImpl->mapCache.on = on;
+}
+
+bool Shadows::mapCaching() const { return mImpl->mapCache.on; }
+
+Shadows::MapCacheStats Shadows::mapCacheStats() const { return {mImpl->mapCache.restored, mImpl->mapCache.rendered}; }
 
 void Shadows::render(const ShadowFrameInputs& in) {
   Impl& im = *mImpl;
