@@ -91,7 +91,7 @@ constexpr ParamDesc kSceneParams[] = {
      "overrides the first light's size: spot = sphere radius (m), sun = angular radius (rad); 0 = hard; unset = the scene's own size", "m | rad",
      0.0f, 0.0f, 10.0f, 0.0f},
     {"light.count", "Lights used",
-     "keeps the scene's first N lights (file order) and drops the rest, e.g. to measure cost per light; 0 = all",
+     "keeps the scene's first N lights (file order) and drops the rest, e.g. to measure cost per light; 0 = all", "lights",
      0.0f, 0.0f, 16.0f, 1.0f},
 };
 }  // namespace
