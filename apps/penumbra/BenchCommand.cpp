@@ -126,16 +126,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
     checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
-    const report::SetupFactory factory = [o](const report::BenchConfig& c) {
-      TechniqueOptions t;
-      t.camera = o->camera;
-      t.scene = c.scene;
-      t.filter = c.filter;
-      t.projection = c.projection;
-      for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
-      Setup s = makeSetup(t);
-      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
-    };
+    const report::SetupFactory factory = benchSetupFactory(o->camera);
     const std::filesystem::path dir(o->out);
     report::BenchResults results =
         report::runBench(context, configs, factory, {.settings = settings, .outDir = dir, .progress = true, .verbose = o->verbose});

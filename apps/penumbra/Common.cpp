@@ -171,4 +171,17 @@ Setup makeSetup(const TechniqueOptions& o) {
   return s;
 }
 
+report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera) {
+  return [camera](const report::BenchConfig& c) {
+    TechniqueOptions t;
+    t.camera = camera;
+    t.scene = c.scene;
+    t.filter = c.filter;
+    t.projection = c.projection;
+    for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
+    Setup s = makeSetup(t);
+    return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
+  };
+}
+
 }  // namespace penumbra::app

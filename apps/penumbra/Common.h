@@ -1,6 +1,8 @@
 #pragma once
 // Options shared by the subcommands that render (render, compare, bench, view) and the one
 // place that turns them into a scene + technique.
+#include "report/BenchRunner.h"
+
 #include <penumbra/Registry.h>
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
@@ -43,6 +45,10 @@ struct Setup {
 /// Loads the scene, makes the technique, applies the scene's params then --set (usage errors
 /// for anything unknown or out of range).
 Setup makeSetup(const TechniqueOptions& o);
+
+/// The factory runBench (bench, tune) makes each configuration with: makeSetup on its scene,
+/// technique and params (as --set), with `camera` (--camera) when given.
+report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera);
 
 /// A renderer with the setup's scene and technique (which it takes over from `s`).
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);

@@ -1,0 +1,80 @@
+#pragma once
+// `penumbra tune`'s run (docs/tune.md): per technique (projection × filter), a search over its
+// parameters and map size on one scene, measured by runBench against the cached reference:
+//  1. screen:  Latin-hypercube candidates (and the default) at a small image, few frames;
+//  2. promote: successive halving keeps the small-size front and the most accurate to the full size;
+//  3. descend: coordinate descent around the best configuration within the budget, at full size;
+//  4. confirm: the full-size front and the default measured again with more frames; the
+//     recommendation and the front come from these rows only.
+// Every evaluation is kept in OUT/evaluations.jsonl, so that an interrupted run resumes.
+#include "report/BenchRunner.h"
+#include "report/TuneSearch.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::report {
+
+enum class TuneObjective { Rmse, PenumbraRmse, Leak };
+/// "rmse", "penumbra_rmse", "leak"; parseObjective throws a usage Error naming the choices.
+const char* objectiveKey(TuneObjective o);
+TuneObjective parseObjective(std::string_view text);
+/// The objective's value on a row (leak: leak_pct).
+double objectiveValue(TuneObjective o, const VisibilityMetrics& m);
+
+struct TuneRequest {
+  std::string scene;  ///< built-in name or scene file
+  std::vector<std::string> projections, filters;  ///< each pair is one technique searched
+  BenchSettings settings;  ///< the full size, reference samples, cache, camera; its map size = the default's
+  TuneObjective objective = TuneObjective::Rmse;
+  TuneBudget budget;  ///< no cost budget and no error target: the default configuration's own cost
+  double maxMinutes = 10.0;  ///< descent stops when the estimate says the run would pass this
+  int candidates = 24;       ///< Latin-hypercube candidates per technique (the default comes on top)
+  uint64_t seed = 1;
+  std::filesystem::path outDir;
+  bool verbose = false;
+};
+
+/// Divisor of the screen stage's image sides (1/16 of the pixels), its shorter side at least the minimum.
+inline constexpr int kScreenSizeDivisor = 4;
+inline constexpr int kMinScreenSidePixels = 32;
+/// Timed frames: enough for a median at the cheap stages, more when a cost decides (confirm).
+inline constexpr int kScreenFrames = 2, kFullFrames = 3, kConfirmFrames = 7;
+/// Successive halving keeps this fraction of the screened candidates.
+inline constexpr int kHalvingDivisor = 3;
+inline constexpr int kMaxDescentRounds = 4;
+
+/// One measured configuration.
+struct TuneRow {
+  std::string projection, filter;
+  std::vector<std::pair<std::string, std::string>> params;  ///< --set keys and values
+  int mapSize = 0, width = 0, height = 0, frames = 0;
+  VisibilityMetrics metrics;
+  double error = 0.0;  ///< the objective's value
+  double costMs = 0.0, costP10Ms = 0.0, costP90Ms = 0.0;
+  double memoryMiB = 0.0;
+  bool isDefault = false;
+  std::string command;  ///< the `penumbra compare` line that reproduces the row
+  TunePoint point() const { return {.error = error, .costMs = costMs, .memoryMiB = memoryMiB}; }
+};
+
+struct TuneResults {
+  TuneRequest request;
+  MachineInfo machine;
+  std::vector<TuneRow> confirmed;     ///< stage 4's rows: the front, the defaults
+  std::vector<size_t> front;          ///< indices into confirmed, ascending cost
+  std::optional<size_t> recommended;  ///< into confirmed; empty when nothing fits the budget
+  std::vector<size_t> defaults;       ///< into confirmed, one per technique
+  double budgetMs = 0.0;              ///< the cost budget applied (given or the default's)
+  size_t evaluations = 0, resumed = 0;  ///< configurations measured, and read back from a past run
+  double seconds = 0.0;
+  std::vector<TuneRow> explored;  ///< every full-size row of stages 2 and 3 (the chart's cloud)
+};
+
+/// Runs the search. `makeSetup` turns a configuration into scene + technique (the CLI's
+/// makeSetup). Throws a usage Error when no technique's default can be rendered.
+TuneResults runTune(gl::Context& context, const TuneRequest& request, const SetupFactory& makeSetup);
+
+}  // namespace penumbra::report
