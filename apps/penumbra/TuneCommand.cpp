@@ -51,7 +51,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--objective", o->objective,
                   "what the error is: rmse (every lit pixel), penumbra_rmse (the reference's penumbra only), leak "
-                  "(% of pixels too bright)")
+                  "(% of pixels too bright), acne (the filter's bias parameters only: acne, over-darkening where the "
+                  "reference is fully lit, at most 0.1 %, then the least leak in the reference's umbra, i.e. shadows "
+                  "detached from their casters, then the smallest bias)")
       ->capture_default_str();
   sub->add_option("--max-minutes", o->maxMinutes,
                   "time for the whole run: the coordinate descent stops early when its next round would pass it (the "
@@ -115,9 +117,10 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     const report::TuneRow* def = report::tuneDefaultFor(res);
     const auto line = [&](const char* what, const report::TuneRow& r) {
-      std::printf("  %-12s %s %.4f  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%%  cost %.3f ms  memory %.1f MiB\n", what,
-                  report::objectiveKey(req.objective), r.error, r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct,
-                  r.costMs, r.memoryMiB);
+      std::printf("  %-12s %s %.4g  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%% (umbra %.3f%%)  acne %.3f%%  cost %.3f ms  "
+                  "memory %.1f MiB\n",
+                  what, report::objectiveKey(req.objective), r.error, r.metrics.rmse, r.metrics.penumbraRmse,
+                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, r.memoryMiB);
     };
     std::printf("tune %s: %zu configurations measured (%zu resumed) in %.0f s on %s (%s); budget %.3f ms%s\n",
                 req.scene.c_str(), res.evaluations, res.resumed, res.seconds, res.machine.glRenderer.c_str(),

@@ -146,7 +146,7 @@ nlohmann::json tuneRowJson(const TuneRow& r, TuneObjective objective) {
           {"width", r.width}, {"height", r.height}, {"frames", r.frames}, {"objective", objectiveKey(objective)},
           {"error", r.error}, {"rmse", r.metrics.rmse}, {"penumbra_rmse", r.metrics.penumbraRmse},
           {"leak_pct", r.metrics.leakPct}, {"overdark_pct", r.metrics.overDarkPct},
-          {"umbra_leak_pct", r.metrics.umbraLeakPct}, {"shadow_cost_ms", r.costMs},
+          {"umbra_leak_pct", r.metrics.umbraLeakPct}, {"acne_pct", r.metrics.acnePct}, {"shadow_cost_ms", r.costMs},
           {"shadow_cost_p10_ms", r.costP10Ms}, {"shadow_cost_p90_ms", r.costP90Ms}, {"shadow_memory_mb", r.memoryMiB},
           {"command", r.command}, {"set", tuneSetLine(r)}, {"scene_snippet", tuneSceneSnippet(r)}};
 }

@@ -55,7 +55,7 @@ nlohmann::json rowJson(const TuneRow& r) {
           {"width", r.width}, {"height", r.height}, {"frames", r.frames}, {"rmse", r.metrics.rmse},
           {"mae", r.metrics.mae}, {"leak_pct", r.metrics.leakPct}, {"overdark_pct", r.metrics.overDarkPct},
           {"umbra_leak_pct", r.metrics.umbraLeakPct}, {"penumbra_rmse", r.metrics.penumbraRmse},
-          {"pixels", r.metrics.pixels}, {"shadow_cost_ms", r.costMs}, {"shadow_cost_p10_ms", r.costP10Ms},
+          {"acne_pct", r.metrics.acnePct}, {"pixels", r.metrics.pixels}, {"shadow_cost_ms", r.costMs}, {"shadow_cost_p10_ms", r.costP10Ms},
           {"shadow_cost_p90_ms", r.costP90Ms}, {"shadow_memory_mb", r.memoryMiB}, {"command", r.command}};
 }
 
@@ -74,6 +74,7 @@ TuneRow rowFromJson(const nlohmann::json& j) {
   r.metrics.overDarkPct = j.at("overdark_pct").get<double>();
   r.metrics.umbraLeakPct = j.at("umbra_leak_pct").get<double>();
   r.metrics.penumbraRmse = j.at("penumbra_rmse").get<double>();
+  r.metrics.acnePct = j.value("acne_pct", 0.0);
   r.metrics.pixels = j.at("pixels").get<size_t>();
   r.costMs = j.at("shadow_cost_ms").get<double>();
   r.costP10Ms = j.at("shadow_cost_p10_ms").get<double>();
@@ -135,7 +136,7 @@ public:
       const auto it = mMemo.find(key(jobs[i], width, height, frames));
       if (it != mMemo.end()) {
         out[i] = it->second;
-        out[i]->error = objectiveValue(mRequest.objective, out[i]->metrics);  // a resumed run may ask another
+        out[i]->error = error(jobs[i], out[i]->metrics);  // a resumed run may ask another objective
         out[i]->isDefault = jobs[i].candidate == defaultCandidate(mTechniques[jobs[i].technique].space);
         if (mLoaded.erase(it->first) > 0) ++mResumed;  // counted once
         continue;
@@ -167,6 +168,7 @@ public:
                                       [&](const BenchRow& r) { return sameConfig(r.config, configs[n]); });
         if (row == results.rows.end()) continue;
         TuneRow t = tuneRow(results, *row);
+        t.error = error(jobs[indices[n]], t.metrics);
         t.isDefault = jobs[indices[n]].candidate == defaultCandidate(mTechniques[jobs[indices[n]].technique].space);
         remember(key(jobs[indices[n]], width, height, frames), t);
         out[indices[n]] = std::move(t);
@@ -177,6 +179,12 @@ public:
   }
 
 private:
+  double error(const Job& j, const VisibilityMetrics& m) const {
+    const double e = objectiveValue(mRequest.objective, m);
+    if (mRequest.objective != TuneObjective::Acne) return e;
+    return e + kBiasTieWeight * tuneBiasSize(mTechniques[j.technique].space, j.candidate);
+  }
+
   BenchConfig config(const Job& j) const {
     const Technique& t = mTechniques[j.technique];
     return {.plan = "tune", .scene = mRequest.scene, .projection = t.projection, .filter = t.filter,
@@ -236,12 +244,13 @@ const char* objectiveKey(TuneObjective o) {
     case TuneObjective::Rmse: return "rmse";
     case TuneObjective::PenumbraRmse: return "penumbra_rmse";
     case TuneObjective::Leak: return "leak";
+    case TuneObjective::Acne: return "acne";
   }
   return "rmse";
 }
 
 TuneObjective parseObjective(std::string_view text) {
-  for (const TuneObjective o : {TuneObjective::Rmse, TuneObjective::PenumbraRmse, TuneObjective::Leak})
+  for (const TuneObjective o : {TuneObjective::Rmse, TuneObjective::PenumbraRmse, TuneObjective::Leak, TuneObjective::Acne})
     if (text == objectiveKey(o)) return o;
   throw usageError(fmt::format("--objective {}: expected rmse, penumbra_rmse, leak or acne", text));
 }
@@ -251,6 +260,7 @@ double objectiveValue(TuneObjective o, const VisibilityMetrics& m) {
     case TuneObjective::Rmse: return m.rmse;
     case TuneObjective::PenumbraRmse: return m.penumbraRmse;
     case TuneObjective::Leak: return m.leakPct;
+    case TuneObjective::Acne: return m.acnePct <= kMaxAcnePct ? m.umbraLeakPct : kAcneRejectedError + m.acnePct;
   }
   return m.rmse;
 }
@@ -297,7 +307,14 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
       t.projection = p;
       t.filter = f;
       t.defaultMapSize = request.settings.shadowMapSize.value_or(s.scene.shadow.mapSize);
-      t.space = tuneSpace(descs, current, t.defaultMapSize, kFixedKeys);
+      std::vector<std::string> fixed = kFixedKeys;
+      if (request.objective == TuneObjective::Acne)  // the filter's bias only, on the default's map
+        for (const ParamDesc& d : descs)
+          if (!isBiasKey(d.key) || !s.filter->hasParam(d.key)) fixed.emplace_back(d.key);
+      t.space = tuneSpace(descs, current, request.objective == TuneObjective::Acne ? 0 : t.defaultMapSize, fixed);
+      if (t.space.empty())
+        throw usageError(fmt::format("tune: {} · {} has no parameter to search{}", f, p,
+                                     request.objective == TuneObjective::Acne ? " (no bias parameter)" : ""));
       t.center = defaultCandidate(t.space);
       techniques.push_back(std::move(t));
     }
@@ -357,7 +374,8 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
       if (c == defaultCandidate(techniques[t].space)) cost = std::max(cost.value_or(0.0), r.costMs);
     return cost;
   };
-  if (!budget.costMs && !budget.maxError) {
+  const bool costDecides = request.objective != TuneObjective::Acne;  // a bias costs nothing
+  if (!budget.costMs && !budget.maxError && costDecides) {
     for (size_t t = 0; t < techniques.size(); ++t)
       if (const std::optional<double> c = defaultCost(techniques[t].full, t))
         budget.costMs = std::max(budget.costMs.value_or(0.0), *c);
@@ -426,7 +444,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
     res.confirmed.push_back(*confirmed[i]);
   }
   if (res.defaults.empty()) throw usageError(fmt::format("tune: no default configuration could be rendered on {}", request.scene));
-  if (!request.budget.costMs && !request.budget.maxError) {
+  if (!request.budget.costMs && !request.budget.maxError && costDecides) {
     budget.costMs.reset();
     for (const size_t d : res.defaults) budget.costMs = std::max(budget.costMs.value_or(0.0), res.confirmed[d].costMs);
   }
@@ -434,6 +452,8 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
   for (const TuneRow& r : res.confirmed) pts.push_back(r.point());
   res.front = tuneFront(pts, budget.memoryMiB);
   res.recommended = pickRecommended(pts, budget);
+  if (res.recommended && request.objective == TuneObjective::Acne && pts[*res.recommended].error >= kAcneRejectedError)
+    res.recommended.reset();  // every configuration has acne
   res.budgetMs = budget.costMs.value_or(0.0);
   res.evaluations = eval.measured();
   res.resumed = eval.resumed();

@@ -17,12 +17,24 @@
 
 namespace penumbra::report {
 
-enum class TuneObjective { Rmse, PenumbraRmse, Leak };
-/// "rmse", "penumbra_rmse", "leak"; parseObjective throws a usage Error naming the choices.
+/// Acne: the filter's bias parameters only (isBiasKey), the map size fixed. A configuration
+/// whose acne (VisibilityMetrics::acnePct) is at most kMaxAcnePct is acceptable; among those the
+/// least leak inside the reference's umbra (detached, peter-panned shadows: umbra_leak_pct)
+/// wins, then the smallest bias (tuneBiasSize). Cost is no criterion unless --budget-ms is given.
+enum class TuneObjective { Rmse, PenumbraRmse, Leak, Acne };
+/// "rmse", "penumbra_rmse", "leak", "acne"; parseObjective throws a usage Error naming the choices.
 const char* objectiveKey(TuneObjective o);
 TuneObjective parseObjective(std::string_view text);
-/// The objective's value on a row (leak: leak_pct).
+/// The objective's value on a row (leak: leak_pct; acne: umbra_leak_pct when acne is at most
+/// kMaxAcnePct, else kAcneRejectedError + acne_pct, above any acceptable value).
 double objectiveValue(TuneObjective o, const VisibilityMetrics& m);
+/// The bar for acne, % of the fully lit pixels: one pixel in a thousand.
+inline constexpr double kMaxAcnePct = 0.1;
+/// Added to a rejected configuration's error: above any percentage.
+inline constexpr double kAcneRejectedError = 1000.0;
+/// Weight of tuneBiasSize in the acne error: far below one pixel's share of any percentage
+/// (one pixel of 640×360 is 4e-4 %), so that it only breaks ties.
+inline constexpr double kBiasTieWeight = 1e-7;
 
 struct TuneRequest {
   std::string scene;  ///< built-in name or scene file
@@ -44,7 +56,9 @@ inline constexpr int kMinScreenSidePixels = 32;
 inline constexpr int kScreenFrames = 2, kFullFrames = 3, kConfirmFrames = 7;
 /// Successive halving keeps this fraction of the screened candidates.
 inline constexpr int kHalvingDivisor = 3;
-inline constexpr int kMaxDescentRounds = 4;
+/// Rounds of coordinate descent at most (--max-minutes may stop it earlier): each moves the
+/// centre by one step, a factor of 1.5 or an eighth of a range.
+inline constexpr int kMaxDescentRounds = 8;
 
 /// One measured configuration.
 struct TuneRow {

@@ -5,6 +5,7 @@
 #include <penumbra/Error.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -158,6 +159,23 @@ int tuneMapSize(std::span<const TuneDim> space, const TuneCandidate& c, int fall
   for (size_t d = 0; d < space.size(); ++d)
     if (space[d].desc.key == kMapSizeKey) return static_cast<int>(c[d]);
   return fallback;
+}
+
+bool isBiasKey(std::string_view key) {
+  std::string name(key.substr(key.find('.') + 1));
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return name.find("bias") != std::string::npos || name.find("offset") != std::string::npos;
+}
+
+double tuneBiasSize(std::span<const TuneDim> space, const TuneCandidate& c) {
+  double size = 0.0;
+  for (size_t d = 0; d < space.size(); ++d) {
+    const TuneDim& dim = space[d];
+    if (dim.scale == TuneScale::Choice || dim.hi <= dim.lo) continue;
+    size += dim.scale == TuneScale::Log ? std::log(std::max(c[d], dim.lo) / dim.lo) / std::log(dim.hi / dim.lo)
+                                        : (c[d] - dim.lo) / (dim.hi - dim.lo);
+  }
+  return size;
 }
 
 std::vector<size_t> tuneFront(std::span<const TunePoint> points, std::optional<double> budgetMiB) {

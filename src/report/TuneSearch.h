@@ -68,6 +68,14 @@ std::vector<std::pair<std::string, std::string>> tuneParams(std::span<const Tune
 /// The candidate's map size (the default `fallback` when the space has no map dimension).
 int tuneMapSize(std::span<const TuneDim> space, const TuneCandidate& c, int fallback);
 
+/// A bias parameter (acne against peter-panning): its name after the technique holds "bias" or
+/// "offset" (hard.bias, pcf.constantBias, hard.normalOffsetTexels). `--objective acne` searches these only.
+bool isBiasKey(std::string_view key);
+
+/// How much bias a candidate applies, for ties of `--objective acne`: the sum over its numeric
+/// dimensions of the value's place in [lo, hi] on the dimension's scale (0 at lo, 1 at hi).
+double tuneBiasSize(std::span<const TuneDim> space, const TuneCandidate& c);
+
 /// One measured configuration as the pick sees it.
 struct TunePoint {
   double error = 0.0;   ///< the objective (lower is better)

@@ -99,3 +99,21 @@ TEST(TuneCli, HelpNamesTheOptionsAndOutputs) {
                            "tune.json", "tune.html", "evaluations.jsonl", "--json"})
     EXPECT_NE(r.out.find(word), std::string::npos) << word;
 }
+
+TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
+  const std::string dir = freshDir("tune-acne");
+  const RunResult r = runPenumbra(
+      "tune --scene grazing --filters hard --objective acne --size 96x54 --samples 1 --candidates 6 --max-minutes 1 "
+      "--out out --json",
+      dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& rec = j["recommended"];
+  EXPECT_EQ(j["objective"], "acne");
+  EXPECT_LE(rec["acne_pct"].get<double>(), 0.1);
+  EXPECT_TRUE(rec.contains("umbra_leak_pct"));
+  EXPECT_EQ(rec["shadow_map"], j["default"]["shadow_map"]);  // the map size is not searched
+  for (const auto& [key, value] : rec["params"].items())
+    EXPECT_TRUE(key == "hard.bias" || key == "hard.constantBias" || key == "hard.slopeBias" || key == "hard.normalOffsetTexels")
+        << key;
+}
