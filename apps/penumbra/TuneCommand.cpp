@@ -7,6 +7,7 @@
 #include "platform/Context.h"
 #include "report/TuneReport.h"
 #include "report/TuneRunner.h"
+#include "report/TuneShards.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>
@@ -30,6 +31,8 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     int candidates = 24;
     uint64_t seed = 1;
     std::string out = "tune";
+    std::optional<std::string> shard;
+    std::vector<std::string> merge;
     bool json = false, noCache = false;
   };
   auto o = std::make_shared<Options>();
@@ -74,6 +77,13 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "output folder: tune.json, tune.html, evaluations.jsonl (every configuration measured: a rerun with "
                   "the same folder resumes from it)")
       ->capture_default_str();
+  sub->add_option("--shard", o->shard,
+                  "K/N: measure only the K-th of N shares of the screen stage into OUT/evaluations.jsonl and stop (run "
+                  "the N shares anywhere with the same options, then --merge their folders)");
+  sub->add_option("--merge", o->merge,
+                  "DIR..., the --out folders of --shard runs: gather their evaluations.jsonl into OUT and go on from them "
+                  "(the rest of the search runs here)")
+      ->expected(1, -1);
   sub->add_flag("--json", o->json, "print tune.json on stdout instead of the summary");
   sub->add_flag("--no-cache", o->noCache, "recompute the references even if cached ones exist");
   sub->add_flag("--verbose", o->technique.verbose, "one line per configuration on stderr");
@@ -102,13 +112,27 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     req.seed = o->seed;
     req.outDir = o->out;
     req.verbose = o->technique.verbose;
+    if (o->shard) req.shard = report::parseShard(*o->shard);
+    if (o->shard && !o->merge.empty()) throw usageError("--shard and --merge: a shard measures, a merge gathers; not both");
 
     checkOutputDir("--out", o->out);
     std::filesystem::create_directories(req.outDir);
+    if (!o->merge.empty()) {
+      const std::vector<std::filesystem::path> dirs(o->merge.begin(), o->merge.end());
+      const size_t added = report::mergeEvaluations(dirs, req.outDir);
+      std::fprintf(stderr, "penumbra tune: merged %zu evaluations from %zu folders into %s\n", added, dirs.size(),
+                   (req.outDir / "evaluations.jsonl").string().c_str());
+    }
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, req.settings.width, req.settings.height, kCompareHostBytesPerPixel);
     const report::SetupFactory factory = benchSetupFactory(o->technique.camera);
     report::TuneResults res = report::runTune(context, req, factory);
+    if (req.shard) {
+      std::printf("shard %d/%d: %zu configurations measured (%zu resumed) in %.0f s into %s\n", req.shard->index,
+                  req.shard->count, res.evaluations, res.resumed, res.seconds,
+                  (req.outDir / "evaluations.jsonl").string().c_str());
+      return 0;
+    }
     res.machine.command = "penumbra tune --scene " + req.scene;
     report::writeTuneOutputs(req.outDir, res);
     if (o->json) {

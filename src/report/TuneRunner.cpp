@@ -339,11 +339,23 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
     for (TuneCandidate& c : latinHypercube(techniques[t].space, request.candidates, request.seed + t))
       if (c != jobs.back().candidate) jobs.push_back({t, std::move(c)});
   }
+  if (request.shard) {  // this machine's share of the screen, then stop: --merge goes on from all shares
+    std::vector<Job> share;
+    for (size_t i = 0; i < jobs.size(); ++i)
+      if (static_cast<int>(i % static_cast<size_t>(request.shard->count)) == request.shard->index - 1) share.push_back(jobs[i]);
+    jobs = std::move(share);
+  }
   const double screenGuess = static_cast<double>(eval.unmeasured(jobs, screenW, screenH, kScreenFrames)) *
                              eval.secondsPerJob(screenW, screenH);
   announce("1/4 screen", jobs.size(), eval.unmeasured(jobs, screenW, screenH, kScreenFrames), screenW, screenH, screenGuess,
            screenGuess + fullJobsLeft(2) * eval.secondsPerJob(fullW, fullH));
   const std::vector<std::optional<TuneRow>> screened = eval.run(jobs, screenW, screenH, kScreenFrames);
+  if (request.shard) {
+    res.evaluations = eval.measured();
+    res.resumed = eval.resumed();
+    res.seconds = elapsed();
+    return res;
+  }
 
   // 2. Promote: per technique, the small-size front and the most accurate, and the default.
   std::vector<Job> promoted;

@@ -36,6 +36,10 @@ inline constexpr double kAcneRejectedError = 1000.0;
 /// (one pixel of 640×360 is 4e-4 %), so that it only breaks ties.
 inline constexpr double kBiasTieWeight = 1e-7;
 
+struct TuneShard {
+  int index = 1, count = 1;  ///< K and N of --shard K/N
+};
+
 struct TuneRequest {
   std::string scene;  ///< built-in name or scene file
   std::vector<std::string> projections, filters;  ///< each pair is one technique searched
@@ -47,6 +51,9 @@ struct TuneRequest {
   uint64_t seed = 1;
   std::filesystem::path outDir;
   bool verbose = false;
+  /// --shard K/N: measure only every N-th screen configuration from the K-th (1-based) into
+  /// OUT/evaluations.jsonl and stop; `--merge` of the shards' folders goes on from all of them.
+  std::optional<TuneShard> shard;
 };
 
 /// Divisor of the screen stage's image sides (1/16 of the pixels), its shorter side at least the minimum.

@@ -117,3 +117,60 @@ TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
     EXPECT_TRUE(key == "hard.bias" || key == "hard.constantBias" || key == "hard.slopeBias" || key == "hard.normalOffsetTexels")
         << key;
 }
+
+TEST(TuneCli, ShardsMergeIntoTheRunThatMeasuresTheirScreenOnce) {
+  const std::string dir = freshDir("tune-shards");
+  const std::string base = "tune --scene pen --filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 6 --max-minutes 1";
+  const std::vector<std::pair<std::string, std::string>> shards = {{"1/2", "s1"}, {"2/2", "s2"}};
+  for (const auto& [shard, out] : shards) {
+    const RunResult r = runPenumbra(base + " --shard " + shard + " --out " + out, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("configurations measured"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(fs::path(dir) / out / "tune.json"));
+  }
+  const RunResult merged = runPenumbra(base + " --merge s1 s2 --out m --json", dir);
+  ASSERT_EQ(merged.exitCode, 0) << merged.err;
+  const RunResult single = runPenumbra(base + " --out one --json", dir);
+  ASSERT_EQ(single.exitCode, 0) << single.err;
+  const nlohmann::json m = nlohmann::json::parse(merged.out), one = nlohmann::json::parse(single.out);
+  // The default and the 6 candidates of the screen came from the shards: the merge measured none
+  // of them. (The rest of the search may take another path than a single run's: the screen's
+  // costs are measured, and noisy, so the halving may keep other candidates.)
+  EXPECT_EQ(m["resumed"], 7) << merged.err;
+  EXPECT_NE(merged.err.find("1/4 screen: 7 configurations at 57x32 (0 to measure"), std::string::npos) << merged.err;
+  EXPECT_EQ(m["default"]["rmse"], one["default"]["rmse"]);
+  EXPECT_FALSE(m["front"].empty());
+
+  const RunResult bad = runPenumbra(base + " --shard 3/2 --out x", dir);
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--shard 3/2"), std::string::npos) << bad.err;
+  const RunResult missing = runPenumbra(base + " --merge nowhere --out y", dir);
+  EXPECT_NE(missing.exitCode, 0);
+  EXPECT_NE(missing.err.find("nowhere"), std::string::npos) << missing.err;
+}
+
+TEST(TuneCli, AnInterruptedRunResumesFromTheRowsItFinished) {
+  const std::string dir = freshDir("tune-resume");
+  ASSERT_EQ(runPenumbra(kTinyTune + " --json", dir).exitCode, 0);
+  // Interrupted after the screen: its 7 rows kept, and the next row cut off in the middle.
+  const fs::path log = fs::path(dir) / "out" / "evaluations.jsonl";
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(log);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  ASSERT_GT(lines.size(), 8u);
+  {
+    std::ofstream out(log, std::ios::trunc);
+    for (size_t i = 0; i < 7; ++i) out << lines[i] << '\n';
+    out << lines[7].substr(0, lines[7].size() / 2);
+  }
+  fs::remove(fs::path(dir) / "out" / "tune.json");
+  const RunResult r = runPenumbra(kTinyTune + " --json", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["resumed"], 7) << r.err;
+  EXPECT_GT(j["evaluations"].get<int>(), 0);
+  EXPECT_NE(r.err.find("(0 to measure"), std::string::npos) << r.err;  // the screen
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "out" / "tune.json"));
+}
