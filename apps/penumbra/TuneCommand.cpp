@@ -39,14 +39,16 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   CLI::App* sub = app.add_subcommand(
       "tune", "search a technique's parameters and map size for the most accurate configuration within a cost budget "
               "on one scene; write tune.json and tune.html");
-  sub->add_option("--scene", o->technique.scene, "built-in scene name or scene .json file")->capture_default_str();
+  sub->add_option("--scene", o->technique.scene, "built-in scene name (penumbra list), scene .json file or model file")
+      ->required();
   sub->add_option("--camera", o->technique.camera, "the view, as compare's: X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's)");
   sub->add_option("--filters", o->filters, "filter ids to tune, comma-separated (default: the scene's own)")->delimiter(',');
   sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: the scene's own)")
       ->delimiter(',');
   sub->add_option("--budget-ms", o->budgetMs,
                   "whole shadow cost per frame (shadow + prefilter + visibility, median ms on this machine) at most this "
-                  "(default: the default configuration's own cost; with several techniques the dearest default's)")
+                  "(default: the default configuration's own cost; with several techniques the dearest default's; with "
+                  "--objective acne none)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--budget-mb", o->budgetMb, "GPU memory the technique keeps, at most this many MiB")->check(CLI::PositiveNumber);
   sub->add_option("--max-error", o->maxError,
@@ -62,11 +64,11 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "time for the whole run: the coordinate descent stops early when its next round would pass it (the "
                   "screen, full-size and confirm stages always run)")
       ->capture_default_str()->check(CLI::PositiveNumber);
-  sub->add_option("--size", o->technique.size, "full image size WxH (the screen stage uses a quarter of each side)")
+  sub->add_option("--size", o->technique.size, "full image size WxH, as compare (the screen stage uses a quarter of each side, the shorter at least 32)")
       ->capture_default_str();
   sub->add_option("--shadow-map", o->technique.shadowMapSize,
-                  "the default configuration's map size, searched from half to twice it (default: the scene's own, as "
-                  "compare)")
+                  "the default configuration's map size, searched over powers of two from half to twice it (not with "
+                  "--objective acne; default: the scene's own, as compare)")
       ->check(CLI::Range(16, 16384));
   sub->add_option("--samples", o->samples, "reference light samples per pixel (as compare)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));

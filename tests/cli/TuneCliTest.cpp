@@ -85,6 +85,8 @@ TEST(TuneCli, BadInputFailsWithOneClearLine) {
            {"tune --scene nosuch", "nosuch"},
            {"tune --scene pen --budget-ms 1 --max-error 0.1", "not both"},
            {"tune --scene pen --budget-ms -1", "--budget-ms"},
+           {"tune --filters pcf", "--scene"},
+           {"tune --scene pen --shard 1/2 --merge a", "not both"},
        }) {
     const RunResult r = runPenumbra(k.args, dir);
     EXPECT_NE(r.exitCode, 0) << k.args;
