@@ -21,25 +21,6 @@
 #include <optional>
 
 namespace penumbra::app {
-namespace {
-
-// The command line as typed, with the program's path shortened to its name.
-std::string commandLine() {
-  std::ifstream in("/proc/self/cmdline", std::ios::binary);
-  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), out;
-  size_t start = 0;
-  for (size_t i = 0; i <= all.size(); ++i) {
-    if (i < all.size() && all[i] != '\0') continue;
-    std::string arg = all.substr(start, i - start);
-    if (start == 0) arg = std::filesystem::path(arg).filename().string();
-    if (!arg.empty()) out += (out.empty() ? "" : " ") + (arg.find(' ') == std::string::npos ? arg : "'" + arg + "'");
-    start = i + 1;
-  }
-  return out;
-}
-
-}  // namespace
-
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;

@@ -80,6 +80,10 @@ inline constexpr uint64_t kCompareHostBytesPerPixel = 170;
 /// (GL_NVX_gpu_memory_info, GL_ATI_meminfo). Needs the context current.
 void checkImageFits(const gl::Context& context, int width, int height, uint64_t hostBytesPerPixel);
 
+/// The command line as typed (/proc/self/cmdline), the program's path shortened to its name and
+/// words with spaces quoted: what bench and tune record of their run.
+std::string commandLine();
+
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);
 

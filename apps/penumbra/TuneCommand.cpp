@@ -135,7 +135,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   (req.outDir / "evaluations.jsonl").string().c_str());
       return 0;
     }
-    res.machine.command = "penumbra tune --scene " + req.scene;
+    res.machine.command = commandLine();
     report::writeTuneOutputs(req.outDir, res);
     if (o->json) {
       std::printf("%s\n", report::tuneJson(res).dump(2).c_str());

@@ -85,7 +85,7 @@ std::string tuneHtml(const TuneResults& res) {
     chart.legend.push_back({.label = names[n], .color = paletteColor(n), .marker = Marker::Circle});
   }
   for (const size_t i : res.front) chart.front.emplace_back(res.confirmed[i].costMs, res.confirmed[i].error);
-  chart.legend.push_back({.label = "confirmed (ringed: recommended)", .color = "#777", .marker = Marker::Diamond});
+  chart.legend.push_back({.label = "confirmed (ring: the pick)", .color = "#777", .marker = Marker::Diamond});
   chart.legend.push_back({.label = "default", .color = "#777", .marker = Marker::Square});
   chart.legend.push_back({.label = "Pareto front (confirmed)", .color = kFrontColor, .line = true, .dashed = true});
 

@@ -326,10 +326,18 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
   const int screenW = static_cast<int>(std::lround(fullW * screenScale));
   const int screenH = static_cast<int>(std::lround(fullH * screenScale));
   const size_t keep = std::max<size_t>(2, static_cast<size_t>(request.candidates / kHalvingDivisor));
-  // Rough plan of the stages after the screen, for the estimate of the time left.
-  const auto fullJobsLeft = [&](int stage) {
-    const size_t perTechnique = (stage <= 2 ? keep + 1 : 0) + (stage <= 3 ? 2 * kMaxDescentRounds : 0) + keep / 2 + 1;
-    return static_cast<double>(perTechnique * techniques.size());
+  // Rough plan of the full-size configurations from `stage` on, for the estimate of the time left:
+  // the promoted, each descent round's neighbours (two per dimension) for the rounds it is
+  // expected to take, the confirmed (about half the promoted).
+  const auto fullJobsLeft = [&](int stage, int roundsDone) {
+    double jobs = 0.0;
+    for (const Technique& t : techniques) {
+      const int rounds = std::max(1, kExpectedDescentRounds - roundsDone);
+      jobs += (stage <= 2 ? static_cast<double>(keep + 1) : 0.0) +
+              (stage <= 3 ? 2.0 * static_cast<double>(t.space.size() * static_cast<size_t>(rounds)) : 0.0) +
+              static_cast<double>(keep / 2 + 1);
+    }
+    return jobs;
   };
 
   // 1. Screen.
@@ -348,7 +356,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
   const double screenGuess = static_cast<double>(eval.unmeasured(jobs, screenW, screenH, kScreenFrames)) *
                              eval.secondsPerJob(screenW, screenH);
   announce("1/4 screen", jobs.size(), eval.unmeasured(jobs, screenW, screenH, kScreenFrames), screenW, screenH, screenGuess,
-           screenGuess + fullJobsLeft(2) * eval.secondsPerJob(fullW, fullH));
+           screenGuess + fullJobsLeft(2, 0) * eval.secondsPerJob(fullW, fullH));
   const std::vector<std::optional<TuneRow>> screened = eval.run(jobs, screenW, screenH, kScreenFrames);
   if (request.shard) {
     res.evaluations = eval.measured();
@@ -373,7 +381,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
   }
   announce("2/4 full size", promoted.size(), eval.unmeasured(promoted, fullW, fullH, kFullFrames), fullW, fullH,
            static_cast<double>(eval.unmeasured(promoted, fullW, fullH, kFullFrames)) * eval.secondsPerJob(fullW, fullH),
-           fullJobsLeft(2) * eval.secondsPerJob(fullW, fullH));
+           fullJobsLeft(2, 0) * eval.secondsPerJob(fullW, fullH));
   const std::vector<std::optional<TuneRow>> full = eval.run(promoted, fullW, fullH, kFullFrames);
   for (size_t i = 0; i < promoted.size(); ++i)
     if (full[i]) techniques[promoted[i].technique].full.emplace_back(promoted[i].candidate, *full[i]);
@@ -408,7 +416,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
     }
     if (step.empty()) break;
     const double stepSeconds = static_cast<double>(eval.unmeasured(step, fullW, fullH, kFullFrames)) * eval.secondsPerJob(fullW, fullH);
-    const double confirmSeconds = fullJobsLeft(4) * eval.secondsPerJob(fullW, fullH);
+    const double confirmSeconds = fullJobsLeft(4, 0) * eval.secondsPerJob(fullW, fullH);
     if (elapsed() + stepSeconds + confirmSeconds > request.maxMinutes * kSecondsPerMinute) {
       std::fprintf(stderr, "penumbra tune: descent stopped after %d round(s): --max-minutes %g would pass\n", round,
                    request.maxMinutes);
@@ -416,7 +424,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Setu
     }
     announce(fmt::format("3/4 descent, round {}", round + 1).c_str(), step.size(),
              eval.unmeasured(step, fullW, fullH, kFullFrames), fullW, fullH, stepSeconds,
-             stepSeconds + fullJobsLeft(3) * eval.secondsPerJob(fullW, fullH) - 2.0 * round * eval.secondsPerJob(fullW, fullH));
+             fullJobsLeft(3, round) * eval.secondsPerJob(fullW, fullH));
     const std::vector<std::optional<TuneRow>> rows = eval.run(step, fullW, fullH, kFullFrames);
     for (size_t i = 0; i < step.size(); ++i)
       if (rows[i]) techniques[step[i].technique].full.emplace_back(step[i].candidate, *rows[i]);

@@ -66,6 +66,9 @@ inline constexpr int kHalvingDivisor = 3;
 /// Rounds of coordinate descent at most (--max-minutes may stop it earlier): each moves the
 /// centre by one step, a factor of 1.5 or an eighth of a range.
 inline constexpr int kMaxDescentRounds = 8;
+/// Rounds the descent usually takes before it settles (pen, city: 4 to 8): the estimate of the
+/// time left assumes it.
+inline constexpr int kExpectedDescentRounds = 4;
 
 /// One measured configuration.
 struct TuneRow {
