@@ -21,25 +21,6 @@
 #include <optional>
 
 namespace penumbra::app {
-namespace {
-
-// The command line as typed, with the program's path shortened to its name.
-std::string commandLine() {
-  std::ifstream in("/proc/self/cmdline", std::ios::binary);
-  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), out;
-  size_t start = 0;
-  for (size_t i = 0; i <= all.size(); ++i) {
-    if (i < all.size() && all[i] != '\0') continue;
-    std::string arg = all.substr(start, i - start);
-    if (start == 0) arg = std::filesystem::path(arg).filename().string();
-    if (!arg.empty()) out += (out.empty() ? "" : " ") + (arg.find(' ') == std::string::npos ? arg : "'" + arg + "'");
-    start = i + 1;
-  }
-  return out;
-}
-
-}  // namespace
-
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;
@@ -127,16 +108,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     checkOutputDir("--out", o->out);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
     checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
-    const report::SetupFactory factory = [o](const report::BenchConfig& c) {
-      TechniqueOptions t;
-      t.camera = o->camera;
-      t.scene = c.scene;
-      t.filter = c.filter;
-      t.projection = c.projection;
-      for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
-      Setup s = makeSetup(t);
-      return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
-    };
+    const report::SetupFactory factory = benchSetupFactory(o->camera);
     const std::filesystem::path dir(o->out);
     report::BenchResults results =
         report::runBench(context, configs, factory, {.settings = settings, .outDir = dir, .progress = true, .verbose = o->verbose});

@@ -10,6 +10,7 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 
 namespace penumbra::app {
@@ -181,6 +182,33 @@ Setup makeSetup(const TechniqueOptions& o) {
     throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
   s.render.shadowBudgetTexels = o.shadowBudgetTexels;
   return s;
+}
+
+report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera) {
+  return [camera](const report::BenchConfig& c) {
+    TechniqueOptions t;
+    t.camera = camera;
+    t.scene = c.scene;
+    t.filter = c.filter;
+    t.projection = c.projection;
+    for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
+    Setup s = makeSetup(t);
+    return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
+  };
+}
+
+std::string commandLine() {
+  std::ifstream in("/proc/self/cmdline", std::ios::binary);
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), out;
+  size_t start = 0;
+  for (size_t i = 0; i <= all.size(); ++i) {
+    if (i < all.size() && all[i] != '\0') continue;
+    std::string arg = all.substr(start, i - start);
+    if (start == 0) arg = std::filesystem::path(arg).filename().string();
+    if (!arg.empty()) out += (out.empty() ? "" : " ") + (arg.find(' ') == std::string::npos ? arg : "'" + arg + "'");
+    start = i + 1;
+  }
+  return out;
 }
 
 }  // namespace penumbra::app

@@ -1,6 +1,8 @@
 #pragma once
 // Options shared by the subcommands that render (render, compare, bench, view) and the one
 // place that turns them into a scene + technique.
+#include "report/BenchRunner.h"
+
 #include <penumbra/Registry.h>
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
@@ -47,6 +49,10 @@ struct Setup {
 /// for anything unknown or out of range).
 Setup makeSetup(const TechniqueOptions& o);
 
+/// The factory runBench (bench, tune) makes each configuration with: makeSetup on its scene,
+/// technique and params (as --set), with `camera` (--camera) when given.
+report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera);
+
 /// A renderer with the setup's scene and technique (which it takes over from `s`).
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 
@@ -76,6 +82,10 @@ inline constexpr uint64_t kCompareHostBytesPerPixel = 170;
 /// host memory too; a GPU's free memory is checked where the driver tells it
 /// (GL_NVX_gpu_memory_info, GL_ATI_meminfo). Needs the context current.
 void checkImageFits(const gl::Context& context, int width, int height, uint64_t hostBytesPerPixel);
+
+/// The command line as typed (/proc/self/cmdline), the program's path shortened to its name and
+/// words with spaces quoted: what bench and tune record of their run.
+std::string commandLine();
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

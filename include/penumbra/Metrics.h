@@ -33,8 +33,13 @@ struct VisibilityMetrics {
   /// occluders) from an edge that is merely too sharp or too soft, which leaks at V_ref > 0.
   double umbraLeakPct = 0.0;
   double penumbraRmse = 0.0;  ///< RMSE over penumbra pixels only (0 when there are none)
+  /// Acne: % of the fully lit pixels (V_ref >= kPenumbraHighV) that V darkens by more than
+  /// kLeakThresholdV — self-shadowing, the over-darkening a bias exists to remove. Unlike the
+  /// other percentages, of the fully lit pixels, not of the mask (0 when there are none).
+  double acnePct = 0.0;
   size_t pixels = 0;          ///< pixels in the mask
   size_t leakPixels = 0, overDarkPixels = 0, penumbraPixels = 0, umbraLeakPixels = 0;
+  size_t fullyLitPixels = 0, acnePixels = 0;
 };
 
 /// Compares V with V_ref where mask ≠ 0 (ReferenceResult::litMask). An empty mask means every

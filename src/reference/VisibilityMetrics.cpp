@@ -30,6 +30,10 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
       if (vRef[i] <= kPenumbraLowV) ++m.umbraLeakPixels;
     }
     if (-delta > kLeakThresholdV) ++m.overDarkPixels;
+    if (vRef[i] >= kPenumbraHighV) {
+      ++m.fullyLitPixels;
+      if (-delta > kLeakThresholdV) ++m.acnePixels;
+    }
     if (vRef[i] > kPenumbraLowV && vRef[i] < kPenumbraHighV) {
       ++m.penumbraPixels;
       penumbraSquares += delta * delta;
@@ -43,6 +47,7 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
   m.leakPct = 100.0 * static_cast<double>(m.leakPixels) / n;
   m.overDarkPct = 100.0 * static_cast<double>(m.overDarkPixels) / n;
   m.umbraLeakPct = 100.0 * static_cast<double>(m.umbraLeakPixels) / n;
+  if (m.fullyLitPixels > 0) m.acnePct = 100.0 * static_cast<double>(m.acnePixels) / static_cast<double>(m.fullyLitPixels);
   if (m.penumbraPixels > 0) m.penumbraRmse = std::sqrt(penumbraSquares / static_cast<double>(m.penumbraPixels));
   return m;
 }

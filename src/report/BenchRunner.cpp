@@ -179,6 +179,12 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     }
     bar.advance(1);
   }
+  if (!options.microBenchmarks) {
+    if (results.machine.clock.empty()) results.machine.clock = PassTimer(context.info().softwareRenderer).endFrame().clock;
+    results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+    results.machine.loadEnd = loadAverage();
+    return results;
+  }
   // Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
   int microMapSize = set.shadowMapSize.value_or(0);
   for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);

@@ -36,6 +36,8 @@ struct RunOptions {
   std::filesystem::path outDir;  ///< images go to outDir/images/
   bool progress = true;          ///< progress bar on stderr (drawn only when it is a terminal)
   bool verbose = false;          ///< one line per configuration on stderr
+  /// The micro-benchmarks after the configurations (off: only the rows; `penumbra tune`).
+  bool microBenchmarks = true;
 };
 
 /// Runs every configuration on `context` (current on this thread). A pair the renderer refuses

@@ -124,4 +124,17 @@ double contactGapTexels(const Scene& scene, const RenderResult& r, int mapSize) 
   return gap;
 }
 
+double acneFraction(const Scene& scene, const RenderResult& r) {
+  CasterTriangles tris(scene);
+  size_t floor = 0, acne = 0;
+  for (size_t i = 0; i < r.visibility.size(); i += 3) {  // every third pixel keeps the CPU test fast
+    if (!onFloor(r.gbuffer.position[i])) continue;
+    if (tris.robustOcclusion(scene, glm::vec3(r.gbuffer.position[i]), {0, 1, 0}, 0.05f) != 0.0f) continue;
+    ++floor;
+    if (r.visibility[i] < 0.5f) ++acne;
+  }
+  EXPECT_GT(floor, 1000u);
+  return static_cast<double>(acne) / static_cast<double>(std::max<size_t>(floor, 1));
+}
+
 }  // namespace penumbra::test

@@ -57,4 +57,8 @@ std::vector<uint8_t> floorNearCasters(const Scene& scene, const GBufferData& g, 
 /// (a sun scene, one uniform view of mapSize texels) is the gap, in texels.
 double contactGapTexels(const Scene& scene, const RenderResult& r, int mapSize);
 
+/// Acne: the fraction of unoccluded floor pixels of `r` that the filter darkens (V < 0.5), read
+/// on every third pixel.
+double acneFraction(const Scene& scene, const RenderResult& r);
+
 }  // namespace penumbra::test

@@ -1,0 +1,170 @@
+// penumbra tune: a search over one scene's techniques' parameters and map size for the most
+// accurate configuration within a cost budget (or the cheapest within an error target), measured
+// against the reference on this machine; writes tune.json and tune.html (docs/tune.md).
+#include "Commands.h"
+#include "Common.h"
+
+#include "platform/Context.h"
+#include "report/TuneReport.h"
+#include "report/TuneRunner.h"
+#include "report/TuneShards.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/Reference.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+namespace penumbra::app {
+
+void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
+  struct Options {
+    TechniqueOptions technique;  // --scene, --camera, --size, --shadow-map (the defaults of compare)
+    std::vector<std::string> filters, projections;
+    std::optional<double> budgetMs, budgetMb, maxError;
+    std::string objective = "rmse";
+    double maxMinutes = 10.0;
+    int samples = ReferenceOptions{}.samples;
+    int candidates = 24;
+    uint64_t seed = 1;
+    std::string out = "tune";
+    std::optional<std::string> shard;
+    std::vector<std::string> merge;
+    bool json = false, noCache = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "tune", "search a technique's parameters and map size for the most accurate configuration within a cost budget "
+              "on one scene; write tune.json and tune.html");
+  sub->add_option("--scene", o->technique.scene, "built-in scene name (penumbra list), scene .json file or model file")
+      ->required();
+  sub->add_option("--camera", o->technique.camera, "the view, as compare's: X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's)");
+  sub->add_option("--filters", o->filters, "filter ids to tune, comma-separated (default: the scene's own)")->delimiter(',');
+  sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: the scene's own)")
+      ->delimiter(',');
+  sub->add_option("--budget-ms", o->budgetMs,
+                  "whole shadow cost per frame (shadow + prefilter + visibility, median ms on this machine) at most this "
+                  "(default: the default configuration's own cost; with several techniques the dearest default's; with "
+                  "--objective acne none)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--budget-mb", o->budgetMb, "GPU memory the technique keeps, at most this many MiB")->check(CLI::PositiveNumber);
+  sub->add_option("--max-error", o->maxError,
+                  "an error target instead: the cheapest configuration whose objective is at most this")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--objective", o->objective,
+                  "what the error is: rmse (every lit pixel), penumbra_rmse (the reference's penumbra only), leak "
+                  "(% of pixels too bright), acne (the filter's bias parameters only: acne, over-darkening where the "
+                  "reference is fully lit, at most 0.1 %, then the least leak in the reference's umbra, i.e. shadows "
+                  "detached from their casters, then the smallest bias)")
+      ->capture_default_str();
+  sub->add_option("--max-minutes", o->maxMinutes,
+                  "time for the whole run: the coordinate descent stops early when its next round would pass it (the "
+                  "screen, full-size and confirm stages always run)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--size", o->technique.size, "full image size WxH, as compare (the screen stage uses a quarter of each side, the shorter at least 32)")
+      ->capture_default_str();
+  sub->add_option("--shadow-map", o->technique.shadowMapSize,
+                  "the default configuration's map size, searched over powers of two from half to twice it (not with "
+                  "--objective acne; default: the scene's own, as compare)")
+      ->check(CLI::Range(16, 16384));
+  sub->add_option("--samples", o->samples, "reference light samples per pixel (as compare)")
+      ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
+  sub->add_option("--candidates", o->candidates, "Latin-hypercube candidates per technique in the screen stage")
+      ->capture_default_str()->check(CLI::Range(1, 1000));
+  sub->add_option("--seed", o->seed, "seed of the candidates")->capture_default_str();
+  sub->add_option("--out", o->out,
+                  "output folder: tune.json, tune.html, evaluations.jsonl (every configuration measured: a rerun with "
+                  "the same folder resumes from it)")
+      ->capture_default_str();
+  sub->add_option("--shard", o->shard,
+                  "K/N: measure only the K-th of N shares of the screen stage into OUT/evaluations.jsonl and stop (run "
+                  "the N shares anywhere with the same options, then --merge their folders)");
+  sub->add_option("--merge", o->merge,
+                  "DIR..., the --out folders of --shard runs: gather their evaluations.jsonl into OUT and go on from them "
+                  "(the rest of the search runs here)")
+      ->expected(1, -1);
+  sub->add_flag("--json", o->json, "print tune.json on stdout instead of the summary");
+  sub->add_flag("--no-cache", o->noCache, "recompute the references even if cached ones exist");
+  sub->add_flag("--verbose", o->technique.verbose, "one line per configuration on stderr");
+  commands.push_back({sub, [o] {
+    report::TuneRequest req;
+    req.objective = report::parseObjective(o->objective);
+    if (o->budgetMs && o->maxError)
+      throw usageError("--budget-ms and --max-error: give a cost budget or an error target, not both");
+    // The scene's own choices and the defaults of compare; usage errors before any GL.
+    const Setup scene = makeSetup(o->technique);
+    req.scene = o->technique.scene;
+    req.filters = o->filters.empty() ? std::vector<std::string>{std::string(scene.filter->id())} : o->filters;
+    req.projections = o->projections.empty() ? std::vector<std::string>{std::string(scene.projection->id())} : o->projections;
+    for (const std::string& f : req.filters) (void)makeFilter(f);
+    for (const std::string& p : req.projections) (void)makeProjection(p);
+    req.settings.width = scene.render.width;
+    req.settings.height = scene.render.height;
+    req.settings.shadowMapSize = o->technique.shadowMapSize;
+    req.settings.referenceSamples = o->samples;
+    req.settings.useCache = !o->noCache;
+    req.settings.warmupFrames = 1;
+    if (o->technique.camera) req.settings.camera = *o->technique.camera;
+    req.budget = {.costMs = o->budgetMs, .memoryMiB = o->budgetMb, .maxError = o->maxError};
+    req.maxMinutes = o->maxMinutes;
+    req.candidates = o->candidates;
+    req.seed = o->seed;
+    req.outDir = o->out;
+    req.verbose = o->technique.verbose;
+    if (o->shard) req.shard = report::parseShard(*o->shard);
+    if (o->shard && !o->merge.empty()) throw usageError("--shard and --merge: a shard measures, a merge gathers; not both");
+
+    checkOutputDir("--out", o->out);
+    std::filesystem::create_directories(req.outDir);
+    if (!o->merge.empty()) {
+      const std::vector<std::filesystem::path> dirs(o->merge.begin(), o->merge.end());
+      const size_t added = report::mergeEvaluations(dirs, req.outDir);
+      std::fprintf(stderr, "penumbra tune: merged %zu evaluations from %zu folders into %s\n", added, dirs.size(),
+                   (req.outDir / "evaluations.jsonl").string().c_str());
+    }
+    gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
+    checkImageFits(context, req.settings.width, req.settings.height, kCompareHostBytesPerPixel);
+    const report::SetupFactory factory = benchSetupFactory(o->technique.camera);
+    report::TuneResults res = report::runTune(context, req, factory);
+    if (req.shard) {
+      std::printf("shard %d/%d: %zu configurations measured (%zu resumed) in %.0f s into %s\n", req.shard->index,
+                  req.shard->count, res.evaluations, res.resumed, res.seconds,
+                  (req.outDir / "evaluations.jsonl").string().c_str());
+      return 0;
+    }
+    res.machine.command = commandLine();
+    report::writeTuneOutputs(req.outDir, res);
+    if (o->json) {
+      std::printf("%s\n", report::tuneJson(res).dump(2).c_str());
+      return res.recommended ? 0 : 1;
+    }
+    const report::TuneRow* def = report::tuneDefaultFor(res);
+    const auto line = [&](const char* what, const report::TuneRow& r) {
+      std::printf("  %-12s %s %.4g  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%% (umbra %.3f%%)  acne %.3f%%  cost %.3f ms  "
+                  "memory %.1f MiB\n",
+                  what, report::objectiveKey(req.objective), r.error, r.metrics.rmse, r.metrics.penumbraRmse,
+                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, r.memoryMiB);
+    };
+    std::printf("tune %s: %zu configurations measured (%zu resumed) in %.0f s on %s (%s); budget %.3f ms%s\n",
+                req.scene.c_str(), res.evaluations, res.resumed, res.seconds, res.machine.glRenderer.c_str(),
+                res.machine.clock.c_str(), res.budgetMs,
+                o->budgetMb ? fmt::format(", {:.1f} MiB", *o->budgetMb).c_str() : "");
+    if (!res.recommended) {
+      std::printf("no configuration fits the budget; the front is in %s\n", (req.outDir / "tune.html").string().c_str());
+      if (def) line("default", *def);
+      return 1;
+    }
+    const report::TuneRow& rec = res.confirmed[*res.recommended];
+    line("recommended", rec);
+    if (def) line("default", *def);
+    std::printf("set:      %s\ncompare:  %s\nscene file:\n%s\nfront (%zu configurations) and chart: %s\n",
+                report::tuneSetLine(rec).c_str(), rec.command.c_str(), report::tuneSceneSnippet(rec).c_str(),
+                res.front.size(), (req.outDir / "tune.html").string().c_str());
+    return 0;
+  }});
+}
+
+}  // namespace penumbra::app

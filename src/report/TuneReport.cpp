@@ -1,0 +1,204 @@
+#include "report/TuneReport.h"
+
+#include "report/SvgChart.h"
+
+#include <penumbra/Files.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace penumbra::report {
+namespace {
+
+// Integral values below this are written without a fraction (tap counts, texels).
+constexpr double kExactIntegerLimit = 1e9;
+
+// A value as the scene file takes it: a number when it reads as one, else a choice name.
+nlohmann::json sceneValue(const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) return text;
+  if (v == std::round(v) && std::fabs(v) < kExactIntegerLimit) return static_cast<long long>(v);
+  return v;
+}
+
+std::string technique(const TuneRow& r) { return r.filter + " · " + r.projection; }
+
+std::string paramsText(const TuneRow& r) {
+  std::string out;
+  for (const auto& [k, v] : r.params) out += (out.empty() ? "" : " ") + k + "=" + v;
+  return out.empty() ? "(defaults)" : out;
+}
+
+std::string tooltip(const TuneRow& r, TuneObjective o) {
+  return fmt::format("{} map {}: {} {:.4g}, {:.3g} ms, {:.1f} MiB\n{}", technique(r), r.mapSize, objectiveKey(o), r.error,
+                     r.costMs, r.memoryMiB, paramsText(r));
+}
+
+const char* const kStyle = R"(
+body { font: 14px/1.45 system-ui, sans-serif; margin: 24px auto; max-width: 1280px; padding: 0 16px; color: #222; }
+table { border-collapse: collapse; margin: 8px 0 16px; }
+th, td { border: 1px solid #ddd; padding: 3px 7px; text-align: right; vertical-align: top; }
+th { background: #f3f3f3; } td.l, th.l { text-align: left; } code { background: #f4f4f4; padding: 1px 4px; }
+tr.rec { font-weight: bold; } .note { color: #555; }
+)";
+
+std::string rowHtml(const TuneRow& r, const std::string& what, bool recommended) {
+  return fmt::format(
+      "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td class=\"l\"><code>{}</code></td><td>{:.4f}</td>"
+      "<td>{:.4f}</td><td>{:.2f}</td><td>{:.3f} <small>{:.3f}–{:.3f}</small></td><td>{:.1f}</td></tr>\n",
+      recommended ? " class=\"rec\"" : "", escapeXml(what), escapeXml(technique(r)), r.mapSize, escapeXml(paramsText(r)),
+      r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct, r.costMs, r.costP10Ms, r.costP90Ms, r.memoryMiB);
+}
+
+std::string tuneHtml(const TuneResults& res) {
+  const TuneObjective o = res.request.objective;
+  Chart chart{.title = fmt::format("{} against whole shadow cost on {}", objectiveKey(o), res.request.scene),
+              .xLabel = fmt::format("shadow + prefilter + visibility, ms per frame ({})", res.machine.clock),
+              .yLabel = objectiveKey(o), .logX = true, .logY = o != TuneObjective::Leak, .width = 900, .height = 520, .series = {}, .front = {},
+              .legend = {}};
+  std::vector<std::string> names;
+  for (const TuneRow& r : res.explored)
+    if (std::find(names.begin(), names.end(), technique(r)) == names.end()) names.push_back(technique(r));
+  for (size_t n = 0; n < names.size(); ++n) {
+    ChartSeries explored{.color = paletteColor(n), .marker = Marker::Circle, .connect = false, .points = {}};
+    for (const TuneRow& r : res.explored)
+      if (technique(r) == names[n]) explored.points.push_back({.x = r.costMs, .y = r.error, .tooltip = tooltip(r, o)});
+    ChartSeries confirmed{.color = paletteColor(n), .marker = Marker::Diamond, .connect = false, .points = {}};
+    for (size_t i = 0; i < res.confirmed.size(); ++i)
+      if (technique(res.confirmed[i]) == names[n] && !res.confirmed[i].isDefault) {
+        const TuneRow& r = res.confirmed[i];
+        confirmed.points.push_back({.x = r.costMs, .y = r.error, .tooltip = "confirmed: " + tooltip(r, o),
+                                    .emphasised = res.recommended == i});
+      }
+    ChartSeries defaults{.color = paletteColor(n), .marker = Marker::Square, .connect = false, .points = {}};
+    for (const size_t d : res.defaults)
+      if (technique(res.confirmed[d]) == names[n])
+        defaults.points.push_back({.x = res.confirmed[d].costMs, .y = res.confirmed[d].error,
+                                   .tooltip = "default: " + tooltip(res.confirmed[d], o)});
+    chart.series.push_back(std::move(explored));
+    chart.series.push_back(std::move(confirmed));
+    chart.series.push_back(std::move(defaults));
+    chart.legend.push_back({.label = names[n], .color = paletteColor(n), .marker = Marker::Circle});
+  }
+  for (const size_t i : res.front) chart.front.emplace_back(res.confirmed[i].costMs, res.confirmed[i].error);
+  chart.legend.push_back({.label = "confirmed (ring: the pick)", .color = "#777", .marker = Marker::Diamond});
+  chart.legend.push_back({.label = "default", .color = "#777", .marker = Marker::Square});
+  chart.legend.push_back({.label = "Pareto front (confirmed)", .color = kFrontColor, .line = true, .dashed = true});
+
+  std::string h = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>penumbra tune</title><style>";
+  h += kStyle;
+  h += "</style></head><body>\n";
+  h += fmt::format("<h1>penumbra tune: {} on {}</h1>\n", escapeXml(objectiveKey(o)), escapeXml(res.request.scene));
+  h += fmt::format("<p class=\"note\">{} on {} ({}), {}; {}×{} pixels, reference {} samples per pixel; budget {:.3f} ms{}; "
+                   "{} configurations measured ({} read back from an earlier run) in {:.0f} s. Raw data: "
+                   "<a href=\"tune.json\">tune.json</a>.</p>\n",
+                   escapeXml(res.machine.glRenderer), escapeXml(res.machine.cpu), escapeXml(res.machine.clock),
+                   escapeXml(res.machine.date), res.request.settings.width, res.request.settings.height,
+                   res.request.settings.referenceSamples, res.budgetMs,
+                   res.request.budget.memoryMiB ? fmt::format(", {:.1f} MiB", *res.request.budget.memoryMiB) : "",
+                   res.evaluations + res.resumed, res.resumed, res.seconds);
+  if (res.recommended) {
+    const TuneRow& r = res.confirmed[*res.recommended];
+    h += fmt::format("<h2>Recommended</h2>\n<p><code>{}</code></p>\n<pre>{}</pre>\n", escapeXml(r.command),
+                     escapeXml(tuneSceneSnippet(r)));
+  } else {
+    h += "<h2>Recommended</h2>\n<p>No configuration fits the budget.</p>\n";
+  }
+  h += svgChart(chart);
+  h += "\n<h2>Confirmed configurations</h2>\n<table><tr><th class=\"l\"></th><th class=\"l\">technique</th><th>map</th>"
+       "<th class=\"l\">--set</th><th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>cost ms <small>p10–p90</small></th>"
+       "<th>MiB</th></tr>\n";
+  for (size_t i = 0; i < res.confirmed.size(); ++i) {
+    const bool onFront = std::find(res.front.begin(), res.front.end(), i) != res.front.end();
+    const std::string what = res.recommended == i ? "recommended" : res.confirmed[i].isDefault ? "default"
+                                                                  : onFront                       ? "front"
+                                                                                                  : "";
+    h += rowHtml(res.confirmed[i], what, res.recommended == i);
+  }
+  h += "</table>\n</body></html>\n";
+  return h;
+}
+
+}  // namespace
+
+std::string tuneSetLine(const TuneRow& r) {
+  std::string line = fmt::format("--projection {} --filter {} --shadow-map {}", r.projection, r.filter, r.mapSize);
+  for (const auto& [k, v] : r.params) line += fmt::format(" --set {}={}", k, v);
+  return line;
+}
+
+std::string tuneSceneSnippet(const TuneRow& r) {
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : r.params) params[k] = sceneValue(v);
+  nlohmann::ordered_json shadow = {{"projection", r.projection}, {"filter", r.filter}, {"mapSize", r.mapSize}};
+  if (!r.params.empty()) shadow["params"] = params;
+  return "\"shadow\": " + shadow.dump(2);
+}
+
+nlohmann::json tuneRowJson(const TuneRow& r, TuneObjective objective) {
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [k, v] : r.params) params[k] = v;
+  return {{"filter", r.filter}, {"projection", r.projection}, {"params", params}, {"shadow_map", r.mapSize},
+          {"width", r.width}, {"height", r.height}, {"frames", r.frames}, {"objective", objectiveKey(objective)},
+          {"error", r.error}, {"rmse", r.metrics.rmse}, {"penumbra_rmse", r.metrics.penumbraRmse},
+          {"leak_pct", r.metrics.leakPct}, {"overdark_pct", r.metrics.overDarkPct},
+          {"umbra_leak_pct", r.metrics.umbraLeakPct}, {"acne_pct", r.metrics.acnePct}, {"shadow_cost_ms", r.costMs},
+          {"shadow_cost_p10_ms", r.costP10Ms}, {"shadow_cost_p90_ms", r.costP90Ms}, {"shadow_memory_mb", r.memoryMiB},
+          {"command", r.command}, {"set", tuneSetLine(r)}, {"scene_snippet", tuneSceneSnippet(r)}};
+}
+
+const TuneRow* tuneDefaultFor(const TuneResults& res) {
+  if (res.defaults.empty()) return nullptr;
+  if (res.recommended) {
+    const TuneRow& rec = res.confirmed[*res.recommended];
+    for (const size_t d : res.defaults)
+      if (res.confirmed[d].filter == rec.filter && res.confirmed[d].projection == rec.projection) return &res.confirmed[d];
+  }
+  return &res.confirmed[res.defaults.front()];
+}
+
+nlohmann::json tuneJson(const TuneResults& res) {
+  const TuneObjective o = res.request.objective;
+  nlohmann::json j;
+  j["scene"] = res.request.scene;
+  j["objective"] = objectiveKey(o);
+  j["recommended"] = res.recommended ? tuneRowJson(res.confirmed[*res.recommended], o) : nlohmann::json();
+  j["default"] = tuneDefaultFor(res) ? tuneRowJson(*tuneDefaultFor(res), o) : nlohmann::json();
+  j["defaults"] = nlohmann::json::array();
+  for (const size_t d : res.defaults) j["defaults"].push_back(tuneRowJson(res.confirmed[d], o));
+  j["front"] = nlohmann::json::array();
+  for (const size_t i : res.front) j["front"].push_back(tuneRowJson(res.confirmed[i], o));
+  j["explored"] = nlohmann::json::array();
+  for (const TuneRow& r : res.explored) j["explored"].push_back(tuneRowJson(r, o));
+  j["budget_ms"] = res.budgetMs;
+  j["budget_mb"] = res.request.budget.memoryMiB ? nlohmann::json(*res.request.budget.memoryMiB) : nlohmann::json();
+  j["max_error"] = res.request.budget.maxError ? nlohmann::json(*res.request.budget.maxError) : nlohmann::json();
+  j["width"] = res.request.settings.width;
+  j["height"] = res.request.settings.height;
+  j["samples"] = res.request.settings.referenceSamples;
+  j["camera"] = res.request.settings.camera;
+  j["evaluations"] = res.evaluations;
+  j["resumed"] = res.resumed;
+  j["seconds"] = res.seconds;
+  j["gl_renderer"] = res.machine.glRenderer;
+  j["gl_version"] = res.machine.glVersion;
+  j["cpu"] = res.machine.cpu;
+  j["clock"] = res.machine.clock;
+  j["hardware_threads"] = res.machine.hardwareThreads;
+  j["load_start"] = res.machine.loadStart;
+  j["load_end"] = res.machine.loadEnd;
+  j["date"] = res.machine.date;
+  j["command"] = res.machine.command;
+  return j;
+}
+
+void writeTuneOutputs(const std::filesystem::path& dir, const TuneResults& results) {
+  writeTextFile(dir / "tune.json", tuneJson(results).dump(2) + "\n");
+  writeTextFile(dir / "tune.html", tuneHtml(results));
+}
+
+}  // namespace penumbra::report
