@@ -275,8 +275,8 @@ void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>
 
 const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 
-std::vector<DebugImage> Renderer::debugImages() const {
-  std::vector<DebugImage> core = mImpl->shadows.debugImages();
+std::vector<DebugImage> Renderer::debugImages(size_t light) const {
+  std::vector<DebugImage> core = mImpl->shadows.debugImages(light);
   std::vector<DebugImage> out = {core.front(),  // the visibility
                                  {"gbuffer-depth", &mImpl->depth},
                                  {"gbuffer-normal", &mImpl->normal},

@@ -137,6 +137,7 @@ void Viewer::drawPanels() {
   drawTechniquePanel();
   drawTimingPanel();
   drawViewsPanel();
+  drawLightsPanel();
   drawLightCameraPanel();
   drawToolsPanel();
   ImGui::PopItemWidth();
@@ -200,11 +201,11 @@ void Viewer::drawParams() {
 void Viewer::drawLightCameraPanel() {
   if (!ImGui::CollapsingHeader("Light and camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const Scene& scene = mSession.scene();
-  const Light& light = scene.light();
+  const Light& light = scene.lights.at(mSession.selectedLight());
   const glm::vec3 aim = lightAimPoint(light, scene.bounds());
   glm::vec2 deg = glm::degrees(lightAngles(light, aim));
-  hint(isPositional(light) ? "spot or point light: right-drag in the view moves it around the point it lights"
-                           : "sun: right-drag in the view turns it");
+  hint(isPositional(light) ? "the selected light (Lights), a spot or point light: right-drag in the view moves it around the point it lights"
+                           : "the selected light (Lights), a sun: right-drag in the view turns it");
   bool moved = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
   moved |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
   if (moved) setLightAngles(mSession.light(), aim, glm::radians(deg.x), glm::radians(deg.y));
@@ -244,7 +245,9 @@ void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
   const char* channels[] = {"r", "g", "b", "a", "rgb"};
   ImGui::Combo("Channel", &s.channel, channels, IM_ARRAYSIZE(channels));
   const int layers = t->desc().target == GL_TEXTURE_2D ? 1 : t->layers();
-  if (layers > 1) ImGui::SliderInt(t->desc().target == GL_TEXTURE_3D ? "Slice" : "Layer", &s.layer, 0, layers - 1);
+  const bool isArray = t->desc().target == GL_TEXTURE_2D_ARRAY;
+  if (layers > 1 && isArray) ImGui::Checkbox("All layers", &s.allLayers);
+  if (layers > 1 && !(isArray && s.allLayers)) ImGui::SliderInt(isArray ? "Layer" : "Slice", &s.layer, 0, layers - 1);
   if (t->levels() > 1) ImGui::SliderInt("Mip level", &s.level, 0, t->levels() - 1);
   ImGui::Checkbox("Turbo colours", &s.turbo);
   ImGui::SameLine();

@@ -1,6 +1,9 @@
 #include "viewer/Script.h"
 
+#include "viewer/LightEdit.h"
+
 #include <penumbra/Error.h>
+#include <penumbra/Shadows.h>
 
 #include <fmt/format.h>
 
@@ -20,6 +23,8 @@ struct Verb {
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
+// `light set` takes each of the light's keys (LightEdit.h's lightKeys()) at most once, or so.
+constexpr size_t kMaxLightArgs = 16;
 
 constexpr Verb kVerbs[] = {
     {"scene", 1, 1, "NAME|FILE", "load a built-in scene or a scene file (the technique stays)"},
@@ -28,14 +33,19 @@ constexpr Verb kVerbs[] = {
     {"set", 1, 1, "KEY=VALUE", "set a parameter (technique or scene), as --set does"},
     {"camera", 2, 7, "orbit YAW PITCH DIST | look PX PY PZ TX TY TZ | mode orbit|fly",
      "place the camera (degrees, metres; orbit is around the current target)"},
-    {"light", 3, 4, "angles AZIMUTH ELEVATION | direction X Y Z | position X Y Z",
-     "move the light (degrees; angles as seen from the point it lights)"},
+    {"light", 1, kMaxLightArgs,
+     "select N | add sun|spot|point | remove | set KEY=VALUE... | angles AZIMUTH ELEVATION | direction X Y Z | position X Y Z",
+     "lights: select one (0 = the first), add one (selected; placed where the view shows it), remove the selected one, "
+     "set the selected one's keys (the scene file's: type, position, direction, target, size, color, intensity, "
+     "outerConeDeg, innerConeDeg, range, castsShadow; X,Y,Z vectors), or move it (degrees; angles as seen from the "
+     "point it lights)"},
     {"view", 1, 1, "NAME", "main view: shaded, heatmap, or a debug image (visibility, shadow-map, ...)"},
     {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
-    {"print", 1, 1, "gl-objects|technique|timings", "print a line on stdout"},
+    {"screenshot-inset", 1, 1, "PATH", "after this frame, write the inset (with its labels) as PNG"},
+    {"print", 1, 1, "gl-objects|technique|timings|lights", "print a line on stdout"},
     {"heatmap", 0, 1, "[SAMPLES]", "start the error heatmap against the ray-traced reference"},
     {"wait-heatmap", 0, 0, "", "let frames pass until the heatmap is done"},
     {"reload", 0, 0, "", "reload shaders from the source tree (errors are printed)"},
@@ -54,6 +64,34 @@ const Verb* findVerb(std::string_view name) {
   throw usageError(fmt::format("{}: {}: {}", a.where, a.verb, what));
 }
 
+void checkLightAction(const ScriptAction& a, const Verb& v) {
+  const std::string& sub = a.args[0];
+  if (sub == "set") {
+    if (a.args.size() < 2) fail(a, "expected light set KEY=VALUE...");
+    for (size_t i = 1; i < a.args.size(); ++i) {
+      try {
+        checkLightAssignment(a.args[i]);
+      } catch (const Error& e) {
+        fail(a, e.what());
+      }
+    }
+    return;
+  }
+  const size_t n = sub == "remove" ? 1 : (sub == "select" || sub == "add") ? 2 : sub == "angles" ? 3
+                 : (sub == "direction" || sub == "position") ? 4 : 0;
+  if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected light {}", v.usage));
+  if (sub == "select") scriptInt(a, 1, 0, static_cast<int>(kMaxShadowedLights) - 1);
+  if (sub == "add") {
+    try {
+      parseLightType(a.args[1]);
+    } catch (const Error& e) {
+      fail(a, e.what());
+    }
+  }
+  if (sub == "angles" || sub == "direction" || sub == "position")
+    for (size_t i = 1; i < n; ++i) scriptFloat(a, i);
+}
+
 void checkAction(const ScriptAction& a) {
   const Verb* v = findVerb(a.verb);
   if (!v) {
@@ -68,19 +106,15 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "wait") scriptInt(a, 0, 0, kMaxWaitFrames);
   if (a.verb == "heatmap" && !a.args.empty()) scriptInt(a, 0, 1, 1 << 16);
   if (a.verb == "ui" && sub != "on" && sub != "off") fail(a, "expected on or off");
-  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings")
-    fail(a, "expected gl-objects, technique or timings");
+  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights")
+    fail(a, "expected gl-objects, technique, timings or lights");
   if (a.verb == "camera") {
     const size_t n = sub == "orbit" ? 4 : sub == "look" ? 7 : sub == "mode" ? 2 : 0;
     if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected camera {}", v->usage));
     if (sub == "mode" && a.args[1] != "orbit" && a.args[1] != "fly") fail(a, "expected mode orbit or fly");
     for (size_t i = 1; sub != "mode" && i < n; ++i) scriptFloat(a, i);
   }
-  if (a.verb == "light") {
-    const size_t n = sub == "angles" ? 3 : (sub == "direction" || sub == "position") ? 4 : 0;
-    if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected light {}", v->usage));
-    for (size_t i = 1; i < n; ++i) scriptFloat(a, i);
-  }
+  if (a.verb == "light") checkLightAction(a, *v);
 }
 
 }  // namespace

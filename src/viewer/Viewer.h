@@ -77,6 +77,7 @@ private:
   void startHeatmap(int samples);
   void screenshotView(const std::filesystem::path& path);
   void screenshotWindow(const std::filesystem::path& path);
+  void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
   void saveSettings(const std::filesystem::path& path);
   void reloadShaders();
   void resetCamera();
@@ -89,6 +90,12 @@ private:
   // Script.cpp's actions, run at the start of frames.
   void runScript();
   bool execute(const ScriptAction& a);  ///< true = let this frame pass before the next action
+
+  // Lights (LightsPanel.cpp): the light list and the selected light's editor, labels over the
+  // views that name the light and the layer (cube face, cascade) shown, the `light` action.
+  void drawLightsPanel();
+  void drawViewLabels();
+  void executeLight(const ScriptAction& a);
 
   // Panels (Panels.cpp).
   void drawPanels();
@@ -142,7 +149,7 @@ private:
   int mWaitFrames = 0;
   bool mWaitHeatmap = false;
   bool mQuit = false;
-  std::optional<std::filesystem::path> mViewShot, mWindowShot;
+  std::optional<std::filesystem::path> mViewShot, mWindowShot, mInsetShot;
   char mSavePath[512] = {};
   char mScenePath[512] = {};
 };

@@ -1,0 +1,233 @@
+// The viewer's lights: the "Lights" panel (every light of the scene, add/remove, the selected
+// light's editor and what its maps got this frame), the labels over the views that say whose
+// image is shown and which layer each grid cell is (a point light's cube faces, csm's
+// cascades), and the script's `light` action. Every edit goes through ViewSession, which checks
+// it (LightEdit.h's lightProblem, the technique's incompatibility) before the next frame.
+#include "viewer/LightEdit.h"
+#include "viewer/Viewer.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+
+namespace penumbra::viewer {
+namespace {
+
+constexpr size_t kListRows = 6;          // rows of the light list before it scrolls
+constexpr float kDragFractionOfReach = 0.005f;  // position drag: metres per pixel per metre of scene radius
+constexpr float kLabelPadPx = 2.0f;
+constexpr ImU32 kLabelBackground = IM_COL32(0, 0, 0, 170);
+constexpr ImU32 kLabelText = IM_COL32(255, 255, 255, 255);
+
+// The swatch of an HDR colour: its hue at full brightness.
+ImVec4 swatchOf(const glm::vec3& color) {
+  const float peak = std::max({color.x, color.y, color.z});
+  const glm::vec3 c = peak > 0.0f ? color / peak : color;
+  return {c.x, c.y, c.z, 1.0f};
+}
+
+// A text box at `pos` (ImGui display coordinates, top left); `above` puts it above pos instead.
+void label(ImDrawList* dl, ImVec2 pos, const std::string& text, bool above) {
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  if (above) pos.y -= size.y + 2.0f * kLabelPadPx;
+  dl->AddRectFilled(pos, ImVec2(pos.x + size.x + 2.0f * kLabelPadPx, pos.y + size.y + 2.0f * kLabelPadPx), kLabelBackground);
+  dl->AddText(ImVec2(pos.x + kLabelPadPx, pos.y + kLabelPadPx), kLabelText, text.c_str());
+}
+
+}  // namespace
+
+void Viewer::drawLightsPanel() {
+  const Scene& scene = mSession.scene();
+  const size_t count = scene.lights.size();
+  const std::string header = fmt::format("Lights ({})###lights", count);
+  if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const float row = ImGui::GetTextLineHeightWithSpacing();
+  const float rows = static_cast<float>(std::min(count, kListRows)) + 0.25f;
+  if (ImGui::BeginListBox("##lights", ImVec2(-FLT_MIN, row * rows))) {
+    for (size_t i = 0; i < count; ++i) {
+      const Light& l = scene.lights[i];
+      ImGui::PushID(static_cast<int>(i));
+      ImGui::ColorButton("##tint", swatchOf(l.color), ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
+                         ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+      ImGui::SameLine();
+      const std::string text = fmt::format("{}: {}  ×{:.3g}{}", i, lightTypeName(l.type), l.intensity, l.castsShadow ? "" : "  (no shadow)");
+      if (ImGui::Selectable(text.c_str(), i == mSession.selectedLight())) mSession.selectLight(i);
+      ImGui::PopID();
+    }
+    ImGui::EndListBox();
+  }
+  ImGui::BeginDisabled(count >= kMaxShadowedLights);
+  for (LightType type : {LightType::Directional, LightType::Spot, LightType::Point}) {
+    if (ImGui::Button(fmt::format("+ {}", lightTypeName(type)).c_str())) {
+      try {
+        mSession.addLight(makeLight(type, scene.bounds(), scene.camera, count));
+        setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), count)), false);
+      } catch (const Error& e) {
+        setStatus(e.what(), true);
+      }
+    }
+    ImGui::SameLine();
+  }
+  ImGui::EndDisabled();
+  ImGui::BeginDisabled(count <= 1);
+  if (ImGui::Button("Remove")) {
+    try {
+      const std::string removed = lightLabel(scene.lights[mSession.selectedLight()], mSession.selectedLight());
+      mSession.removeLight();
+      setStatus("removed " + removed, false);
+    } catch (const Error& e) {
+      setStatus(e.what(), true);
+    }
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(count <= 1 ? "a scene needs at least one light" : "remove the selected light");
+
+  // The selected light, edited on a copy that ViewSession checks.
+  const size_t selected = mSession.selectedLight();
+  Light l = scene.lights.at(selected);
+  const float reach = std::max(scene.bounds().radius(), 1.0f);
+  bool changed = false;
+  ImGui::PushID("selected");
+  ImGui::TextUnformatted(lightLabel(l, selected).c_str());
+  int type = static_cast<int>(l.type);
+  const char* types[] = {lightTypeName(LightType::Directional), lightTypeName(LightType::Spot), lightTypeName(LightType::Point)};
+  if (ImGui::Combo("Type", &type, types, IM_ARRAYSIZE(types))) {
+    changeLightType(l, static_cast<LightType>(type), scene.bounds());
+    changed = true;
+  }
+  if (isPositional(l))
+    changed |= ImGui::DragFloat3("Position (m)", &l.position.x, kDragFractionOfReach * reach, -kMaxCoordinateM, kMaxCoordinateM, "%.3f");
+  if (l.type != LightType::Point) {
+    glm::vec3 d = l.direction;
+    if (ImGui::DragFloat3("Direction", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") && glm::length(d) > 0.0f) {
+      l.direction = glm::normalize(d);
+      changed = true;
+    }
+  }
+  if (isPositional(l)) {
+    changed |= ImGui::SliderFloat("Radius (m)", &l.size, 0.0f, kMaxLightSphereM, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  } else {
+    float deg = glm::degrees(l.size);
+    if (ImGui::SliderFloat("Angular radius", &deg, 0.0f, glm::degrees(kMaxSunAngularRadiusRad), "%.3f°", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+      l.size = glm::radians(deg);
+      changed = true;
+    }
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the light's size: soft-shadow filters widen the penumbra with it; 0 = hard");
+  changed |= ImGui::SliderFloat("Intensity", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(isPositional(l) ? "intensity at 1 m (inverse square beyond)" : "irradiance scale");
+  changed |= ImGui::ColorEdit3("Colour", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  if (l.type == LightType::Spot) {
+    float outerDeg = glm::degrees(l.coneAngleRad), innerDeg = glm::degrees(l.innerConeAngleRad);
+    if (ImGui::SliderFloat("Outer cone", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+      l.coneAngleRad = glm::radians(outerDeg);
+      l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);  // inner ≤ outer
+      changed = true;
+    }
+    if (ImGui::SliderFloat("Inner cone", &innerDeg, 0.0f, outerDeg, "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+      l.innerConeAngleRad = glm::radians(innerDeg);
+      changed = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("half angles: full light inside the inner cone, none beyond the outer");
+  }
+  if (isPositional(l)) {
+    changed |= ImGui::DragFloat("Range (m)", &l.rangeM, kDragFractionOfReach * reach, 0.0f, kMaxCoordinateM, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("no light and no shadow beyond it; 0 = unlimited; must exceed the radius");
+  }
+  changed |= ImGui::Checkbox("Casts shadow", &l.castsShadow);
+  if (changed) {
+    try {
+      mSession.setLight(l);
+    } catch (const Error& e) {
+      setStatus(e.what(), true);
+    }
+  }
+  const std::vector<LightShadowReport>& reports = mSession.renderer().shadows().lightReports();
+  if (selected < reports.size()) {
+    const LightShadowReport& r = reports[selected];
+    ImGui::TextDisabled("maps %d² × %d %s, importance %.2f", r.mapSize, r.views,
+                        l.type == LightType::Point ? "cube faces" : r.views > 1 ? "views" : "view", r.importance);
+  }
+  if (ImGui::Button("Show its maps in the inset")) {
+    const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(mSession.shownLight());
+    mInset.name = own.size() > 1 ? own[1].name : own.front().name;  // its filter's first map, else its visibility
+  }
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("the views show the selected light's visibility and maps; right-drag in the view moves it");
+  ImGui::PopTextWrapPos();
+  ImGui::PopID();
+}
+
+void Viewer::drawViewLabels() {
+  if (!mSession.hasFrame()) return;
+  const size_t shown = mSession.shownLight();
+  const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(shown);
+  const Light& light = mSession.scene().lights.at(std::min(shown, mSession.scene().lights.size() - 1));
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  // Window pixels (origin lower left) → ImGui display coordinates (origin top left).
+  auto topLeft = [&](const glm::ivec4& r) {
+    return ImVec2(static_cast<float>(r.x) / scale.x, static_cast<float>(mFramebuffer.y - (r.y + r.w)) / scale.y);
+  };
+  auto layerName = [&](int layer) {
+    if (light.type == LightType::Point) return fmt::format("face {}", cubeFaceName(layer));
+    return fmt::format("{} {}", mSession.projectionId() == "csm" ? "cascade" : "layer", layer);
+  };
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  auto labelSlot = [&](const ViewState& view, const glm::ivec4& rect, bool titleAbove) {
+    const auto it = std::find_if(own.begin(), own.end(), [&](const DebugImage& d) { return d.name == view.name; });
+    if (it == own.end() || !it->texture || !*it->texture) return;  // not one of the light's images
+    const gl::Texture& t = *it->texture;
+    const int layers = t.desc().target == GL_TEXTURE_2D_ARRAY ? t.layers() : 1;
+    const bool grid = layers > 1 && view.settings.allLayers;
+    std::string title = fmt::format("{}: {}", lightLabel(light, shown), view.name);
+    if (layers > 1 && !grid) title += ", " + layerName(std::clamp(view.settings.layer, 0, layers - 1));
+    if (grid && light.type == LightType::Point && layers == kCubeFaces) title += " (cube faces)";
+    label(dl, topLeft(rect), title, titleAbove);
+    if (!grid) return;
+    const int level = std::clamp(view.settings.level, 0, std::max(t.levels(), 1) - 1);
+    const std::vector<glm::ivec4> cells = layerCells(rect, std::max(1, t.width() >> level), std::max(1, t.height() >> level), layers);
+    for (int i = 0; i < layers; ++i) {
+      const glm::ivec4& c = cells[static_cast<size_t>(i)];
+      const ImVec2 bottomLeft(topLeft(c).x, topLeft(c).y + static_cast<float>(c.w) / scale.y);
+      label(dl, bottomLeft, layerName(i), true);
+    }
+  };
+  labelSlot(mMain, mViewRect, false);
+  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) labelSlot(mInset, mInsetRect, true);
+}
+
+void Viewer::executeLight(const ScriptAction& a) {
+  const std::string& sub = a.args[0];
+  const Scene& scene = mSession.scene();
+  if (sub == "select") {
+    mSession.selectLight(static_cast<size_t>(scriptInt(a, 1, 0, static_cast<int>(kMaxShadowedLights) - 1)));
+  } else if (sub == "add") {
+    const size_t index = scene.lights.size();
+    mSession.addLight(makeLight(parseLightType(a.args[1]), scene.bounds(), scene.camera, index));
+    setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), index)), false);
+  } else if (sub == "remove") {
+    const std::string removed = lightLabel(scene.lights.at(mSession.selectedLight()), mSession.selectedLight());
+    mSession.removeLight();
+    setStatus("removed " + removed, false);
+  } else if (sub == "set") {
+    const std::vector<std::string> assignments(a.args.begin() + 1, a.args.end());
+    mSession.setLight(assignLight(scene.lights.at(mSession.selectedLight()), assignments, scene.bounds()));
+  } else {  // angles, direction, position
+    Light l = scene.lights.at(mSession.selectedLight());
+    if (sub == "angles") {
+      setLightAngles(l, lightAimPoint(l, scene.bounds()), glm::radians(scriptFloat(a, 1)), glm::radians(scriptFloat(a, 2)));
+      mSession.setLight(l);
+    } else {
+      const std::string xyz = fmt::format("{}={},{},{}", sub, a.args[1], a.args[2], a.args[3]);
+      mSession.setLight(assignLight(l, {xyz}, scene.bounds()));
+    }
+  }
+}
+
+}  // namespace penumbra::viewer
