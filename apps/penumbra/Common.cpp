@@ -28,6 +28,14 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
 }
 
+void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o) {
+  app.add_option("--shadow-budget", o.shadowBudgetTexels,
+                 "texels every light's shadow maps share, cascades and cube faces counted (e.g. 16777216 = 4096², "
+                 "64 MiB of 32-bit depth); each light's map side follows its share of the image, never above "
+                 "--shadow-map; 0 = no budget")
+      ->check(CLI::Range(int64_t{0}, int64_t{1} << 32));
+}
+
 void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what) {
   app.add_option("--cache-max-mb", mib,
                  fmt::format("cap of the cache folder in MiB, applied {}: the least recently used entries are removed "
@@ -166,6 +174,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   s.render.shadowMapSize = o.shadowMapSize.value_or(s.scene.shadow.mapSize);
   if (s.render.shadowMapSize < 16)
     throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
+  s.render.shadowBudgetTexels = o.shadowBudgetTexels;
   return s;
 }
 

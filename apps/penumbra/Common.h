@@ -22,12 +22,15 @@ struct TechniqueOptions {
   std::vector<std::string> sets;                  ///< "key=value"
   std::string size = "640x360";
   std::optional<int> shadowMapSize;
+  int64_t shadowBudgetTexels = 0;  ///< 0 = no budget
   std::optional<std::string> camera;  ///< "X,Y,Z:TX,TY,TZ[:FOV]"; unset = the scene's camera
   bool verbose = false;
 };
 
 /// Adds --scene --filter --projection --set --size --shadow-map --camera --verbose to a subcommand.
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o);
+/// Adds --shadow-budget (render and compare; the viewer sizes maps without a budget).
+void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o);
 
 struct Setup {
   Scene scene;

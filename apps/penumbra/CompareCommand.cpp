@@ -55,13 +55,15 @@ constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
     {"reference-visibility-cos.exr", "V_ref weighted by cos(theta): exact over unshadowed shading"},
+    {"visibility-lightN.exr, reference-visibility-lightN.exr", "with several lights: each light's own V and V_ref"},
 };
 
 std::string outputsHelp() {
   std::string help = "folder for the outputs:";
   for (const auto& [name, what] : kOutputs) help += fmt::format("\n  {} ({})", name, what);
   return help + "\nEXR files: one float channel V, row 0 = top; V_ref is 0 on geometry that faces away from the light "
-                "(or lies outside a spot's cone) and 1 on background";
+                "(or lies outside a spot's cone) and 1 on background; with several lights visibility.exr and reference-visibility*.exr "
+                "hold the lights' V combined, each weighted by its unshadowed light at the pixel";
 }
 
 }  // namespace
@@ -79,6 +81,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   o->technique.size = "256x256";
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
+  addShadowBudgetOption(*sub, o->technique);
   sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--out", o->out, outputsHelp())->capture_default_str();
@@ -108,27 +111,45 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     ro.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     ro.progress = !o->json;
     const ReferenceTracer tracer(s.scene);
-    const ReferenceResult ref = tracer.trace(gbuffer, s.scene.light(), ro);
-    const report::FrameComparison cmp = report::compareFrame(renderer, ref, true);
+    const std::vector<ReferenceResult> refs = report::traceLights(tracer, gbuffer, s.scene.lights, ro);
+    const report::FrameComparison cmp = report::compareFrame(renderer, gbuffer, refs, true);
     const VisibilityMetrics& m = cmp.metrics;
-    const double approximationRmse = compareVisibility(ref.visibility, ref.visibilityCosWeighted, ref.litMask).rmse;
+    const CombinedVisibility& combined = cmp.combined;
+    const double approximationRmse = compareVisibility(combined.vRef, combined.vRefCosWeighted, combined.mask).rmse;
+    const int width = gbuffer.width, height = gbuffer.height;
 
     const std::filesystem::path dir(o->out);
     const ColorImage &technique = cmp.technique, &reference = cmp.reference, &heat = cmp.heatmap;
     // The split model's own error in units of V, on the reference's grey, full colour at
     // kApproximationFullScaleV (docs/reference.md).
     constexpr float kApproximationFullScaleV = 0.1f;
-    const ColorImage approx = errorHeatmap(ref.visibility, ref.visibilityCosWeighted, ref.litMask, ref.width, ref.height,
-                                           nullptr, HeatmapOptions{kApproximationFullScaleV});
+    const ColorImage approx = errorHeatmap(combined.vRef, combined.vRefCosWeighted, combined.mask, width, height, nullptr,
+                                           HeatmapOptions{kApproximationFullScaleV});
     const ColorImage all = sheet({&technique, &reference, &heat, &approx});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
                                     {"texel-density.png", &densityImage}})
       writePng(dir / name, img->width, img->height, img->rgba);
-    for (const auto& [name, v] : {std::pair{"visibility.exr", &cmp.visibility}, {"reference-visibility.exr", &ref.visibility},
-                                  {"reference-visibility-cos.exr", &ref.visibilityCosWeighted}})
-      writeExr(dir / name, ref.width, ref.height, flipRows<float>(*v, ref.width, ref.height));
+    const auto exr = [&](const std::string& name, const std::vector<float>& v) {
+      writeExr(dir / name, width, height, flipRows<float>(v, width, height));
+    };
+    exr("visibility.exr", combined.v);
+    exr("reference-visibility.exr", combined.vRef);
+    exr("reference-visibility-cos.exr", combined.vRefCosWeighted);
+    if (refs.size() > 1)
+      for (const report::LightComparison& l : cmp.lights) {
+        exr(fmt::format("visibility-light{}.exr", l.index), l.visibility);
+        if (l.castsShadow) exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
+      }
+    double referenceSeconds = 0.0;
+    int referenceSamples = 0;
+    bool referenceCached = true;
+    for (const ReferenceResult& r : refs) {
+      referenceSeconds += r.traceSeconds;
+      referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
+      referenceCached = referenceCached && (r.fromCache || r.width == 0);
+    }
 
     const PassTimings t = renderer.timings();
     std::optional<ShimmerResult> shimmer;
@@ -165,13 +186,35 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["shimmer_steps"] = shimmer->steps;
       }
       j["pixels"] = m.pixels;
+      j["lights"] = nlohmann::json::array();
+      for (const report::LightComparison& l : cmp.lights) {
+        nlohmann::json jl;
+        jl["index"] = l.index;
+        jl["type"] = lightTypeName(l.type);
+        jl["casts_shadow"] = l.castsShadow;
+        if (l.castsShadow) {
+          jl["rmse"] = l.metrics.rmse;
+          jl["mae"] = l.metrics.mae;
+          jl["leak_pct"] = l.metrics.leakPct;
+          jl["overdark_pct"] = l.metrics.overDarkPct;
+          jl["umbra_leak_pct"] = l.metrics.umbraLeakPct;
+          jl["penumbra_rmse"] = l.metrics.penumbraRmse;
+          jl["pixels"] = l.metrics.pixels;
+        }
+        jl["map_texels"] = l.map.texels();
+        jl["map_size"] = l.map.mapSize;
+        jl["map_size_requested"] = l.map.requestedMapSize;
+        jl["map_views"] = l.map.views;
+        jl["importance"] = l.map.importance;
+        j["lights"].push_back(std::move(jl));
+      }
       j["timings_ms"] = nlohmann::json::object();
       for (const auto& [pass, ms] : t.ms) j["timings_ms"][pass] = ms;
       j["clock"] = t.clock;
       j["gl_renderer"] = context.info().renderer;
-      j["reference_seconds"] = ref.traceSeconds;
-      j["reference_samples"] = ref.samplesPerPixel;
-      j["reference_cached"] = ref.fromCache;
+      j["reference_seconds"] = referenceSeconds;
+      j["reference_samples"] = referenceSamples;
+      j["reference_cached"] = referenceCached;
       std::printf("%s\n", j.dump(2).c_str());
       return 0;
     }
@@ -183,6 +226,19 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
                 "  pixels          %8zu\n",
                 m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+    if (cmp.lights.size() > 1) {
+      std::printf("  the metrics above combine the lights, each weighted by its unshadowed light at the pixel:\n"
+                  "    light  type   RMSE     leak %%  over-dark %%  penumbra RMSE  map\n");
+      for (const report::LightComparison& l : cmp.lights) {
+        const std::string map = fmt::format("{}² × {}{}", l.map.mapSize, l.map.views,
+                                            l.map.mapSize < l.map.requestedMapSize ? fmt::format(" (asked {}²)", l.map.requestedMapSize) : "");
+        if (l.castsShadow)
+          std::printf("    %5zu  %-5s %7.4f  %8.3f  %11.3f  %13.4f  %s\n", l.index, lightTypeName(l.type), l.metrics.rmse,
+                      l.metrics.leakPct, l.metrics.overDarkPct, l.metrics.penumbraRmse, map.c_str());
+        else
+          std::printf("    %5zu  %-5s casts no shadow\n", l.index, lightTypeName(l.type));
+      }
+    }
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
     if (shimmer)
@@ -190,8 +246,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                   shimmer->steps);
     std::printf("  times (%s on %s):\n", t.clock.c_str(), context.info().renderer.c_str());
     for (const auto& [pass, ms] : t.ms) std::printf("    %-12s %8.2f ms\n", pass.c_str(), ms);
-    std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", ref.samplesPerPixel, ref.traceSeconds,
-                ref.fromCache ? " (cached)" : "", o->out.c_str());
+    std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", referenceSamples, referenceSeconds,
+                referenceCached ? " (cached)" : "", o->out.c_str());
     return 0;
   }});
 }

@@ -26,6 +26,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("render", "render one frame to a PNG (the default subcommand)");
   addTechniqueOptions(*sub, o->technique);
+  addShadowBudgetOption(*sub, o->technique);
   sub->add_option("--out", o->out, "output PNG")->capture_default_str();
   sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");

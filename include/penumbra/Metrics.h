@@ -3,10 +3,12 @@
 // show where. Pure C++ (no GL). Per-pixel inputs are width × height arrays in the G-buffer's
 // row order (row 0 = bottom); output images are row 0 = top, ready for writePng.
 #include <penumbra/Image.h>
+#include <penumbra/Scene.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace penumbra {
 
@@ -41,6 +43,31 @@ struct VisibilityMetrics {
 /// ref.visibilityCosWeighted, ref.litMask).rmse is its error in units of V.
 VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const float> vRef,
                                     std::span<const uint8_t> mask);
+
+/// Several lights' V as one number per pixel, for metrics over a frame lit by many lights:
+/// V = Σ wᵢ·Vᵢ / Σ wᵢ, each light weighted by its unshadowed contribution at the pixel
+/// (lightWeights), and the same for V_ref. A pixel counts (mask) where any light's litMask is
+/// set; where every weight there is 0 (lit at grazing angles only), the lights whose masks are
+/// set count equally. With one light the result is that light's V, V_ref and mask unchanged.
+struct CombinedVisibility {
+  std::vector<float> v, vRef, vRefCosWeighted;
+  std::vector<uint8_t> mask;
+};
+
+/// One light's share in a combination: its V, the reference's, the pixels it lights and its weights.
+struct LightVisibility {
+  std::span<const float> v, vRef, vRefCosWeighted;
+  std::span<const uint8_t> litMask;
+  std::span<const float> weight;  ///< lightWeights() of the light (empty with one light)
+};
+
+/// The luminance of light's unshadowed irradiance at each covered G-buffer pixel: intensity ×
+/// luminance(colour) × max(N·L, 0) × lightFalloff × 1/d² for spot and point lights (the lit
+/// pass's terms, without albedo); 0 where litMask is 0.
+std::vector<float> lightWeights(const GBufferData& gbuffer, const Light& light, std::span<const uint8_t> litMask);
+
+/// Combines the lights (at least one, all the same size). Throws penumbra::Error on mismatched sizes.
+CombinedVisibility combineLights(std::span<const LightVisibility> lights);
 
 struct HeatmapOptions {
   /// |ΔV| at which the error colour is fully opaque over the grey; smaller errors blend in

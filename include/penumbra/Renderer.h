@@ -23,6 +23,9 @@ class ShaderLibrary;
 struct RenderOptions {
   int width = 640, height = 360;  ///< output size in pixels
   int shadowMapSize = 2048;       ///< texels per side of each shadow map
+  /// Texels all lights' maps share (every cascade and cube face counted); 0 = no budget, each
+  /// light gets shadowMapSize (or its own override). See ShadowFrameInputs::mapBudgetTexels.
+  int64_t shadowBudgetTexels = 0;
   /// What the lit pass writes to the colour image: PN_VIEW_SHADED (0, the default),
   /// PN_VIEW_VISIBILITY, PN_VIEW_CASCADES or PN_VIEW_TEXEL_DENSITY (shaders/shared/Enums.h).
   int debugView = 0;

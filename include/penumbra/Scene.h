@@ -107,6 +107,9 @@ struct Light {
   LightShadowSettings shadow;  ///< per-light overrides of the scene's technique
 };
 
+/// The light type's name in scene files: "sun", "spot" or "point".
+const char* lightTypeName(LightType type);
+
 /// Spot and point lights have a position (their light comes from a sphere there).
 inline bool isPositional(const Light& l) { return l.type != LightType::Directional; }
 

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -44,6 +45,74 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
   m.umbraLeakPct = 100.0 * static_cast<double>(m.umbraLeakPixels) / n;
   if (m.penumbraPixels > 0) m.penumbraRmse = std::sqrt(penumbraSquares / static_cast<double>(m.penumbraPixels));
   return m;
+}
+
+std::vector<float> lightWeights(const GBufferData& gbuffer, const Light& light, std::span<const uint8_t> litMask) {
+  const size_t n = static_cast<size_t>(gbuffer.width) * static_cast<size_t>(gbuffer.height);
+  if (gbuffer.position.size() != n || gbuffer.normal.size() != n || litMask.size() != n)
+    throw Error(fmt::format("lightWeights: {} mask pixels for a {}x{} G-buffer", litMask.size(), gbuffer.width, gbuffer.height));
+  // Rec. 709 luminance of the light's colour (linear RGB).
+  const float luminance = light.intensity * glm::dot(light.color, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+  std::vector<float> w(n, 0.0f);
+  for (size_t i = 0; i < n; ++i) {
+    if (!litMask[i] || !gbuffer.covered(i)) continue;
+    const glm::vec3 p(gbuffer.position[i]), normal(gbuffer.normal[i]);
+    glm::vec3 toLight = -glm::normalize(light.direction);
+    float attenuation = 1.0f;
+    if (isPositional(light)) {
+      const glm::vec3 d = light.position - p;
+      const float d2 = std::max(glm::dot(d, d), 1e-8f);
+      toLight = d / std::sqrt(d2);
+      attenuation = lightFalloff(light, p) / d2;
+    }
+    w[i] = luminance * std::max(glm::dot(normal, toLight), 0.0f) * attenuation;
+  }
+  return w;
+}
+
+CombinedVisibility combineLights(std::span<const LightVisibility> lights) {
+  if (lights.empty()) throw Error("combineLights: no light");
+  const size_t n = lights[0].v.size();
+  for (const LightVisibility& l : lights)
+    if (l.v.size() != n || l.vRef.size() != n || l.vRefCosWeighted.size() != n || l.litMask.size() != n ||
+        (lights.size() > 1 && l.weight.size() != n))
+      throw Error(fmt::format("combineLights: per-light arrays of different sizes ({} pixels expected)", n));
+  CombinedVisibility c;
+  if (lights.size() == 1) {
+    c.v.assign(lights[0].v.begin(), lights[0].v.end());
+    c.vRef.assign(lights[0].vRef.begin(), lights[0].vRef.end());
+    c.vRefCosWeighted.assign(lights[0].vRefCosWeighted.begin(), lights[0].vRefCosWeighted.end());
+    c.mask.assign(lights[0].litMask.begin(), lights[0].litMask.end());
+    return c;
+  }
+  c.v.assign(n, 1.0f);
+  c.vRef.assign(n, 1.0f);
+  c.vRefCosWeighted.assign(n, 1.0f);
+  c.mask.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    double sw = 0.0, sv = 0.0, sr = 0.0, sc = 0.0;
+    int lit = 0;
+    for (const LightVisibility& l : lights) {
+      if (!l.litMask[i]) continue;
+      ++lit;
+      sw += l.weight[i];
+      sv += l.weight[i] * l.v[i];
+      sr += l.weight[i] * l.vRef[i];
+      sc += l.weight[i] * l.vRefCosWeighted[i];
+    }
+    if (lit == 0) continue;
+    c.mask[i] = 1;
+    if (sw <= 0.0) {  // lit at grazing angles only: the lights whose masks are set count equally
+      sv = sr = sc = 0.0;
+      for (const LightVisibility& l : lights)
+        if (l.litMask[i]) sv += l.v[i], sr += l.vRef[i], sc += l.vRefCosWeighted[i];
+      sw = lit;
+    }
+    c.v[i] = static_cast<float>(sv / sw);
+    c.vRef[i] = static_cast<float>(sr / sw);
+    c.vRefCosWeighted[i] = static_cast<float>(sc / sw);
+  }
+  return c;
 }
 
 }  // namespace penumbra

@@ -173,6 +173,7 @@ void Renderer::render(const RenderOptions& options) {
   PN_CHECK(!im.scene.lights.empty(), "render(): the scene has no light");
   in.lights = im.scene.lights;
   in.mapSize = options.shadowMapSize;
+  in.mapBudgetTexels = options.shadowBudgetTexels;
   in.restore = RestoreState::None;  // this renderer sets what each of its passes needs
   im.shadows.render(in);
 

@@ -75,7 +75,11 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   const RenderOptions render{.width = set.width, .height = set.height, .shadowMapSize = set.shadowMapSize, .debugView = 0};
   std::optional<std::string> currentScene, currentLight;
   std::unique_ptr<ReferenceTracer> tracer;
-  std::map<std::string, ReferenceResult> references;  // by light key, for the current scene
+  struct FrameReference {
+    GBufferData gbuffer;
+    std::vector<ReferenceResult> lights;
+  };
+  std::map<std::string, FrameReference> references;  // by light key, for the current scene
   std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
   ProgressBar bar("bench", configs.size(), options.progress && !options.verbose);
 
@@ -124,10 +128,12 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
         ro.useCache = set.useCache;
         ro.cacheMaxBytes = set.cacheMaxBytes;
         ro.progress = false;  // the bench's own bar is on screen
-        references[light] = tracer->trace(renderer.readGBuffer(), renderer.scene().light(), ro);
+        FrameReference& r = references[light];
+        r.gbuffer = renderer.readGBuffer();
+        r.lights = traceLights(*tracer, r.gbuffer, renderer.scene().lights, ro);
       }
-      const ReferenceResult& ref = references[light];
-      const FrameComparison cmp = compareFrame(renderer, ref, c.inGrid);
+      const FrameReference& ref = references[light];
+      const FrameComparison cmp = compareFrame(renderer, ref.gbuffer, ref.lights, c.inGrid);
 
       BenchRow row;
       row.config = c;

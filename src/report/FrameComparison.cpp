@@ -1,15 +1,53 @@
 #include "report/FrameComparison.h"
 
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
 namespace penumbra::report {
 
-FrameComparison compareFrame(Renderer& renderer, const ReferenceResult& ref, bool images) {
+std::vector<ReferenceResult> traceLights(const ReferenceTracer& tracer, const GBufferData& gbuffer,
+                                         std::span<const Light> lights, const ReferenceOptions& options) {
+  std::vector<ReferenceResult> refs;
+  for (const Light& l : lights) refs.push_back(l.castsShadow ? tracer.trace(gbuffer, l, options) : ReferenceResult{});
+  return refs;
+}
+
+FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std::span<const ReferenceResult> refs,
+                             bool images) {
+  const std::vector<Light>& lights = renderer.scene().lights;
+  if (refs.size() != lights.size() || renderer.lightCount() != lights.size())
+    throw Error(fmt::format("compareFrame: {} references for {} lights", refs.size(), lights.size()));
   FrameComparison c;
-  c.visibility = renderer.readVisibility();
-  c.metrics = compareVisibility(c.visibility, ref.visibility, ref.litMask);
+  std::vector<std::vector<float>> weights(lights.size());
+  std::vector<LightVisibility> shadowed;
+  std::vector<size_t> shadowedIndex;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    LightComparison l;
+    l.index = i;
+    l.type = lights[i].type;
+    l.castsShadow = lights[i].castsShadow;
+    l.visibility = renderer.readVisibility(i);
+    l.map = renderer.shadows().lightReports().at(i);
+    if (l.castsShadow) l.metrics = compareVisibility(l.visibility, refs[i].visibility, refs[i].litMask);
+    c.lights.push_back(std::move(l));
+  }
+  for (size_t i = 0; i < lights.size(); ++i)
+    if (c.lights[i].castsShadow) shadowedIndex.push_back(i);
+  if (shadowedIndex.empty()) throw usageError("compare: no light of the scene casts a shadow");
+  for (size_t i : shadowedIndex) {
+    if (shadowedIndex.size() > 1) weights[i] = lightWeights(gbuffer, lights[i], refs[i].litMask);
+    shadowed.push_back({c.lights[i].visibility, refs[i].visibility, refs[i].visibilityCosWeighted, refs[i].litMask, weights[i]});
+  }
+  c.combined = combineLights(shadowed);
+  c.metrics = compareVisibility(c.combined.v, c.combined.vRef, c.combined.mask);
   if (images) {
     c.technique = renderer.readColor();
-    c.reference = renderer.shadeWithVisibility(ref.visibility);
-    c.heatmap = errorHeatmap(c.visibility, ref.visibility, ref.litMask, ref.width, ref.height, &c.technique);
+    std::vector<std::vector<float>> refVisibility;
+    for (size_t i = 0; i < lights.size(); ++i)
+      refVisibility.push_back(c.lights[i].castsShadow ? refs[i].visibility : c.lights[i].visibility);
+    c.reference = renderer.shadeWithVisibility(refVisibility);
+    c.heatmap = errorHeatmap(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width, gbuffer.height, &c.technique);
   }
   return c;
 }

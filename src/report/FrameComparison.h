@@ -1,22 +1,45 @@
 #pragma once
-// The renderer's last frame against a reference traced on the same G-buffer: the metrics and the
-// three images `penumbra compare` and `penumbra bench` show (technique | reference | heatmap).
+// The renderer's last frame against references traced on the same G-buffer, one per light: the
+// metrics (each light's and the combination's) and the three images `penumbra compare` and
+// `penumbra bench` show (technique | reference | heatmap).
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
 #include <penumbra/Renderer.h>
 
+#include <span>
+#include <vector>
+
 namespace penumbra::report {
 
+/// One light of the frame against its reference.
+struct LightComparison {
+  size_t index = 0;
+  LightType type = LightType::Directional;
+  bool castsShadow = true;        ///< false: V = 1 by contract; left out of the combination
+  std::vector<float> visibility;  ///< the light's V (row 0 = bottom)
+  VisibilityMetrics metrics;      ///< V against V_ref over the light's litMask
+  LightShadowReport map;          ///< what the shadow budget gave it
+};
+
 struct FrameComparison {
-  std::vector<float> visibility;  ///< the frame's V (row 0 = bottom)
-  VisibilityMetrics metrics;      ///< V against V_ref over the reference's litMask
-  /// Filled when images are asked for: the frame's colour, the same frame lit with V_ref, and
-  /// the signed error heatmap over the technique's image (Metrics.h errorHeatmap).
+  /// The combined V, V_ref and cos-weighted V_ref (combineLights over the lights that cast
+  /// shadows; with one light, that light's own arrays) and its mask.
+  CombinedVisibility combined;
+  VisibilityMetrics metrics;  ///< combined V against combined V_ref
+  std::vector<LightComparison> lights;
+  /// Filled when images are asked for: the frame's colour, the same frame lit with every light's
+  /// V_ref, and the signed error heatmap of the combination over the technique's image.
   ColorImage technique, reference, heatmap;
 };
 
-/// Compares the last frame of `renderer` with `ref` (traced on that frame's G-buffer). Throws
-/// penumbra::Error when the sizes differ.
-FrameComparison compareFrame(Renderer& renderer, const ReferenceResult& ref, bool images);
+/// Traces every light of the renderer's scene on `gbuffer` (the renderer's last G-buffer); a
+/// light that casts no shadow gets no trace (an empty result).
+std::vector<ReferenceResult> traceLights(const ReferenceTracer& tracer, const GBufferData& gbuffer,
+                                         std::span<const Light> lights, const ReferenceOptions& options);
+
+/// Compares the last frame of `renderer` with `refs` (traceLights on that frame's G-buffer, one
+/// per light). Throws penumbra::Error when counts or sizes differ.
+FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std::span<const ReferenceResult> refs,
+                             bool images);
 
 }  // namespace penumbra::report

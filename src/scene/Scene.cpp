@@ -38,6 +38,15 @@ glm::mat4 Camera::clipFromView(float aspect) const {
   return m;
 }
 
+const char* lightTypeName(LightType type) {
+  switch (type) {
+    case LightType::Directional: return "sun";
+    case LightType::Spot: return "spot";
+    case LightType::Point: return "point";
+  }
+  return "unknown";
+}
+
 float lightFalloff(const Light& light, const glm::vec3& ws) {
   if (!isPositional(light)) return 1.0f;
   const glm::vec3 d = ws - light.position;

@@ -7,13 +7,20 @@
 #include <fstream>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 using namespace penumbra;
 
 namespace {
 
+// ctest runs each test in its own process, two at a time: a folder per process keeps one test
+// from reading the file another is writing.
+std::filesystem::path scratchDir() {
+  return std::filesystem::temp_directory_path() / ("penumbra-scene-tests-" + std::to_string(getpid()));
+}
+
 std::filesystem::path writeTemp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "penumbra-scene-tests";
+  const auto dir = scratchDir();
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path) << text;
@@ -143,7 +150,7 @@ TEST(SceneFile, ShapeTotalsFailBeforeAnyShapeIsBuilt) {
 
 // A folder, a PNG or a binary file given as a scene: a message that says so, never raw bytes.
 TEST(SceneFile, NonSceneInputsSayWhatTheyAre) {
-  const auto dir = std::filesystem::temp_directory_path() / "penumbra-scene-tests";
+  const auto dir = scratchDir();
   std::filesystem::create_directories(dir / "folder.json");
   auto error = [](const std::string& what) {
     try {
