@@ -85,6 +85,9 @@ inline constexpr float kDefaultSpotFadeDeg = 5.0f;
 inline constexpr float kMaxLightSphereM = 100.0f;
 /// Largest light intensity (Light::intensity), for scene files and the viewer alike.
 inline constexpr float kMaxLightIntensity = 1e6f;
+/// Shadow-map sizes (texels per side) that scene files and the viewer accept, for the scene's
+/// technique and for a light's own (LightShadowSettings::mapSize).
+inline constexpr int kMinMapSizeTexels = 16, kMaxMapSizeTexels = 16384;
 
 struct Light {
   LightType type = LightType::Directional;

@@ -25,8 +25,9 @@ using Json = nlohmann::json;
 constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 // The sphere's tessellation (slices around, stacks from pole to pole).
 constexpr int kSphereSlices = 48, kSphereStacks = 24;
-constexpr float kMinMapSize = 16.0f, kMaxMapSize = 16384.0f;  // shadow-map texels per side
-// Light limits (kMaxLightSphereM, kMinSpotConeDeg, ...) are Scene.h's: the viewer's edits obey them too.
+// Light and map-size limits (kMaxLightSphereM, kMinSpotConeDeg, kMinMapSizeTexels, ...) are
+// Scene.h's: the viewer's edits obey them too.
+constexpr float kMinMapSize = kMinMapSizeTexels, kMaxMapSize = kMaxMapSizeTexels;
 
 /// A JSON object being read: remembers its path for messages and which keys were used.
 class Reader {

@@ -3,7 +3,6 @@
 #include "viewer/Cameras.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Params.h>
 
 #include <fmt/format.h>
 
@@ -73,7 +72,7 @@ bool parseSwitch(std::string_view key, std::string_view text) {
   throw usageError(fmt::format("{}={}: expected on or off", key, text));
 }
 
-enum class Form { Type, Number, Vector, Switch };
+enum class Form { Type, Number, Vector, Switch, Texels };
 
 struct Key {
   std::string_view name;
@@ -84,7 +83,7 @@ constexpr Key kKeys[] = {
     {"type", Form::Type},          {"position", Form::Vector},     {"direction", Form::Vector},
     {"target", Form::Vector},      {"size", Form::Number},         {"color", Form::Vector},
     {"intensity", Form::Number},   {"outerConeDeg", Form::Number}, {"innerConeDeg", Form::Number},
-    {"range", Form::Number},       {"castsShadow", Form::Switch},
+    {"range", Form::Number},       {"castsShadow", Form::Switch},  {"mapSize", Form::Texels},
 };
 
 const Key& findKey(std::string_view name) {
@@ -95,25 +94,35 @@ const Key& findKey(std::string_view name) {
   throw usageError(fmt::format("unknown light key '{}' (known: {})", name, known));
 }
 
-void checkForm(const Key& k, std::string_view value) {
+int parseTexels(std::string_view key, std::string_view text) {
+  const float v = parseNumber(key, text);
+  if (v != std::floor(v) || !(v == 0.0f || (v >= kMinMapSizeTexels && v <= kMaxMapSizeTexels)))
+    throw usageError(fmt::format("{}={}: expected 0 (the technique's size) or a whole number of texels in [{}, {}]", key, text,
+                                 kMinMapSizeTexels, kMaxMapSizeTexels));
+  return static_cast<int>(v);
+}
+
+// The value words of `light set N KEY VALUE...` as one text: a vector's X Y Z joined as X,Y,Z.
+std::string valueText(const Key& k, std::span<const std::string> value) {
+  if (k.form == Form::Vector && value.size() == 3) return value[0] + "," + value[1] + "," + value[2];
+  if (value.size() != 1)
+    throw usageError(fmt::format("{}: expected {}", k.name, k.form == Form::Vector ? "X Y Z or X,Y,Z" : "one value"));
+  return value[0];
+}
+
+std::string checkForm(const Key& k, std::span<const std::string> value) {
+  const std::string text = valueText(k, value);
   switch (k.form) {
-    case Form::Type: parseLightType(value); break;
-    case Form::Number: parseNumber(k.name, value); break;
-    case Form::Vector: parseVector(k.name, value); break;
-    case Form::Switch: parseSwitch(k.name, value); break;
+    case Form::Type: parseLightType(text); break;
+    case Form::Number: parseNumber(k.name, text); break;
+    case Form::Vector: parseVector(k.name, text); break;
+    case Form::Switch: parseSwitch(k.name, text); break;
+    case Form::Texels: parseTexels(k.name, text); break;
   }
+  return text;
 }
 
 }  // namespace
-
-const char* lightTypeName(LightType type) {
-  switch (type) {
-    case LightType::Directional: return "sun";
-    case LightType::Spot: return "spot";
-    case LightType::Point: return "point";
-  }
-  return "?";
-}
 
 LightType parseLightType(std::string_view name) {
   for (LightType t : {LightType::Directional, LightType::Spot, LightType::Point})
@@ -126,6 +135,8 @@ std::string lightLabel(const Light& light, size_t index) { return fmt::format("l
 const char* cubeFaceName(int face) { return face >= 0 && face < kCubeFaces ? kFaceNames[face] : "?"; }
 
 std::string lightProblem(const Light& l) {
+  if (l.shadow.mapSize != 0 && (l.shadow.mapSize < kMinMapSizeTexels || l.shadow.mapSize > kMaxMapSizeTexels))
+    return fmt::format("the map size must be 0 (the technique's) or in [{}, {}] texels", kMinMapSizeTexels, kMaxMapSizeTexels);
   if (!finite(l.color) || glm::any(glm::lessThan(l.color, glm::vec3(0.0f))) || glm::any(glm::greaterThan(l.color, glm::vec3(kMaxRadiance))))
     return fmt::format("the colour must be in [0, {}]", kMaxRadiance);
   if (!std::isfinite(l.intensity) || l.intensity < 0.0f || l.intensity > kMaxLightIntensity)
@@ -212,60 +223,51 @@ std::vector<std::string> lightKeys() {
   return out;
 }
 
-void checkLightAssignment(std::string_view assignment) {
-  const auto [key, value] = splitAssignment(assignment);
-  checkForm(findKey(key), value);
-}
+void checkLightSetting(std::string_view key, std::span<const std::string> value) { checkForm(findKey(key), value); }
 
-Light assignLight(Light l, const std::vector<std::string>& assignments, const Aabb& bounds) {
-  std::vector<std::pair<std::string, std::string>> pairs;
-  for (const std::string& a : assignments) {
-    pairs.push_back(splitAssignment(a));
-    checkForm(findKey(pairs.back().first), pairs.back().second);
-  }
-  for (const auto& [key, value] : pairs)
-    if (key == "type") changeLightType(l, parseLightType(value), bounds);
-  bool innerGiven = false;
-  const std::string type = lightTypeName(l.type);
-  auto require = [&](const std::string& key, bool has, const char* what) {
+Light setLightField(Light l, std::string_view key, std::span<const std::string> value, const Aabb& bounds) {
+  const std::string text = checkForm(findKey(key), value);
+  const char* type = lightTypeName(l.type);
+  auto require = [&](bool has, const char* what) {
     if (!has) throw usageError(fmt::format("{}: the light is a {}, which has {}", key, type, what));
   };
-  for (const auto& [key, value] : pairs) {
-    if (key == "position") {
-      require(key, isPositional(l), "a direction, not a position");
-      l.position = parseVector(key, value);
-    } else if (key == "direction") {
-      require(key, l.type != LightType::Point, "no direction (it shines everywhere)");
-      const glm::vec3 d = parseVector(key, value);
-      if (glm::length(d) < kMinDirectionLength) throw usageError("direction: must not be zero");
-      l.direction = glm::normalize(d);
-    } else if (key == "target") {
-      require(key, l.type == LightType::Spot, "no target (only a spot aims)");
-      const glm::vec3 d = parseVector(key, value) - l.position;
-      if (glm::length(d) < kMinDirectionLength) throw usageError("target: equals the light's position");
-      l.direction = glm::normalize(d);
-    } else if (key == "size") {
-      l.size = parseNumber(key, value);
-    } else if (key == "color") {
-      l.color = parseVector(key, value);
-    } else if (key == "intensity") {
-      l.intensity = parseNumber(key, value);
-    } else if (key == "outerConeDeg") {
-      require(key, l.type == LightType::Spot, "no cone");
-      l.coneAngleRad = glm::radians(parseNumber(key, value));
-    } else if (key == "innerConeDeg") {
-      require(key, l.type == LightType::Spot, "no cone");
-      l.innerConeAngleRad = glm::radians(parseNumber(key, value));
-      innerGiven = true;
-    } else if (key == "range") {
-      require(key, isPositional(l), "no range (a sun reaches everywhere)");
-      l.rangeM = parseNumber(key, value);
-    } else if (key == "castsShadow") {
-      l.castsShadow = parseSwitch(key, value);
-    }
+  if (key == "type") {
+    changeLightType(l, parseLightType(text), bounds);
+  } else if (key == "position") {
+    require(isPositional(l), "a direction, not a position");
+    l.position = parseVector(key, text);
+  } else if (key == "direction") {
+    require(l.type != LightType::Point, "no direction (it shines everywhere)");
+    const glm::vec3 d = parseVector(key, text);
+    if (glm::length(d) < kMinDirectionLength) throw usageError("direction: must not be zero");
+    l.direction = glm::normalize(d);
+  } else if (key == "target") {
+    require(l.type == LightType::Spot, "no target (only a spot aims)");
+    const glm::vec3 d = parseVector(key, text) - l.position;
+    if (glm::length(d) < kMinDirectionLength) throw usageError("target: equals the light's position");
+    l.direction = glm::normalize(d);
+  } else if (key == "size") {
+    l.size = parseNumber(key, text);
+  } else if (key == "color") {
+    l.color = parseVector(key, text);
+  } else if (key == "intensity") {
+    l.intensity = parseNumber(key, text);
+  } else if (key == "outerConeDeg") {
+    require(l.type == LightType::Spot, "no cone");
+    l.coneAngleRad = glm::radians(parseNumber(key, text));
+    l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);
+  } else if (key == "innerConeDeg") {
+    require(l.type == LightType::Spot, "no cone");
+    l.innerConeAngleRad = glm::radians(parseNumber(key, text));
+  } else if (key == "range") {
+    require(isPositional(l), "no range (a sun reaches everywhere)");
+    l.rangeM = parseNumber(key, text);
+  } else if (key == "castsShadow") {
+    l.castsShadow = parseSwitch(key, text);
+  } else if (key == "mapSize") {
+    l.shadow.mapSize = parseTexels(key, text);
   }
-  if (!innerGiven && l.type == LightType::Spot) l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);
-  if (const std::string problem = lightProblem(l); !problem.empty()) throw usageError(problem);
+  if (const std::string problem = lightProblem(l); !problem.empty()) throw usageError(fmt::format("{}: {}", key, problem));
   return l;
 }
 

@@ -1,19 +1,19 @@
 #pragma once
 // The viewer's light edits as plain data (unit-tested without GL): a new light placed where it
 // shows in the view, a light turned into another type without changing the picture much,
-// `light set KEY=VALUE` with the scene file's keys (docs/scenes.md), and the check that keeps
+// `light set N KEY VALUE` with the scene file's keys (docs/scenes.md), and the check that keeps
 // every edited light one that a scene file can hold, so that "save" always loads back.
 #include <penumbra/Scene.h>
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace penumbra::viewer {
 
-/// "sun", "spot" or "point": the scene file's names.
-const char* lightTypeName(LightType type);
-/// Parses one of lightTypeName()'s names; throws a usage Error naming the choices.
+/// Parses one of lightTypeName()'s names (Scene.h: sun, spot, point); throws a usage Error
+/// naming the choices.
 LightType parseLightType(std::string_view name);
 
 /// "light 2 (point)": how the panels, the labels over the views and the messages name a light.
@@ -26,7 +26,8 @@ const char* cubeFaceName(int face);
 
 /// "" when the light is one a scene file can hold; otherwise what is wrong (a spot's inner cone
 /// wider than its outer, a range inside the light's sphere, a sun larger than
-/// kMaxSunAngularRadiusRad, a value out of Scene.h's limits or not finite).
+/// kMaxSunAngularRadiusRad, a map size other than 0 or kMinMapSizeTexels..kMaxMapSizeTexels,
+/// a value out of Scene.h's limits or not finite).
 std::string lightProblem(const Light& light);
 
 /// A new light of `type` for the `index`-th place in the scene's list, where it shows: aimed at the
@@ -40,16 +41,17 @@ Light makeLight(LightType type, const Aabb& sceneBounds, const Camera& camera, s
 /// at that distance), a spot or point light becomes the sun of its direction to that point.
 void changeLightType(Light& light, LightType type, const Aabb& sceneBounds);
 
-/// The keys of `light set` (the scene file's): type, position, direction, target, size, color,
-/// intensity, outerConeDeg, innerConeDeg, range, castsShadow.
+/// The keys of `light set` (the scene file's names, docs/scenes.md): type, position, direction,
+/// target, size, color, intensity, outerConeDeg, innerConeDeg, range, castsShadow, mapSize.
 std::vector<std::string> lightKeys();
-/// Checks one "KEY=VALUE" of `light set` without a light: the key is known and the value has its
-/// form (a number; X,Y,Z; a type name; on/off). Throws a usage Error saying what is wrong.
-void checkLightAssignment(std::string_view assignment);
-/// Applies "KEY=VALUE" assignments to a copy of `light` and returns it: the type first (as
-/// changeLightType()), then the others in order; an inner cone left unset is narrowed to a new
-/// outer one. Throws a usage Error for a key the light's type has not (a sun's position), a bad
-/// value, or a result that lightProblem() refuses.
-Light assignLight(Light light, const std::vector<std::string>& assignments, const Aabb& sceneBounds);
+/// Checks `light set N KEY VALUE` without a light: the key is known and the value has its form
+/// (a number; a vector as X Y Z or X,Y,Z; a type name; on/off; a whole number of texels).
+/// Throws a usage Error saying what is wrong.
+void checkLightSetting(std::string_view key, std::span<const std::string> value);
+/// Returns `light` with KEY set to VALUE: `type` turns it as changeLightType() does; a new outer
+/// cone narrower than the inner one narrows the inner one too. Throws a usage Error for a key
+/// the light's type has not (a sun's position), a bad value, or a result that lightProblem()
+/// refuses.
+Light setLightField(Light light, std::string_view key, std::span<const std::string> value, const Aabb& sceneBounds);
 
 }  // namespace penumbra::viewer

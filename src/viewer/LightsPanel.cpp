@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <span>
 
 namespace penumbra::viewer {
 namespace {
@@ -77,7 +78,7 @@ void Viewer::drawLightsPanel() {
   if (ImGui::Button("Remove")) {
     try {
       const std::string removed = lightLabel(scene.lights[mSession.selectedLight()], mSession.selectedLight());
-      mSession.removeLight();
+      mSession.removeLight(mSession.selectedLight());
       setStatus("removed " + removed, false);
     } catch (const Error& e) {
       setStatus(e.what(), true);
@@ -104,7 +105,7 @@ void Viewer::drawLightsPanel() {
     changed |= ImGui::DragFloat3("Position (m)", &l.position.x, kDragFractionOfReach * reach, -kMaxCoordinateM, kMaxCoordinateM, "%.3f");
   if (l.type != LightType::Point) {
     glm::vec3 d = l.direction;
-    if (ImGui::DragFloat3("Direction", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") && glm::length(d) > 0.0f) {
+    if (ImGui::DragFloat3("Direction (unit)", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") && glm::length(d) > 0.0f) {
       l.direction = glm::normalize(d);
       changed = true;
     }
@@ -113,24 +114,24 @@ void Viewer::drawLightsPanel() {
     changed |= ImGui::SliderFloat("Radius (m)", &l.size, 0.0f, kMaxLightSphereM, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   } else {
     float deg = glm::degrees(l.size);
-    if (ImGui::SliderFloat("Angular radius", &deg, 0.0f, glm::degrees(kMaxSunAngularRadiusRad), "%.3f°", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+    if (ImGui::SliderFloat("Angular radius (°)", &deg, 0.0f, glm::degrees(kMaxSunAngularRadiusRad), "%.3f°", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
       l.size = glm::radians(deg);
       changed = true;
     }
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the light's size: soft-shadow filters widen the penumbra with it; 0 = hard");
-  changed |= ImGui::SliderFloat("Intensity", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  changed |= ImGui::SliderFloat(isPositional(l) ? "Intensity (at 1 m)" : "Intensity (irradiance)", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(isPositional(l) ? "intensity at 1 m (inverse square beyond)" : "irradiance scale");
-  changed |= ImGui::ColorEdit3("Colour", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  changed |= ImGui::ColorEdit3("Colour (linear RGB)", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
   if (l.type == LightType::Spot) {
     float outerDeg = glm::degrees(l.coneAngleRad), innerDeg = glm::degrees(l.innerConeAngleRad);
-    if (ImGui::SliderFloat("Outer cone", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+    if (ImGui::SliderFloat("Outer cone (°)", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
       l.coneAngleRad = glm::radians(outerDeg);
       l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);  // inner ≤ outer
       changed = true;
     }
-    if (ImGui::SliderFloat("Inner cone", &innerDeg, 0.0f, outerDeg, "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+    if (ImGui::SliderFloat("Inner cone (°)", &innerDeg, 0.0f, outerDeg, "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
       l.innerConeAngleRad = glm::radians(innerDeg);
       changed = true;
     }
@@ -141,9 +142,25 @@ void Viewer::drawLightsPanel() {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("no light and no shadow beyond it; 0 = unlimited; must exceed the radius");
   }
   changed |= ImGui::Checkbox("Casts shadow", &l.castsShadow);
+  // The light's own map size (texels per side); 0 = the technique's (Shadow map, above).
+  const int own = l.shadow.mapSize;
+  const std::string shown = own > 0 ? fmt::format("{}²", own) : fmt::format("technique's ({}²)", mSession.shadowMapSize());
+  if (ImGui::BeginCombo("Map size (texels)", shown.c_str())) {
+    if (ImGui::Selectable("technique's", own == 0)) {
+      l.shadow.mapSize = 0;
+      changed = true;
+    }
+    for (int size : kShadowMapSizes)
+      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == own)) {
+        l.shadow.mapSize = size;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer)");
   if (changed) {
     try {
-      mSession.setLight(l);
+      mSession.setLight(selected, l);
     } catch (const Error& e) {
       setStatus(e.what(), true);
     }
@@ -205,27 +222,32 @@ void Viewer::drawViewLabels() {
 void Viewer::executeLight(const ScriptAction& a) {
   const std::string& sub = a.args[0];
   const Scene& scene = mSession.scene();
+  // Light indices were checked against kMaxShadowedLights when the script was read; ViewSession
+  // checks them against the scene's lights now.
+  auto index = [&] { return static_cast<size_t>(scriptInt(a, 1, 0, static_cast<int>(kMaxShadowedLights) - 1)); };
   if (sub == "select") {
-    mSession.selectLight(static_cast<size_t>(scriptInt(a, 1, 0, static_cast<int>(kMaxShadowedLights) - 1)));
+    mSession.selectLight(index());
   } else if (sub == "add") {
-    const size_t index = scene.lights.size();
-    mSession.addLight(makeLight(parseLightType(a.args[1]), scene.bounds(), scene.camera, index));
-    setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), index)), false);
+    const size_t added = scene.lights.size();
+    mSession.addLight(makeLight(parseLightType(a.args[1]), scene.bounds(), scene.camera, added));
+    setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), added)), false);
   } else if (sub == "remove") {
-    const std::string removed = lightLabel(scene.lights.at(mSession.selectedLight()), mSession.selectedLight());
-    mSession.removeLight();
+    const size_t i = index();
+    const std::string removed = lightLabel(mSession.lightAt(i), i);
+    mSession.removeLight(i);
     setStatus("removed " + removed, false);
   } else if (sub == "set") {
-    const std::vector<std::string> assignments(a.args.begin() + 1, a.args.end());
-    mSession.setLight(assignLight(scene.lights.at(mSession.selectedLight()), assignments, scene.bounds()));
-  } else {  // angles, direction, position
-    Light l = scene.lights.at(mSession.selectedLight());
+    const size_t i = index();
+    const std::span<const std::string> value = std::span(a.args).subspan(3);
+    mSession.setLight(i, setLightField(mSession.lightAt(i), a.args[2], value, scene.bounds()));
+  } else {  // angles, direction, position: the selected light
+    const size_t i = mSession.selectedLight();
+    Light l = scene.lights.at(i);
     if (sub == "angles") {
       setLightAngles(l, lightAimPoint(l, scene.bounds()), glm::radians(scriptFloat(a, 1)), glm::radians(scriptFloat(a, 2)));
-      mSession.setLight(l);
+      mSession.setLight(i, l);
     } else {
-      const std::string xyz = fmt::format("{}={},{},{}", sub, a.args[1], a.args[2], a.args[3]);
-      mSession.setLight(assignLight(l, {xyz}, scene.bounds()));
+      mSession.setLight(i, setLightField(l, sub, std::span(a.args).subspan(1), scene.bounds()));
     }
   }
 }

@@ -24,7 +24,6 @@ constexpr float kLogRangeRatio = 50.0f;
 constexpr float kGraphHeightPx = 36.0f;
 constexpr float kMinSidebarWidthPx = 160.0f;
 constexpr float kMaxSidebarFraction = 0.5f;  // the panels never take more than half the window
-constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 
 void hint(const char* text) {

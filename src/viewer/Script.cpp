@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 namespace penumbra::viewer {
@@ -23,8 +24,8 @@ struct Verb {
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
-// `light set` takes each of the light's keys (LightEdit.h's lightKeys()) at most once, or so.
-constexpr size_t kMaxLightArgs = 16;
+// The longest `light` action: set N KEY X Y Z.
+constexpr size_t kMaxLightArgs = 6;
 
 constexpr Verb kVerbs[] = {
     {"scene", 1, 1, "NAME|FILE", "load a built-in scene or a scene file (the technique stays)"},
@@ -34,11 +35,12 @@ constexpr Verb kVerbs[] = {
     {"camera", 2, 7, "orbit YAW PITCH DIST | look PX PY PZ TX TY TZ | mode orbit|fly",
      "place the camera (degrees, metres; orbit is around the current target)"},
     {"light", 1, kMaxLightArgs,
-     "select N | add sun|spot|point | remove | set KEY=VALUE... | angles AZIMUTH ELEVATION | direction X Y Z | position X Y Z",
-     "lights: select one (0 = the first), add one (selected; placed where the view shows it), remove the selected one, "
-     "set the selected one's keys (the scene file's: type, position, direction, target, size, color, intensity, "
-     "outerConeDeg, innerConeDeg, range, castsShadow; X,Y,Z vectors), or move it (degrees; angles as seen from the "
-     "point it lights)"},
+     "select N | add sun|spot|point | remove N | set N KEY VALUE | angles AZIMUTH ELEVATION | direction X Y Z | "
+     "position X Y Z",
+     "lights, numbered from 0: select one (what the debug views show and the other actions move), add one (and select "
+     "it; placed where the view shows it), remove one, set one's KEY (the scene file's: type, position, direction, "
+     "target, size, color, intensity, outerConeDeg, innerConeDeg, range, castsShadow on|off, mapSize; vectors as X Y Z "
+     "or X,Y,Z), or move the selected one (degrees; angles as seen from the point it lights)"},
     {"view", 1, 1, "NAME", "main view: shaded, heatmap, or a debug image (visibility, shadow-map, ...)"},
     {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
@@ -66,21 +68,21 @@ const Verb* findVerb(std::string_view name) {
 
 void checkLightAction(const ScriptAction& a, const Verb& v) {
   const std::string& sub = a.args[0];
+  const int maxIndex = static_cast<int>(kMaxShadowedLights) - 1;
   if (sub == "set") {
-    if (a.args.size() < 2) fail(a, "expected light set KEY=VALUE...");
-    for (size_t i = 1; i < a.args.size(); ++i) {
-      try {
-        checkLightAssignment(a.args[i]);
-      } catch (const Error& e) {
-        fail(a, e.what());
-      }
+    if (a.args.size() < 4) fail(a, "expected light set N KEY VALUE");
+    scriptInt(a, 1, 0, maxIndex);
+    try {
+      checkLightSetting(a.args[2], std::span(a.args).subspan(3));
+    } catch (const Error& e) {
+      fail(a, e.what());
     }
     return;
   }
-  const size_t n = sub == "remove" ? 1 : (sub == "select" || sub == "add") ? 2 : sub == "angles" ? 3
+  const size_t n = (sub == "select" || sub == "add" || sub == "remove") ? 2 : sub == "angles" ? 3
                  : (sub == "direction" || sub == "position") ? 4 : 0;
   if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected light {}", v.usage));
-  if (sub == "select") scriptInt(a, 1, 0, static_cast<int>(kMaxShadowedLights) - 1);
+  if (sub == "select" || sub == "remove") scriptInt(a, 1, 0, maxIndex);
   if (sub == "add") {
     try {
       parseLightType(a.args[1]);

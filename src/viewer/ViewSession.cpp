@@ -63,9 +63,14 @@ void ViewSession::checkLight(const Light& light, const std::string& which) {
     throw usageError(fmt::format("{}: --filter {} with --projection {} cannot shadow it: {}", which, mFilterId, mProjectionId, why));
 }
 
-void ViewSession::selectLight(size_t index) {
+const Light& ViewSession::lightAt(size_t index) const {
   if (index >= mScene.lights.size())
     throw usageError(fmt::format("there is no light {}: the scene has {} (0..{})", index, mScene.lights.size(), mScene.lights.size() - 1));
+  return mScene.lights[index];
+}
+
+void ViewSession::selectLight(size_t index) {
+  lightAt(index);  // throws when there is no such light
   mSelected = index;
 }
 
@@ -78,18 +83,20 @@ void ViewSession::addLight(const Light& light) {
   ++mVersion;
 }
 
-void ViewSession::removeLight() {
+void ViewSession::removeLight(size_t index) {
+  lightAt(index);  // throws when there is no such light
   if (mScene.lights.size() <= 1)
     throw usageError(fmt::format("cannot remove {}: it is the scene's only light, and a scene needs at least one",
-                                 lightLabel(mScene.lights.at(mSelected), mSelected)));
-  mScene.lights.erase(mScene.lights.begin() + static_cast<std::ptrdiff_t>(mSelected));
-  if (mSelected > 0) --mSelected;
+                                 lightLabel(mScene.lights[index], index)));
+  mScene.lights.erase(mScene.lights.begin() + static_cast<std::ptrdiff_t>(index));
+  if (mSelected > index || (mSelected == index && index > 0)) --mSelected;
   ++mVersion;
 }
 
-void ViewSession::setLight(const Light& light) {
-  checkLight(light, lightLabel(light, mSelected));
-  mScene.lights.at(mSelected) = light;
+void ViewSession::setLight(size_t index, const Light& light) {
+  lightAt(index);  // throws when there is no such light
+  checkLight(light, lightLabel(light, index));
+  mScene.lights[index] = light;
   ++mVersion;
 }
 

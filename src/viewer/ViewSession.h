@@ -61,14 +61,17 @@ public:
   /// 0 after a scene loads. Each throws a usage Error and leaves the lights unchanged when the
   /// edit cannot be made.
   size_t selectedLight() const { return mSelected; }
+  /// Light `index`; a usage Error naming the scene's lights when there is none of that index.
+  const Light& lightAt(size_t index) const;
   void selectLight(size_t index);
   /// Appends a light (at most kMaxShadowedLights) and selects it. Refused if lightProblem()
   /// finds one or the technique cannot shadow it (csm and a point light).
   void addLight(const Light& light);
-  /// Removes the selected light (never the last one); the one before it is selected.
-  void removeLight();
-  /// Replaces the selected light, with addLight()'s checks.
-  void setLight(const Light& light);
+  /// Removes light `index` (never the last one left). The selection stays on the light it was
+  /// on; if that was the removed one, on the one before it (or the new light 0).
+  void removeLight(size_t index);
+  /// Replaces light `index`, with addLight()'s checks.
+  void setLight(size_t index, const Light& light);
   /// The renderer's debug images of the selected light (light 0's until a frame has it).
   std::vector<DebugImage> debugImages() const;
   /// The light whose images debugImages() lists: the selection, or the last light the last

@@ -14,6 +14,7 @@
 #include "viewer/ShaderWatcher.h"
 #include "viewer/ViewSession.h"
 
+#include <array>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -40,6 +41,8 @@ struct ViewerOptions {
 inline constexpr const char* kShadedView = "shaded";
 inline constexpr const char* kHeatmapView = "heatmap";
 inline constexpr const char* kNoInset = "none";
+/// The shadow-map sizes (texels per side) the panels offer, for the technique and for one light.
+inline constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 
 class Viewer {
 public:
