@@ -120,10 +120,10 @@ void Viewer::drawLightsPanel() {
     }
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the light's size: soft-shadow filters widen the penumbra with it; 0 = hard");
-  changed |= ImGui::SliderFloat(isPositional(l) ? "Intensity (at 1 m)" : "Intensity (irradiance)", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  changed |= ImGui::SliderFloat(isPositional(l) ? "Intensity @ 1 m" : "Intensity (irr.)", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(isPositional(l) ? "intensity at 1 m (inverse square beyond)" : "irradiance scale");
-  changed |= ImGui::ColorEdit3("Colour (linear RGB)", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  changed |= ImGui::ColorEdit3("Colour (linear)", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
   if (l.type == LightType::Spot) {
     float outerDeg = glm::degrees(l.coneAngleRad), innerDeg = glm::degrees(l.innerConeAngleRad);
     if (ImGui::SliderFloat("Outer cone (°)", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
