@@ -57,8 +57,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--filters", o->filters, "filter ids, comma-separated (default: every filter)")->delimiter(',');
   sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: every projection)")->delimiter(',');
   sub->add_option("--sweep", o->sweeps,
-                  "key=from:to:count, repeatable: run each technique that has the parameter at count values "
-                  "(light.size applies to all; e.g. pcss.filterSamples=8:64:4)");
+                  "key=from:to:count or key=a,b,..., repeatable: run each technique that has the parameter at "
+                  "count values, or at the listed ones (light.size and light.count apply to all; e.g. "
+                  "pcss.filterSamples=8:64:4, light.count=1,2,4,8)");
   sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
   sub->add_option("--size", o->size, "image size WxH (default 256x144; --quick 96x64)");

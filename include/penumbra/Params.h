@@ -75,5 +75,7 @@ std::string joinNames(const Range& names, std::string_view separator = ", ") {
 
 /// Scene-level parameters ("light.size", ...): they change the scene, not a technique.
 std::span<const ParamDesc> sceneParamDescs();
+/// The scene parameter `key` (one of sceneParamDescs()); throws a usage Error for another key.
+const ParamDesc& sceneParamDesc(std::string_view key);
 
 }  // namespace penumbra

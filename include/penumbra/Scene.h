@@ -120,6 +120,11 @@ inline bool isPositional(const Light& l) { return l.type != LightType::Direction
 /// falloff: the spot's cone falloff times the range window, in [0, 1] (1 for a sun).
 float lightFalloff(const Light& light, const glm::vec3& ws);
 
+/// Most lights a scene holds: each one gets its own shadow maps and visibility layer
+/// (penumbra/Shadows.h: kMaxShadowedLights is this limit). Scene files and models with more are
+/// refused by name.
+inline constexpr size_t kMaxLights = 16;
+
 /// Every world-space coordinate (vertices, the camera's position and target) stays within ±1e6 m
 /// (as the scene file's shape sizes): beyond that the float maths of the shadow passes stops
 /// meaning anything.

@@ -96,7 +96,7 @@ enum class RestoreState {
 };
 
 /// Most lights one Shadows object shadows in a frame.
-inline constexpr size_t kMaxShadowedLights = 16;
+inline constexpr size_t kMaxShadowedLights = kMaxLights;
 
 struct ShadowFrameInputs {
   ShadowCamera camera;

@@ -90,9 +90,18 @@ constexpr ParamDesc kSceneParams[] = {
     {"light.size", "Light size",
      "overrides the first light's size: spot = sphere radius (m), sun = angular radius (rad); 0 = hard; unset = the scene's own size",
      0.0f, 0.0f, 10.0f, 0.0f},
+    {"light.count", "Lights used",
+     "keeps the scene's first N lights (file order) and drops the rest, e.g. to measure cost per light; 0 = all",
+     0.0f, 0.0f, 16.0f, 1.0f},
 };
 }  // namespace
 
 std::span<const ParamDesc> sceneParamDescs() { return kSceneParams; }
+
+const ParamDesc& sceneParamDesc(std::string_view key) {
+  for (const ParamDesc& d : kSceneParams)
+    if (d.key == key) return d;
+  throw usageError(fmt::format("unknown scene parameter '{}'", key));
+}
 
 }  // namespace penumbra

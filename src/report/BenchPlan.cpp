@@ -19,7 +19,7 @@ float parseFloat(std::string_view text, std::string_view whole) {
   float v = 0.0f;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
-    throw usageError(fmt::format("--sweep {}: '{}' is not a number (expected key=from:to:count)", whole, text));
+    throw usageError(fmt::format("--sweep {}: '{}' is not a number (expected key=from:to:count or key=a,b,...)", whole, text));
   return v;
 }
 
@@ -42,9 +42,10 @@ bool isLightKey(std::string_view key) { return key.starts_with("light."); }
 
 std::vector<float> Sweep::values(const ParamDesc& desc) const {
   std::vector<float> out;
-  for (int i = 0; i < count; ++i) {
+  const int n = list.empty() ? count : static_cast<int>(list.size());
+  for (int i = 0; i < n; ++i) {
     const float t = count == 1 ? 0.0f : static_cast<float>(i) / static_cast<float>(count - 1);
-    float v = from + (to - from) * t;
+    float v = list.empty() ? from + (to - from) * t : list[static_cast<size_t>(i)];
     if (desc.isInteger()) v = std::round(v);
     if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
   }
@@ -54,13 +55,23 @@ std::vector<float> Sweep::values(const ParamDesc& desc) const {
 Sweep parseSweep(std::string_view text) {
   const size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0)
-    throw usageError(fmt::format("--sweep {}: expected key=from:to:count, e.g. light.size=0.02:0.2:5", text));
+    throw usageError(fmt::format("--sweep {}: expected key=from:to:count or key=a,b,..., e.g. light.size=0.02:0.2:5 or light.count=1,2,4,8", text));
   Sweep s;
   s.key = std::string(text.substr(0, eq));
   const std::string_view range = text.substr(eq + 1);
+  if (range.find(':') == std::string_view::npos) {  // a list
+    for (size_t start = 0; start <= range.size();) {
+      const size_t comma = std::min(range.find(',', start), range.size());
+      s.list.push_back(parseFloat(range.substr(start, comma - start), text));
+      start = comma + 1;
+    }
+    if (s.list.size() > static_cast<size_t>(kMaxSweepCount))
+      throw usageError(fmt::format("--sweep {}: {} values, more than {}", text, s.list.size(), kMaxSweepCount));
+    return s;
+  }
   const size_t c1 = range.find(':'), c2 = c1 == std::string_view::npos ? c1 : range.find(':', c1 + 1);
   if (c1 == std::string_view::npos || c2 == std::string_view::npos || range.find(':', c2 + 1) != std::string_view::npos)
-    throw usageError(fmt::format("--sweep {}: expected key=from:to:count, e.g. light.size=0.02:0.2:5", text));
+    throw usageError(fmt::format("--sweep {}: expected key=from:to:count or key=a,b,..., e.g. light.size=0.02:0.2:5 or light.count=1,2,4,8", text));
   s.from = parseFloat(range.substr(0, c1), text);
   s.to = parseFloat(range.substr(c1 + 1, c2 - c1 - 1), text);
   const std::string_view countText = range.substr(c2 + 1);
@@ -160,11 +171,11 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
   BenchPlan matrix{.name = "matrix", .scenes = builtinSceneNames(), .projections = projectionIds(),
                    .filters = filterIds(), .sweeps = {}};
   BenchPlan light{.name = "light-size", .scenes = {"pen"}, .projections = {"uniform"}, .filters = filterIds(),
-                  .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5}}};
+                  .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5, {}}}};
   // Contact shadows off and on, with the filters they are most often paired with, on the
   // scenes where casters stand on receivers.
   BenchPlan contact{.name = "contact", .scenes = {"boxes", "pen", "grazing"}, .projections = {"uniform"},
-                    .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2}}};
+                    .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2, {}}}};
   if (quick) {
     // Seconds, not minutes: small images and maps, few frames, a noisier reference, two scenes
     // and two projections (enough for every chart, table and the grid).

@@ -13,16 +13,19 @@
 
 namespace penumbra::report {
 
-/// `--sweep key=from:to:count`: count values evenly spaced from `from` to `to` (both included).
+/// `--sweep key=from:to:count`: count values evenly spaced from `from` to `to` (both included);
+/// `--sweep key=a,b,c`: those values (e.g. light.count=1,2,4,8).
 struct Sweep {
   std::string key;
   float from = 0.0f, to = 0.0f;
   int count = 1;
+  std::vector<float> list;  ///< the values as listed; when not empty, from/to/count are unused
   /// The values; rounded and de-duplicated for integer and choice parameters of `desc`.
   std::vector<float> values(const ParamDesc& desc) const;
 };
 
-/// Parses "key=from:to:count"; throws a usage Error naming the text on bad syntax or count < 1.
+/// Parses "key=from:to:count" or "key=a,b,…"; throws a usage Error naming the text on bad syntax,
+/// count < 1 or more than kMaxSweepCount values.
 Sweep parseSweep(std::string_view text);
 
 /// Highest count one sweep may have: a guard against a typo that would run for hours.

@@ -115,6 +115,7 @@ void Scene::validate() const {
   const std::string where = sourceFile.empty() ? name : sourceFile.string();
   PN_CHECK(!objects.empty(), fmt::format("{}: the scene has no objects", where));
   PN_CHECK(!lights.empty(), fmt::format("{}: the scene has no light", where));
+  PN_CHECK(lights.size() <= kMaxLights, fmt::format("{}: {} lights, more than the limit of {}", where, lights.size(), kMaxLights));
   for (const Mesh& m : meshes) {
     PN_CHECK(m.indices.size() % 3 == 0, fmt::format("{}: mesh '{}': index count {} is not a multiple of 3", where, m.name, m.indices.size()));
     for (uint32_t i : m.indices)

@@ -50,6 +50,13 @@ public:
     if (!std::isfinite(d) || d < lo || d > hi) fail(key, fmt::format("{} is outside [{}, {}]", d, lo, hi));
     return static_cast<float>(d);
   }
+  /// A whole number in [lo, hi]: a count such as a map's texels per side (1000.5 is refused, not
+  /// truncated).
+  int whole(const std::string& key, int def, float lo, float hi) {
+    const float v = number(key, static_cast<float>(def), lo, hi);
+    if (v != std::floor(v)) fail(key, fmt::format("{} is not a whole number", v));
+    return static_cast<int>(v);
+  }
   std::string string(const std::string& key, const std::string& def) {
     if (!has(key)) return def;
     if (!mJ.at(key).is_string()) fail(key, "expected a string");
@@ -179,7 +186,7 @@ Light readLight(Reader& r) {
   l.castsShadow = r.boolean("castsShadow", true);
   if (r.has("shadow")) {
     Reader s = r.child("shadow");
-    l.shadow.mapSize = static_cast<int>(s.number("mapSize", 0.0f, kMinMapSize, kMaxMapSize));
+    l.shadow.mapSize = s.whole("mapSize", 0, kMinMapSize, kMaxMapSize);
     readParams(s, l.shadow.params);
     s.finish();
   }
@@ -269,6 +276,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
   if (!top.has("lights")) top.fail("lights", "missing (at least one light)");
   const Json& lights = top.raw("lights");
   if (!lights.is_array() || lights.empty()) top.fail("lights", "expected a non-empty array");
+  if (lights.size() > kMaxLights) top.fail("lights", fmt::format("{} lights, more than the limit of {}", lights.size(), kMaxLights));
   for (size_t i = 0; i < lights.size(); ++i) {
     Reader r(lights[i], file, fmt::format("lights[{}]", i));
     s.lights.push_back(readLight(r));
@@ -312,7 +320,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     Reader sh = top.child("shadow");
     s.shadow.projection = sh.string("projection", s.shadow.projection);
     s.shadow.filter = sh.string("filter", s.shadow.filter);
-    s.shadow.mapSize = static_cast<int>(sh.number("mapSize", static_cast<float>(s.shadow.mapSize), kMinMapSize, kMaxMapSize));
+    s.shadow.mapSize = sh.whole("mapSize", s.shadow.mapSize, kMinMapSize, kMaxMapSize);
     readParams(sh, s.shadow.params);
     sh.finish();
   }

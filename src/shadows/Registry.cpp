@@ -88,8 +88,14 @@ std::unique_ptr<Parameterized> makeContactShadows() { return std::make_unique<Co
 void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
                  Projection& projection, Filter& filter, Parameterized* addOns) {
   for (const auto& [key, value] : settings) {
-    if (key == "light.size") {
-      const float v = parseParamValue(sceneParamDescs()[0], value);
+    if (key == "light.count") {
+      const int n = static_cast<int>(parseParamValue(sceneParamDesc(key), value));
+      if (n > static_cast<int>(scene.lights.size()))
+        throw usageError(fmt::format("light.count={}: the scene has {} light{}", value, scene.lights.size(),
+                                     scene.lights.size() == 1 ? "" : "s"));
+      if (n > 0) scene.lights.resize(static_cast<size_t>(n));
+    } else if (key == "light.size") {
+      const float v = parseParamValue(sceneParamDesc(key), value);
       PN_CHECK(!scene.lights.empty(), "light.size: the scene has no light");
       if (scene.lights.front().type == LightType::Directional && v > kMaxSunAngularRadiusRad)
         throw usageError(fmt::format("light.size={}: the light is a sun, whose size is an angular radius in rad, at most {}",

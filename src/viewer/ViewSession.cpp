@@ -163,7 +163,14 @@ void ViewSession::loadScene(const std::string& nameOrPath) {
 
 std::vector<ParamGroup> ViewSession::paramGroups() {
   Renderer& r = mRenderer;
-  return {{"Scene", sceneParamDescs()},
+  // light.count is the bench's: the viewer adds and removes lights one by one instead.
+  static const std::vector<ParamDesc> kScene = [] {
+    std::vector<ParamDesc> out;
+    for (const ParamDesc& d : sceneParamDescs())
+      if (d.key != "light.count") out.push_back(d);
+    return out;
+  }();
+  return {{"Scene", kScene},
           {fmt::format("Projection: {}", mProjectionId), r.projection().paramDescs()},
           {fmt::format("Filter: {}", mFilterId), r.filter().paramDescs()},
           {"Contact shadows", r.shadows().contactShadows().paramDescs()}};

@@ -7,6 +7,9 @@ Outputs (all committed; rerun after editing this script):
   models/alpha_quad.gltf   ground + alpha-masked quad (a 4x4 texture with holes) under a
                            KHR_lights_punctual sun whose size is in the light's extras, + a camera
   models/box.obj, box.mtl  a unit cube with a red Kd material
+  models/lamps.gltf        a ground and a table top under a KHR_lights_punctual point light (its
+                           sphere radius in extras) and a spot light with both cone angles, ranges
+                           and colours: the importer must keep each light's kind and angles
   models/quantized_box.gltf  a unit box as gltfpack writes it (KHR_mesh_quantization): SHORT
                            normalised positions scaled back by the node, BYTE normals, USHORT
                            texture coordinates scaled back by KHR_texture_transform
@@ -228,6 +231,43 @@ def textured_quads_gltf():
     g["extensionsRequired"] = ["KHR_texture_transform"]
     g["asset"]["generator"] = "penumbra tests/data/make_test_models.py"
     return json.dumps(g, indent=1).encode()
+
+
+# lamps.gltf: a point lamp over a table top and a spot on the ground beside it.
+LAMP_POSITION = [0.5, 1.6, 0.0]
+LAMP_SIZE_M = 0.05
+LAMP_RANGE_M = 8.0
+SPOT_POSITION = [-2.0, 3.0, 0.0]
+SPOT_INNER_RAD = 0.3
+SPOT_OUTER_RAD = 0.6
+SPOT_RANGE_M = 10.0
+
+
+def lamps_gltf():
+    g = Gltf()
+    g.doc["materials"] = [
+        {"name": "ground", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0}},
+        {"name": "wood", "doubleSided": True,
+         "pbrMetallicRoughness": {"baseColorFactor": [0.55, 0.36, 0.22, 1.0], "metallicFactor": 0.0}}]
+    ground = g.quad(GROUND_HALF_M, 0.0, 0, "ground")
+    top = g.quad(0.5, 0.75, 1, "table top")
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "lamp", "type": "point", "intensity": 3.0, "color": [1.0, 0.85, 0.65], "range": LAMP_RANGE_M,
+         "extras": {"size": LAMP_SIZE_M}},
+        {"name": "spot", "type": "spot", "intensity": 6.0, "color": [0.8, 0.9, 1.0], "range": SPOT_RANGE_M,
+         "spot": {"innerConeAngle": SPOT_INNER_RAD, "outerConeAngle": SPOT_OUTER_RAD}}]}}
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1, "zfar": 100.0}}]
+    # The spot shines straight down (local -Z turned onto -Y: -90 degrees about X); the camera
+    # looks down 50 degrees as alpha_quad's does.
+    s50, c50 = -0.42261826, 0.90630779  # sin, cos of -25 degrees
+    roots = [g.node(name="ground", mesh=ground), g.node(name="table top", mesh=top),
+             g.node(name="lamp", translation=LAMP_POSITION, extensions={"KHR_lights_punctual": {"light": 0}}),
+             g.node(name="spot", translation=SPOT_POSITION, rotation=[-0.70710678, 0.0, 0.0, 0.70710678],
+                    extensions={"KHR_lights_punctual": {"light": 1}}),
+             g.node(name="camera", camera=0, translation=[0.0, 5.5, 4.6], rotation=[s50, 0.0, 0.0, c50])]
+    g.doc["scenes"][0]["nodes"] = roots
+    return g.finish_embedded()
 
 
 # quantized_box.gltf: positions in [-1, 1] as normalised SHORT, the node scales them by half a
@@ -484,6 +524,11 @@ def bad_files():
     out["scene_bad_filter.json"] = with_top(shadow={"filter": "blurry"})
     out["scene_bad_param.json"] = with_top(shadow={"params": {"hard.nothing": 1}})
     out["scene_param_out_of_range.json"] = with_top(shadow={"params": {"hard.slopeBias": 99}})
+    # Light entries: each names its field (tests/unit/SceneFileTest.cpp tests every check).
+    out["scene_light_unknown_type.json"] = with_top(lights=[{"type": "area"}])
+    out["scene_light_inner_above_outer.json"] = with_top(lights=[
+        {"type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "innerConeDeg": 40, "outerConeDeg": 30}])
+    out["scene_light_range_below_size.json"] = with_top(lights=[{"type": "point", "position": [0, 3, 0], "size": 0.5, "range": 0.2}])
     out["scene_binary.json"] = mask_png()  # not JSON: the message must not echo its bytes
     return out
 
@@ -494,6 +539,7 @@ def main():
     write("models/quantized_box.gltf", quantized_box_gltf())
     write("models/box.obj", BOX_OBJ)
     write("models/box.mtl", BOX_MTL)
+    write("models/lamps.gltf", lamps_gltf())
     write("scenes/obj_and_gltf.json", json.dumps(SCENE, indent=1) + "\n")
     for name, data in bad_files().items():
         write("bad/" + name, data)
@@ -504,6 +550,7 @@ def main():
     write("fuzz/gltf/alpha_quad.gltf", alpha_quad_gltf())
     write("fuzz/gltf/textured_quads.gltf", textured_quads_gltf())  # the JPEG decoder and KHR_texture_transform
     write("fuzz/gltf/quantized_box.gltf", quantized_box_gltf())
+    write("fuzz/gltf/lamps.gltf", lamps_gltf())  # KHR_lights_punctual point and spot lights
     write("fuzz/gltf/recursive_nodes.gltf", bad_files()["recursive_nodes.gltf"])
     write("fuzz/obj/box.obj", BOX_OBJ)
     write("fuzz/obj/box.mtl", BOX_MTL)
@@ -516,6 +563,14 @@ def main():
         "camera": {"position": [0, 2, 5]}, "lights": [{"type": "spot", "position": [0, 4, 0], "target": [0, 0, 0], "size": 0.1}],
         "objects": [{"shape": "box", "size": [1, 2, 1], "rotateDeg": [0, 30, 0]}, {"shape": "sphere", "radius": 0.5}],
         "shadow": {"filter": "hard", "mapSize": 512, "params": {"hard.bias": "slope"}}}))
+    write("fuzz/scene/lamps.json", json.dumps({  # every light key: point, spot cones, ranges, per-light overrides
+        "lights": [{"type": "point", "position": [0, 2, 0], "size": 0.05, "range": 6, "color": [1, 0.8, 0.6], "intensity": 3,
+                    "shadow": {"mapSize": 256, "params": {"pcf.radiusTexels": 2}}},
+                   {"type": "spot", "position": [2, 3, 0], "target": [0, 0, 0], "innerConeDeg": 20, "outerConeDeg": 35,
+                    "size": 0.04, "range": 8, "castsShadow": False},
+                   {"type": "sun", "direction": [0.2, -1, 0.1], "size": 0.01, "intensity": 0.2}],
+        "objects": [{"shape": "plane", "size": [8, 8]}, {"shape": "box", "size": [1, 0.05, 1], "translate": [0, 0.75, 0]}],
+        "shadow": {"filter": "pcf"}}))
 
 
 if __name__ == "__main__":

@@ -30,8 +30,18 @@ TEST(BenchPlan, SweepParsesAndSpacesValuesEvenly) {
   EXPECT_EQ(parseSweep("x.n=1:3:5").values(integer), (std::vector<float>{1.0f, 2.0f, 3.0f}));
 }
 
+TEST(BenchPlan, SweepTakesAListOfValues) {
+  const Sweep s = parseSweep("light.count=1,2,4,8");
+  EXPECT_EQ(s.key, "light.count");
+  const ParamDesc integer{"light.count", "", "", 0.0f, 0.0f, 16.0f, 1.0f};
+  EXPECT_EQ(s.values(integer), (std::vector<float>{1.0f, 2.0f, 4.0f, 8.0f}));
+  EXPECT_EQ(parseSweep("x.n=3,2.6,7").values(integer), (std::vector<float>{3.0f, 7.0f}));  // rounded, repeats dropped
+  EXPECT_EQ(parseSweep("light.size=0.5").values(ParamDesc{"light.size", "", "", 0.0f, 0.0f, 10.0f, 0.0f}),
+            (std::vector<float>{0.5f}));
+}
+
 TEST(BenchPlan, BadSweepsAreUsageErrors) {
-  for (const char* bad : {"light.size", "light.size=0.1:0.2", "light.size=a:0.2:3", "light.size=0.1:0.2:0",
+  for (const char* bad : {"light.count=1,,2", "light.count=1,2,", "light.count=a,2", "light.count=", "light.size", "light.size=0.1:0.2", "light.size=a:0.2:3", "light.size=0.1:0.2:0",
                           "=0:1:2", "light.size=0.1:0.2:3:4", "light.size=0.1:0.2:100000"}) {
     try {
       parseSweep(bad);

@@ -169,3 +169,105 @@ TEST(SceneFile, NonSceneInputsSayWhatTheyAre) {
   EXPECT_NE(error((dir / "image.png").string()).find("image.png: not a scene file (.json) or a model file (.gltf, .glb, .obj)"),
             std::string::npos);
 }
+
+// Every check of a light entry (SceneFile.cpp readLight, docs/scenes.md): the message names the
+// light and the field.
+TEST(SceneFile, BadLightEntriesNameTheField) {
+  struct Case {
+    const char* light;
+    const char* message;
+  };
+  const Case cases[] = {
+      {R"({"type": "area"})", "lights[1].type: unknown light type 'area' (sun, spot or point)"},
+      {R"({"type": 3})", "lights[1].type: expected a string"},
+      {R"({"type": "sun", "direction": [0, 0, 0]})", "lights[1].direction: must not be zero"},
+      {R"({"type": "sun", "direction": [0, -1]})", "lights[1].direction: expected an array of 3 numbers"},
+      {R"({"type": "sun", "size": 0.6})", "lights[1].size: 0.6 is outside [0, 0.5]"},
+      {R"({"type": "sun", "position": [0, 1, 0]})", "lights[1].position: unknown key"},
+      {R"({"type": "sun", "range": 5})", "lights[1].range: unknown key"},
+      {R"({"type": "point", "direction": [0, -1, 0]})", "lights[1].direction: unknown key"},
+      {R"({"type": "point", "outerConeDeg": 30})", "lights[1].outerConeDeg: unknown key"},
+      {R"({"type": "point", "position": [0, 1e39, 0]})", "lights[1].position: expected an array of 3 numbers"},
+      {R"({"type": "point", "position": [0, "up", 0]})", "lights[1].position: expected an array of 3 numbers"},
+      {R"({"type": "point", "position": [2e6, 1, 0]})", "lights[1].position: 2000000 is outside [-1000000, 1000000]"},
+      {R"({"type": "point", "size": -0.1})", "lights[1].size: -0.1 is outside [0, 100]"},
+      {R"({"type": "point", "size": 150})", "lights[1].size: 150 is outside [0, 100]"},
+      {R"({"type": "point", "range": -2})", "lights[1].range: -2 is outside [0, 1000000]"},
+      {R"({"type": "point", "size": 0.5, "range": 0.5})", "lights[1].range: 0.5 m must exceed the light's size 0.5 m"},
+      {R"({"type": "spot", "size": 0.1, "range": 0.05})", "lights[1].range: 0.05 m must exceed the light's size 0.1 m"},
+      {R"({"type": "spot", "position": [0, 3, 0], "target": [0, 3, 0]})", "lights[1].target: equals the position"},
+      {R"({"type": "spot", "outerConeDeg": 90})", "lights[1].outerConeDeg: 90 is outside [1, 80.2"},
+      {R"({"type": "spot", "outerConeDeg": 0.5})", "lights[1].outerConeDeg: 0.5 is outside [1, 80.2"},
+      {R"({"type": "spot", "coneAngleDeg": 120})", "lights[1].coneAngleDeg: 120 is outside [1, 80.2"},
+      {R"({"type": "spot", "coneAngleDeg": 30, "outerConeDeg": 30})", "lights[1].coneAngleDeg: give outerConeDeg or coneAngleDeg, not both"},
+      {R"({"type": "spot", "innerConeDeg": 40, "outerConeDeg": 30})", "lights[1].innerConeDeg: 40 is outside [0, 30]"},
+      {R"({"type": "spot", "innerConeDeg": -5})", "lights[1].innerConeDeg: -5 is outside [0, "},
+      {R"({"type": "spot", "castsShadow": "yes"})", "lights[1].castsShadow: expected true or false"},
+      {R"({"type": "spot", "intensity": -1})", "lights[1].intensity: -1 is outside [0, 1000000]"},
+      {R"({"type": "point", "shadow": {"mapSize": 8}})", "lights[1].shadow.mapSize: 8 is outside [16, 16384]"},
+      {R"({"type": "point", "shadow": {"mapSize": 32768}})", "lights[1].shadow.mapSize: 32768 is outside [16, 16384]"},
+      {R"({"type": "point", "shadow": {"mapSize": 1000.5}})", "lights[1].shadow.mapSize: 1000.5 is not a whole number"},
+      {R"({"type": "point", "shadow": {"filter": "pcf"}})", "lights[1].shadow.filter: unknown key"},
+      {R"({"type": "point", "shadow": {"params": {"pcf.radiusTexels": [2]}}})",
+       "lights[1].shadow.params.pcf.radiusTexels: expected a number or a name"},
+      {R"({"type": "point", "shadow": 512})", "lights[1].shadow: expected an object"},
+      {R"({"type": "point", "radius": 0.1})", "lights[1].radius: unknown key"},
+      {R"("point")", "lights[1]: expected an object"},
+  };
+  // The bad entry is the second light: the message must say which one.
+  const std::string good = R"({"type": "sun"})", box = R"("objects": [{"shape": "box"}])";
+  for (const Case& c : cases) {
+    const std::string e = loadError(R"({"lights": [)" + good + ", " + c.light + "], " + box + "}");
+    EXPECT_NE(e.find(c.message), std::string::npos) << c.light << " gave: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+  }
+}
+
+// Each light has its own maps and visibility layer: a file with more than kMaxLights is refused
+// by name (it reached Shadows::render, which exited 2 without naming the file).
+TEST(SceneFile, TooManyLightsAreRefusedByName) {
+  std::string lights;
+  for (size_t i = 0; i <= kMaxLights; ++i) lights += std::string(i ? ", " : "") + R"({"type": "point", "position": [0, 2, 0]})";
+  const std::string e = loadError(R"({"lights": [)" + lights + R"(], "objects": [{"shape": "box"}]})");
+  EXPECT_NE(e.find("t.json: lights: 17 lights, more than the limit of 16"), std::string::npos) << e;
+}
+
+// Every light key read back: a point light, a spot with both cones and a range, the overrides.
+TEST(SceneFile, LightsKeepEveryKey) {
+  const Scene s = loadSceneFile(writeTemp("lights.json", R"({"lights": [
+      {"type": "point", "position": [1, 2, 3], "size": 0.05, "range": 6, "color": [1, 0.8, 0.6], "intensity": 3,
+       "shadow": {"mapSize": 256, "params": {"pcf.radiusTexels": 2, "pcf.kernel": "poisson"}}},
+      {"type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "innerConeDeg": 20, "outerConeDeg": 35, "size": 0.04,
+       "range": 8, "castsShadow": false},
+      {"type": "spot", "position": [0, 3, 0], "direction": [0, -2, 0], "coneAngleDeg": 30},
+      {"type": "sun", "direction": [0, -3, 0], "size": 0.01}],
+    "objects": [{"shape": "box"}]})"));
+  ASSERT_EQ(s.lights.size(), 4u);
+  const Light& point = s.lights[0];
+  EXPECT_EQ(point.type, LightType::Point);
+  EXPECT_EQ(point.position, glm::vec3(1, 2, 3));
+  EXPECT_FLOAT_EQ(point.size, 0.05f);
+  EXPECT_FLOAT_EQ(point.rangeM, 6.0f);
+  EXPECT_EQ(point.color, glm::vec3(1, 0.8f, 0.6f));
+  EXPECT_FLOAT_EQ(point.intensity, 3.0f);
+  EXPECT_TRUE(point.castsShadow);
+  EXPECT_EQ(point.shadow.mapSize, 256);
+  // nlohmann::json keeps an object's keys sorted: the params come in name order, not the file's.
+  using Param = std::pair<std::string, std::string>;
+  EXPECT_EQ(point.shadow.params, (std::vector<Param>{{"pcf.kernel", "poisson"}, {"pcf.radiusTexels", "2"}}));
+  const Light& spot = s.lights[1];
+  EXPECT_EQ(spot.type, LightType::Spot);
+  EXPECT_NEAR(spot.direction.y, -1.0f, 1e-6f);
+  EXPECT_NEAR(spot.innerConeAngleRad, glm::radians(20.0f), 1e-6f);
+  EXPECT_NEAR(spot.coneAngleRad, glm::radians(35.0f), 1e-6f);
+  EXPECT_FLOAT_EQ(spot.rangeM, 8.0f);
+  EXPECT_FALSE(spot.castsShadow);
+  EXPECT_EQ(spot.shadow.mapSize, 0) << "no override: the scene's size";
+  // coneAngleDeg, the older name of the outer angle; without innerConeDeg the light fades over
+  // the cone's last 5 degrees.
+  EXPECT_NEAR(s.lights[2].coneAngleRad, glm::radians(30.0f), 1e-6f);
+  EXPECT_NEAR(s.lights[2].innerConeAngleRad, glm::radians(25.0f), 1e-6f);
+  EXPECT_EQ(s.lights[2].direction, glm::vec3(0, -1, 0));
+  EXPECT_EQ(s.lights[3].type, LightType::Directional);
+  EXPECT_FLOAT_EQ(s.lights[3].size, 0.01f);
+}
