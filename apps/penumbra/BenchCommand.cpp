@@ -5,6 +5,7 @@
 
 #include "platform/Context.h"
 #include "report/BenchRunner.h"
+#include "report/ChoosingPage.h"
 #include "report/HtmlReport.h"
 #include "report/ResultsIO.h"
 
@@ -47,6 +48,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     std::optional<double> maxSeconds;
     std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
+    std::string choosing;  ///< "" = <out>/choosing.md
     bool quick = false, noCache = false, verbose = false, microOnly = false;
   };
   auto o = std::make_shared<Options>();
@@ -62,9 +64,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "pcss.filterSamples=8:64:4, light.count=1,2,4,8)");
   sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
-  sub->add_option("--size", o->size, "image size WxH (default 256x144; --quick 96x64)");
-  sub->add_option("--shadow-map", o->shadowMap, "shadow-map texels per side (default 1024; --quick 512)")->check(CLI::Range(16, 16384));
-  sub->add_option("--samples", o->samples, "reference light samples per pixel (default 256; --quick 36)")
+  sub->add_option("--size", o->size, fmt::format("image size WxH (default {}, as render and compare; --quick 96x64)", defaultSizeText()));
+  sub->add_option("--shadow-map", o->shadowMap,
+                  "shadow-map texels per side (default: each scene's own, as render and compare; --quick 512)")
+      ->check(CLI::Range(16, 16384));
+  sub->add_option("--samples", o->samples,
+                  fmt::format("reference light samples per pixel (default {}, as compare; --quick 36)", ReferenceOptions{}.samples))
       ->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--max-seconds", o->maxSeconds, "stop timing a configuration after this many seconds (default 4)")
       ->check(CLI::Range(0.0, 3600.0));
@@ -72,7 +77,10 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "the view of the run's one scene (--scenes NAME): X,Y,Z:TX,TY,TZ[:FOV], position and target in "
                   "metres, vertical field of view in degrees (default: each scene's own camera)");
   sub->add_option("--out", o->out, "output folder")->capture_default_str();
-  sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (two scenes, small images, few frames)");
+  sub->add_option("--choosing", o->choosing,
+                  "where to write the recommendation page, Markdown (default: OUT/choosing.md; the repository's is "
+                  "docs/choosing.md)");
+  sub->add_flag("--quick", o->quick, "a small run for tests: seconds, not minutes (the recommendation's four scenes, small images, few frames)");
   sub->add_flag("--no-cache", o->noCache, "recompute references even if cached ones exist");
   addCacheCapOption(*sub, o->cacheMaxMb, "after each reference is stored");
   sub->add_flag("--micro-only", o->microOnly,
@@ -135,6 +143,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     results.machine.command = commandLine();
     report::writeResults(dir, results);
     report::writeHtmlReport(dir, results);
+    report::writeChoosingPage(o->choosing.empty() ? dir / "choosing.md" : std::filesystem::path(o->choosing), dir, results);
 
     size_t failed = 0;
     for (const report::SkippedConfig& k : results.skipped)

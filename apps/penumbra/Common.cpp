@@ -14,6 +14,8 @@
 
 namespace penumbra::app {
 
+std::string defaultSizeText() { return fmt::format("{}x{}", RenderOptions{}.width, RenderOptions{}.height); }
+
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--scene", o.scene, "built-in scene name (penumbra list shows them), scene .json file, or model file (.gltf, .glb, .obj)")
       ->capture_default_str();
@@ -21,10 +23,10 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--projection", o.projection, "light projection id (default: the scene's own, else uniform)");
   app.add_option("--set", o.sets, "parameter override key=value, repeatable (e.g. hard.bias=slope, light.size=0.1)");
   app.add_option("--size", o.size, "image size WxH in pixels")->capture_default_str();
-  app.add_option("--shadow-map", o.shadowMapSize, "shadow-map resolution in texels per side (default: the scene's, 2048)");
+  app.add_option("--shadow-map", o.shadowMapSize, "shadow-map resolution in texels per side (default: the scene's own, 2048 for the built-in scenes)");
   app.add_option("--camera", o.camera,
                  "camera position and target in metres, and optionally the vertical field of view in degrees: "
-                 "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera)");
+                 "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera; given, it stays put in an animated scene)");
   app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
 }
 
@@ -167,7 +169,10 @@ Setup makeSetup(const TechniqueOptions& o) {
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
   applyParams(cli, s.scene, *s.projection, *s.filter, s.contact.get());
-  if (o.camera) s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
+  if (o.camera) {
+    s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
+    s.scene.animation.camera = {};  // the camera given stays where it is
+  }
   const auto [w, h] = parseSize(o.size);
   s.render.width = w;
   s.render.height = h;

@@ -16,11 +16,14 @@ namespace penumbra::gl { class Context; }
 
 namespace penumbra::app {
 
+/// "640x360": the image size render, compare and bench share (RenderOptions' default).
+std::string defaultSizeText();
+
 struct TechniqueOptions {
   std::string scene = "boxes";
   std::optional<std::string> filter, projection;  ///< unset = the scene's own choice
   std::vector<std::string> sets;                  ///< "key=value"
-  std::string size = "640x360";
+  std::string size = defaultSizeText();
   std::optional<int> shadowMapSize;
   int64_t shadowBudgetTexels = 0;  ///< 0 = no budget
   std::optional<std::string> camera;  ///< "X,Y,Z:TX,TY,TZ[:FOV]"; unset = the scene's camera

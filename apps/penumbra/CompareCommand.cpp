@@ -8,7 +8,10 @@
 #include "metrics/Shimmer.h"
 #include "metrics/TexelDensity.h"
 #include "report/FrameComparison.h"
+#include "report/Sheet.h"
+#include "report/SequenceComparison.h"
 
+#include <penumbra/Animation.h>
 #include <penumbra/Error.h>
 #include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
@@ -28,29 +31,13 @@
 namespace penumbra::app {
 namespace {
 
-// The four images in a 2 × 2 sheet.
-ColorImage sheet(const std::vector<const ColorImage*>& images) {
-  const int w = images[0]->width, h = images[0]->height;
-  ColorImage out;
-  out.width = 2 * w;
-  out.height = 2 * h;
-  out.rgba.assign(static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 4, 0);
-  for (size_t k = 0; k < images.size() && k < 4; ++k) {
-    const int ox = static_cast<int>(k % 2) * w, oy = static_cast<int>(k / 2) * h;
-    for (int y = 0; y < h; ++y)
-      std::copy_n(images[k]->rgba.begin() + static_cast<std::ptrdiff_t>(y) * w * 4, static_cast<size_t>(w) * 4,
-                  out.rgba.begin() + (static_cast<std::ptrdiff_t>(oy + y) * out.width + ox) * 4);
-  }
-  return out;
-}
-
 /// Every file compare writes into --out, in the order --help names them.
 constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"technique.png", "the frame lit with the technique's V"},
     {"reference.png", "the same frame lit with V_ref"},
     {"heatmap.png", "V - V_ref on a grey of V_ref: leaks red, over-darkening blue"},
     {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong"},
-    {"sheet.png", "the four above, 2 x 2"},
+    {"sheet.png", "technique, reference, heatmap and a 4x zoom of its worst region, titled, with the colour legend and the metrics"},
     {"texel-density.png", "screen pixels per shadow-map texel"},
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
@@ -71,14 +58,15 @@ std::string outputsHelp() {
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     TechniqueOptions technique;
-    int samples = 256;
+    int samples = ReferenceOptions{}.samples;  // as bench and the viewer's heatmap
     std::string out = "compare";
     bool json = false, noCache = false;
     int shimmer = 0;
     std::optional<std::uintmax_t> cacheMaxMb;
+    std::optional<int> frames;
+    float fps = 30.0f, timeS = 0.0f;
   };
   auto o = std::make_shared<Options>();
-  o->technique.size = "256x256";
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
   addShadowBudgetOption(*sub, o->technique);
@@ -91,9 +79,17 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--shimmer", o->shimmer,
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
+  sub->add_option("--frames", o->frames,
+                  "also render the animated scene's frames at --time, --time + 1/--fps, ... and compare each with its reference: "
+                  "rmse_mean, rmse_worst_frame and flicker_pct (followed surface points whose V changes by > 0.1 between consecutive "
+                  "frames while V_ref changes by < 0.02); the images and the other metrics are of the first frame")
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
+  sub->add_option("--time", o->timeS, "the scene's time in seconds of the (first) frame")->check(CLI::Range(-1e6, 1e6))->capture_default_str();
   commands.push_back({sub, [o] {
     checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
+    if (o->frames || o->timeS != 0.0f) poseScene(s.scene, o->timeS);  // unposed: the still scene exactly
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
@@ -125,7 +121,26 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     constexpr float kApproximationFullScaleV = 0.1f;
     const ColorImage approx = errorHeatmap(combined.vRef, combined.vRefCosWeighted, combined.mask, width, height, nullptr,
                                            HeatmapOptions{kApproximationFullScaleV});
-    const ColorImage all = sheet({&technique, &reference, &heat, &approx});
+    double referenceSeconds = 0.0;
+    int referenceSamples = 0;
+    bool referenceCached = true;
+    for (const ReferenceResult& r : refs) {
+      referenceSeconds += r.traceSeconds;
+      referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
+      referenceCached = referenceCached && (r.fromCache || r.width == 0);
+    }
+    const std::string lightText = s.scene.lights.size() > 1 ? fmt::format("{} lights", s.scene.lights.size())
+                                                            : fmt::format("light size {:g}", s.scene.light().size);
+    const ColorImage all = report::compareSheet(
+        {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = combined.v, .vRef = combined.vRef,
+         .mask = combined.mask, .heatmapFullScaleDeltaV = report::kLabHeatmap.fullScaleDeltaV,
+         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), s.scene.name),
+         .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", referenceSamples),
+         .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
+                                 "{:.2f}%) · over-dark {:.2f}% over {} lit pixels",
+                                 m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
+                     fmt::format("{}×{} pixels, shadow map {}², {} · --camera {}", width, height,
+                                 s.render.shadowMapSize, lightText, cameraArgument(s.scene.camera))}});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
@@ -142,14 +157,6 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         exr(fmt::format("visibility-light{}.exr", l.index), l.visibility);
         if (l.castsShadow) exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
       }
-    double referenceSeconds = 0.0;
-    int referenceSamples = 0;
-    bool referenceCached = true;
-    for (const ReferenceResult& r : refs) {
-      referenceSeconds += r.traceSeconds;
-      referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
-      referenceCached = referenceCached && (r.fromCache || r.width == 0);
-    }
 
     const PassTimings t = renderer.timings();
     std::optional<ShimmerResult> shimmer;
@@ -157,6 +164,15 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ShimmerOptions so;
       so.steps = o->shimmer;
       shimmer = measureShimmer(renderer, s.render, so);
+    }
+    std::optional<report::SequenceComparison> sequence;
+    if (o->frames) {
+      ReferenceOptions sro = ro;
+      sro.progress = false;
+      const report::SequenceTiming timing{*o->frames, o->fps, o->timeS};
+      sequence = report::compareSequence(renderer, s.scene, s.render, timing, sro, {}, [&](int f) {
+        if (!o->json) std::fprintf(stderr, "penumbra: frame %d/%d (t = %.3f s) compared\n", f + 1, timing.frames, timing.timeS(f));
+      });
     }
     const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
     if (o->json) {
@@ -186,6 +202,19 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["shimmer_steps"] = shimmer->steps;
       }
       j["pixels"] = m.pixels;
+      if (sequence) {
+        j["frames"] = sequence->frames.size();
+        j["fps"] = o->fps;
+        j["time"] = o->timeS;
+        j["rmse_mean"] = sequence->rmseMean;
+        j["rmse_worst_frame"] = sequence->rmseWorstFrame;
+        j["rmse_worst"] = sequence->rmseWorst;
+        j["flicker_pct"] = sequence->flicker.pct();
+        j["flicker_followed"] = sequence->flicker.followed;
+        j["frame_rmse"] = nlohmann::json::array();
+        for (const report::SequenceFrame& f : sequence->frames) j["frame_rmse"].push_back(f.metrics.rmse);
+        j["sequence_reference_seconds"] = sequence->referenceSeconds;
+      }
       j["lights"] = nlohmann::json::array();
       for (const report::LightComparison& l : cmp.lights) {
         nlohmann::json jl;
@@ -241,6 +270,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
+    if (sequence)
+      std::printf("  %zu frames at %g fps from %g s: RMSE mean %.4f, worst %.4f at frame %zu; flicker %.4f%% of %zu followed points\n",
+                  sequence->frames.size(), o->fps, o->timeS, sequence->rmseMean, sequence->rmseWorst, sequence->rmseWorstFrame,
+                  sequence->flicker.pct(), sequence->flicker.followed);
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);

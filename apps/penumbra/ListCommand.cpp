@@ -26,6 +26,7 @@ nlohmann::json paramsJson(std::span<const ParamDesc> descs) {
       p["min"] = d.min;
       p["max"] = d.max;
       p["integer"] = d.isInteger();
+      p["unit"] = d.unit;
     }
     out.push_back(p);
   }
@@ -38,7 +39,7 @@ void printParams(std::span<const ParamDesc> descs) {
     if (d.isChoice()) {
       range = joinNames(d.choices, "|");
     } else {
-      range = fmt::format("{} .. {}", d.min, d.max);
+      range = fmt::format("{} .. {} {}", d.min, d.max, d.unit);
     }
     std::printf("    %-28s default %-8s [%s]  %s\n", std::string(d.key).c_str(), formatParamValue(d, d.def).c_str(),
                 range.c_str(), std::string(d.help).c_str());

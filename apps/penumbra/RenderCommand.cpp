@@ -1,5 +1,6 @@
 // penumbra render: one frame of a scene with a technique, to PNG (+ visibility EXR, + dump); with
-// --repeat, the last of several renders of the same frame (timing).
+// --repeat, the last of several renders of the same frame (timing); with --frames, a numbered PNG
+// sequence of an animated scene (and an MP4 through ffmpeg when it is on the PATH).
 #include "Commands.h"
 #include "Common.h"
 
@@ -11,17 +12,101 @@
 
 #include <fmt/format.h>
 
+#include <penumbra/Animation.h>
+#include <penumbra/Error.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <sstream>
 
 namespace penumbra::app {
+namespace {
+
+/// The ffmpeg executable on the PATH, or nothing.
+std::optional<std::filesystem::path> findFfmpeg() {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    std::error_code ec;
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / "ffmpeg";
+    if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+  }
+  return std::nullopt;
+}
+
+/// Single-quoted for the shell.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// "out/penumbra.png" → "out/penumbra-0007.png" (frame 7).
+std::filesystem::path framePath(const std::filesystem::path& out, int frame) {
+  return out.parent_path() / fmt::format("{}-{:04d}{}", out.stem().string(), frame, out.extension().string());
+}
+
+/// Each pass's median over `frames` (the renders after the first), on stderr.
+void printMedians(const PassTimings& last, const std::vector<PassTimings>& frames, const std::string& clock, const std::string& gpu) {
+  for (const auto& [pass, ms] : last.ms) {
+    std::vector<double> samples;
+    for (const PassTimings& t : frames) samples.push_back(t.get(pass));
+    std::fprintf(stderr, "penumbra: %-10s %8.2f ms\n", pass.c_str(), frames.empty() ? ms : report::timeStats(samples).median);
+  }
+  std::fprintf(stderr, "penumbra: times by %s on %s%s\n", clock.c_str(), gpu.c_str(),
+               frames.empty() ? " (one frame: includes shader compilation)"
+                              : fmt::format(" (medians of the {} frames after the first)", frames.size()).c_str());
+}
+
+/// Renders the sequence; returns the message line of what was written.
+std::string renderSequence(Renderer& renderer, const Setup& s, const std::string& out, int frames, float fps, float startS,
+                           bool verbose, const std::string& gpu) {
+  const std::filesystem::path first = framePath(out, 0);
+  Scene posed = s.scene;
+  std::vector<PassTimings> warm;  // the frames after the first
+  for (int f = 0; f < frames; ++f) {
+    poseScene(posed, startS + static_cast<float>(f) / fps);
+    renderer.setPose(posed);
+    renderer.render(s.render);
+    if (f > 0) warm.push_back(renderer.timings());
+    const ColorImage color = renderer.readColor();
+    writePng(framePath(out, f), color.width, color.height, color.rgba);
+  }
+  if (verbose) {
+    printMedians(renderer.timings(), warm, renderer.timings().clock, gpu);
+    if (renderer.shadows().mapCaching())
+      std::fprintf(stderr, "penumbra: cached maps: %zu restored, %zu drawn\n", renderer.shadows().mapCacheStats().restored,
+                   renderer.shadows().mapCacheStats().rendered);
+  }
+  std::string written = fmt::format("wrote {} frames {}..{} at {} fps from {} s", frames, first.string(), framePath(out, frames - 1).string(), fps, startS);
+  if (s.scene.animation.empty()) written += " (the scene has no animation: every frame is the same)";
+  const std::filesystem::path video = std::filesystem::path(out).replace_extension(".mp4");
+  const std::optional<std::filesystem::path> ffmpeg = findFfmpeg();
+  if (!ffmpeg) return written + fmt::format("; no {} (ffmpeg is not on the PATH: install it for an MP4)", video.string());
+  const std::filesystem::path pattern = std::filesystem::path(out).parent_path() /
+                                        (std::filesystem::path(out).stem().string() + "-%04d" + std::filesystem::path(out).extension().string());
+  // yuv420p (what players expect) needs even sides: pad by one pixel where odd.
+  const std::string command = fmt::format("{} -y -loglevel error -framerate {} -i {} -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 "
+                                          "-pix_fmt yuv420p {}",
+                                          quoted(ffmpeg->string()), fps, quoted(pattern.string()), quoted(video.string()));
+  if (std::system(command.c_str()) != 0) throw Error(fmt::format("ffmpeg failed to write {} (the PNG frames are written): {}", video.string(), command));
+  return written + fmt::format(" and {}", video.string());
+}
+
+}  // namespace
 
 void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     TechniqueOptions technique;
     std::string out = "penumbra.png";
     std::string visibility, dump;
-    int frames = 1;
+    int repeat = 1;
+    std::optional<int> frames;
+    float fps = 30.0f, timeS = 0.0f;
+    bool cacheMaps = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("render", "render one frame to a PNG (the default subcommand)");
@@ -30,11 +115,24 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--out", o->out, "output PNG")->capture_default_str();
   sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
-  sub->add_option("--repeat", o->frames,
+  sub->add_option("--repeat", o->repeat,
                   "render the same frame this many times and write the last (the first compiles the shaders): for "
                   "timing; --verbose then prints each pass's median over the renders after the first")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
+  CLI::Option* frames = sub->add_option("--frames", o->frames,
+                                        "render an animated scene's frames at --time, --time + 1/--fps, ...: --out names the sequence "
+                                        "(penumbra.png -> penumbra-0000.png, penumbra-0001.png, ...; and penumbra.mp4 through ffmpeg when "
+                                        "it is on the PATH)")
+                            ->check(CLI::Range(1, 100000));
+  sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
+  sub->add_option("--time", o->timeS, "the scene's time in seconds of the frame (of the first frame with --frames)")
+      ->check(CLI::Range(-1e6, 1e6))
+      ->capture_default_str();
+  for (const char* single : {"--repeat", "--visibility", "--dump"}) frames->excludes(single);
+  sub->add_flag("--cache-maps", o->cacheMaps,
+                "cached shadow maps: each map keeps its static casters and draws only the animated ones over them while its view "
+                "stays (docs/embedding.md); --verbose then also counts the maps restored and drawn");
   commands.push_back({sub, [o] {
     checkOutput("--out", o->out);
     if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
@@ -45,9 +143,21 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
                    kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
+    renderer.shadows().setMapCaching(o->cacheMaps);
+    if (o->frames) {
+      checkOutput("--out", framePath(o->out, 0).string());
+      std::printf("%s\n", renderSequence(renderer, s, o->out, *o->frames, o->fps, o->timeS, o->technique.verbose,
+                                          context.info().renderer).c_str());
+      return 0;
+    }
+    if (o->timeS != 0.0f) {
+      Scene posed = s.scene;
+      poseScene(posed, o->timeS);
+      renderer.setPose(posed);
+    }
     renderer.render(s.render);
     std::vector<PassTimings> warm;  // the frames after the first
-    for (int i = 1; i < o->frames; ++i) {
+    for (int i = 1; i < o->repeat; ++i) {
       renderer.render(s.render);
       warm.push_back(renderer.timings());
     }
@@ -58,16 +168,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       writeExr(o->visibility, s.render.width, s.render.height, flipRows<float>(v, s.render.width, s.render.height));
     }
     if (!o->dump.empty()) renderer.dump(o->dump);
-    if (o->technique.verbose) {
-      for (const auto& [pass, ms] : renderer.timings().ms) {
-        std::vector<double> samples;
-        for (const PassTimings& t : warm) samples.push_back(t.get(pass));
-        std::fprintf(stderr, "penumbra: %-10s %8.2f ms\n", pass.c_str(), warm.empty() ? ms : report::timeStats(samples).median);
-      }
-      std::fprintf(stderr, "penumbra: times by %s on %s%s\n", renderer.timings().clock.c_str(), context.info().renderer.c_str(),
-                   warm.empty() ? " (one frame: includes shader compilation)"
-                                : fmt::format(" (medians of the {} frames after the first)", warm.size()).c_str());
-    }
+    if (o->technique.verbose) printMedians(renderer.timings(), warm, renderer.timings().clock, context.info().renderer);
     std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
                 s.scene.name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
     return 0;

@@ -16,10 +16,27 @@ class FrameContext;  // src/render/FrameContext.h: what a filter may use during 
 
 namespace gl { class Texture; }
 
-/// An intermediate a filter can show: dumped by --dump, shown by the viewer.
+/// An intermediate a filter can show: dumped by --dump, shown by the viewer (with `meaning` as
+/// the legend of its values).
 struct DebugImage {
-  std::string name;              ///< file-name friendly: "shadow-map", "sat"
+  std::string name;              ///< file-name friendly: "shadow-map", "moments"
   const gl::Texture* texture;    ///< 2D or 2D array (layer 0 shown)
+  std::string_view meaning;      ///< what a value is, with its unit: "linear light depth: 0 = near, 1 = far"
+};
+
+/// Debug images that many filters have are named alike, so that a viewer showing one keeps
+/// showing it across a filter switch: the depth map the filter compares against, and the
+/// moments (or warped depths) it stores.
+inline constexpr std::string_view kShadowMapImage = "shadow-map";
+inline constexpr std::string_view kShadowMapMeaning = "linear light depth of the nearest caster: 0 = near plane, 1 = far plane";
+inline constexpr std::string_view kMomentsImage = "moments";
+
+/// Work a filter does once and keeps while the casters do not move (a baked distance field): in
+/// no frame's time, and valid only for static casters: a caster that moves makes it again.
+struct OneOffCost {
+  std::string what;      ///< what was made, e.g. "distance-field bake, 128 voxels on the longest side"
+  double seconds = 0.0;  ///< what making it took (read from a cache: what the original work took)
+  bool cached = false;   ///< this time it came from an on-disk cache (seconds is still the work's)
 };
 
 class Filter : public Parameterized {
@@ -40,6 +57,9 @@ public:
   /// Writes V for every G-buffer pixel into the frame's visibility image.
   virtual void computeVisibility(FrameContext& frame) = 0;
   virtual std::vector<DebugImage> debugImages() const { return {}; }
+  /// What the filter made once for the current casters (after a frame); none for techniques
+  /// that redo all their work every frame.
+  virtual std::vector<OneOffCost> oneOffCosts() const { return {}; }
 };
 
 }  // namespace penumbra

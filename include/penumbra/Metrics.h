@@ -73,12 +73,18 @@ struct HeatmapOptions {
   /// |ΔV| at which the error colour is fully opaque over the grey; smaller errors blend in
   /// linearly, so colour intensity ∝ |ΔV|. Range (0, 1], default 0.5.
   float fullScaleDeltaV = 0.5f;
+  /// Each pixel shows the largest error (by |ΔV|, with its sign) within this many pixels of it,
+  /// among the measured ones: a one-pixel error becomes a (2r+1)² spot that reads at a glance.
+  /// 0 = every pixel its own error. Range [0, kMaxHeatmapDilatePx].
+  int dilatePx = 0;
 };
+inline constexpr int kMaxHeatmapDilatePx = 8;
 
 /// Signed error heatmap: a dimmed grey version of `base` (sRGB RGBA8, row 0 = top, the same
 /// size; e.g. the technique's colour image), or of V_ref when `base` is null, with leaks
 /// (V > V_ref) tinted kLeakColor and over-darkening (V < V_ref) tinted kOverDarkColor, by
-/// |ΔV| / fullScaleDeltaV. Pixels outside a non-empty mask stay grey. Throws on size mismatch.
+/// |ΔV| / fullScaleDeltaV (after dilation). Pixels outside a non-empty mask stay grey unless an
+/// error is dilated over them. Throws on size mismatch.
 ColorImage errorHeatmap(std::span<const float> v, std::span<const float> vRef, std::span<const uint8_t> mask,
                         int width, int height, const ColorImage* base = nullptr,
                         const HeatmapOptions& options = {});

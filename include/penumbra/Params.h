@@ -10,11 +10,16 @@
 namespace penumbra {
 
 /// One tunable. Numeric unless `choices` is non-empty, in which case the value is the index of
-/// the chosen name (def/min/max are indices too). Units are part of the key ("…Texels", "…World").
+/// the chosen name (def/min/max are indices too). Its unit is `unit`, and part of the key where
+/// it fits ("…Texels", "…M").
 struct ParamDesc {
   std::string_view key;    ///< "technique.name", e.g. "pcss.blockerSamples"
   std::string_view label;  ///< short UI label
   std::string_view help;   ///< one sentence: meaning, unit
+  /// The unit of a numeric value, shown beside it (viewer sliders, penumbra list): "texels",
+  /// "m", "texels²", "depth range" (a fraction of the map's depth range), "factor" or "fraction"
+  /// for dimensionless ones, "m | rad" where the light's kind decides. Empty for choices.
+  std::string_view unit;
   float def = 0.0f, min = 0.0f, max = 1.0f, step = 0.0f;  ///< step 1 = integer-valued
   std::span<const std::string_view> choices = {};
   /// The GLSL constant that carries the value into the filter's program (integer-valued

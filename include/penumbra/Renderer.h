@@ -52,6 +52,10 @@ public:
   /// Replaces the camera and the lights between frames without re-uploading geometry (the
   /// viewer moves them every frame). Throws a usage Error if `lights` is empty.
   void setCameraAndLights(const Camera& camera, const std::vector<Light>& lights);
+  /// Moves to `posed`: the scene given to setScene posed at another time (poseScene): its
+  /// camera, lights and object transforms; the geometry stays uploaded, the transforms and the
+  /// casters' placements are re-sent. Throws Error if the object count differs.
+  void setPose(const Scene& posed);
 
   const Scene& scene() const;
   Projection& projection();

@@ -1,6 +1,7 @@
 #pragma once
 // The scene: meshes, materials, object instances, lights and a camera. Pure data, no GL.
 // Conventions (docs/design.md): right-handed world, metres, +Y up.
+#include <penumbra/Animation.h>
 #include <penumbra/Math.h>
 
 #include <cstdint>
@@ -181,6 +182,9 @@ struct Scene {
   Camera camera;
   ShadowSettings shadow;
   glm::vec3 ambient{0.08f};  ///< constant ambient radiance (linear RGB), each in [0, kMaxRadiance]
+  /// Keyframes over time (penumbra/Animation.h); the members above are the pose at time 0 (or at
+  /// the time poseScene last set).
+  SceneAnimation animation;
 
   const Light& light() const;  ///< the shadow-casting light (the first one); throws if none
   Aabb bounds() const;         ///< world bounds of every object

@@ -20,6 +20,7 @@
 #include <penumbra/Scene.h>
 #include <penumbra/Timings.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -158,6 +159,18 @@ public:
   /// scene must outlive its use.
   void setCasterGeometry(const Scene* scene);
 
+  /// Cached shadow maps (off by default): each map (cascade, view) keeps its static casters'
+  /// depth (and moments) and is restored from it while its view, the shadow pass's program and
+  /// parameters and the static casters are unchanged; the dynamic casters (CasterMesh::dynamic)
+  /// are drawn over it every frame. Prefilters then run on the result as before.
+  void setMapCaching(bool on);
+  bool mapCaching() const;
+  /// Maps (layers) restored from their cache, and rendered into it, since setMapCaching(true).
+  struct MapCacheStats {
+    size_t restored = 0, rendered = 0;
+  };
+  MapCacheStats mapCacheStats() const;
+
   /// Renders the shadow maps, prefilters them and writes the visibility texture.
   void render(const ShadowFrameInputs& inputs);
 
@@ -185,6 +198,12 @@ public:
   /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame, each the sum
   /// over the lights
   const PassTimings& timings() const;
+  /// GPU memory the technique keeps now, in bytes: every texture and buffer its filters (one copy
+  /// per light) and the contact pass, when on, created during their passes and still hold (shadow
+  /// maps, moment, mip, summed-area and pyramid storage, baked fields, debug images), counted where
+  /// GL storage is allocated. The visibility array, the uniform blocks and the caller's surfaces
+  /// are not the technique's.
+  std::size_t techniqueMemoryBytes() const;
   /// Every intermediate of the last frame a viewer can show for `light`: its visibility, then its
   /// filter's maps.
   std::vector<DebugImage> debugImages(size_t light = 0) const;

@@ -2,9 +2,10 @@
 // The aliasing measure: how many screen pixels one shadow-map texel covers at a G-buffer pixel.
 // With J = ∂(map texel coordinates)/∂(screen pixel), a texel covers 1/|det J| pixels (an area
 // ratio): > 1 means under-sampled (one texel smeared over several pixels: blocky edges), < 1
-// over-sampled. It is the lecture's d_i = d_s · (r_s cos α_i)/(r_i cos α_s) squared, measured
-// instead of modelled. A compute pass has no dFdx, so J comes from the neighbouring G-buffer
-// positions (finite differences), evaluated in the pixel's own cascade.
+// over-sampled. It is the square of the classic aliasing ratio d_i = d_s · (r_s cos α_i)/(r_i cos α_s)
+// (Stamminger & Drettakis, Perspective Shadow Maps, 2002), measured instead of modelled. A compute
+// pass has no dFdx, so J comes from the neighbouring G-buffer positions (finite differences),
+// evaluated in the pixel's own cascade.
 #include "common/shadow.glsl"
 
 // A surface seen edge-on by the light maps a texel onto a line: cap the ratio there.

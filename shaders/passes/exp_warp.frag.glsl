@@ -1,5 +1,5 @@
 // Shadow pass for exponentially warped maps (esm, evsm, evsm-soft): writes the linear light depth
-// z (DESIGN.md convention) to the depth buffer and the warps' moments (shadows/filters/
+// z (docs/design.md convention) to the depth buffer and the warps' moments (shadows/filters/
 // exp_warp.shared.h; exponents from u_warp) to colour target 0, ready to be filtered.
 // Defines: PN_EXP_WARP_COMPONENTS 1 → (p, 0, 0, 0) (esm); 2 → (p, p², 0, 0); 4 → (p, p², n, n²).
 //   With 2 and 4, each second moment also gets the warp's variance across the texel: vsm's slope

@@ -3,6 +3,7 @@
 // shading stays simple. V_i is layer i of the visibility array.
 #include "common/frame.glsl"
 #include "common/texel_density.glsl"
+#include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
@@ -27,16 +28,13 @@ vec3 toSrgb(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
-// PN_VIEW_CASCADES colours, cycled beyond four cascades.
-const vec3 kCascadeColors[4] = vec3[4](vec3(1.0, 0.35, 0.3), vec3(0.35, 0.9, 0.35), vec3(0.35, 0.55, 1.0), vec3(1.0, 0.85, 0.3));
-
 // The debug views that tint the shaded image: the shading stays visible under the tint.
 vec3 debugTint(ivec2 px, vec3 ws, vec3 shaded) {
   const float kBaseShade = 0.35;  // darkest a shadowed surface gets under the tint
   float shade = kBaseShade + (1.0 - kBaseShade) * dot(shaded, vec3(0.2126, 0.7152, 0.0722));
   if (kDebugView == PN_VIEW_CASCADES) {
     ShadowViewBlend b = shadowViewBlend(ws);
-    return shade * mix(kCascadeColors[b.first % 4], kCascadeColors[b.second % 4], b.weight);
+    return shade * mix(cascadeColor(b.first).rgb, cascadeColor(b.second).rgb, b.weight);
   }
   float density = screenPixelsPerTexel(s_gbufPosition, px);
   return density > 0.0 ? shade * densityRampColor(log2(density)).rgb : vec3(shade);

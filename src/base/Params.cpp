@@ -88,10 +88,10 @@ std::vector<std::pair<std::string_view, int>> Parameterized::compileTimeConstant
 namespace {
 constexpr ParamDesc kSceneParams[] = {
     {"light.size", "Light size",
-     "overrides the first light's size: spot = sphere radius (m), sun = angular radius (rad); 0 = hard; unset = the scene's own size",
+     "overrides the first light's size: spot = sphere radius (m), sun = angular radius (rad); 0 = hard; unset = the scene's own size", "m | rad",
      0.0f, 0.0f, 10.0f, 0.0f},
     {"light.count", "Lights used",
-     "keeps the scene's first N lights (file order) and drops the rest, e.g. to measure cost per light; 0 = all",
+     "keeps the scene's first N lights (file order) and drops the rest, e.g. to measure cost per light; 0 = all", "lights",
      0.0f, 0.0f, 16.0f, 1.0f},
 };
 }  // namespace

@@ -77,6 +77,9 @@ struct Shadows::Impl {
   const Scene* cpuScene = nullptr;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
+  // What the filter allocates during its passes; a replaced filter's storage leaves the count
+  // when it is destroyed.
+  gl::MemoryAccount techniqueMemory;
   ContactShadows contact;
   std::vector<std::unique_ptr<LightSlot>> slots;
   std::vector<LightShadowReport> reports;
@@ -84,6 +87,7 @@ struct Shadows::Impl {
   glm::ivec2 screen{0};
   SurfaceSource surface = SurfaceSource::Position;
   int frameIndex = 0;
+  MapCacheState mapCache;
 
   Projection& projectionOf(size_t i) { return i == 0 ? *projection : *slots[i]->ownProjection; }
   Filter& filterOf(size_t i) { return i == 0 ? *filter : *slots[i]->ownFilter; }
@@ -92,7 +96,7 @@ struct Shadows::Impl {
   FrameContext frameContext(size_t i) {
     LightSlot& s = *slots[i];
     return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
-                         &visibility, static_cast<int>(i)});
+                         &visibility, static_cast<int>(i), &mapCache});
   }
   void bindBlocks(size_t i) const {
     slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -274,6 +278,15 @@ void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aa
 
 void Shadows::setCasterGeometry(const Scene* scene) { mImpl->cpuScene = scene; }
 
+void Shadows::setMapCaching(bool on) {
+  if (on && !mImpl->mapCache.on) mImpl->mapCache = {};
+  mImpl->mapCache.on = on;
+}
+
+bool Shadows::mapCaching() const { return mImpl->mapCache.on; }
+
+Shadows::MapCacheStats Shadows::mapCacheStats() const { return {mImpl->mapCache.restored, mImpl->mapCache.rendered}; }
+
 void Shadows::render(const ShadowFrameInputs& in) {
   Impl& im = *mImpl;
   if (in.lights.empty()) throw usageError("Shadows::render: no light (ShadowFrameInputs::lights is empty)");
@@ -323,6 +336,7 @@ void Shadows::render(const ShadowFrameInputs& in) {
   }
   const std::vector<int> sizes = core::allocateMapSizes(requests, in.mapBudgetTexels);
   im.reports.assign(in.lights.size(), {});
+  const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();
   for (size_t i = 0; i < in.lights.size(); ++i) {
     LightSlot& slot = *im.slots[i];
@@ -370,6 +384,7 @@ std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points, 
   im.bindBlocks(light);
   FrameContext ctx = im.frameContext(light);
   ctx.setPoints(&in, &out, static_cast<int>(points.size()));
+  const gl::MemoryAccount::Charge charge(im.techniqueMemory);
   im.timer.beginFrame();  // a filter may time sub-passes; these times are not kept
   im.filterOf(light).computeVisibility(ctx);
   im.timer.endFrame();
@@ -392,10 +407,11 @@ const LightFrusta& Shadows::frusta(size_t light) const {
 }
 const std::vector<LightShadowReport>& Shadows::lightReports() const { return mImpl->reports; }
 const PassTimings& Shadows::timings() const { return mImpl->timings; }
+std::size_t Shadows::techniqueMemoryBytes() const { return static_cast<std::size_t>(mImpl->techniqueMemory.bytes()); }
 
 std::vector<DebugImage> Shadows::debugImages(size_t light) const {
   PN_CHECK(light < mImpl->slots.size(), fmt::format("debugImages({}): the last frame had {} lights", light, mImpl->slots.size()));
-  std::vector<DebugImage> out = {{"visibility", &mImpl->slots[light]->visibilityView}};
+  std::vector<DebugImage> out = {{"visibility", &mImpl->slots[light]->visibilityView, "V: 1 = lit, 0 = in shadow"}};
   for (const DebugImage& d : mImpl->filterOf(light).debugImages()) out.push_back(d);
   return out;
 }

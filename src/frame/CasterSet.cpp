@@ -1,5 +1,7 @@
 #include "frame/CasterSet.h"
 
+#include "base/Hash.h"
+
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
 
@@ -107,12 +109,23 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
     g.material = glm::ivec4(masked ? 0 : -1, masked ? 1 : 0, 0, 0);
     objects.push_back(g);
   }
+  Hasher statics;
+  for (const Draw& d : mDraws) {
+    const CasterMesh& m = d.mesh;
+    if (m.dynamic) continue;
+    for (const uint32_t v : {m.vertexBuffer, m.stride, m.positionOffset, m.uvOffset, m.indexBuffer, m.firstIndex, m.count,
+                             static_cast<uint32_t>(m.baseVertex), m.alphaTexture})
+      statics.value(v);
+    statics.value(m.worldFromObject);
+    statics.value(m.alphaCutoff);
+  }
+  mStaticKey = statics.digest();
   const size_t bytes = std::max<size_t>(1, objects.size()) * sizeof(gpu::ObjectGpu);
   if (mObjects.size() < bytes) mObjects = gl::Buffer("caster objects", bytes);
   if (!objects.empty()) mObjects.upload(objects.data(), objects.size() * sizeof(gpu::ObjectGpu));
 }
 
-void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram) const {
+void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) const {
   mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
   for (const bool masked : {false, true}) {
     const GLuint program = masked ? maskedProgram : opaqueProgram;
@@ -120,6 +133,7 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram) const {
     for (size_t i = 0; i < mDraws.size(); ++i) {
       const CasterMesh& m = mDraws[i].mesh;
       if ((m.alphaTexture != 0) != masked) continue;
+      if ((which == Which::Static && m.dynamic) || (which == Which::Dynamic && !m.dynamic)) continue;
       glBindVertexArray(mVaos[mDraws[i].vao].id());
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);

@@ -22,7 +22,12 @@ public:
   /// Draws the opaque casters with `opaqueProgram`, then the alpha-tested ones with
   /// `maskedProgram` (their texture at PN_TEX_BASECOLOR); PN_LOC_OBJECT set per draw. Leaves
   /// the last program and vertex array bound.
-  void draw(GLuint opaqueProgram, GLuint maskedProgram) const;
+  /// `which`: every caster, or only the static or only the dynamic ones (CasterMesh::dynamic).
+  enum class Which { All, Static, Dynamic };
+  void draw(GLuint opaqueProgram, GLuint maskedProgram, Which which = Which::All) const;
+  /// A hash of the static casters (their records and placements, in order): it changes when one
+  /// is added, removed, moved or altered. For cached maps.
+  uint64_t staticKey() const { return mStaticKey; }
   /// Each caster's world bounds, in order (for SceneExtent).
   std::vector<SceneExtent::Body> bodies() const;
   size_t size() const { return mDraws.size(); }
@@ -43,6 +48,7 @@ private:
   std::vector<gl::VertexArray> mVaos;  ///< one per mLayouts entry
   std::vector<Draw> mDraws;
   gl::Buffer mObjects;
+  uint64_t mStaticKey = 0;
 };
 
 }  // namespace penumbra

@@ -1,6 +1,11 @@
 #include "frame/FrameContext.h"
 
+#include <algorithm>
+#include <iterator>
+
+#include "base/Hash.h"
 #include "shared/Bindings.h"
+#include "shared/Shadow.h"
 #include "shared/Enums.h"
 #include "shared/VisibilityPoints.h"
 
@@ -83,6 +88,44 @@ const gl::Program& FrameContext::screenProgram(std::string_view file, const Para
   return mShaders.program(d);
 }
 
+namespace {
+
+constexpr GLenum kSamplerTypes[] = {GL_SAMPLER_2D, GL_SAMPLER_3D, GL_SAMPLER_CUBE, GL_SAMPLER_2D_SHADOW, GL_SAMPLER_2D_ARRAY,
+                                    GL_SAMPLER_2D_ARRAY_SHADOW, GL_SAMPLER_CUBE_MAP_ARRAY, GL_INT_SAMPLER_2D, GL_INT_SAMPLER_2D_ARRAY,
+                                    GL_UNSIGNED_INT_SAMPLER_2D, GL_UNSIGNED_INT_SAMPLER_2D_ARRAY};
+
+/// What a shadow pass reads besides the views and the casters, found in the linked program.
+struct PassReads {
+  bool filterBlock = false;    ///< the filter's uniform block (exp_warp's warp constants)
+  bool otherTextures = false;  ///< a texture other than the casters' alpha (depth_peel's first layer)
+};
+
+PassReads passReads(GLuint program) {
+  PassReads r;
+  GLint blocks = 0, uniforms = 0;
+  glGetProgramInterfaceiv(program, GL_UNIFORM_BLOCK, GL_ACTIVE_RESOURCES, &blocks);
+  for (GLint i = 0; i < blocks; ++i) {
+    const GLenum prop = GL_BUFFER_BINDING;
+    GLint binding = -1;
+    glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, static_cast<GLuint>(i), 1, &prop, 1, nullptr, &binding);
+    r.filterBlock = r.filterBlock || binding == PN_UBO_FILTER;
+  }
+  glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &uniforms);
+  for (GLint i = 0; i < uniforms; ++i) {
+    const GLenum props[] = {GL_TYPE, GL_LOCATION};
+    GLint values[2] = {0, -1};
+    glGetProgramResourceiv(program, GL_UNIFORM, static_cast<GLuint>(i), 2, props, 2, nullptr, values);
+    if (values[1] < 0 || std::find(std::begin(kSamplerTypes), std::end(kSamplerTypes), static_cast<GLenum>(values[0])) == std::end(kSamplerTypes))
+      continue;
+    GLint unit = -1;
+    glGetUniformiv(program, values[1], &unit);
+    r.otherTextures = r.otherTextures || unit != PN_TEX_BASECOLOR;
+  }
+  return r;
+}
+
+}  // namespace
+
 void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor) {
   // Clip z in [0, 1] is the window depth: what PN_LINEAR_RASTER_DEPTH's clip z (the linear light
   // depth) needs; with gl_FragDepth written it does not matter. The caller's mode comes back.
@@ -97,14 +140,57 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
   glDisable(GL_CULL_FACE);
   glViewport(0, 0, maps.size(), maps.size());
   const float clearDepth = 1.0f;
+  // A pass that samples another map (depth peeling) depends on what the dynamic casters drew
+  // there: it is never cached.
+  const PassReads reads[] = {passReads(programs.opaque->id()), passReads(programs.masked->id())};
+  const bool cached = mMapCache && mMapCache->on && !reads[0].otherTextures && !reads[1].otherTextures;
+  // What every layer's content depends on besides its own view: the shadow pass's programs (and
+  // the filter block where they read it), the clear colour, the map size and the static casters.
+  Hasher common;
+  gpu::ShadowUniforms views{};
+  if (cached) {
+    if (reads[0].filterBlock || reads[1].filterBlock) {
+      std::vector<uint8_t> filterBytes(mFilterBlock.size());
+      mFilterBlock.download(filterBytes.data(), filterBytes.size());
+      common.bytes(filterBytes.data(), filterBytes.size());
+    }
+    for (const GLuint id : {programs.opaque->id(), programs.masked->id()}) common.value(id);
+    common.value(clearColor);
+    common.value(maps.size());
+    common.value(mCasters.staticKey());
+    GLint shadowBlock = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
+    glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
+  }
   for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
     gl::Framebuffer& fb = maps.framebuffer(v);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
-    if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
     glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);
     glProgramUniform1i(programs.masked->id(), PN_LOC_VIEW, v);
-    mCasters.draw(programs.opaque->id(), programs.masked->id());
+    uint64_t key = 0;
+    if (cached) {
+      // The view as the shadow pass reads it: its matrix and depth plane (not the split
+      // distances, which only the visibility pass reads).
+      Hasher h = common;
+      h.value(views.views[v].clipFromWorld);
+      h.value(views.views[v].depthPlane);
+      key = h.digest() | 1u;  // 0 means "nothing cached"
+      if (maps.restoreCached(v, key)) {
+        ++mMapCache->restored;
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic);
+        continue;
+      }
+    }
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+    if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+    if (!cached) {
+      mCasters.draw(programs.opaque->id(), programs.masked->id());
+      continue;
+    }
+    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Static);
+    maps.storeCached(v, key);
+    ++mMapCache->rendered;
+    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glDisable(GL_DEPTH_CLAMP);

@@ -26,6 +26,13 @@ enum class SurfaceSource {
   Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
 };
 
+/// Cached shadow maps across frames (Shadows::setMapCaching): whether renderViews uses them, and
+/// how many layers it restored and rendered.
+struct MapCacheState {
+  bool on = false;
+  size_t restored = 0, rendered = 0;
+};
+
 /// Everything a frame's FrameContext refers to; owned by the core, alive for the frame.
 struct FrameResources {
   const Light& light;
@@ -40,6 +47,7 @@ struct FrameResources {
   PassTimer& timer;
   const gl::Texture* visibility;  ///< a 2D array: one layer per light
   int visibilityLayer = 0;        ///< this frame's light
+  MapCacheState* mapCache = nullptr;  ///< nullptr: no caching
 };
 
 class FrameContext {
@@ -47,7 +55,7 @@ public:
   explicit FrameContext(const FrameResources& r)
       : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
-        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer) {}
+        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
   /// gave none. Only techniques that bake the geometry (sdf) need them.
@@ -90,7 +98,10 @@ public:
 
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
   /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the
-  /// near plane still cast), no culling (thin and open casters cast from both sides).
+  /// near plane still cast), no culling (thin and open casters cast from both sides). With cached
+  /// maps each layer whose key (its view's matrix and depth plane, the programs, the filter
+  /// block, the clear colour, the static casters) is unchanged is restored from its cache and
+  /// only the dynamic casters are drawn over it.
   void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
@@ -129,6 +140,7 @@ private:
   PassTimer& mTimer;
   const gl::Texture* mVisibility;
   int mVisibilityLayer;
+  MapCacheState* mMapCache;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

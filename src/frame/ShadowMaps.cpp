@@ -13,6 +13,9 @@ void ShadowMapArray::ensure(const std::string& label, int size, int layers, GLen
     throw Error(fmt::format("shadow map of {}x{} exceeds this driver's maximum texture size {}", size, size, maxSize));
   mFbos.clear();
   mColor = {};
+  mCacheDepth = {};
+  mCacheColor = {};
+  mCacheKeys.assign(static_cast<size_t>(layers), 0);
   mDepth = gl::Texture(label + " depth", {GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, size, size, layers, 1});
   mDepth.setSampling(GL_NEAREST, GL_NEAREST);
   if (colorFormat != 0) {
@@ -30,6 +33,28 @@ void ShadowMapArray::ensure(const std::string& label, int size, int layers, GLen
   mLayers = layers;
   mColorFormat = colorFormat;
   mColorLevels = colorLevels;
+}
+
+void ShadowMapArray::copyLayer(const gl::Texture& from, const gl::Texture& to, int layer) {
+  glCopyImageSubData(from.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, to.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, mSize, mSize, 1);
+}
+
+bool ShadowMapArray::restoreCached(int layer, uint64_t key) {
+  const auto l = static_cast<size_t>(layer);
+  if (!mCacheDepth || l >= mCacheKeys.size() || mCacheKeys[l] != key || key == 0) return false;
+  copyLayer(mCacheDepth, mDepth, layer);
+  if (mColor) copyLayer(mCacheColor, mColor, layer);
+  return true;
+}
+
+void ShadowMapArray::storeCached(int layer, uint64_t key) {
+  if (!mCacheDepth) {
+    mCacheDepth = gl::Texture("cached shadow map depth", {GL_TEXTURE_2D_ARRAY, mDepth.desc().format, mSize, mSize, mLayers, 1});
+    if (mColor) mCacheColor = gl::Texture("cached shadow map color", {GL_TEXTURE_2D_ARRAY, mColorFormat, mSize, mSize, mLayers, 1});
+  }
+  copyLayer(mDepth, mCacheDepth, layer);
+  if (mColor) copyLayer(mColor, mCacheColor, layer);
+  mCacheKeys[static_cast<size_t>(layer)] = key;
 }
 
 }  // namespace penumbra

@@ -3,6 +3,7 @@
 // layer: a depth texture, and optionally a colour texture (moments) rendered with it.
 #include "gl/Objects.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,17 @@ public:
   int size() const { return mSize; }
   int layers() const { return mLayers; }
 
+  /// Cached maps: when layer `layer`'s cache was stored under `key`, copies it into the layer
+  /// (depth, and colour level 0) and returns true; otherwise false.
+  bool restoreCached(int layer, uint64_t key);
+  /// Copies the layer as it is now into its cache, under `key`.
+  void storeCached(int layer, uint64_t key);
+
 private:
+  void copyLayer(const gl::Texture& from, const gl::Texture& to, int layer);
   gl::Texture mDepth, mColor;
+  gl::Texture mCacheDepth, mCacheColor;  ///< made on the first storeCached, with the maps' formats
+  std::vector<uint64_t> mCacheKeys;      ///< per layer; 0 = nothing cached
   std::vector<gl::Framebuffer> mFbos;
   int mSize = 0, mLayers = 0, mColorLevels = 1;
   GLenum mColorFormat = 0;

@@ -4,6 +4,7 @@
 
 #include <penumbra/Error.h>
 
+#include <algorithm>
 #include <atomic>
 #include <initializer_list>
 #include <fmt/format.h>
@@ -21,6 +22,31 @@ void label(GLenum ns, GLuint id, std::string_view text) {
 
 int liveObjectCount() { return gLiveObjects.load(); }
 
+// ---- MemoryAccount ------------------------------------------------------------------------
+namespace {
+thread_local std::shared_ptr<std::atomic<std::int64_t>> tCurrentAccount;
+}  // namespace
+
+MemoryAccount::MemoryAccount() : mBytes(std::make_shared<std::atomic<std::int64_t>>(0)) {}
+
+MemoryAccount::Charge::Charge(const MemoryAccount& account) : mPrevious(std::exchange(tCurrentAccount, account.mBytes)) {}
+MemoryAccount::Charge::~Charge() { tCurrentAccount = std::move(mPrevious); }
+
+namespace detail {
+void ChargedBytes::charge(std::int64_t bytes) {
+  release();
+  if (!tCurrentAccount) return;
+  mAccount = tCurrentAccount;
+  mBytes = bytes;
+  *mAccount += bytes;
+}
+void ChargedBytes::release() {
+  if (mAccount) *mAccount -= mBytes;
+  mAccount.reset();
+  mBytes = 0;
+}
+}  // namespace detail
+
 void Handle::adopt(GLuint id) {
   mId = id;
   if (id) ++gLiveObjects;
@@ -33,6 +59,7 @@ Buffer::Buffer(std::string_view name, size_t bytes, const void* data, GLbitfield
   adopt(id);
   glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
   label(GL_BUFFER, id, name);
+  mCharge.charge(static_cast<std::int64_t>(bytes));
 }
 void Buffer::destroy() { glDeleteBuffers(1, &mId); --gLiveObjects; }
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
@@ -65,6 +92,23 @@ Texture::Texture(std::string_view name, const TextureDesc& desc) : mDesc(desc) {
     glTextureStorage3D(id, mDesc.levels, desc.format, desc.width, desc.height, desc.depth);
   label(GL_TEXTURE, id, name);
   setSampling(mDesc.levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
+  GLint bitsPerTexel = 0;
+  for (const GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE,
+                                 GL_TEXTURE_DEPTH_SIZE, GL_TEXTURE_STENCIL_SIZE}) {
+    GLint bits = 0;
+    glGetTextureLevelParameteriv(id, 0, component, &bits);
+    bitsPerTexel += bits;
+  }
+  size_t texels = 0;
+  for (int level = 0; level < mDesc.levels; ++level) {
+    const size_t w = static_cast<size_t>(std::max(1, desc.width >> level));
+    const size_t h = static_cast<size_t>(std::max(1, desc.height >> level));
+    // A 3D texture's depth halves with each level; an array keeps its layers.
+    const size_t d = static_cast<size_t>(desc.target == GL_TEXTURE_3D ? std::max(1, desc.depth >> level) : desc.depth);
+    texels += w * h * d;
+  }
+  mStorageBytes = texels * static_cast<size_t>(bitsPerTexel) / 8;
+  mCharge.charge(static_cast<std::int64_t>(mStorageBytes));
 }
 void Texture::destroy() { glDeleteTextures(1, &mId); --gLiveObjects; }
 void Texture::setSampling(GLenum minFilter, GLenum magFilter, GLenum wrap) {

@@ -4,7 +4,10 @@
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string_view>
 #include <utility>
 
@@ -12,6 +15,61 @@ namespace penumbra::gl {
 
 /// Live-object counter, for the "no GL object growth" checks.
 int liveObjectCount();
+
+/// GPU memory held for an owner (a shadow technique: docs/bench.md, "shadow_memory_mb"). Every
+/// Texture and Buffer created on this thread while a MemoryAccount::Charge is in scope counts its
+/// storage bytes (every mip level and layer; Texture::storageBytes, Buffer::size) against the
+/// account until it is destroyed, wherever it lives meanwhile (moves keep the charge). So what
+/// an owner keeps is measured where the storage is allocated, once, and no owner lists its own
+/// resources by hand. Copies share the count.
+class MemoryAccount {
+public:
+  MemoryAccount();
+  /// Bytes of the charged textures and buffers alive now.
+  std::int64_t bytes() const { return mBytes->load(); }
+
+  /// While alive, objects created on this thread are charged to `account` (scopes nest: the
+  /// innermost wins; the previous account is current again afterwards).
+  class Charge {
+  public:
+    explicit Charge(const MemoryAccount& account);
+    ~Charge();
+    Charge(const Charge&) = delete;
+    Charge& operator=(const Charge&) = delete;
+
+  private:
+    std::shared_ptr<std::atomic<std::int64_t>> mPrevious;
+  };
+
+private:
+  std::shared_ptr<std::atomic<std::int64_t>> mBytes;
+};
+
+namespace detail {
+/// Bytes charged to the account that was current when charge() ran; released on destruction.
+class ChargedBytes {
+public:
+  ChargedBytes() = default;
+  ChargedBytes(ChargedBytes&& o) noexcept : mAccount(std::move(o.mAccount)), mBytes(std::exchange(o.mBytes, 0)) {}
+  ChargedBytes& operator=(ChargedBytes&& o) noexcept {
+    if (this != &o) {
+      release();
+      mAccount = std::move(o.mAccount);
+      mBytes = std::exchange(o.mBytes, 0);
+    }
+    return *this;
+  }
+  ChargedBytes(const ChargedBytes&) = delete;
+  ChargedBytes& operator=(const ChargedBytes&) = delete;
+  ~ChargedBytes() { release(); }
+  void charge(std::int64_t bytes);  ///< to the current account, if any
+  void release();
+
+private:
+  std::shared_ptr<std::atomic<std::int64_t>> mAccount;
+  std::int64_t mBytes = 0;
+};
+}  // namespace detail
 
 class Handle {
 public:
@@ -51,6 +109,7 @@ public:
 private:
   void destroy() override;
   size_t mSize = 0;
+  detail::ChargedBytes mCharge;
 };
 
 struct TextureDesc {
@@ -86,10 +145,15 @@ public:
   static Texture layerView(std::string_view label, const Texture& array, int layer);
   /// Reads a whole level (all layers) as floats/bytes in `format`/`type`.
   void read(GLenum format, GLenum type, void* out, size_t bytes, int level = 0) const;
+  /// Bytes of its storage: every level and layer at the bits per texel the driver reports for
+  /// the format (red, green, blue, alpha, depth and stencil sizes of level 0).
+  size_t storageBytes() const { return mStorageBytes; }
 
 private:
   void destroy() override;
   TextureDesc mDesc;
+  size_t mStorageBytes = 0;
+  detail::ChargedBytes mCharge;
 };
 
 /// Sampling state kept apart from any texture: bound to a unit with glBindSampler, it overrides

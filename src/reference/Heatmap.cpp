@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -53,6 +54,32 @@ ColorImage errorHeatmap(std::span<const float> v, std::span<const float> vRef, s
                        base ? base->height : 0, width, height));
   PN_CHECK(options.fullScaleDeltaV > 0.0f && options.fullScaleDeltaV <= 1.0f,
            fmt::format("metrics: heatmap full scale {} must be in (0, 1]", options.fullScaleDeltaV));
+  PN_CHECK(options.dilatePx >= 0 && options.dilatePx <= kMaxHeatmapDilatePx,
+           fmt::format("metrics: heatmap dilation {} px must be in [0, {}]", options.dilatePx, kMaxHeatmapDilatePx));
+
+  // Per pixel the error it shows: its own ΔV (0 outside the mask), or with dilation the one of
+  // largest magnitude in its neighbourhood, separably (rows, then columns).
+  const auto index = [&](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x); };
+  std::vector<float> shown(v.size(), 0.0f);
+  for (size_t i = 0; i < v.size(); ++i)
+    if (mask.empty() || mask[i] != 0) shown[i] = v[i] - vRef[i];
+  const int r = options.dilatePx;
+  if (r > 0) {
+    auto larger = [](float a, float b) { return std::abs(b) > std::abs(a) ? b : a; };
+    std::vector<float> rows(shown.size(), 0.0f);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        float e = 0.0f;
+        for (int k = std::max(0, x - r); k <= std::min(width - 1, x + r); ++k) e = larger(e, shown[index(k, y)]);
+        rows[index(x, y)] = e;
+      }
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        float e = 0.0f;
+        for (int k = std::max(0, y - r); k <= std::min(height - 1, y + r); ++k) e = larger(e, rows[index(x, k)]);
+        shown[index(x, y)] = e;
+      }
+  }
 
   ColorImage image{width, height, std::vector<uint8_t>(4 * v.size())};
   for (int y = 0; y < height; ++y) {
@@ -67,9 +94,8 @@ ColorImage errorHeatmap(std::span<const float> v, std::span<const float> vRef, s
         luma = 255.0f * std::clamp(vRef[in], 0.0f, 1.0f);
       }
       const float grey = kGreyFloor + kGreyContrast * luma;
-      const float delta = v[in] - vRef[in];
-      const bool measured = mask.empty() || mask[in] != 0;
-      const float t = measured ? std::min(1.0f, std::abs(delta) / options.fullScaleDeltaV) : 0.0f;
+      const float delta = shown[in];
+      const float t = std::min(1.0f, std::abs(delta) / options.fullScaleDeltaV);
       const uint8_t* tint = delta > 0.0f ? kLeakColor : kOverDarkColor;
       for (int c = 0; c < 3; ++c) image.rgba[4 * out + static_cast<size_t>(c)] = toByte(grey + t * (tint[c] - grey));
       image.rgba[4 * out + 3] = 255;

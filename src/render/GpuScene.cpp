@@ -46,7 +46,7 @@ GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
     vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
-  std::vector<gpu::ObjectGpu> objects;
+  std::vector<gpu::ObjectGpu>& objects = mObjectData;
   for (const Object& o : scene.objects) {
     const Mesh& m = scene.meshes[o.mesh];
     const Material& mat = scene.materials[o.material];
@@ -62,7 +62,7 @@ GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
   }
   mVertices = gl::Buffer("scene vertices", vertices.size() * sizeof(Vertex), vertices.data(), 0);
   mIndices = gl::Buffer("scene indices", indices.size() * sizeof(uint32_t), indices.data(), 0);
-  mObjects = gl::Buffer("scene objects", objects.size() * sizeof(gpu::ObjectGpu), objects.data(), 0);
+  mObjects = gl::Buffer("scene objects", objects.size() * sizeof(gpu::ObjectGpu), objects.data(), GL_DYNAMIC_STORAGE_BIT);
   const GLuint vao = mVao.id();
   glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao, mIndices.id());
@@ -73,6 +73,17 @@ GpuScene::GpuScene(const Scene& scene) : mVao("scene vao") {
   glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
   glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
   for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(vao, a, 0);
+}
+
+void GpuScene::setTransforms(const Scene& scene) {
+  PN_CHECK(scene.objects.size() == mObjectData.size(),
+           fmt::format("GpuScene::setTransforms: {} objects for a scene of {}", scene.objects.size(), mObjectData.size()));
+  for (size_t i = 0; i < mObjectData.size(); ++i) {
+    const glm::mat4& m = scene.objects[i].worldFromObject;
+    mObjectData[i].worldFromObject = m;
+    mObjectData[i].normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(m)));
+  }
+  mObjects.upload(mObjectData.data(), mObjectData.size() * sizeof(gpu::ObjectGpu));
 }
 
 void GpuScene::draw(GLuint program) const {
@@ -90,6 +101,7 @@ void GpuScene::draw(GLuint program) const {
 
 std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
   std::vector<CasterMesh> out;
+  const std::vector<bool> moving = scene.animation.movingObjects(scene.objects.size());
   for (size_t i = 0; i < mDraws.size(); ++i) {
     const Draw& d = mDraws[i];
     if (!d.castsShadow || d.indexCount == 0) continue;
@@ -106,6 +118,7 @@ std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
     m.baseVertex = d.baseVertex;
     m.worldFromObject = o.worldFromObject;
     m.objectBounds = scene.meshes[o.mesh].bounds();
+    m.dynamic = moving[i];  // animated objects are dynamic casters (cached maps keep the rest)
     if (mat.alphaMask && mat.baseColorTexture >= 0) {
       m.alphaTexture = d.texture;
       m.alphaCutoff = mat.alphaCutoff;

@@ -91,6 +91,14 @@ struct Renderer::Impl {
     size = s;
   }
 
+  /// The scene's casters (and the bounds of the objects that only receive) to the core.
+  void sendCasters() {
+    std::vector<Aabb> receivers;
+    for (const Object& o : scene.objects)
+      if (!o.castsShadow) receivers.push_back(scene.meshes[o.mesh].bounds().transformed(o.worldFromObject));
+    shadows.setCasters(gpuScene->casterMeshes(scene), receivers);
+  }
+
   ShadowCamera camera() const {
     return ShadowCamera::fromCamera(scene.camera, static_cast<float>(size.x) / static_cast<float>(size.y));
   }
@@ -120,11 +128,23 @@ void Renderer::setScene(const Scene& scene) {
   scene.validate();
   mImpl->scene = scene;
   mImpl->gpuScene = std::make_unique<GpuScene>(mImpl->scene);
-  std::vector<Aabb> receivers;
-  for (const Object& o : mImpl->scene.objects)
-    if (!o.castsShadow) receivers.push_back(mImpl->scene.meshes[o.mesh].bounds().transformed(o.worldFromObject));
-  mImpl->shadows.setCasters(mImpl->gpuScene->casterMeshes(mImpl->scene), receivers);
+  mImpl->sendCasters();
   mImpl->shadows.setCasterGeometry(&mImpl->scene);
+}
+
+void Renderer::setPose(const Scene& posed) {
+  Impl& im = *mImpl;
+  PN_CHECK(im.gpuScene, "setPose() before setScene()");
+  PN_CHECK(posed.objects.size() == im.scene.objects.size(),
+           fmt::format("setPose: {} objects for a scene of {}", posed.objects.size(), im.scene.objects.size()));
+  setCameraAndLights(posed.camera, posed.lights);
+  bool moved = false;
+  for (size_t i = 0; i < posed.objects.size() && !moved; ++i)
+    moved = posed.objects[i].worldFromObject != im.scene.objects[i].worldFromObject;
+  if (!moved) return;
+  for (size_t i = 0; i < posed.objects.size(); ++i) im.scene.objects[i].worldFromObject = posed.objects[i].worldFromObject;
+  im.gpuScene->setTransforms(im.scene);
+  im.sendCasters();
 }
 
 void Renderer::setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter) {
@@ -279,9 +299,9 @@ const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 std::vector<DebugImage> Renderer::debugImages(size_t light) const {
   std::vector<DebugImage> core = mImpl->shadows.debugImages(light);
   std::vector<DebugImage> out = {core.front(),  // the visibility
-                                 {"gbuffer-depth", &mImpl->depth},
-                                 {"gbuffer-normal", &mImpl->normal},
-                                 {"gbuffer-albedo", &mImpl->albedo}};
+                                 {"gbuffer-depth", &mImpl->depth, "camera depth, reversed-Z: 1 = near plane, 0 = infinitely far"},
+                                 {"gbuffer-normal", &mImpl->normal, "world-space shading normal, x y z in [−1, 1]"},
+                                 {"gbuffer-albedo", &mImpl->albedo, "albedo, linear RGB"}};
   out.insert(out.end(), core.begin() + 1, core.end());
   return out;
 }

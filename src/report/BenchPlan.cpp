@@ -177,9 +177,10 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
   BenchPlan contact{.name = "contact", .scenes = {"boxes", "pen", "grazing"}, .projections = {"uniform"},
                     .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2, {}}}};
   if (quick) {
-    // Seconds, not minutes: small images and maps, few frames, a noisier reference, two scenes
-    // and two projections (enough for every chart, table and the grid).
-    matrix.scenes = {"boxes", "pen"};
+    // Seconds, not minutes: small images and maps, few frames, a noisier reference, the scenes
+    // of the recommendation's situations (Recommendation.h) and two projections (enough for
+    // every chart, table, recommendation and the grid).
+    matrix.scenes = {"boxes", "pen", "fence", "city"};
     matrix.projections = {"uniform", "csm"};
     settings.width = 96;
     settings.height = 64;

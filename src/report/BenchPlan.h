@@ -3,6 +3,8 @@
 // ParamDesc key (light.size included), and the settings every configuration shares. Pure C++
 // (no GL): the expansion into configurations is unit-tested (tests/unit/BenchReportTest.cpp).
 #include <penumbra/Params.h>
+#include <penumbra/Reference.h>
+#include <penumbra/Renderer.h>
 
 #include <cstdint>
 #include <optional>
@@ -53,10 +55,13 @@ struct BenchConfig {
   std::string paramsText() const;
 };
 
-/// Settings shared by every configuration of a run.
+/// Settings shared by every configuration of a run. The defaults are those of `render` and
+/// `compare` (RenderOptions, the scene's ShadowSettings, ReferenceOptions), so that a row's
+/// numbers are what `compare` gives for the same technique (BenchRow's compare command).
 struct BenchSettings {
-  int width = 256, height = 144;  ///< image size (pixels)
-  int shadowMapSize = 1024;       ///< texels per side of each shadow map
+  int width = RenderOptions{}.width, height = RenderOptions{}.height;  ///< image size (pixels)
+  /// Texels per side of each shadow map; unset = each scene's own (ShadowSettings::mapSize).
+  std::optional<int> shadowMapSize;
   int warmupFrames = 1;           ///< untimed frames first: the first one compiles the shaders
   /// Timed frames per configuration (median and spread over them). Nine keeps the median steady
   /// on a loaded machine (llvmpipe shares the CPU with everything else) at ~1 s per configuration.
@@ -64,7 +69,7 @@ struct BenchSettings {
   /// A configuration stops after this many seconds of timed frames (at least one frame is
   /// always timed): a technique that is very slow on this machine does not hold up the run.
   double maxSecondsPerConfig = 4.0;
-  int referenceSamples = 256;     ///< light samples per pixel of the ray-traced reference
+  int referenceSamples = ReferenceOptions{}.samples;  ///< light samples per pixel of the reference
   bool useCache = true;           ///< on-disk reference cache
   /// Cap of the cache folder in bytes (ReferenceOptions::cacheMaxBytes); unset = the default.
   std::optional<std::uintmax_t> cacheMaxBytes;

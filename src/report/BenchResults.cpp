@@ -32,6 +32,24 @@ TimeStats timeStats(std::span<const double> samplesMs) {
   return {quantile(s, 0.5), quantile(s, kLow), quantile(s, kHigh)};
 }
 
+TimeStats shadowCostStats(const FrameSamples& frames) {
+  std::vector<double> sums;
+  for (const auto& [pass, samples] : frames) {
+    if (std::find_if(std::begin(kShadowCostPasses), std::end(kShadowCostPasses),
+                     [&](const char* p) { return pass == p; }) == std::end(kShadowCostPasses))
+      continue;
+    if (sums.size() < samples.size()) sums.resize(samples.size(), 0.0);
+    for (size_t i = 0; i < samples.size(); ++i) sums[i] += samples[i];
+  }
+  return timeStats(sums);
+}
+
+double BenchRow::oneOffSeconds() const {
+  double s = 0.0;
+  for (const OneOffCost& c : oneOff) s += c.seconds;
+  return s;
+}
+
 TimeStats BenchRow::time(std::string_view pass) const {
   for (const PassStats& p : passes)
     if (p.name == pass) return p.ms;
@@ -45,6 +63,31 @@ std::vector<std::string> BenchResults::passNames() const {
       if (p.name != kTotalPass && std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
   names.emplace_back(kTotalPass);
   return names;
+}
+
+namespace {
+
+// A word as a POSIX shell reads it: as is when it has only safe characters, else single-quoted.
+std::string shellWord(const std::string& word) {
+  const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                            "0123456789._/:,=+-") == std::string::npos;
+  if (safe) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+std::string compareCommand(const BenchResults& results, const BenchRow& row) {
+  const BenchConfig& c = row.config;
+  std::string cmd = fmt::format("penumbra compare --scene {} --projection {} --filter {}", shellWord(c.scene),
+                                shellWord(c.projection), shellWord(c.filter));
+  for (const auto& [key, value] : c.params) cmd += " --set " + shellWord(key + "=" + value);
+  cmd += fmt::format(" --size {}x{} --shadow-map {} --samples {}", row.width, row.height, row.shadowMapSize,
+                     results.settings.referenceSamples);
+  if (!results.settings.camera.empty()) cmd += " --camera " + shellWord(results.settings.camera);
+  return cmd;
 }
 
 double loadAverage() {
@@ -77,12 +120,13 @@ MachineInfo describeMachine() {
 std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y) {
   std::vector<size_t> order(x.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  // Ascending x, ties by ascending y: a point is on the front when its y beats every earlier one.
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
+  // Ascending x, ties by ascending y, then index: a point is on the front when its y beats every
+  // earlier one, or when it repeats the last front point exactly (neither dominates the other).
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
   std::vector<size_t> front;
   double bestY = std::numeric_limits<double>::infinity();
   for (const size_t i : order)
-    if (y[i] < bestY) {
+    if (y[i] < bestY || (!front.empty() && y[i] == y[front.back()] && x[i] == x[front.back()])) {
       front.push_back(i);
       bestY = y[i];
     }

@@ -4,8 +4,10 @@
 // micro-benchmarks, and the machine. Written as CSV/JSON (ResultsIO.h) and HTML (HtmlReport.h).
 #include "report/BenchPlan.h"
 
+#include <penumbra/Filter.h>
 #include <penumbra/Metrics.h>
 
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,18 +32,43 @@ struct PassStats {
   TimeStats ms;
 };
 
+/// The passes a technique runs every frame (the core's: docs/design.md), "contact" only when
+/// contact shadows are on: their sum is its frame cost of shadowing. The G-buffer and lit passes
+/// are the same for every technique.
+inline constexpr const char* kShadowCostPasses[] = {"shadow", "prefilter", "visibility", "contact"};
+
+/// Per pass, the time of each timed frame (ms), in frame order.
+using FrameSamples = std::vector<std::pair<std::string, std::vector<double>>>;
+
+/// The frame cost of shadowing: per timed frame, the sum of the kShadowCostPasses it ran; then
+/// the median and p10/p90 of those sums (timeStats). Quantiles of the per-frame sum, not sums
+/// of per-pass quantiles: a frame whose shadow pass was slow counts once, as a slow frame.
+TimeStats shadowCostStats(const FrameSamples& frames);
+
+/// Bytes per MiB: shadow_memory_mb is in MiB (2²⁰ bytes).
+inline constexpr double kBytesPerMiB = 1024.0 * 1024.0;
+
 struct BenchRow {
   BenchConfig config;
   float lightSize = 0.0f;  ///< the light size in effect (scene's own or swept)
   int width = 0, height = 0, shadowMapSize = 0;
   int frames = 0;  ///< timed frames actually run (fewer than asked when the time cap hit)
   std::vector<PassStats> passes;  ///< in frame order, then kTotalPass
+  FrameSamples frameMs;           ///< the samples behind `passes` (no total)
+  TimeStats shadowCost;           ///< shadowCostStats(frameMs): the whole per-frame cost
+  /// GPU memory the technique keeps (Shadows::techniqueMemoryBytes) after the last timed frame.
+  std::size_t memoryBytes = 0;
+  /// Work done once and kept while the casters do not move (Filter::oneOffCosts): in no frame.
+  std::vector<OneOffCost> oneOff;
   VisibilityMetrics metrics;
   /// Image files relative to the output folder; empty when the row is not in the grid.
   std::string imagePath, heatmapPath, referencePath;
 
   /// Median/spread of `pass`; zeros when the row has no such pass.
   TimeStats time(std::string_view pass) const;
+  double memoryMiB() const { return static_cast<double>(memoryBytes) / kBytesPerMiB; }
+  /// Seconds of every one-off cost together (0 when there are none).
+  double oneOffSeconds() const;
 };
 
 /// A configuration that did not produce a row.
@@ -89,13 +116,19 @@ struct BenchResults {
   std::vector<std::string> passNames() const;
 };
 
+/// The `penumbra compare` command line that renders `row`'s configuration on the same pixels
+/// with the same map and reference samples: it prints the row's metrics (to every digit: the
+/// frames are deterministic) and one frame's pass times. Text that a shell would split is quoted.
+std::string compareCommand(const BenchResults& results, const BenchRow& row);
+
 /// Fills cpu, os, hardwareThreads, date and loadStart (not the GL fields or the command).
 MachineInfo describeMachine();
 /// The 1-minute load average, or -1 where /proc/loadavg cannot be read.
 double loadAverage();
 
 /// Indices of the rows on the Pareto front of (x, y), both minimised: no other point is at
-/// least as good in both and better in one. Ascending x.
+/// least as good in both and better in one (exact duplicates of a front point are on it too).
+/// Ascending x.
 std::vector<size_t> paretoFront(std::span<const double> x, std::span<const double> y);
 
 }  // namespace penumbra::report

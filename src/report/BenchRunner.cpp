@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -72,7 +73,6 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   results.machine.glVendor = context.info().vendor;
 
   Renderer renderer;
-  const RenderOptions render{.width = set.width, .height = set.height, .shadowMapSize = set.shadowMapSize, .debugView = 0};
   std::optional<std::string> currentScene, currentLight;
   std::unique_ptr<ReferenceTracer> tracer;
   struct FrameReference {
@@ -97,6 +97,8 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
       currentLight = light;
     }
+    const RenderOptions render{.width = set.width, .height = set.height,
+                               .shadowMapSize = set.shadowMapSize.value_or(s.scene.shadow.mapSize), .debugView = 0};
     const auto configStart = Clock::now();
     try {
       renderer.setTechnique(std::move(s.projection), std::move(s.filter));
@@ -140,9 +142,15 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.lightSize = renderer.scene().light().size;
       row.width = set.width;
       row.height = set.height;
-      row.shadowMapSize = set.shadowMapSize;
+      row.shadowMapSize = render.shadowMapSize;
       row.frames = frames;
-      for (const std::string& name : samples.order) row.passes.push_back({name, timeStats(samples.ms[name])});
+      for (const std::string& name : samples.order) {
+        row.passes.push_back({name, timeStats(samples.ms[name])});
+        if (name != kTotalPass) row.frameMs.emplace_back(name, samples.ms[name]);
+      }
+      row.shadowCost = shadowCostStats(row.frameMs);
+      row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
+      row.oneOff = renderer.filter().oneOffCosts();
       row.metrics = cmp.metrics;
       if (c.inGrid) {
         const std::string scene = fileStem(renderer.scene().name);
@@ -160,9 +168,9 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       }
       results.rows.push_back(std::move(row));
       if (options.verbose)
-        std::fprintf(stderr, "bench: %s %s %s %s: visibility %.2f ms, RMSE %.4f (%d frames, %.1f s)\n", c.scene.c_str(),
-                     c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
-                     results.rows.back().time("visibility").median, cmp.metrics.rmse, frames,
+        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f (%d frames, %.1f s)\n",
+                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
+                     results.rows.back().shadowCost.median, results.rows.back().memoryMiB(), cmp.metrics.rmse, frames,
                      std::chrono::duration<double>(Clock::now() - configStart).count());
     } catch (const std::exception& e) {
       results.skipped.push_back({c, e.what(), true});
@@ -170,9 +178,13 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     }
     bar.advance(1);
   }
+  // Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
+  int microMapSize = set.shadowMapSize.value_or(0);
+  for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
+  if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
   const bool cpuClock = context.info().softwareRenderer;
-  results.micro = runMicroBenchmarks(set.shadowMapSize, set.microRepetitions, cpuClock);
-  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = set.shadowMapSize,
+  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
+  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,
                                                 .rounds = set.microRepetitions, .cpuClock = cpuClock}))
     results.micro.push_back(std::move(m));
   for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));

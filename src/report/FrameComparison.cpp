@@ -47,7 +47,8 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     for (size_t i = 0; i < lights.size(); ++i)
       refVisibility.push_back(c.lights[i].castsShadow ? refs[i].visibility : c.lights[i].visibility);
     c.reference = renderer.shadeWithVisibility(refVisibility);
-    c.heatmap = errorHeatmap(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width, gbuffer.height, &c.technique);
+    c.heatmap = errorHeatmap(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width, gbuffer.height, &c.technique,
+                             kLabHeatmap);
   }
   return c;
 }

@@ -11,6 +11,11 @@
 
 namespace penumbra::report {
 
+/// The heatmaps the lab writes (compare's heatmap.png and sheet, the bench's grid) show each
+/// error over a 3 × 3 spot (HeatmapOptions::dilatePx): a one-pixel leak on a thin fence slat
+/// stays visible at the default size. The metrics and the EXR files are per pixel.
+inline constexpr HeatmapOptions kLabHeatmap{.fullScaleDeltaV = HeatmapOptions{}.fullScaleDeltaV, .dilatePx = 1};
+
 /// One light of the frame against its reference.
 struct LightComparison {
   size_t index = 0;
@@ -28,7 +33,7 @@ struct FrameComparison {
   VisibilityMetrics metrics;  ///< combined V against combined V_ref
   std::vector<LightComparison> lights;
   /// Filled when images are asked for: the frame's colour, the same frame lit with every light's
-  /// V_ref, and the signed error heatmap of the combination over the technique's image.
+  /// V_ref, and the signed error heatmap of the combination over the technique's image (kLabHeatmap).
   ColorImage technique, reference, heatmap;
 };
 

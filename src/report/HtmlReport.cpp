@@ -1,5 +1,6 @@
 #include "report/HtmlReport.h"
 
+#include "report/ChoosingPage.h"
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 
@@ -24,18 +25,19 @@ td small { color: #777; }
 .grid td, .grid th { text-align: center; } .grid img { display: block; image-rendering: pixelated; }
 .note { color: #555; } .front { font-weight: bold; } .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: middle; }
 code { background: #f4f4f4; padding: 1px 4px; } .wide { overflow-x: auto; } td.why { white-space: pre-wrap; max-width: 640px; } td.wrap { white-space: normal; }
+td.cmd, th.cmd { white-space: normal; min-width: 300px; max-width: 480px; }
+/* the recommendation: headings and names wrap so that the command column fits a 1280-pixel window */
+table.picks th { white-space: normal; } table.picks td.wrap { min-width: 120px; }
 )";
+
+// Image-grid thumbnails are shown at most this wide (pixels); a click opens the full picture.
+constexpr int kThumbWidthPx = 320;
 
 std::string esc(std::string_view s) { return escapeXml(s); }
 
-// Milliseconds with about three significant digits, never in exponent form.
-std::string msText(double v) {
-  const double a = std::abs(v);
-  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
-}
 
 std::string ms(const TimeStats& t) {
-  return fmt::format("{} <small>{}–{}</small>", msText(t.median), msText(t.p10), msText(t.p90));
+  return fmt::format("{} <small>{}–{}</small>", numberText(t.median), numberText(t.p10), numberText(t.p90));
 }
 
 // Passes run the same way whatever the technique (docs/design.md): left out of the ratio table.
@@ -53,45 +55,61 @@ std::string header(const BenchResults& r) {
   const BenchSettings& s = r.settings;
   size_t refused = 0, failed = 0;
   for (const SkippedConfig& k : r.skipped) (k.failed ? failed : refused)++;
-  std::string h = "<h1>Penumbra bench: shadow techniques, quality against cost</h1>\n";
+  std::string h = "<h1>Penumbra bench: shadow techniques, quality against whole cost and memory</h1>\n";
   h += fmt::format(
       "<p>{} configurations measured, {} refused as unsupported pairs, {} failed; {:.0f} s in all. Raw data: "
       "<a href=\"results.csv\">results.csv</a>, <a href=\"results.json\">results.json</a>.</p>\n",
       r.rows.size(), refused, failed, r.seconds);
   h += fmt::format(
       "<p>Each configuration: {} warm-up frame(s) (the first compiles the shaders), then up to {} timed frames "
-      "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}², "
+      "(at most {:g} s); times are per-pass medians with the p10–p90 spread. Images {}×{}, shadow maps {}, "
       "reference {} light samples per pixel (Embree). Clock: <b>{}</b> on <b>{}</b>; compare times only as ratios "
       "within one run. Load average {:.2f} at the start, {:.2f} at the end, on {} hardware threads: other work on "
       "the machine inflates times and makes them drift.</p>\n",
-      s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height, s.shadowMapSize, s.referenceSamples,
+      s.warmupFrames, s.timedFrames, s.maxSecondsPerConfig, s.width, s.height,
+      s.shadowMapSize ? fmt::format("{}²", *s.shadowMapSize) : std::string("at each scene's own size"), s.referenceSamples,
       esc(m.clock), esc(m.glRenderer), m.loadStart, m.loadEnd, m.hardwareThreads);
   if (!s.camera.empty())
     h += fmt::format("<p>Camera: <code>--camera {}</code> (position : target : vertical field of view in degrees), "
                      "not the scene's own.</p>\n",
                      esc(s.camera));
-  h += "<p class=\"note\">Contents: <a href=\"#quality\">1. quality vs cost</a> · <a href=\"#light\">2. cost vs light "
+  h += "<p class=\"note\">Contents: <a href=\"#choose\">which technique?</a> · <a href=\"#quality\">1. quality vs whole cost and memory</a> · <a href=\"#light\">2. cost vs light "
        "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
   return h;
 }
 
-std::string qualitySection(const BenchResults& r) {
-  std::string h = "<h2 id=\"quality\">1. Quality against cost</h2>\n<p>One point per configuration: the RMSE of its "
-                  "visibility V against the ray-traced V<sub>ref</sub> (pixels that face the light) against the median "
-                  "time of its visibility pass, the only pass that differs between filters. Colour: filter; marker: "
-                  "projection; ringed and joined by the dashed staircase: the Pareto front (no other configuration is "
-                  "both faster and more accurate). Hover a point for its numbers.</p>\n";
-  h += "<div class=\"charts\">\n";
-  for (const QualityCostChart& q : qualityCostCharts(r)) {
-    h += "<figure>" + svgChart(q.chart) + "<figcaption>Pareto front: ";
-    for (size_t k = 0; k < q.frontRows.size(); ++k) {
-      const BenchRow& row = r.rows[q.frontRows[k]];
-      h += fmt::format("{}<span class=\"front\">{}</span> ({:.3g} ms, RMSE {:.4f})", k ? " → " : "", esc(rowLabel(row)),
-                       row.time(kCostPass).median, row.metrics.rmse);
-    }
-    h += "</figcaption></figure>\n";
+std::string frontText(const BenchResults& r, const std::vector<size_t>& front, bool memory) {
+  std::string h;
+  for (size_t k = 0; k < front.size(); ++k) {
+    const BenchRow& row = r.rows[front[k]];
+    h += fmt::format("{}<span class=\"front\">{}</span> ({}, RMSE {:.4f})", k ? " → " : "", esc(rowLabel(row)),
+                     memory ? numberText(row.memoryMiB()) + " MiB" : numberText(row.shadowCost.median) + " ms",
+                     row.metrics.rmse);
   }
-  return h + "</div>\n";
+  return h;
+}
+
+std::string qualitySection(const BenchResults& r) {
+  std::string h = fmt::format(
+      "<h2 id=\"quality\">1. Quality against whole cost and memory</h2>\n<p>One point per configuration: the RMSE of "
+      "its visibility V against the ray-traced V<sub>ref</sub> (pixels that face the light) against its <b>whole cost</b>: "
+      "per frame the {} passes added up, then the median over the timed frames (the G-buffer and lit passes are the "
+      "same for every technique and left out). Beside it, the same errors against the <b>GPU memory</b> the technique "
+      "keeps (every map, moment, mip, summed-area and pyramid texture and buffer: docs/bench.md). Colour: filter; "
+      "marker: projection; ringed and joined by the dashed staircase: the Pareto front (no other configuration is both "
+      "cheaper and more accurate). sdf's bake is in no frame: its points carry it as a one-off cost, valid only while "
+      "the casters do not move. Below each pair, a bar per configuration shows where its time goes. Hover for numbers."
+      "</p>\n",
+      kCostName);
+  for (const SceneCharts& q : sceneCharts(r)) {
+    h += fmt::format("<h3>{}</h3>\n<div class=\"charts\">\n", esc(q.scene));
+    h += "<figure>" + svgChart(q.cost) + "<figcaption>Whole-cost Pareto front: " + frontText(r, q.costFront, false) +
+         "</figcaption></figure>\n";
+    h += "<figure>" + svgChart(q.memory) + "<figcaption>Memory Pareto front: " + frontText(r, q.memoryFront, true) +
+         "</figcaption></figure>\n</div>\n";
+    h += "<div class=\"wide\">" + svgBarChart(q.passes) + "</div>\n";
+  }
+  return h;
 }
 
 std::string lightSection(const BenchResults& r) {
@@ -99,12 +117,14 @@ std::string lightSection(const BenchResults& r) {
   const std::vector<LightSizeCharts> charts = lightSizeCharts(r);
   if (charts.empty())
     return h + "<p class=\"note\">This run swept no light size; add <code>--sweep light.size=0.02:0.2:5</code>.</p>\n";
-  h += "<p>The lecture's claim: PCSS's blocker search and filter grow with the penumbra (the light size), so its cost "
-       "grows; the pre-filtered methods (vssm, msm-soft: one summed-area-table lookup per region) and the distance "
-       "field (sdf) pay the same whatever the size. Note that with fixed tap counts (pcss.blockerSamples, "
-       "pcss.filterSamples) PCSS does the same arithmetic at every size: only the spread of its taps over the map grows, "
-       "and whether that costs time depends on the machine's texture caches. Every technique run at two or more light "
-       "sizes in one plan is drawn; bars are the p10–p90 spread over the timed frames.</p>\n";
+  h += "<p>A claim from the course these techniques are taught from (GAMES202, Lingqi Yan, UC Santa Barbara, lecture 4 "
+       "&ldquo;Real-Time Shadows 2&rdquo;): PCSS's blocker search and filter look at every texel inside a region, so "
+       "&ldquo;softer &rarr; larger filtering region &rarr; slower&rdquo;; the pre-filtered methods (vssm, msm-soft: one "
+       "summed-area-table lookup per region) and the distance field (sdf) pay the same whatever the size. Here it is "
+       "tested on the whole cost. With fixed tap counts (pcss.blockerSamples, pcss.filterSamples) PCSS does the same "
+       "arithmetic at every size: only the spread of its taps over the map grows, and whether that costs time depends on "
+       "the machine's texture caches. Every technique run at two or more light sizes in one plan is drawn; bars are the "
+       "p10–p90 spread over the timed frames.</p>\n";
   for (const LightSizeCharts& l : charts) h += "<div class=\"charts\">" + svgChart(l.cost) + svgChart(l.error) + "</div>\n";
   return h;
 }
@@ -120,13 +140,20 @@ std::string gridSection(const BenchResults& r) {
     std::string rows;
     for (const BenchRow& row : r.rows) {
       if (row.config.scene != scene || row.imagePath.empty()) continue;
+      // Thumbnails at most kThumbWidthPx wide; each opens the full-size picture.
+      const int thumbW = std::min(row.width, kThumbWidthPx);
+      const int thumbH = static_cast<int>(std::lround(static_cast<double>(row.height) * thumbW / std::max(row.width, 1)));
       auto img = [&](const std::string& path, const std::string& alt) {
-        return fmt::format("<td><img src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}\"></td>", esc(path), row.width,
-                           row.height, esc(alt));
+        return fmt::format("<td><a href=\"{0}\"><img src=\"{0}\" width=\"{1}\" height=\"{2}\" alt=\"{3}\" title=\"{3}: "
+                           "click for {4}×{5}\"></a></td>",
+                           esc(path), thumbW, thumbH, esc(alt), row.width, row.height);
       };
-      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %<br>{} {:.3g} ms</td>",
+      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %"
+                          "<br>whole cost {} ms<br>memory {} MiB{}</td>",
                           esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
-                          row.metrics.umbraLeakPct, row.metrics.overDarkPct, kCostPass, row.time(kCostPass).median);
+                          row.metrics.umbraLeakPct, row.metrics.overDarkPct, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
+                          row.oneOff.empty() ? "" : fmt::format("<br>+ {:.3g} s bake<br><small>(static casters only)</small>",
+                                                                row.oneOffSeconds()));
       rows += img(row.imagePath, row.config.filter + " " + row.config.projection) +
               img(row.referencePath, "reference") + img(row.heatmapPath, "error heatmap") + "</tr>\n";
     }
@@ -208,17 +235,20 @@ std::string ratioTable(const BenchResults& r) {
 
 std::string resultsTables(const BenchResults& r) {
   const std::vector<std::string> passes = r.passNames();
-  std::string h = "<h3>All configurations</h3>\n<p>Times: median ms, p10–p90 in small print. Sorted by " +
-                  std::string(kCostPass) + " time per scene.</p>\n";
+  std::string h = "<h3>All configurations</h3>\n<p>Times: median ms, p10–p90 in small print. Whole cost: shadow + "
+                  "prefilter + visibility per frame, its median and p10–p90 over the frames. Memory: what the technique "
+                  "keeps on the GPU. One-off: work done once and kept while the casters do not move. Sorted by whole "
+                  "cost per scene.</p>\n";
   for (const std::string& scene : scenesInOrder(r)) {
     std::vector<const BenchRow*> rows;
     for (const BenchRow& row : r.rows)
       if (row.config.scene == scene) rows.push_back(&row);
     std::stable_sort(rows.begin(), rows.end(), [](const BenchRow* a, const BenchRow* b) {
-      return a->time(kCostPass).median < b->time(kCostPass).median;
+      return a->shadowCost.median < b->shadowCost.median;
     });
     h += "<h4>" + esc(scene) + "</h4>\n<div class=\"wide\"><table><tr><th class=\"l\">filter</th><th class=\"l\">projection</th>"
-         "<th class=\"l\">params</th><th>light size</th><th>frames</th>";
+         "<th class=\"l\">params</th><th>light size</th><th>frames</th><th>whole cost</th><th>memory MiB</th>"
+         "<th title=\"valid for static casters only\">one-off s</th>";
     for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
     h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th title=\"leaking pixels inside the reference's umbra: light "
          "bleeding rather than an edge's shape\">umbra leak %</th><th>over-dark %</th></tr>\n";
@@ -226,6 +256,8 @@ std::string resultsTables(const BenchResults& r) {
       h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{:g}</td><td>{}</td>",
                        esc(row->config.filter), esc(row->config.projection), esc(row->config.paramsText()),
                        row->lightSize, row->frames);
+      h += fmt::format("<td><b>{}</b></td><td>{:.3g}</td><td>{}</td>", ms(row->shadowCost), row->memoryMiB(),
+                       row->oneOff.empty() ? "—" : fmt::format("{:.3g}", row->oneOffSeconds()));
       for (const std::string& p : passes) h += "<td>" + ms(row->time(p)) + "</td>";
       h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n",
                        row->metrics.rmse, row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.umbraLeakPct,
@@ -269,7 +301,7 @@ std::string htmlReport(const BenchResults& r) {
                   "<link rel=\"icon\" href=\"data:,\"><style>";
   h += kStyle;
   h += "</style></head><body>\n";
-  h += header(r) + qualitySection(r) + lightSection(r) + gridSection(r);
+  h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + gridSection(r);
   h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + ratioTable(r) + resultsTables(r) + skippedTable(r) + machineTable(r);
   return h + "</body></html>\n";
 }

@@ -1,6 +1,7 @@
 #pragma once
 // report.html: one self-contained page (no script, no network; the grid's PNGs lie beside it in
-// images/) that a user reads to choose a technique: 1. quality vs cost with the Pareto front,
+// images/) that a user reads to choose a technique: the recommendation (ChoosingPage.h),
+// 1. quality vs whole cost and vs memory with their Pareto fronts, where the time goes,
 // 2. cost vs light size, 3. the image grid per scene (technique | reference | heatmap),
 // 4. tables (micro-benchmarks such as the SAT build against a copy, cost ratios such as msm/vsm,
 // every row, skipped configurations, the machine).

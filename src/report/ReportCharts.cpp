@@ -5,7 +5,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace penumbra::report {
@@ -21,7 +24,7 @@ size_t indexIn(const std::vector<T>& list, const T& value) {
 }
 
 std::string timeText(const TimeStats& t) {
-  return fmt::format("{:.3g} ms (p10–p90 {:.3g}–{:.3g})", t.median, t.p10, t.p90);
+  return fmt::format("{} ms (p10–p90 {}–{})", numberText(t.median), numberText(t.p10), numberText(t.p90));
 }
 
 // Legend entries for the filters and projections that occur in `rows`, in registry order.
@@ -41,6 +44,11 @@ std::vector<LegendEntry> legendFor(const BenchResults& results, const std::vecto
 }
 
 }  // namespace
+
+std::string numberText(double v) {
+  const double a = std::abs(v);
+  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
+}
 
 std::string lightParams(const BenchRow& row) {
   std::string out;
@@ -67,54 +75,101 @@ Marker projectionMarker(const std::string& projectionId) {
   return kMarkers[indexIn(projectionIds(), projectionId) % std::size(kMarkers)];
 }
 
-std::vector<QualityCostChart> qualityCostCharts(const BenchResults& results) {
-  // Scenes in run order; per scene the rows at its own light, else at its first light.
-  std::vector<std::string> scenes;
-  std::map<std::string, std::string> lightOf;
-  for (const BenchRow& r : results.rows) {
-    if (indexIn(scenes, r.config.scene) == scenes.size()) {
-      scenes.push_back(r.config.scene);
-      lightOf[r.config.scene] = lightParams(r);
+std::vector<size_t> sceneRows(const BenchResults& results, const std::string& scene) {
+  std::optional<std::string> light;
+  for (const BenchRow& r : results.rows)
+    if (r.config.scene == scene && (!light || lightParams(r).empty())) {
+      light = lightParams(r);
+      if (light->empty()) break;
     }
-    if (lightParams(r).empty()) lightOf[r.config.scene] = "";
+  std::vector<size_t> rows;
+  for (size_t i = 0; i < results.rows.size(); ++i)
+    if (results.rows[i].config.scene == scene && lightParams(results.rows[i]) == light) rows.push_back(i);
+  return rows;
+}
+
+std::string oneOffText(const BenchRow& r) {
+  return r.oneOff.empty() ? std::string() : fmt::format(" + one-off {:.3g} s (static casters only)", r.oneOffSeconds());
+}
+
+namespace {
+
+// RMSE against `x` (cost or memory) over the rows, one series per filter and projection, the
+// front ringed; returns the front (rows, ascending x).
+std::vector<size_t> errorChart(const BenchResults& results, const std::vector<size_t>& rows, Chart& c,
+                               const std::function<double(const BenchRow&)>& x, const std::string& xText) {
+  std::vector<double> xs, ys;
+  for (const size_t i : rows) {
+    xs.push_back(x(results.rows[i]));
+    ys.push_back(results.rows[i].metrics.rmse);
   }
-  std::vector<QualityCostChart> charts;
+  std::vector<size_t> front;
+  for (const size_t k : paretoFront(xs, ys)) front.push_back(rows[k]);
+  c.yLabel = "RMSE of V against the reference";
+  c.logX = true;
+  std::map<std::pair<std::string, std::string>, ChartSeries> series;  // by filter and projection
+  for (const size_t i : rows) {
+    const BenchRow& r = results.rows[i];
+    ChartSeries& s = series[{r.config.filter, r.config.projection}];
+    s.color = filterColor(r.config.filter);
+    s.marker = projectionMarker(r.config.projection);
+    const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
+    s.points.push_back({x(r), r.metrics.rmse, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
+                        fmt::format("{}: {} {}, {:.2f} MiB{}, RMSE {:.4f}{}", rowLabel(r), kCostName, timeText(r.shadowCost),
+                                    r.memoryMiB(), oneOffText(r), r.metrics.rmse, onFront ? " (on the " + xText + " front)" : ""),
+                        onFront});
+  }
+  for (auto& [key, s] : series) c.series.push_back(std::move(s));
+  for (const size_t i : front) c.front.emplace_back(x(results.rows[i]), results.rows[i].metrics.rmse);
+  c.legend = legendFor(results, rows, true);
+  c.legend.push_back({"Pareto front", kFrontColor, Marker::Circle, true, true});
+  return front;
+}
+
+BarChart passBars(const BenchResults& results, std::vector<size_t> rows, const std::string& title) {
+  BarChart b;
+  b.title = title;
+  b.xLabel = "median ms per pass (the black tick: the whole cost's median over frames)";
+  for (const auto& [pass, color] : kPassColors) b.legend.push_back({pass, color, Marker::Square, false, false});
+  b.legend.push_back({"whole cost (median of the per-frame sum)", "#000", Marker::Square, false, false});
+  std::stable_sort(rows.begin(), rows.end(), [&](size_t a, size_t c) {
+    return results.rows[a].shadowCost.median < results.rows[c].shadowCost.median;
+  });
+  for (const size_t i : rows) {
+    const BenchRow& r = results.rows[i];
+    Bar bar;
+    bar.label = rowLabel(r);
+    for (const auto& [pass, color] : kPassColors)
+      bar.segments.push_back({r.time(pass).median, color, fmt::format("{}: {} {}", rowLabel(r), pass, timeText(r.time(pass)))});
+    bar.mark = r.shadowCost.median;
+    bar.markTooltip = fmt::format("{}: whole cost {}", rowLabel(r), timeText(r.shadowCost));
+    bar.valueText = fmt::format("{} ms · {} MiB{}", numberText(r.shadowCost.median), numberText(r.memoryMiB()),
+                                r.oneOff.empty() ? "" : " + bake");
+    b.bars.push_back(std::move(bar));
+  }
+  return b;
+}
+
+}  // namespace
+
+std::vector<SceneCharts> sceneCharts(const BenchResults& results) {
+  std::vector<std::string> scenes;
+  for (const BenchRow& r : results.rows)
+    if (indexIn(scenes, r.config.scene) == scenes.size()) scenes.push_back(r.config.scene);
+  std::vector<SceneCharts> charts;
   for (const std::string& scene : scenes) {
-    QualityCostChart q;
+    SceneCharts q;
     q.scene = scene;
-    q.light = lightOf[scene];
-    std::vector<size_t> rows;
-    for (size_t i = 0; i < results.rows.size(); ++i)
-      if (results.rows[i].config.scene == scene && lightParams(results.rows[i]) == q.light) rows.push_back(i);
-    std::vector<double> x, y;
-    for (const size_t i : rows) {
-      x.push_back(results.rows[i].time(kCostPass).median);
-      y.push_back(results.rows[i].metrics.rmse);
-    }
-    for (const size_t k : paretoFront(x, y)) q.frontRows.push_back(rows[k]);
-    Chart& c = q.chart;
-    c.title = fmt::format("{}{}: error against cost", scene, q.light.empty() ? "" : " (" + q.light + ")");
-    c.xLabel = fmt::format("{} pass, median ms (log scale)", kCostPass);
-    c.yLabel = "RMSE of V against the reference";
-    c.logX = true;
-    std::map<std::pair<std::string, std::string>, ChartSeries> series;  // by filter and projection
-    for (const size_t i : rows) {
-      const BenchRow& r = results.rows[i];
-      ChartSeries& s = series[{r.config.filter, r.config.projection}];
-      s.color = filterColor(r.config.filter);
-      s.marker = projectionMarker(r.config.projection);
-      const bool front = std::find(q.frontRows.begin(), q.frontRows.end(), i) != q.frontRows.end();
-      s.points.push_back({r.time(kCostPass).median, r.metrics.rmse, std::numeric_limits<double>::quiet_NaN(),
-                          std::numeric_limits<double>::quiet_NaN(),
-                          fmt::format("{}: {} {}, RMSE {:.4f}{}", rowLabel(r), kCostPass, timeText(r.time(kCostPass)),
-                                      r.metrics.rmse, front ? " (Pareto front)" : ""),
-                          front});
-    }
-    for (auto& [key, s] : series) c.series.push_back(std::move(s));
-    for (const size_t i : q.frontRows)
-      c.front.emplace_back(results.rows[i].time(kCostPass).median, results.rows[i].metrics.rmse);
-    c.legend = legendFor(results, rows, true);
-    c.legend.push_back({"Pareto front", kFrontColor, Marker::Circle, true, true});
+    q.rows = sceneRows(results, scene);
+    q.light = q.rows.empty() ? "" : lightParams(results.rows[q.rows.front()]);
+    const std::string where = scene + (q.light.empty() ? "" : " (" + q.light + ")");
+    q.cost.title = where + ": error against whole cost";
+    q.cost.xLabel = fmt::format("{}, median ms per frame (log scale)", kCostName);
+    q.costFront = errorChart(results, q.rows, q.cost, [](const BenchRow& r) { return r.shadowCost.median; }, "cost");
+    q.memory.title = where + ": error against memory";
+    q.memory.xLabel = "GPU memory the technique keeps, MiB (log scale)";
+    q.memoryFront = errorChart(results, q.rows, q.memory, [](const BenchRow& r) { return r.memoryMiB(); }, "memory");
+    q.passes = passBars(results, q.rows, where + ": where the time goes");
     charts.push_back(std::move(q));
   }
   return charts;
@@ -148,9 +203,9 @@ std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
       l.projection = k.projection;
       const std::string where = fmt::format("{}, --projection {}", k.scene, k.projection);
       const std::string xLabel = "light size (spot: sphere radius in m; sun: angular radius in rad)";
-      l.cost.title = fmt::format("{}: {} pass time against light size", where, kCostPass);
+      l.cost.title = fmt::format("{}: whole cost against light size", where);
       l.cost.xLabel = l.error.xLabel = xLabel;
-      l.cost.yLabel = "median ms (log scale; bars: p10–p90)";
+      l.cost.yLabel = "shadow + prefilter + visibility, median ms (log; bars: p10–p90)";
       l.cost.logY = true;
       l.error.title = fmt::format("{}: error against light size", where);
       l.error.yLabel = "RMSE of V against the reference";
@@ -161,8 +216,8 @@ std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
     ChartSeries error = cost;
     for (const size_t i : groups[k]) {
       const BenchRow& r = results.rows[i];
-      const TimeStats t = r.time(kCostPass);
-      const std::string tip = fmt::format("{} at light size {}: {} {}, RMSE {:.4f}", rowLabel(r), r.lightSize, kCostPass, timeText(t), r.metrics.rmse);
+      const TimeStats t = r.shadowCost;
+      const std::string tip = fmt::format("{} at light size {}: whole cost {}, RMSE {:.4f}", rowLabel(r), r.lightSize, timeText(t), r.metrics.rmse);
       cost.points.push_back({r.lightSize, t.median, t.p10, t.p90, tip, false});
       error.points.push_back({r.lightSize, r.metrics.rmse, std::numeric_limits<double>::quiet_NaN(),
                               std::numeric_limits<double>::quiet_NaN(), tip, false});

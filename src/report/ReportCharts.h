@@ -1,8 +1,10 @@
 #pragma once
 // The report's charts, built from the results (HtmlReport.cpp lays them out):
-//  1. quality vs cost: RMSE against the visibility pass's median time, one point per
-//     configuration, colour = filter, marker = projection, the Pareto front marked;
-//  2. cost (and error) against light size, for every technique run at several light sizes.
+//  1. per scene: RMSE against the whole cost (BenchRow::shadowCost: shadow + prefilter +
+//     visibility per frame) and against the memory the technique keeps, one point per
+//     configuration, colour = filter, marker = projection, each Pareto front marked; and a
+//     stacked bar per configuration showing where its time goes, pass by pass;
+//  2. whole cost (and error) against light size, for every technique run at several light sizes.
 #include "report/BenchResults.h"
 #include "report/SvgChart.h"
 
@@ -11,8 +13,14 @@
 
 namespace penumbra::report {
 
-/// The pass whose time is the cost axis: the only pass that differs between filters (docs/design.md).
-inline constexpr const char* kCostPass = "visibility";
+/// What the cost axis is, in words (BenchRow::shadowCost).
+inline constexpr const char* kCostName = "shadow + prefilter + visibility";
+/// Colours of the passes in the stacked bars (Okabe–Ito, apart from the filter palette's order).
+inline constexpr std::pair<const char*, const char*> kPassColors[] = {
+    {"shadow", "#56B4E9"}, {"prefilter", "#E69F00"}, {"visibility", "#009E73"}, {"contact", "#CC79A7"}};
+
+/// A time or size with about three significant digits, never in exponent form ("1030", "61.6", "2.87").
+std::string numberText(double v);
 
 /// A row's light.* parameters as text ("" when it uses the scene's own light).
 std::string lightParams(const BenchRow& row);
@@ -20,16 +28,25 @@ std::string lightParams(const BenchRow& row);
 std::string techniqueParams(const BenchRow& row);
 /// "pcss · csm" plus the technique parameters when there are any.
 std::string rowLabel(const BenchRow& row);
+/// " + one-off 0.57 s (static casters only)" for a row with one-off costs, else "".
+std::string oneOffText(const BenchRow& row);
 
-struct QualityCostChart {
-  std::string scene, light;     ///< the group: scene and light parameters ("" = its own)
-  Chart chart;
-  std::vector<size_t> frontRows;  ///< indices into results.rows, ascending cost
+/// A scene's charts at one light (its own, else the first it was run with).
+struct SceneCharts {
+  std::string scene, light;        ///< the group: scene and light parameters ("" = its own)
+  std::vector<size_t> rows;        ///< indices into results.rows
+  Chart cost, memory;              ///< RMSE against whole cost; RMSE against memory
+  std::vector<size_t> costFront;   ///< the whole-cost Pareto front, ascending cost
+  std::vector<size_t> memoryFront; ///< the memory Pareto front, ascending memory
+  BarChart passes;                 ///< per configuration, its passes' medians stacked, cheapest first
 };
 
-/// One chart per scene, over its rows at the scene's own light (or, if it has none, at the first
-/// light it was run with).
-std::vector<QualityCostChart> qualityCostCharts(const BenchResults& results);
+/// One entry per scene, in run order.
+std::vector<SceneCharts> sceneCharts(const BenchResults& results);
+
+/// The rows of a scene at its own light (or, if it has none, at the first light it was run
+/// with): the group sceneCharts draws and the recommendation ranks.
+std::vector<size_t> sceneRows(const BenchResults& results, const std::string& scene);
 
 struct LightSizeCharts {
   std::string scene, projection;
@@ -37,8 +54,8 @@ struct LightSizeCharts {
 };
 
 /// For each scene and projection, every technique (filter + parameters) run at two or more
-/// light sizes: its visibility-pass time (median, p10–p90 bars) and its RMSE against the
-/// light size. Empty when the run swept no light size.
+/// light sizes: its whole cost (median, p10–p90 bars) and its RMSE against the light size.
+/// Empty when the run swept no light size.
 std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results);
 
 /// Stable colour of a filter and marker of a projection (by registry order) across charts.

@@ -1,5 +1,7 @@
 #include "report/ResultsIO.h"
 
+#include "report/Recommendation.h"
+
 #include <penumbra/Files.h>
 
 #include <fmt/format.h>
@@ -9,7 +11,9 @@
 namespace penumbra::report {
 namespace {
 
-constexpr int kFormatVersion = 3;  // 2: umbra_leak_pct; 3: micro[].ratio
+// 2: umbra_leak_pct; 3: micro[].ratio; 4: shadow cost, memory, one-off costs, frame_ms, compare_command,
+// recommendations
+constexpr int kFormatVersion = 4;
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -36,9 +40,11 @@ std::vector<std::string> tableColumns(const BenchResults& results) {
   std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "width", "height",
                                    "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "umbra_leak_pct",
                                    "overdark_pct", "penumbra_rmse", "pixels"};
+  for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kShadowCostColumn) + suffix);
+  for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what"}) cols.emplace_back(c);
   for (const std::string& pass : results.passNames())
     for (const char* suffix : kStatSuffixes) cols.push_back(pass + suffix);
-  for (const char* c : {"image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
+  for (const char* c : {"compare_command", "image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
   return cols;
 }
 
@@ -50,7 +56,16 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
                              r.config.paramsText(), numFloat(r.lightSize), num(r.width), num(r.height),
                              num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
-                             num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
+                             num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels),
+                             num(r.shadowCost.median), num(r.shadowCost.p10), num(r.shadowCost.p90), num(r.memoryMiB())};
+  if (r.oneOff.empty()) {
+    cells.insert(cells.end(), 2, Cell());
+  } else {
+    std::string what;
+    for (const OneOffCost& o : r.oneOff) what += (what.empty() ? "" : "; ") + o.what + (o.cached ? " (read from the cache)" : "");
+    cells.emplace_back(num(r.oneOffSeconds()));
+    cells.emplace_back(what + kOneOffValidity);
+  }
   for (const std::string& pass : results.passNames()) {
     const auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassStats& p) { return p.name == pass; });
     if (it == r.passes.end()) {
@@ -59,6 +74,7 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
       cells.insert(cells.end(), {num(it->ms.median), num(it->ms.p10), num(it->ms.p90)});
     }
   }
+  cells.emplace_back(compareCommand(results, r));
   for (const std::string* s : {&r.imagePath, &r.heatmapPath, &r.referencePath, &results.machine.clock,
                                &results.machine.glRenderer})
     cells.emplace_back(*s);
@@ -114,7 +130,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
                   {"date", m.date}, {"command", m.command}};
   j["settings"] = {{"width", s.width},
                    {"height", s.height},
-                   {"shadow_map", s.shadowMapSize},
+                   {"shadow_map", s.shadowMapSize ? nlohmann::json(*s.shadowMapSize) : nlohmann::json(nullptr)},
                    {"warmup_frames", s.warmupFrames},
                    {"timed_frames", s.timedFrames},
                    {"max_seconds_per_config", s.maxSecondsPerConfig},
@@ -136,6 +152,29 @@ nlohmann::json resultsJson(const BenchResults& results) {
     j["skipped"].push_back({{"plan", k.config.plan}, {"scene", k.config.scene}, {"projection", k.config.projection},
                             {"filter", k.config.filter}, {"params", k.config.paramsText()},
                             {"reason", k.reason}, {"failed", k.failed}});
+  // The samples behind every row's time statistics: per row, per pass, each timed frame (ms).
+  j["frame_ms"] = nlohmann::json::array();
+  for (const BenchRow& r : results.rows) {
+    nlohmann::json frames = nlohmann::json::object();
+    for (const auto& [pass, samples] : r.frameMs) frames[pass] = samples;
+    j["frame_ms"].push_back(std::move(frames));
+  }
+  // The recommendation (Recommendation.h), rows as indices into "rows".
+  j["recommendations"] = nlohmann::json::array();
+  for (const SituationPicks& p : recommend(results)) {
+    nlohmann::json s = {{"situation", p.situation->id},
+                        {"title", p.situation->title},
+                        {"scene", p.situation->scene},
+                        {"metric", metricKey(p.situation->metric)},
+                        {"static_casters", p.situation->staticCasters},
+                        {"candidates", p.candidates},
+                        {"front", p.front},
+                        {"best_error", p.bestError},
+                        {"acceptable_error", p.acceptableError},
+                        {"acceptable_factor", kAcceptableErrorFactor}};
+    for (const Budget b : kBudgets) s[budgetKey(b)] = p.pick(b) ? nlohmann::json(*p.pick(b)) : nlohmann::json(nullptr);
+    j["recommendations"].push_back(std::move(s));
+  }
   j["micro"] = nlohmann::json::array();
   for (const MicroResult& mr : results.micro)
     j["micro"].push_back({{"name", mr.name}, {"description", mr.description}, {"baseline", mr.baseline}, {"ms", statsJson(mr.ms)},

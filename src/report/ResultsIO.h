@@ -13,11 +13,17 @@
 
 namespace penumbra::report {
 
+/// Columns <kShadowCostColumn>_ms_{median,p10,p90}: BenchRow::shadowCost.
+inline constexpr const char* kShadowCostColumn = "shadow_cost";
+/// Appended to a one_off_what cell: a one-off cost holds only while nothing it baked moves.
+inline constexpr const char* kOneOffValidity = "; valid for static casters only (a moving caster redoes it)";
+
 /// A cell: text, a number, or nothing (a pass this row does not have).
 using Cell = std::variant<std::monostate, std::string, double>;
 
-/// Column names, in order: configuration, quality, then <pass>_ms_{median,p10,p90} for every
-/// pass of results.passNames(), then image paths and the clock.
+/// Column names, in order: configuration, quality, the whole cost (shadow_cost_ms_{median,p10,p90},
+/// shadow_memory_mb in MiB, one_off_s and one_off_what: empty for techniques with none), then
+/// <pass>_ms_{median,p10,p90} for every pass of results.passNames(), then image paths and the clock.
 std::vector<std::string> tableColumns(const BenchResults& results);
 /// One row's cells, aligned with tableColumns(results).
 std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& row);
@@ -30,7 +36,8 @@ std::string resultsCsv(const BenchResults& results);
 /// description, clock, gl_renderer. Same CSV rules as resultsCsv.
 std::string microCsv(const BenchResults& results);
 /// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
-///  "skipped": [...], "micro": [...]}; rows hold numbers as numbers, null for no value.
+///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "micro": [...]}; rows
+///  hold numbers as numbers, null for no value.
 nlohmann::json resultsJson(const BenchResults& results);
 
 /// Writes results.csv, results.json and micro.csv into dir (each atomically).

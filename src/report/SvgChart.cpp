@@ -221,4 +221,71 @@ std::string svgChart(const Chart& c) {
   return s + "</svg>\n";
 }
 
+std::string svgBarChart(const BarChart& c) {
+  // Rows of kBarRow pixels: the label column, the bars, then room for the value text.
+  constexpr double kBarRow = 16, kBarHeight = 11, kLabelWidth = 230, kValueWidth = 150, kLegendHeight = 22;
+  constexpr double kTitleHeight = 24, kAxisHeight = 36;
+  const double top = kTitleHeight + kLegendHeight, left = kLabelWidth, right = c.width - kValueWidth;
+  const double bottom = top + kBarRow * static_cast<double>(c.bars.size());
+  const double height = bottom + kAxisHeight;
+  std::string s = fmt::format(
+      R"(<svg xmlns="http://www.w3.org/2000/svg" class="chart bars" role="img" width="{0}" height="{1:.0f}" viewBox="0 0 {0} {1:.0f}" font-family="sans-serif" font-size="11">)"
+      "<title>{2}</title>\n",
+      c.width, height, escapeXml(c.title));
+  s += fmt::format(R"(<text x="4" y="16" font-size="13" font-weight="bold">{}</text>)", escapeXml(c.title));
+  double lx = 4;
+  for (const LegendEntry& e : c.legend) {
+    s += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="12" height="10" fill="{}"/>)", lx, kTitleHeight + 2, e.color);
+    s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)", lx + 16, kTitleHeight + 11, escapeXml(e.label));
+    lx += 16 + 7.0 * static_cast<double>(e.label.size()) + 18;
+  }
+  double maxValue = 0.0;
+  for (const Bar& b : c.bars) {
+    double sum = 0.0;
+    for (const BarSegment& g : b.segments) sum += std::max(0.0, g.value);
+    maxValue = std::max({maxValue, sum, std::isfinite(b.mark) ? b.mark : 0.0});
+  }
+  if (c.bars.empty() || !(maxValue > 0.0)) {
+    s += fmt::format(R"(<text x="{}" y="{}" fill="#666">no data in this run</text></svg>)", left, top + 14);
+    return s + "\n";
+  }
+  Axis ax = makeAxis({0.0, maxValue}, false);
+  ax.pixLo = left;
+  ax.pixHi = right;
+  for (const double t : axisTicks(ax.lo, ax.hi, false)) {
+    const double x = ax.map(t);
+    s += fmt::format(R"(<line x1="{0:.1f}" y1="{1:.1f}" x2="{0:.1f}" y2="{2:.1f}" stroke="#e4e4e4"/>)", x, top, bottom);
+    s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}</text>)", x, bottom + 14, num(t));
+  }
+  s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}</text>)", (left + right) / 2, height - 6,
+                   escapeXml(c.xLabel));
+  double y = top;
+  for (const Bar& b : c.bars) {
+    const double barY = y + (kBarRow - kBarHeight) / 2;
+    s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="end">{}</text>)", left - 6, y + 12, escapeXml(b.label));
+    double v = 0.0;
+    for (const BarSegment& g : b.segments) {
+      const double w = std::max(0.0, g.value);
+      s += "<g>";
+      if (!g.tooltip.empty()) s += "<title>" + escapeXml(g.tooltip) + "</title>";
+      s += fmt::format(R"(<rect x="{:.2f}" y="{:.1f}" width="{:.2f}" height="{:.1f}" fill="{}"/>)", ax.map(v), barY,
+                       ax.map(v + w) - ax.map(v), kBarHeight, g.color);
+      s += "</g>";
+      v += w;
+    }
+    if (std::isfinite(b.mark)) {
+      s += "<g>";
+      if (!b.markTooltip.empty()) s += "<title>" + escapeXml(b.markTooltip) + "</title>";
+      s += fmt::format(R"(<line x1="{0:.1f}" y1="{1:.1f}" x2="{0:.1f}" y2="{2:.1f}" stroke="#000" stroke-width="2"/>)",
+                       ax.map(b.mark), barY - 2, barY + kBarHeight + 2);
+      s += "</g>";
+    }
+    s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)", ax.map(std::max(v, std::isfinite(b.mark) ? b.mark : 0.0)) + 6,
+                     y + 12, escapeXml(b.valueText));
+    s += "\n";
+    y += kBarRow;
+  }
+  return s + "</svg>\n";
+}
+
 }  // namespace penumbra::report

@@ -50,6 +50,32 @@ struct Chart {
 /// of axes.
 std::string svgChart(const Chart& chart);
 
+/// One part of a stacked bar (e.g. one pass's time).
+struct BarSegment {
+  double value = 0.0;
+  std::string color;
+  std::string tooltip;
+};
+
+/// A horizontal bar of stacked segments, with a label on its left, text on its right, and an
+/// optional tick across it at `mark` (e.g. a statistic of the whole that is not the segments' sum).
+struct Bar {
+  std::string label, valueText;
+  std::vector<BarSegment> segments;
+  double mark = std::numeric_limits<double>::quiet_NaN();
+  std::string markTooltip;
+};
+
+/// Horizontal stacked bars on a linear axis from 0, one row each, a legend above them. The
+/// height follows the number of bars.
+struct BarChart {
+  std::string title, xLabel;
+  int width = 1200;  ///< pixels
+  std::vector<Bar> bars;
+  std::vector<LegendEntry> legend;  ///< drawn as swatches (marker and line are ignored)
+};
+std::string svgBarChart(const BarChart& chart);
+
 /// Text escaped for XML/HTML content and attribute values.
 std::string escapeXml(std::string_view text);
 

@@ -45,7 +45,7 @@ struct Pairing {
   const char* kernelText;  // what the kernel does, for the table
   int kind;                // PN_LOOKUP_*
   bool hardwareCompare;
-  const char* mapImage;  // the Filter::debugImages() entry that holds the map the kernel reads
+  std::string_view mapImage;  // the Filter::debugImages() entry that holds the map the kernel reads
   std::function<glm::vec4(const KernelInputs&)> params4;  // LookupUniforms::params
 };
 
@@ -80,17 +80,17 @@ glm::vec4 pcfParams(const KernelInputs& in) {
 const std::vector<Pairing>& pairings() {
   static const std::vector<Pairing> list = {
       {"hard", {}, "visibility: hard", "lookup: one fetch and compare",
-       "one texelFetch of the depth map and a compare with one constant bias", PN_LOOKUP_COMPARE, false, "shadow-map",
+       "one texelFetch of the depth map and a compare with one constant bias", PN_LOOKUP_COMPARE, false, kShadowMapImage,
        [](const KernelInputs& in) { return glm::vec4(kernelBias(in, "hard"), 0.0f, 0.0f, 0.0f); }},
       {"pcf", {}, "visibility: pcf", "lookup: box of fetch-and-compares",
        "a box of texelFetch-and-compares with as many taps as pcf's default (16 Poisson taps: 4x4) over its radius",
-       PN_LOOKUP_BOX, false, "shadow-map", pcfParams},
+       PN_LOOKUP_BOX, false, kShadowMapImage, pcfParams},
       {"pcf", {{"pcf.hardwareCompare", "on"}}, "visibility: pcf, hardwareCompare=on", "lookup: box of hardware 2x2 compares",
        "the same box, each tap the hardware's bilinear 2x2 comparison (sampler2DArrayShadow)", PN_LOOKUP_BOX, true,
-       "shadow-map", pcfParams},
+       kShadowMapImage, pcfParams},
       {"vsm", {}, "visibility: vsm", "lookup: one trilinear (z, z²) tap + Chebyshev",
        "one trilinear textureLod of the moments' mip chain at vsm's filter width, Chebyshev's bound over its variance floor",
-       PN_LOOKUP_MOMENTS2, false, "vsm-moments",
+       PN_LOOKUP_MOMENTS2, false, kMomentsImage,
        [](const KernelInputs& in) {
          return glm::vec4(0.0f, 0.0f, log2Texels(in.filter.param("vsm.filterTexels")),
                           texelsSquaredToDepth(in, in.filter.param("vsm.minVariance")));
@@ -98,14 +98,14 @@ const std::vector<Pairing>& pairings() {
       {"vssm", {}, "visibility: vssm", "lookup: one SAT box mean + Chebyshev",
        "one exact box mean of the (z, z²) summed-area table (16 corner reads, vssm's filter step at its minimum radius), "
        "Chebyshev's bound over its variance floor",
-       PN_LOOKUP_SAT, false, "vssm-depth",
+       PN_LOOKUP_SAT, false, kShadowMapImage,
        [](const KernelInputs& in) {
          return glm::vec4(0.0f, 0.0f, in.filter.param("vssm.minRadiusTexels"),
                           texelsSquaredToDepth(in, in.filter.param("vssm.minVariance")));
        }},
       {"msm", {}, "visibility: msm", "lookup: one trilinear 4-moment tap + Hamburger 4MSM",
        "one trilinear textureLod of the four moments' mip chain at msm's filter width, the moment bias, the Hamburger 4MSM bound",
-       PN_LOOKUP_MOMENTS4, false, "msm-moments",
+       PN_LOOKUP_MOMENTS4, false, kMomentsImage,
        [](const KernelInputs& in) {
          return glm::vec4(0.0f, 0.0f, log2Texels(in.filter.param("msm.filterTexels")),
                           texelsSquaredToDepth(in, in.filter.param("msm.bias")));
@@ -137,7 +137,7 @@ struct PassFixture {
     visibility = gl::Texture("lookup kernel visibility", {GL_TEXTURE_2D, GL_R32F, s.width, s.height, 1, 1});
   }
 
-  const gl::Texture& map(const char* name) {
+  const gl::Texture& map(std::string_view name) {
     for (const DebugImage& d : renderer.filter().debugImages())
       if (d.name == name && d.texture) return *d.texture;
     throw Error(fmt::format("lookup kernel: the filter has no image '{}'", name));

@@ -149,6 +149,8 @@ void Scene::validate() const {
   PN_CHECK(glm::all(glm::greaterThanEqual(ambient, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(ambient, glm::vec3(kMaxRadiance))),
            fmt::format("{}: the ambient radiance is outside [0, {}]", where, kMaxRadiance));
   if (const std::string problem = camera.viewProblem(); !problem.empty()) throw Error(fmt::format("{}: camera: {}", where, problem));
+  if (const std::string problem = animation.problem(objects.size(), lights.size()); !problem.empty())
+    throw Error(fmt::format("{}: {}", where, problem));
 }
 
 }  // namespace penumbra

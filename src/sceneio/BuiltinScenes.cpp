@@ -3,6 +3,7 @@
 #include <penumbra/Params.h>
 #include <penumbra/SceneIO.h>
 
+#include "sceneio/BuiltinAnimation.h"
 #include "sceneio/LampScenes.h"
 
 #include <fmt/format.h>
@@ -76,6 +77,7 @@ Scene makeBoxes() {
   s.camera.position = {3.5f, 4.0f, 6.5f};
   s.camera.target = {-0.3f, 0.3f, 0.0f};
   s.camera.fovYRad = 0.8f;
+  sceneio::animateBoxes(s);
   return s;
 }
 
@@ -189,6 +191,7 @@ Scene makeCity() {
   s.camera.nearM = 0.1f;
   s.camera.farM = 2000.0f;
   s.shadow.projection = "csm";
+  sceneio::animateCity(s);
   return s;
 }
 
@@ -199,7 +202,7 @@ struct Builtin {
 
 const std::vector<Builtin>& builtins() {
   static const std::vector<Builtin> list = {
-      {"boxes", "boxes and spheres on a plane under the sun (the default)", makeBoxes},
+      {"boxes", "boxes and spheres on a plane under the sun (the default); animated: a ball rolls, the sun sweeps 30 degrees", makeBoxes},
       {"pen", "a pencil leaning on the floor under a spherical spot light: contact-hardening penumbra", makePen},
       {"fence", "rows of thin slats before a wall: overlapping occluders (variance light bleeding behind the wall: --camera 4,3,-6:0,0,-3.5:50)", makeFence},
       {"grazing", "a large plane (a slab's top) lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},

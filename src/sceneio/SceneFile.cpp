@@ -3,6 +3,7 @@
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>
 
+#include "sceneio/AnimationFile.h"
 #include "sceneio/loaders/ModelImport.h"
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace penumbra {
@@ -230,6 +232,38 @@ void checkShapeTotals(const Json& objects, const Reader& top) {
     top.fail("objects", fmt::format("the shapes have {} triangles, more than the limit of {}", triangles, loaders::kMaxTriangles));
 }
 
+/// An object's "animation", over its own translate/rotateDeg/scale; none without the key.
+std::optional<TransformTrack> readAnimation(Reader& r) {
+  if (!r.has("animation")) return std::nullopt;
+  return sceneio::readObjectAnimation(r.raw("animation"), {r.file(), r.path() + ".animation"}, r.vec<3>("translate", glm::vec3(0)),
+                                      r.vec<3>("rotateDeg", glm::vec3(0)), r.vec<3>("scale", glm::vec3(1)));
+}
+
+/// Adds `track` as a node and makes the objects from `firstObject` on follow it; a model's own
+/// animation roots (nodes from `firstNode` on, placed by `rest`) are hung below it.
+void followNode(Scene& s, const TransformTrack& track, const std::string& name, const glm::mat4& rest, size_t firstObject, size_t firstNode) {
+  std::vector<AnimatedNode>& nodes = s.animation.nodes;
+  const glm::mat4 modelFromWorld = glm::inverse(rest);
+  const auto node = static_cast<int>(firstNode);
+  // The new node goes before the model's nodes (a parent comes before its children).
+  nodes.insert(nodes.begin() + node, AnimatedNode{name, -1, glm::mat4(1.0f), track});
+  for (size_t n = firstNode + 1; n < nodes.size(); ++n) {
+    if (nodes[n].parent >= node) ++nodes[n].parent;
+    else if (nodes[n].parent < 0) {
+      nodes[n].parent = node;
+      nodes[n].offset = modelFromWorld * nodes[n].offset;
+    }
+  }
+  std::vector<bool> bound(s.objects.size(), false);
+  for (ObjectAnimation& a : s.animation.objects)
+    if (a.node >= firstNode) {
+      ++a.node;
+      bound[a.object] = true;
+    }
+  for (size_t o = firstObject; o < s.objects.size(); ++o)
+    if (!bound[o]) s.animation.objects.push_back({static_cast<uint32_t>(o), static_cast<uint32_t>(node), modelFromWorld * s.objects[o].worldFromObject});
+}
+
 /// nlohmann's parse message without its "[json.exception…] " tag and without the "last read:"
 /// bytes, which echo whatever the file holds (a PNG's binary header).
 std::string jsonProblem(const Json::exception& e) {
@@ -270,6 +304,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     if (glm::length(s.camera.target - s.camera.position) < 1e-6f) c.fail("target", "equals the position");
     if (const std::string problem = s.camera.viewProblem(); !problem.empty())
       c.fail("up", problem + (c.has("up") ? "" : " (the default; set camera.up)"));
+    if (c.has("animation")) s.animation.camera = sceneio::readCameraAnimation(c.raw("animation"), {file, "camera.animation"});
     c.finish();
   }
 
@@ -279,7 +314,16 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
   if (lights.size() > kMaxLights) top.fail("lights", fmt::format("{} lights, more than the limit of {}", lights.size(), kMaxLights));
   for (size_t i = 0; i < lights.size(); ++i) {
     Reader r(lights[i], file, fmt::format("lights[{}]", i));
+    const bool animated = r.has("animation"), sunPath = r.has("sunPath");  // read below, after the light
     s.lights.push_back(readLight(r));
+    const auto index = static_cast<uint32_t>(i);
+    if (animated)
+      s.animation.lights.push_back(sceneio::readLightAnimation(r.raw("animation"), {file, r.path() + ".animation"}, s.lights.back(), index));
+    if (sunPath) {
+      if (s.lights.back().type != LightType::Directional) r.fail("sunPath", "only a sun has a sun path");
+      if (animated) r.fail("sunPath", "give animation or sunPath, not both");
+      s.animation.suns.push_back(sceneio::readSunPath(r.raw("sunPath"), {file, r.path() + ".sunPath"}, index));
+    }
   }
 
   if (!top.has("objects")) top.fail("objects", "missing");
@@ -296,6 +340,8 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
         if (r.has(key)) r.fail(key, "not allowed with 'file' (the model brings its own meshes and materials)");
       const glm::mat4 m = readTransform(r);
       const bool casts = r.boolean("castsShadow", true);
+      const size_t firstObject = s.objects.size(), firstNode = s.animation.nodes.size();
+      const std::optional<TransformTrack> track = readAnimation(r);
       r.finish();
       const std::filesystem::path modelPath = path.parent_path() / model;
       if (!loaders::isModelFile(modelPath)) r.fail("file", fmt::format("'{}' is not a .gltf, .glb or .obj file", model));
@@ -304,6 +350,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
       } catch (const Error& e) {
         r.fail("file", e.what());
       }
+      if (track) followNode(s, *track, name, m, firstObject, firstNode);
       continue;
     }
     Mesh mesh = readShape(r);
@@ -312,8 +359,11 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
       r.fail("color", "each component must be in [0, 1]");
     const glm::mat4 m = readTransform(r);
     const bool casts = r.boolean("castsShadow", true);
+    const std::optional<TransformTrack> track = readAnimation(r);
     r.finish();
+    const size_t object = s.objects.size(), node = s.animation.nodes.size();
     addObject(s, name, std::move(mesh), color, m, casts);
+    if (track) followNode(s, *track, name, m, object, node);
   }
 
   if (top.has("shadow")) {

@@ -22,7 +22,8 @@ void PenumbraDebugImages::bind(const FrameContext& frame) {
 }
 
 std::vector<DebugImage> PenumbraDebugImages::debugImages() const {
-  return {{"blocker-depth", &mBlockerDepth}, {"penumbra-width-m", &mPenumbraWidth}};
+  return {{"blocker-depth", &mBlockerDepth, "mean blocker depth, linear light depth in [0, 1]; −1 = no blocker found"},
+          {"penumbra-width-m", &mPenumbraWidth, "penumbra width on the receiver (m); −1 = no blocker found"}};
 }
 
 }  // namespace penumbra

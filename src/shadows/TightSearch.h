@@ -20,7 +20,7 @@ constexpr ParamDesc tightSearchParam(std::string_view key) {
   return {key, "Tight search",
           "on: the blocker search covers the light's footprint at the nearest surface inside the near-plane region (a "
           "min-depth pyramid of the map), not on the near plane; off: the near plane's footprint, where a small blocker "
-          "in a large region is lost",
+          "in a large region is lost", "",
           1.0f, 0.0f, 1.0f, 1.0f, kOffOn};
 }
 

@@ -94,7 +94,7 @@ DebugDisplay::DebugDisplay(ShaderLibrary& shaders)
       mRange("viewer display range", 2 * sizeof(uint32_t)), mVao("viewer fullscreen"),
       mSampler("viewer display sampler", {.minFilter = GL_NEAREST_MIPMAP_NEAREST, .magFilter = GL_NEAREST}) {}
 
-glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, const glm::ivec4& area) {
+glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, const glm::ivec4& area, const glm::ivec4* clip) {
   const std::string problem = displayProblem(texture);
   PN_CHECK(problem.empty(), problem);
   if (area.z <= 0 || area.w <= 0) return {s.lo, s.hi};
@@ -156,12 +156,22 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  if (grid) {
+  if (grid) {  // the gaps between the cells, inside the clip when there is one
+    glm::ivec4 box = area;
+    if (clip) {
+      const glm::ivec2 lo = glm::max(glm::ivec2(area.x, area.y), glm::ivec2(clip->x, clip->y));
+      const glm::ivec2 hi = glm::min(glm::ivec2(area.x + area.z, area.y + area.w), glm::ivec2(clip->x + clip->z, clip->y + clip->w));
+      box = glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
+    }
     glEnable(GL_SCISSOR_TEST);
-    glScissor(area.x, area.y, area.z, area.w);
+    glScissor(box.x, box.y, box.z, box.w);
     glClearBufferfv(GL_COLOR, 0, kGridBackdrop);
   }
   glDisable(GL_SCISSOR_TEST);
+  if (clip) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(clip->x, clip->y, clip->z, clip->w);
+  }
   p.use();
   glBindVertexArray(mVao.id());
   for (const auto& [layer, rect] : parts) {
@@ -170,6 +180,7 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glBindVertexArray(0);
+  glDisable(GL_SCISSOR_TEST);
   gl::Sampler::unbindUnit(PN_VIEWER_TEX_SOURCE);
   gl::throwIfGlError("the viewer's display pass");
 

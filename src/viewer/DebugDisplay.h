@@ -43,9 +43,10 @@ public:
 
   /// Draws `texture` into `rect` (x, y = lower-left window pixel; z, w = size) of the default
   /// framebuffer, letterboxed to the texture's aspect ratio. Settings out of the texture's
-  /// range are clamped. Returns the range that was mapped to [0, 1] (with allLayers: over every
-  /// layer shown).
-  glm::vec2 draw(const gl::Texture& texture, DisplaySettings settings, const glm::ivec4& rect);
+  /// range are clamped. With `clip`, only its part of the window is drawn (a split view's half).
+  /// Returns the range that was mapped to [0, 1] (with allLayers: over every layer shown).
+  glm::vec2 draw(const gl::Texture& texture, DisplaySettings settings, const glm::ivec4& rect,
+                 const glm::ivec4* clip = nullptr);
 
 private:
   ShaderLibrary& mShaders;

@@ -1,5 +1,7 @@
 #include "viewer/HeatmapJob.h"
 
+#include "report/FrameComparison.h"
+
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>
 
@@ -90,8 +92,9 @@ void HeatmapJob::run(Scene scene, GBufferData g, std::vector<float> v, ColorImag
     }
     HeatmapResult result;
     result.metrics = compareVisibility(v, vRef, mask);
-    result.image = errorHeatmap(v, vRef, mask, g.width, g.height, color.rgba.empty() ? nullptr : &color);
+    result.image = errorHeatmap(v, vRef, mask, g.width, g.height, color.rgba.empty() ? nullptr : &color, report::kLabHeatmap);
     result.samplesPerPixel = spp;
+    result.vRef = std::move(vRef);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result.version = version;
     std::lock_guard lock(mMutex);

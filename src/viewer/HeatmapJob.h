@@ -19,6 +19,7 @@ namespace penumbra::viewer {
 
 struct HeatmapResult {
   ColorImage image;           ///< errorHeatmap() over the frame's colour, row 0 = top
+  std::vector<float> vRef;    ///< the reference's V (G-buffer order, row 0 = bottom)
   VisibilityMetrics metrics;  ///< V against V_ref over the pixels that face the light
   int samplesPerPixel = 0;
   double seconds = 0.0;       ///< wall-clock time of the trace

@@ -1,5 +1,5 @@
-// The viewer's lights: the "Lights" panel (every light of the scene, add/remove, the selected
-// light's editor and what its maps got this frame), the labels over the views that say whose
+// The viewer's lights: the "Lights" tab (every light of the scene, add/remove, the selected
+// light's editor and what its maps got this frame; it fits a 1280×720 window), the labels over the views that say whose
 // image is shown and which layer each grid cell is (a point light's cube faces, csm's
 // cascades), and the script's `light` action. Every edit goes through ViewSession, which checks
 // it (LightEdit.h's lightProblem, the technique's incompatibility) before the next frame.
@@ -31,12 +31,13 @@ ImVec4 swatchOf(const glm::vec3& color) {
   return {c.x, c.y, c.z, 1.0f};
 }
 
-// A text box at `pos` (ImGui display coordinates, top left); `above` puts it above pos instead.
-void label(ImDrawList* dl, ImVec2 pos, const std::string& text, bool above) {
+// A text box with its top left at `pos` (ImGui display coordinates). Returns its bottom.
+float label(ImDrawList* dl, ImVec2 pos, const std::string& text) {
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-  if (above) pos.y -= size.y + 2.0f * kLabelPadPx;
-  dl->AddRectFilled(pos, ImVec2(pos.x + size.x + 2.0f * kLabelPadPx, pos.y + size.y + 2.0f * kLabelPadPx), kLabelBackground);
+  const float bottom = pos.y + size.y + 2.0f * kLabelPadPx;
+  dl->AddRectFilled(pos, ImVec2(pos.x + size.x + 2.0f * kLabelPadPx, bottom), kLabelBackground);
   dl->AddText(ImVec2(pos.x + kLabelPadPx, pos.y + kLabelPadPx), kLabelText, text.c_str());
+  return bottom;
 }
 
 }  // namespace
@@ -44,8 +45,6 @@ void label(ImDrawList* dl, ImVec2 pos, const std::string& text, bool above) {
 void Viewer::drawLightsPanel() {
   const Scene& scene = mSession.scene();
   const size_t count = scene.lights.size();
-  const std::string header = fmt::format("Lights ({})###lights", count);
-  if (!ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
   const float row = ImGui::GetTextLineHeightWithSpacing();
   const float rows = static_cast<float>(std::min(count, kListRows)) + 0.25f;
   if (ImGui::BeginListBox("##lights", ImVec2(-FLT_MIN, row * rows))) {
@@ -56,7 +55,10 @@ void Viewer::drawLightsPanel() {
                          ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
       ImGui::SameLine();
       const std::string text = fmt::format("{}: {}  ×{:.3g}{}", i, lightTypeName(l.type), l.intensity, l.castsShadow ? "" : "  (no shadow)");
-      if (ImGui::Selectable(text.c_str(), i == mSession.selectedLight())) mSession.selectLight(i);
+      if (ImGui::Selectable(text.c_str(), i == mSession.selectedLight())) {
+        mSession.selectLight(i);
+        setStatus(fmt::format("selected {}: the views show its images", lightLabel(l, i)), false);
+      }
       ImGui::PopID();
     }
     ImGui::EndListBox();
@@ -99,6 +101,17 @@ void Viewer::drawLightsPanel() {
   const char* types[] = {lightTypeName(LightType::Directional), lightTypeName(LightType::Spot), lightTypeName(LightType::Point)};
   if (ImGui::Combo("Type", &type, types, IM_ARRAYSIZE(types))) {
     changeLightType(l, static_cast<LightType>(type), scene.bounds());
+    changed = true;
+  }
+  // Azimuth and elevation as seen from the point it lights (what right-drag in the view turns).
+  const glm::vec3 aim = lightAimPoint(l, scene.bounds());
+  glm::vec2 deg = glm::degrees(lightAngles(l, aim));
+  bool turned = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
+  turned |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(isPositional(l) ? "right-drag in the view moves it around the point it lights" : "right-drag in the view turns it");
+  if (turned) {
+    setLightAngles(l, aim, glm::radians(deg.x), glm::radians(deg.y));
     changed = true;
   }
   if (isPositional(l))
@@ -161,6 +174,7 @@ void Viewer::drawLightsPanel() {
   if (changed) {
     try {
       mSession.setLight(selected, l);
+      setStatus(fmt::format("edited {}", lightLabel(l, selected)), false);
     } catch (const Error& e) {
       setStatus(e.what(), true);
     }
@@ -173,7 +187,7 @@ void Viewer::drawLightsPanel() {
   }
   if (ImGui::Button("Show its maps in the inset")) {
     const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(mSession.shownLight());
-    mInset.name = own.size() > 1 ? own[1].name : own.front().name;  // its filter's first map, else its visibility
+    setView(mInset, own.size() > 1 ? own[1].name : own.front().name, "inset");  // its filter's first map, else its visibility
   }
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("the views show the selected light's visibility and maps; right-drag in the view moves it");
@@ -196,7 +210,9 @@ void Viewer::drawViewLabels() {
     return fmt::format("{} {}", mSession.projectionId() == "csm" ? "cascade" : "layer", layer);
   };
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-  auto labelSlot = [&](const ViewState& view, const glm::ivec4& rect, bool titleAbove) {
+  // Inside the slot's top-left corner: the legends (Legends.cpp) sit at the main view's lower
+  // left and above the inset, so the title and the cell labels stay clear of them.
+  auto labelSlot = [&](const ViewState& view, const glm::ivec4& rect) {
     const auto it = std::find_if(own.begin(), own.end(), [&](const DebugImage& d) { return d.name == view.name; });
     if (it == own.end() || !it->texture || !*it->texture) return;  // not one of the light's images
     const gl::Texture& t = *it->texture;
@@ -205,18 +221,18 @@ void Viewer::drawViewLabels() {
     std::string title = fmt::format("{}: {}", lightLabel(light, shown), view.name);
     if (layers > 1 && !grid) title += ", " + layerName(std::clamp(view.settings.layer, 0, layers - 1));
     if (grid && light.type == LightType::Point && layers == kCubeFaces) title += " (cube faces)";
-    label(dl, topLeft(rect), title, titleAbove);
+    const float titleBottom = label(dl, topLeft(rect), title);
     if (!grid) return;
     const int level = std::clamp(view.settings.level, 0, std::max(t.levels(), 1) - 1);
     const std::vector<glm::ivec4> cells = layerCells(rect, std::max(1, t.width() >> level), std::max(1, t.height() >> level), layers);
     for (int i = 0; i < layers; ++i) {
       const glm::ivec4& c = cells[static_cast<size_t>(i)];
-      const ImVec2 bottomLeft(topLeft(c).x, topLeft(c).y + static_cast<float>(c.w) / scale.y);
-      label(dl, bottomLeft, layerName(i), true);
+      const ImVec2 corner = topLeft(c);  // each cell's top left, under the title
+      label(dl, ImVec2(corner.x, std::max(corner.y, titleBottom + kLabelPadPx)), layerName(i));
     }
   };
-  labelSlot(mMain, mViewRect, false);
-  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) labelSlot(mInset, mInsetRect, true);
+  labelSlot(mMain, mViewRect);
+  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) labelSlot(mInset, mInsetRect);
 }
 
 void Viewer::executeLight(const ScriptAction& a) {

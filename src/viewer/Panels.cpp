@@ -1,7 +1,10 @@
-// The viewer's panels (Dear ImGui). Parameter widgets are generated from ParamDesc tables:
-// a combo for choices, an integer slider for step-1 parameters, a float slider otherwise
-// (logarithmic when the range spans orders of magnitude). Nothing here knows a technique.
+// The viewer's panels (Dear ImGui), one tab per group so that each fits a 1280×720 window
+// without scrolling. Parameter widgets are generated from ParamDesc tables: a combo for
+// choices, an integer slider for step-1 parameters, a float slider otherwise (logarithmic when
+// the range spans orders of magnitude), each showing its unit. Nothing here knows a technique.
 #include "viewer/Viewer.h"
+
+#include "report/ImageText.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
@@ -14,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <set>
 
 namespace penumbra::viewer {
 namespace {
@@ -21,10 +25,22 @@ namespace {
 // A float slider is logarithmic when max / default exceeds this: a bias of 0.0002 in 0..0.05
 // cannot be set on a linear slider a few hundred pixels wide.
 constexpr float kLogRangeRatio = 50.0f;
-constexpr float kGraphHeightPx = 36.0f;
+constexpr float kGraphHeightPx = 30.0f;
 constexpr float kMinSidebarWidthPx = 160.0f;
 constexpr float kMaxSidebarFraction = 0.5f;  // the panels never take more than half the window
+constexpr float kStatusLines = 2.0f;         // the status line's fixed height; longer text: tooltip
+constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in font heights
+// ViewSession::paramGroups() is Scene, Projection, Filter, Contact shadows: the first two sit
+// with the scene and technique choices, the filter's own and the contact pass's in a tab of
+// their own (together they would run past 720 px).
+constexpr size_t kTechniqueTabGroups = 2;
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
+// DejaVu Sans at this size: as tall as ImGui's default font's lines, readable at 100 % scale.
+constexpr float kFontPx = 15.0f;
+// The glyphs the labels use: Latin-1, Greek (λ, α, σ, Δ), general punctuation (–, —, …),
+// superscripts and subscripts, arrows, mathematical operators (−, √, ≤, ≥, ×), block shapes.
+constexpr ImWchar kGlyphRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x205E, 0x2070, 0x209F,
+                                    0x2190, 0x21FF, 0x2200, 0x22FF, 0x25A0, 0x25FF, 0};
 
 void hint(const char* text) {
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
@@ -38,9 +54,16 @@ void helpTooltip(const ParamDesc& d) {
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
   ImGui::TextUnformatted(std::string(d.key).c_str());
   ImGui::TextDisabled("%s", std::string(d.help).c_str());
-  ImGui::TextDisabled("default %s; right-click to reset", formatParamValue(d, d.def).c_str());
+  ImGui::TextDisabled("default %s %s; right-click to reset", formatParamValue(d, d.def).c_str(), std::string(d.unit).c_str());
   ImGui::PopTextWrapPos();
   ImGui::EndTooltip();
+}
+
+// The slider's printf format with the unit after the number ('%' in a unit doubled).
+std::string sliderFormat(const char* number, std::string_view unit) {
+  std::string u;
+  for (const char c : unit) u += c == '%' ? std::string("%%") : std::string(1, c);
+  return u.empty() ? std::string(number) : fmt::format("{} {}", number, u);
 }
 
 /// One widget for one parameter. Returns true and the new value when the user changed it.
@@ -62,7 +85,8 @@ bool paramWidget(const ParamDesc& d, float current, float& out) {
     }
   } else if (d.isInteger()) {
     int v = static_cast<int>(std::lround(current));
-    if (ImGui::SliderInt(label.c_str(), &v, static_cast<int>(d.min), static_cast<int>(d.max), "%d", ImGuiSliderFlags_AlwaysClamp)) {
+    if (ImGui::SliderInt(label.c_str(), &v, static_cast<int>(d.min), static_cast<int>(d.max), sliderFormat("%d", d.unit).c_str(),
+                         ImGuiSliderFlags_AlwaysClamp)) {
       out = static_cast<float>(v);
       changed = true;
     }
@@ -70,7 +94,7 @@ bool paramWidget(const ParamDesc& d, float current, float& out) {
     float v = current;
     ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
     if (d.min >= 0.0f && d.def > 0.0f && d.max / d.def > kLogRangeRatio) flags |= ImGuiSliderFlags_Logarithmic;
-    if (ImGui::SliderFloat(label.c_str(), &v, d.min, d.max, "%.4g", flags)) {
+    if (ImGui::SliderFloat(label.c_str(), &v, d.min, d.max, sliderFormat("%.4g", d.unit).c_str(), flags)) {
       if (d.step > 0.0f) v = d.min + std::round((v - d.min) / d.step) * d.step;
       out = std::clamp(v, d.min, d.max);
       changed = true;
@@ -101,16 +125,61 @@ std::optional<std::string> idCombo(const char* label, const std::string& current
   return chosen;
 }
 
+// A rolling graph under its own text line (numbers never drawn over the curve).
 void plot(const char* label, const std::deque<float>& history, const char* unit) {
   if (history.empty()) return;
   const std::vector<float> values(history.begin(), history.end());
   const float peak = *std::max_element(values.begin(), values.end());
-  const std::string overlay = fmt::format("{} {:.2f} {} (max {:.2f})", label, values.back(), unit, peak);
-  ImGui::PlotLines(fmt::format("##{}", label).c_str(), values.data(), static_cast<int>(values.size()), 0, overlay.c_str(),
-                   0.0f, std::max(peak, 1e-3f) * 1.1f, ImVec2(ImGui::GetContentRegionAvail().x, kGraphHeightPx));
+  ImGui::Text("%-10s %8.2f %s  (max %.2f)", label, static_cast<double>(values.back()), unit, static_cast<double>(peak));
+  ImGui::PlotLines(fmt::format("##{}", label).c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, 0.0f,
+                   std::max(peak, 1e-3f) * 1.1f, ImVec2(ImGui::GetContentRegionAvail().x, kGraphHeightPx));
 }
 
 }  // namespace
+
+void Viewer::loadFont() {
+  const std::span<const unsigned char> font = report::embeddedFont();
+  ImFontConfig config;
+  config.FontDataOwnedByAtlas = false;  // the bytes live in the binary
+  std::snprintf(config.Name, sizeof(config.Name), "DejaVu Sans, %.0f px", static_cast<double>(kFontPx));
+  ImGuiIO& io = ImGui::GetIO();
+  // ImGui's API takes a mutable pointer; with FontDataOwnedByAtlas off it only reads the bytes.
+  io.FontDefault = io.Fonts->AddFontFromMemoryTTF(const_cast<unsigned char*>(font.data()), static_cast<int>(font.size()),
+                                                  kFontPx, &config, kGlyphRanges);
+  PN_CHECK(io.FontDefault != nullptr, "the viewer's font could not be loaded");
+  ImGuiStyle& style = ImGui::GetStyle();
+  style.FramePadding.y = 2.0f;  // compact rows: every tab of parameters fits 720 px
+  style.ItemSpacing.y = 3.0f;
+}
+
+std::string Viewer::layoutText() const {
+  // Every label, unit and meaning the panels and legends can show, against the font's glyphs.
+  std::vector<std::string> texts = {"Split λ", "°", "²", "→", "−", "ΔV", "×", "…", "≤", "Angular radius (°)", "Intensity @ 1 m"};
+  auto addTable = [&](std::span<const ParamDesc> descs) {
+    for (const ParamDesc& d : descs) {
+      texts.emplace_back(d.label);
+      texts.emplace_back(d.unit);
+    }
+  };
+  addTable(sceneParamDescs());
+  for (const std::string& id : projectionIds()) addTable(makeProjection(id)->paramDescs());
+  for (const std::string& id : filterIds()) {
+    const std::unique_ptr<Filter> f = makeFilter(id);
+    addTable(f->paramDescs());
+    for (const DebugImage& d : f->debugImages()) texts.emplace_back(d.meaning);
+  }
+  const ImFont* font = ImGui::GetIO().FontDefault ? ImGui::GetIO().FontDefault : ImGui::GetFont();
+  std::set<ImWchar> missing;
+  for (const std::string& t : texts)
+    for (const int c : report::utf8Codepoints(t))
+      if (c > 0xFFFF || !font->FindGlyphNoFallback(static_cast<ImWchar>(c))) missing.insert(static_cast<ImWchar>(c));
+  std::string missingText;
+  for (const ImWchar c : missing) missingText += fmt::format(" U+{:04X}", static_cast<unsigned>(c));
+  return fmt::format("layout panel={} content-bottom={:.0f} window-height={:.0f} scroll-max={:.0f} font=\"{}\" "
+                     "missing-glyphs={}{}",
+                     mLayout.panel, mLayout.contentBottom, mLayout.windowHeight, mLayout.scrollMax,
+                     font->ConfigData ? font->ConfigData->Name : "", missing.size(), missingText);
+}
 
 void Viewer::drawPanels() {
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
@@ -121,24 +190,47 @@ void Viewer::drawPanels() {
   ImGui::SetNextWindowSize(ImVec2(mSidebarWidth, io.DisplaySize.y), ImGuiCond_Once);
   ImGui::Begin("Penumbra", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
   mSidebarWidth = ImGui::GetWindowWidth();
-  ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for labels
-  if (!mStatus.empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    if (mStatusIsError) ImGui::TextColored(kErrorColor, "%s", mStatus.c_str());
-    else ImGui::TextDisabled("%s", mStatus.c_str());
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * kLabelRoomEm);
+
+  // The status line: the latest action (or error), always at the top, at a fixed height.
+  const std::string status = !mRenderError.empty() ? "render failed (showing the last good frame): " + mRenderError : mStatus;
+  ImGui::BeginChild("##status", ImVec2(0.0f, kStatusLines * ImGui::GetTextLineHeightWithSpacing()), false,
+                    ImGuiWindowFlags_NoScrollbar);
+  ImGui::PushTextWrapPos(0.0f);
+  if (mStatusIsError || !mRenderError.empty()) ImGui::TextColored(kErrorColor, "%s", status.c_str());
+  else ImGui::TextDisabled("%s", status.empty() ? "ready" : status.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::EndChild();
+  if (ImGui::IsItemHovered() && !status.empty()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+    ImGui::TextUnformatted(status.c_str());
     ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
   }
-  if (!mRenderError.empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kErrorColor, "render failed (showing the last good frame):\n%s", mRenderError.c_str());
-    ImGui::PopTextWrapPos();
+
+  if (ImGui::BeginTabBar("##panels", ImGuiTabBarFlags_FittingPolicyResizeDown)) {
+    for (const PanelInfo& p : kPanels) {
+      const bool select = mSelectPanel && *mSelectPanel == p.panel;
+      if (!ImGui::BeginTabItem(p.title, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0)) continue;
+      switch (p.panel) {
+        case Panel::Technique: drawTechniquePanel(); break;
+        case Panel::Filter: drawParams(kTechniqueTabGroups, mSession.paramGroups().size()); break;
+        case Panel::Lights: drawLightsPanel(); break;
+        case Panel::Camera: drawCameraPanel(); break;
+        case Panel::Views: drawViewsPanel(); break;
+        case Panel::Timings: drawTimingPanel(); break;
+        case Panel::Tools: drawToolsPanel(); break;
+      }
+      mLayout.panel = p.id;
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
   }
-  drawTechniquePanel();
-  drawTimingPanel();
-  drawViewsPanel();
-  drawLightsPanel();
-  drawLightCameraPanel();
-  drawToolsPanel();
+  mSelectPanel.reset();
+  mLayout.contentBottom = ImGui::GetCursorScreenPos().y;
+  mLayout.windowHeight = io.DisplaySize.y;
+  mLayout.scrollMax = ImGui::GetScrollMaxY();
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -159,7 +251,6 @@ void Viewer::drawOverlay() {
 }
 
 void Viewer::drawTechniquePanel() {
-  if (!ImGui::CollapsingHeader("Scene and technique", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (auto s = idCombo("Scene", mSession.scene().name, builtinSceneNames())) selectScene(*s);
   ImGui::InputTextWithHint("##scenefile", "scene .json file", mScenePath, sizeof(mScenePath));
   ImGui::SameLine();
@@ -169,26 +260,33 @@ void Viewer::drawTechniquePanel() {
   if (auto f = idCombo("Filter", mSession.filterId(), filterIds())) selectFilter(*f);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(mSession.renderer().filter().description()).c_str());
   int map = mSession.shadowMapSize();
-  if (ImGui::BeginCombo("Shadow map", fmt::format("{}²", map).c_str())) {
+  if (ImGui::BeginCombo("Shadow map", fmt::format("{}² texels", map).c_str())) {
     for (int size : kShadowMapSizes)
-      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == map)) mSession.setShadowMapSize(size);
+      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == map)) {
+        mSession.setShadowMapSize(size);
+        setStatus(fmt::format("shadow map {}²", size), false);
+      }
     ImGui::EndCombo();
   }
-  ImGui::SliderFloat("Render scale", &mRenderScale, 0.25f, 1.0f, "%.2f");
+  ImGui::SliderFloat("Render scale", &mRenderScale, 0.25f, 1.0f, "%.2f × view");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("render at this fraction of the view's size (faster on software GL)");
-  drawParams();
+  drawParams(0, kTechniqueTabGroups);
+  hint("the filter's own parameters and contact shadows: the Filter tab");
 }
 
-void Viewer::drawParams() {
-  for (const ParamGroup& g : mSession.paramGroups()) {
+void Viewer::drawParams(size_t first, size_t last) {
+  const std::vector<ParamGroup> groups = mSession.paramGroups();
+  for (size_t i = first; i < std::min(last, groups.size()); ++i) {
+    const ParamGroup& g = groups[i];
     ImGui::Separator();
-    ImGui::TextUnformatted(g.title.c_str());
+    ImGui::TextDisabled("%s", g.title.c_str());
     if (g.descs.empty()) ImGui::TextDisabled("(no parameters)");
     for (const ParamDesc& d : g.descs) {
       float value = 0.0f;
       if (paramWidget(d, mSession.paramValue(d), value)) {
         try {
           mSession.setParam(d, value);
+          setStatus(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), d.unit), false);
         } catch (const Error& e) {
           setStatus(e.what(), true);
         }
@@ -197,21 +295,9 @@ void Viewer::drawParams() {
   }
 }
 
-void Viewer::drawLightCameraPanel() {
-  if (!ImGui::CollapsingHeader("Light and camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+void Viewer::drawCameraPanel() {
   const Scene& scene = mSession.scene();
-  const Light& light = scene.lights.at(mSession.selectedLight());
-  const glm::vec3 aim = lightAimPoint(light, scene.bounds());
-  glm::vec2 deg = glm::degrees(lightAngles(light, aim));
-  hint(isPositional(light) ? "the selected light (Lights), a spot or point light: right-drag in the view moves it around the point it lights"
-                           : "the selected light (Lights), a sun: right-drag in the view turns it");
-  bool moved = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
-  moved |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
-  if (moved) setLightAngles(mSession.light(), aim, glm::radians(deg.x), glm::radians(deg.y));
-
   int mode = mFly ? 1 : 0;
-  ImGui::TextUnformatted("Camera");
-  ImGui::SameLine();
   bool modeChanged = ImGui::RadioButton("orbit", &mode, 0);
   ImGui::SameLine();
   modeChanged |= ImGui::RadioButton("fly (C)", &mode, 1);
@@ -219,26 +305,36 @@ void Viewer::drawLightCameraPanel() {
     mFly = mode == 1;
     mOrbit = OrbitCamera::fromCamera(scene.camera);
     mFlyCamera = FlyCamera::fromCamera(scene.camera);
+    setStatus(mFly ? "camera: fly" : "camera: orbit", false);
   }
   hint(mFly ? "left-drag look, WASD/QE move (Shift fast), wheel speed" : "left-drag orbit, middle/Shift-drag pan, wheel zoom");
   float fovDeg = glm::degrees(scene.camera.fovYRad);
-  if (ImGui::SliderFloat("Field of view", &fovDeg, 10.0f, 120.0f, "%.0f°")) mSession.camera().fovYRad = glm::radians(fovDeg);
+  if (ImGui::SliderFloat("Field of view", &fovDeg, 10.0f, 120.0f, "%.0f° vertical")) mSession.camera().fovYRad = glm::radians(fovDeg);
   if (ImGui::Button("Reset camera")) {
     mSession.camera() = mHomeCamera;
     resetCamera();
+    setStatus("camera: the scene's own", false);
   }
   ImGui::SameLine();
   const std::string argument = "--camera " + cameraArgument(scene.camera);
-  if (ImGui::Button("Copy --camera")) ImGui::SetClipboardText(argument.c_str());
+  if (ImGui::Button("Copy --camera")) {
+    ImGui::SetClipboardText(argument.c_str());
+    setStatus("copied " + argument, false);
+  }
   hint(("this view for penumbra render / compare: " + argument).c_str());
 }
 
 void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
   std::vector<std::string> names = viewNames();
   if (allowNone) names.insert(names.begin(), kNoInset);
-  if (auto n = idCombo(id, view.name, names)) view.name = *n;
+  if (std::find(names.begin(), names.end(), view.name) == names.end()) names.push_back(view.name);  // waiting for it
+  if (auto n = idCombo(id, view.name, names)) setView(view, *n, id);
   const gl::Texture* t = view.name == kNoInset ? nullptr : findView(view.name);
-  if (!t || t == &mSession.renderer().colorTexture() || t == &mHeatmapTexture) return;  // colour images: as they are
+  if (!t) {
+    if (view.name != kNoInset) ImGui::TextDisabled("no '%s' with %s: shown when a filter has it", view.name.c_str(), mSession.filterId().c_str());
+    return;
+  }
+  if (t == &mSession.renderer().colorTexture() || t == &mHeatmapTexture || t == &mReferenceTexture) return;  // colour images
   ImGui::PushID(id);
   DisplaySettings& s = view.settings;
   const char* channels[] = {"r", "g", "b", "a", "rgb"};
@@ -246,26 +342,42 @@ void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
   const int layers = t->desc().target == GL_TEXTURE_2D ? 1 : t->layers();
   const bool isArray = t->desc().target == GL_TEXTURE_2D_ARRAY;
   if (layers > 1 && isArray) ImGui::Checkbox("All layers", &s.allLayers);
-  if (layers > 1 && !(isArray && s.allLayers)) ImGui::SliderInt(isArray ? "Layer" : "Slice", &s.layer, 0, layers - 1);
-  if (t->levels() > 1) ImGui::SliderInt("Mip level", &s.level, 0, t->levels() - 1);
+  if (layers > 1 && !(isArray && s.allLayers))
+    ImGui::SliderInt(isArray ? "Layer" : "Slice", &s.layer, 0, layers - 1, isArray ? "%d (cascade, cube face)" : "%d (slice)");
+  if (t->levels() > 1) ImGui::SliderInt("Mip level", &s.level, 0, t->levels() - 1, "level %d");
   ImGui::Checkbox("Turbo colours", &s.turbo);
   ImGui::SameLine();
   ImGui::Checkbox("Auto range", &s.autoRange);
   if (!s.autoRange) ImGui::DragFloatRange2("Range", &s.lo, &s.hi, 0.001f, 0.0f, 0.0f, "%.4g");
   const glm::vec2 r = &view == &mMain ? mMainRange : mInsetRange;
   ImGui::TextDisabled("%dx%d%s, shown range %.5g .. %.5g", t->width(), t->height(),
-                      layers > 1 ? fmt::format("x{}", layers).c_str() : "", r.x, r.y);
+                      layers > 1 ? fmt::format("x{}", layers).c_str() : "", static_cast<double>(r.x), static_cast<double>(r.y));
   ImGui::PopID();
 }
 
 void Viewer::drawViewsPanel() {
-  if (!ImGui::CollapsingHeader("Debug views", ImGuiTreeNodeFlags_DefaultOpen)) return;
   drawViewSettings("Main view", mMain, false);
+  ImGui::Separator();
   drawViewSettings("Inset", mInset, true);
+  ImGui::Separator();
+  if (ImGui::Button(mMain.name == kReferenceView ? "Show the technique (R)" : "Show the reference (R)")) flipReference();
+  hint("R flips the view between the technique and the same frame lit with the ray-traced V_ref (traced first if needed)");
+  drawSplitControls();
+}
+
+void Viewer::drawSplitControls() {
+  bool on = mSplit != nullptr;
+  if (ImGui::Checkbox("Split view", &on)) setSplit(on ? mSession.filterId() : "", mSession.projectionId());
+  if (!mSplit) {
+    hint("left half: this technique; right half: another, same camera and light");
+    return;
+  }
+  std::string filter = mSplit->filterId(), projection = mSplit->projectionId();
+  if (auto f = idCombo("Right filter", filter, filterIds())) setSplit(*f, projection);
+  else if (auto p = idCombo("Right projection", projection, projectionIds())) setSplit(filter, *p);
 }
 
 void Viewer::drawTimingPanel() {
-  if (!ImGui::CollapsingHeader("Timings", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const PassTimings& t = mSession.renderer().timings();
   plot("frame", mFrameHistory, "ms");
   for (const auto& [pass, ms] : t.ms) {
@@ -276,13 +388,16 @@ void Viewer::drawTimingPanel() {
 }
 
 void Viewer::drawToolsPanel() {
-  if (!ImGui::CollapsingHeader("Heatmap, shaders, files", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::SliderInt("Samples", &mHeatmapSamples, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light samples per pixel of the ray-traced reference");
+  ImGui::SliderInt("Samples", &mHeatmapSamples, 1, 1024, "%d per pixel", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light samples per pixel of the ray-traced reference (compare and bench use %d)",
+                                                ReferenceOptions{}.samples);
   if (mHeatmap.running()) {
     ImGui::ProgressBar(mHeatmap.progress(), ImVec2(-ImGui::GetFontSize() * 5.0f, 0.0f));
     ImGui::SameLine();
-    if (ImGui::Button("Cancel")) mHeatmap.cancel();
+    if (ImGui::Button("Cancel")) {
+      mHeatmap.cancel();
+      setStatus("heatmap cancelled", false);
+    }
   } else if (ImGui::Button("Error heatmap (H)")) {
     mHeatmapRequest = mHeatmapSamples;
   }

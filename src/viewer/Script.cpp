@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -21,6 +22,9 @@ struct Verb {
   size_t minArgs, maxArgs;
   std::string_view usage, help;
 };
+
+// The panels' script names (Viewer.h kPanels; checked against them by the viewer's test).
+constexpr std::string_view kPanelIds[] = {"technique", "filter", "lights", "camera", "views", "timings", "tools"};
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
@@ -41,13 +45,16 @@ constexpr Verb kVerbs[] = {
      "it; placed where the view shows it), remove one, set one's KEY (the scene file's: type, position, direction, "
      "target, size, color, intensity, outerConeDeg, innerConeDeg, range, castsShadow on|off, mapSize; vectors as X Y Z "
      "or X,Y,Z), or move the selected one (degrees; angles as seen from the point it lights)"},
-    {"view", 1, 1, "NAME", "main view: shaded, heatmap, or a debug image (visibility, shadow-map, ...)"},
-    {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view"},
+    {"view", 1, 1, "NAME", "main view: shaded, heatmap, reference, or a debug image (visibility, shadow-map, moments, ...)"},
+    {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view (kept across filter switches)"},
+    {"flip", 0, 0, "", "as the R key: technique <-> reference (the heatmap is traced first if needed)"},
+    {"split", 1, 2, "FILTER [PROJECTION] | off", "split view: the right half shows that technique (projection: the current)"},
+    {"panel", 1, 1, "technique|filter|lights|camera|views|timings|tools", "open that panel's tab"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
     {"screenshot-inset", 1, 1, "PATH", "after this frame, write the inset (with its labels) as PNG"},
-    {"print", 1, 1, "gl-objects|technique|timings|lights", "print a line on stdout"},
+    {"print", 1, 1, "gl-objects|technique|timings|lights|layout", "print a line on stdout (layout: the open panel's extent)"},
     {"heatmap", 0, 1, "[SAMPLES]", "start the error heatmap against the ray-traced reference"},
     {"wait-heatmap", 0, 0, "", "let frames pass until the heatmap is done"},
     {"reload", 0, 0, "", "reload shaders from the source tree (errors are printed)"},
@@ -108,8 +115,11 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "wait") scriptInt(a, 0, 0, kMaxWaitFrames);
   if (a.verb == "heatmap" && !a.args.empty()) scriptInt(a, 0, 1, 1 << 16);
   if (a.verb == "ui" && sub != "on" && sub != "off") fail(a, "expected on or off");
-  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights")
-    fail(a, "expected gl-objects, technique, timings or lights");
+  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights" && sub != "layout")
+    fail(a, "expected gl-objects, technique, timings, lights or layout");
+  if (a.verb == "panel" && std::none_of(std::begin(kPanelIds), std::end(kPanelIds), [&](std::string_view p) { return p == sub; }))
+    fail(a, "expected technique, filter, lights, camera, views, timings or tools");
+  if (a.verb == "split" && sub == "off" && a.args.size() != 1) fail(a, "expected split off");
   if (a.verb == "camera") {
     const size_t n = sub == "orbit" ? 4 : sub == "look" ? 7 : sub == "mode" ? 2 : 0;
     if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected camera {}", v->usage));

@@ -87,9 +87,27 @@ bool Viewer::execute(const ScriptAction& a) {
   } else if (v == "light") {
     executeLight(a);
   } else if (v == "view") {
-    mMain.name = arg;
+    setView(mMain, arg, "main view");
   } else if (v == "inset") {
-    mInset.name = arg;
+    setView(mInset, arg, "inset");
+  } else if (v == "flip") {
+    flipReference();
+    return true;
+  } else if (v == "split") {
+    if (arg == "off") {
+      setSplit("", "");
+    } else {
+      requireKnown(a, filterIds(), "filter");
+      const std::string projection = a.args.size() > 1 ? a.args[1] : mSession.projectionId();
+      const std::vector<std::string> projections = projectionIds();
+      if (std::find(projections.begin(), projections.end(), projection) == projections.end())
+        throw usageError(fmt::format("{}: unknown projection '{}'", a.where, projection));
+      if (!setSplit(arg, projection)) refused();
+    }
+  } else if (v == "panel") {
+    for (const PanelInfo& p : kPanels)
+      if (arg == p.id) mSelectPanel = p.panel;
+    return true;
   } else if (v == "wait") {
     const int n = scriptInt(a, 0, 0, 1 << 30);
     if (n == 0) return false;
@@ -113,6 +131,8 @@ bool Viewer::execute(const ScriptAction& a) {
       std::string line = fmt::format("lights {} selected {}:", scene.lights.size(), mSession.selectedLight());
       for (size_t i = 0; i < scene.lights.size(); ++i) line += fmt::format(" {}={}", i, lightTypeName(scene.lights[i].type));
       std::printf("%s\n", line.c_str());
+    } else if (arg == "layout") {
+      std::printf("%s\n", layoutText().c_str());
     } else if (arg == "technique") {
       std::printf("technique scene=%s projection=%s filter=%s\n", mSession.scene().name.c_str(), mSession.projectionId().c_str(),
                   mSession.filterId().c_str());

@@ -56,6 +56,7 @@ public:
   /// The selected light (what the light panels, the script's `light` actions and right-drag
   /// edit), writable; edits through it are not checked (setLight() checks).
   Light& light();
+  std::vector<Light>& lights() { ++mVersion; return mScene.lights; }
 
   /// Lights (docs/viewer.md, "Lights"). The selection is an index into scene().lights; it is
   /// 0 after a scene loads. Each throws a usage Error and leaves the lights unchanged when the

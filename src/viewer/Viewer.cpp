@@ -62,6 +62,8 @@ std::string title(const ViewSession& s) {
 
 }  // namespace
 
+bool isLitView(std::string_view name) { return findLitView(std::string(name)) != nullptr; }
+
 Viewer::Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter, int shadowMapSize,
                ViewerOptions options)
     : mOptions(std::move(options)),
@@ -75,6 +77,7 @@ Viewer::Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory
   ImGui::StyleColorsDark();
+  loadFont();
   ImGui_ImplGlfw_InitForOpenGL(mWindow.window(), true);
   ImGui_ImplOpenGL3_Init("#version 450 core");
   mHomeCamera = mSession.scene().camera;
@@ -134,6 +137,7 @@ void Viewer::drawFrame() {
   if (mOptions.showUi) drawPanels();
   layout();
   drawOverlay();
+  drawLegends();
   handleInput(static_cast<float>(mLastFrameMs) * 1e-3f);
   pollHeatmap();
   if (mWatcher && mAutoReload && mWatcher->poll())
@@ -182,8 +186,10 @@ void Viewer::handleInput(float dt) {
       mFly = !mFly;
       if (mFly) mFlyCamera = FlyCamera::fromCamera(mSession.scene().camera);
       else mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
+      setStatus(mFly ? "camera: fly (WASD/QE move, left-drag looks)" : "camera: orbit (left-drag orbits, wheel zooms)", false);
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) mHeatmapRequest = mHeatmapSamples;
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) flipReference();
     if (mFly) {
       glm::vec3 move(0.0f);
       move.x = float(ImGui::IsKeyDown(GLFW_KEY_D)) - float(ImGui::IsKeyDown(GLFW_KEY_A));
@@ -236,11 +242,39 @@ void Viewer::renderFrame() {
   const int h = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.w))));
   try {
     mSession.render(w, h, litView());
+    if (mSplit) renderSplit(w, h);
     mRenderError.clear();
   } catch (const Error& e) {
     if (mOptions.scripted) throw;
     mRenderError = e.what();  // shown in the panels; the last good frame stays on screen
   }
+}
+
+void Viewer::renderSplit(int width, int height) {
+  // The right half sees what the left half sees: the same camera, lights and map size.
+  mSplit->camera() = mSession.scene().camera;
+  mSplit->lights() = mSession.scene().lights;
+  if (mSplit->shadowMapSize() != mSession.shadowMapSize()) mSplit->setShadowMapSize(mSession.shadowMapSize());
+  mSplit->render(width, height, litView());
+}
+
+bool Viewer::setSplit(const std::string& filter, const std::string& projection) {
+  if (filter.empty()) {
+    mSplit.reset();
+    setStatus("split view off", false);
+    return true;
+  }
+  try {
+    auto split = std::make_unique<ViewSession>(mWindow, mSession.scene(), makeProjection(projection), makeFilter(filter),
+                                               mSession.shadowMapSize());
+    mSplit = std::move(split);
+  } catch (const Error& e) {
+    setStatus(fmt::format("split view {} · {}: {}", filter, projection, e.what()), true);
+    return false;
+  }
+  mSplitLabel = fmt::format("{} · {}", filter, projection);
+  setStatus(fmt::format("split view: left {} · {}, right {}", mSession.filterId(), mSession.projectionId(), mSplitLabel), false);
+  return true;
 }
 
 int Viewer::litView() const {
@@ -251,6 +285,7 @@ int Viewer::litView() const {
 const gl::Texture* Viewer::findView(const std::string& name) const {
   if (findLitView(name)) return &mSession.renderer().colorTexture();
   if (name == kHeatmapView) return mHeatmapTexture ? &mHeatmapTexture : nullptr;
+  if (name == kReferenceView) return mReferenceTexture && mReferenceVersion != 0 ? &mReferenceTexture : nullptr;
   for (const DebugImage& d : mSession.debugImages())
     if (d.name == name && d.texture && *d.texture) return d.texture;
   return nullptr;
@@ -260,6 +295,7 @@ std::vector<std::string> Viewer::viewNames() const {
   std::vector<std::string> names;
   for (const LitView& v : kLitViews) names.emplace_back(v.name);
   if (mHeatmapTexture) names.emplace_back(kHeatmapView);
+  if (mReferenceTexture && mReferenceVersion != 0) names.emplace_back(kReferenceView);
   for (const DebugImage& d : mSession.debugImages())
     if (d.texture && *d.texture) names.push_back(d.name);
   return names;
@@ -272,29 +308,49 @@ void Viewer::drawViews() {
   glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   if (!mSession.hasFrame()) return;
-  auto show = [&](ViewState& view, const glm::ivec4& rect, glm::vec2& range) {
+  // Returns false when the slot's image does not exist with this technique (drawn: nothing).
+  auto show = [&](ViewState& view, const glm::ivec4& rect, glm::vec2& range, const glm::ivec4* clip) {
     const gl::Texture* texture = findView(view.name);
-    if (!texture) {
+    if (texture) {
+      view.seen = true;
+    } else if (!view.seen) {
+      // Never found with any technique so far: a typo, not a filter that lacks the image.
       if (mOptions.scripted)
-        throw usageError(fmt::format("view '{}': no such image now (available: {})", view.name, join(viewNames(), ", ")));
+        throw usageError(fmt::format("view '{}': no such image (available: {})", view.name, join(viewNames(), ", ")));
+      setStatus(fmt::format("view '{}': no such image", view.name), true);
+      view.name = kShadedView;
       texture = findView(kShadedView);
+    } else {
+      return false;  // e.g. sdf keeps no shadow-map: the slot waits for a filter that does
     }
     DisplaySettings s = view.settings;
-    if (texture == &mSession.renderer().colorTexture() || texture == &mHeatmapTexture) {
+    if (texture == &mSession.renderer().colorTexture() || texture == &mHeatmapTexture || texture == &mReferenceTexture) {
       s = DisplaySettings{};  // colour images are shown as they are
       s.channel = DisplaySettings::kChannelRgb;
       s.autoRange = false;
     }
     try {
-      range = mDisplay.draw(*texture, s, rect);
+      range = mDisplay.draw(*texture, s, rect, clip);
     } catch (const Error& e) {
       if (mOptions.scripted) throw;
       setStatus(fmt::format("view '{}': {}", view.name, e.what()), true);
       view.name = kShadedView;
     }
+    return true;
   };
-  show(mMain, mViewRect, mMainRange);
-  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) show(mInset, mInsetRect, mInsetRange);
+  if (!show(mMain, mViewRect, mMainRange, nullptr)) {
+    ViewState shaded{kShadedView, {}, true};
+    glm::vec2 unused;
+    show(shaded, mViewRect, unused, nullptr);
+  }
+  if (mSplit && mSplit->hasFrame() && findLitView(mMain.name)) {
+    const glm::ivec4 right{mViewRect.x + mViewRect.z / 2, mViewRect.y, mViewRect.z - mViewRect.z / 2, mViewRect.w};
+    DisplaySettings s;
+    s.channel = DisplaySettings::kChannelRgb;
+    s.autoRange = false;
+    mDisplay.draw(mSplit->renderer().colorTexture(), s, mViewRect, &right);
+  }
+  if (mInset.name != kNoInset && mInsetRect.z > 0 && mInsetRect.w > 0) show(mInset, mInsetRect, mInsetRange, nullptr);
 }
 
 void Viewer::recordTimings(double frameMs) {
@@ -320,8 +376,21 @@ void Viewer::pollHeatmap() {
     setStatus(fmt::format("heatmap: RMSE {:.4f}, leak {:.2f}%, over-dark {:.2f}%, penumbra RMSE {:.4f} over {} px ({} spp, {:.1f} s)",
                           m.rmse, m.leakPct, m.overDarkPct, m.penumbraRmse, m.pixels, r->samplesPerPixel, r->seconds),
               false);
+    // The same frame lit with V_ref, while the renderer still holds that frame (the view has
+    // not changed since the heatmap started).
+    if (r->version == mSession.version()) {
+      const ColorImage ref = mSession.renderer().shadeWithVisibility(r->vRef);
+      if (!mReferenceTexture || mReferenceTexture.width() != ref.width || mReferenceTexture.height() != ref.height) {
+        mReferenceTexture = gl::Texture("viewer reference image", {GL_TEXTURE_2D, GL_RGBA8, ref.width, ref.height, 1, 1});
+        mReferenceTexture.setSampling(GL_NEAREST, GL_NEAREST);
+      }
+      const std::vector<uint8_t> refBottomUp = flipRows<uint8_t>(ref.rgba, ref.width, ref.height, 4);
+      glTextureSubImage2D(mReferenceTexture.id(), 0, 0, 0, ref.width, ref.height, GL_RGBA, GL_UNSIGNED_BYTE, refBottomUp.data());
+      mReferenceVersion = r->version;
+    }
     mHeatmapResult = std::move(r);
-    mMain.name = kHeatmapView;
+    mMain.name = std::exchange(mFlipWhenReady, false) && mReferenceVersion != 0 ? kReferenceView : kHeatmapView;
+    mMain.seen = true;
   }
   if (const std::string e = mHeatmap.takeError(); !e.empty()) {
     if (mOptions.scripted) throw Error("heatmap: " + e);
@@ -338,6 +407,29 @@ void Viewer::startHeatmap(int samples) {
   setStatus(fmt::format("heatmap: tracing the reference at {} samples per pixel...", samples), false);
 }
 
+void Viewer::flipReference() {
+  if (mReferenceVersion != 0 && mReferenceVersion == mSession.version()) {
+    const bool toReference = mMain.name != kReferenceView;
+    mMain.name = toReference ? kReferenceView : kShadedView;
+    mMain.seen = true;
+    setStatus(toReference ? fmt::format("showing the reference: the frame lit with V_ref ({} spp); R flips back",
+                                        mHeatmapResult ? mHeatmapResult->samplesPerPixel : 0)
+                          : fmt::format("showing the technique: {} · {}; R flips to the reference", mSession.filterId(),
+                                        mSession.projectionId()),
+              false);
+    return;
+  }
+  // No reference of this view yet: trace one, then show it.
+  mFlipWhenReady = true;
+  mHeatmapRequest = mHeatmapSamples;
+}
+
+void Viewer::setView(ViewState& view, const std::string& name, const char* slot) {
+  view.name = name;
+  view.seen = name == kNoInset || findView(name) != nullptr;
+  setStatus(fmt::format("{}: {}", slot, name), false);
+}
+
 bool Viewer::selectScene(const std::string& nameOrPath) {
   try {
     mSession.loadScene(nameOrPath);
@@ -348,7 +440,9 @@ bool Viewer::selectScene(const std::string& nameOrPath) {
   mHomeCamera = mSession.scene().camera;
   resetCamera();
   mHeatmap.cancel();
-  if (mMain.name == kHeatmapView) mMain.name = kShadedView;  // it measured another scene
+  if (mMain.name == kHeatmapView || mMain.name == kReferenceView) mMain.name = kShadedView;  // another scene's
+  mReferenceVersion = 0;
+  if (mSplit) setSplit(mSplit->filterId(), mSplit->projectionId());  // the right half on the new scene
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
   std::snprintf(mSavePath, sizeof(mSavePath), "%s-view.json", mSession.scene().name.c_str());
   setStatus(fmt::format("scene {}", mSession.scene().name), false);
@@ -363,6 +457,7 @@ bool Viewer::selectProjection(const std::string& id) {
     return false;
   }
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  setStatus(fmt::format("projection {} (filter {})", id, mSession.filterId()), false);
   return true;
 }
 
@@ -374,6 +469,7 @@ bool Viewer::selectFilter(const std::string& id) {
     return false;
   }
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
+  setStatus(fmt::format("filter {} (projection {})", id, mSession.projectionId()), false);
   return true;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // `penumbra view`: a GLFW window with Dear ImGui panels around the Renderer's output.
 //  - Panels (Panels.cpp): scene, projection, filter and every parameter as a widget generated
-//    from its ParamDesc; light and camera; debug views; per-pass times; shaders; heatmap; save.
+//    from its ParamDesc; lights (LightsPanel.cpp); camera; debug views; per-pass times; shaders;
+//    heatmap; save.
 //  - The view (this file): orbit/fly camera, light dragging, the main view + an inset (any
 //    Renderer::debugImages() entry, the colour output or the error heatmap), screenshots,
 //    shader hot reload, and the scripted mode (Script.h) used by tests and demos.
@@ -13,6 +14,8 @@
 #include "viewer/Script.h"
 #include "viewer/ShaderWatcher.h"
 #include "viewer/ViewSession.h"
+
+#include <penumbra/Reference.h>
 
 #include <array>
 #include <deque>
@@ -40,9 +43,29 @@ struct ViewerOptions {
 /// (RenderOptions::debugView: shaded, cascades, texel-density) are the colour output.
 inline constexpr const char* kShadedView = "shaded";
 inline constexpr const char* kHeatmapView = "heatmap";
+/// The same frame lit with the reference's V_ref (after a heatmap of this view): R flips to it.
+inline constexpr const char* kReferenceView = "reference";
 inline constexpr const char* kNoInset = "none";
 /// The shadow-map sizes (texels per side) the panels offer, for the technique and for one light.
 inline constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
+
+/// True for the lit pass's views (shaded, cascades, texel-density): the colour output.
+bool isLitView(std::string_view name);
+
+/// The panel groups, one tab each; the script's `panel NAME` opens one.
+enum class Panel { Technique, Filter, Lights, Camera, Views, Timings, Tools };
+struct PanelInfo {
+  Panel panel;
+  const char* id;     ///< script name
+  const char* title;  ///< tab label
+};
+inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Technique"},
+                                        {Panel::Filter, "filter", "Filter"},
+                                        {Panel::Lights, "lights", "Lights"},
+                                        {Panel::Camera, "camera", "Camera"},
+                                        {Panel::Views, "views", "Views"},
+                                        {Panel::Timings, "timings", "Timings"},
+                                        {Panel::Tools, "tools", "Tools"}};
 
 class Viewer {
 public:
@@ -61,6 +84,14 @@ private:
   struct ViewState {  // what one of the two view slots shows and how
     std::string name;
     DisplaySettings settings;
+    /// The name was found at least once: when a later technique lacks it (sdf has no
+    /// shadow-map), the slot waits for it instead of failing; a name never found is a typo.
+    bool seen = false;
+  };
+  /// Where the open panel's content ends, for `print layout` (window pixels).
+  struct PanelLayout {
+    std::string panel;
+    float contentBottom = 0.0f, windowHeight = 0.0f, scrollMax = 0.0f;
   };
 
   bool frame();
@@ -78,6 +109,11 @@ private:
   bool selectProjection(const std::string& id);
   bool selectFilter(const std::string& id);
   void startHeatmap(int samples);
+  void flipReference();  ///< R: technique ↔ reference (a heatmap first when there is none)
+  /// Split view: the right half of the view shows `filter` with `projection` ("" = off).
+  bool setSplit(const std::string& filter, const std::string& projection);
+  void renderSplit(int width, int height);
+  void setView(ViewState& view, const std::string& name, const char* slot);
   void screenshotView(const std::filesystem::path& path);
   void screenshotWindow(const std::filesystem::path& path);
   void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
@@ -104,12 +140,23 @@ private:
   void drawPanels();
   void drawOverlay();  ///< the heatmap's progress, over the view
   void drawTechniquePanel();
-  void drawParams();
-  void drawLightCameraPanel();
+  /// The parameter groups [first, last) of ViewSession::paramGroups().
+  void drawParams(size_t first, size_t last);
+  void drawCameraPanel();
   void drawViewsPanel();
   void drawViewSettings(const char* id, ViewState& view, bool allowNone);
   void drawTimingPanel();
   void drawToolsPanel();
+  void drawSplitControls();
+  void loadFont();
+  std::string layoutText() const;  ///< `print layout`: the open panel's extent, the font's coverage
+
+  // Legends (Legends.cpp): what the colours of the main view and the inset mean.
+  void drawLegends();
+  /// The legend of one view slot, its corner at `anchor` (window pixels from the top-left) taken
+  /// at `pivot` (0..1 of its size), e.g. (0, 1) = lower-left.
+  void drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
+                  const glm::vec2& pivot);
 
   ViewerOptions mOptions;
   gl::WindowContext mWindow;
@@ -120,13 +167,21 @@ private:
   HeatmapJob mHeatmap;
   std::optional<HeatmapResult> mHeatmapResult;
   gl::Texture mHeatmapTexture;
-  int mHeatmapSamples = 64;
+  int mHeatmapSamples = ReferenceOptions{}.samples;  ///< as compare and bench: the same ruler
   std::optional<int> mHeatmapRequest;  ///< samples; started once this frame is rendered
+  gl::Texture mReferenceTexture;       ///< the heatmap's frame lit with V_ref
+  uint64_t mReferenceVersion = 0;      ///< ViewSession::version() it shows (0 = none)
+  bool mFlipWhenReady = false;         ///< R pressed before a heatmap of this view existed
+  std::unique_ptr<ViewSession> mSplit; ///< the right half's technique, when the view is split
+  std::string mSplitLabel;
+
+  std::optional<Panel> mSelectPanel;   ///< a tab to open on the next frame (script, keys)
+  PanelLayout mLayout;
 
   // Layout (window pixels, origin lower-left) and cameras.
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
-  float mSidebarWidth = 360.0f;
+  float mSidebarWidth = 380.0f;
   float mRenderScale = 1.0f;
   bool mFly = false;
   bool mDragInView = false;  ///< a mouse drag that started over the view
@@ -135,7 +190,7 @@ private:
   FlyCamera mFlyCamera;
   float mFlySpeedMps = 2.0f;
 
-  ViewState mMain{kShadedView, {}}, mInset{kNoInset, {}};
+  ViewState mMain{kShadedView, {}, true}, mInset{kNoInset, {}, true};
   glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};
 
   // Status line, timings.

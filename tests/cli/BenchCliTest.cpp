@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -110,6 +111,168 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
     EXPECT_LT(row["rmse"].get<double>(), 0.5);
   }
   EXPECT_EQ(json["rows"][0]["gl_renderer"], json["machine"]["gl_renderer"]);
+}
+
+// The whole cost of every row of the quick run: shadow_cost_ms_* are the quantiles of the
+// per-frame sum of the shadow, prefilter and visibility passes, and the contact pass where contact
+// shadows are on (docs/bench.md states the rule),
+// recomputed here from the frame samples results.json carries; shadow_memory_mb is there for
+// every row; one-off costs only where a technique made something once (sdf's bake).
+TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
+  const std::string dir = freshDir("bench-cost");
+  const RunResult r = runPenumbra("bench --quick --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  const nlohmann::json& rows = json["rows"];
+  ASSERT_GT(rows.size(), 0u);
+  ASSERT_EQ(json["frame_ms"].size(), rows.size());
+  // The report's own interpolation rule (BenchResults.h timeStats): linear between ranks.
+  auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const size_t lo = static_cast<size_t>(pos), hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (v[hi] - v[lo]) * (pos - static_cast<double>(lo));
+  };
+  constexpr double kRounding = 1e-9;  // ms: the sums are formed in another order here
+  size_t sdfRows = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const nlohmann::json& row = rows[i];
+    const nlohmann::json& frames = json["frame_ms"][i];
+    const std::string what = row["scene"].get<std::string>() + " " + row["projection"].get<std::string>() + " " +
+                             row["filter"].get<std::string>() + " " + row["params"].get<std::string>();
+    std::vector<double> sums(static_cast<size_t>(row["frames"].get<double>()), 0.0);
+    for (const char* pass : {"shadow", "prefilter", "visibility", "contact"}) {
+      if (std::string(pass) == "contact" && !frames.contains(pass)) continue;  // contact shadows off
+      const std::vector<double> ms = frames.at(pass).get<std::vector<double>>();
+      ASSERT_EQ(ms.size(), sums.size()) << what << " " << pass;
+      for (size_t f = 0; f < ms.size(); ++f) sums[f] += ms[f];
+      // The samples are those behind the pass's own columns.
+      EXPECT_NEAR(quantile(ms, 0.5), row[std::string(pass) + "_ms_median"].get<double>(), kRounding) << what << " " << pass;
+    }
+    EXPECT_NEAR(row["shadow_cost_ms_median"].get<double>(), quantile(sums, 0.5), kRounding) << what;
+    EXPECT_NEAR(row["shadow_cost_ms_p10"].get<double>(), quantile(sums, 0.1), kRounding) << what;
+    EXPECT_NEAR(row["shadow_cost_ms_p90"].get<double>(), quantile(sums, 0.9), kRounding) << what;
+    EXPECT_GT(row["shadow_cost_ms_median"].get<double>(), 0.0) << what;
+
+    ASSERT_TRUE(row["shadow_memory_mb"].is_number()) << what;
+    EXPECT_GT(row["shadow_memory_mb"].get<double>(), 0.0) << what << ": every technique keeps a map or a field";
+    if (row["filter"] == "hard" && row["projection"] == "uniform") {
+      const double map = row["shadow_map"].get<double>();
+      EXPECT_DOUBLE_EQ(row["shadow_memory_mb"].get<double>(), map * map * 4.0 / (1024.0 * 1024.0))
+          << "hard keeps one 32-bit depth map";
+    }
+    if (row["filter"] == "sdf") {
+      ++sdfRows;
+      EXPECT_GT(row["one_off_s"].get<double>(), 0.0) << what;
+      EXPECT_NE(row["one_off_what"].get<std::string>().find("static casters only"), std::string::npos) << what;
+    } else {
+      EXPECT_TRUE(row["one_off_s"].is_null()) << what;
+    }
+  }
+  EXPECT_GT(sdfRows, 0u) << "the quick run has sdf rows";
+}
+
+// Each row carries the compare command that reproduces it: run as printed, compare measures the
+// same pixels with the same map and reference, and prints the row's metrics to the fourth digit
+// (the frames are deterministic, so in fact to every digit).
+TEST(BenchCli, EveryRowReproducesWithItsCompareCommand) {
+  const std::string dir = freshDir("bench-reproduce");
+  const RunResult r = runPenumbra("bench --scenes pen --filters hard,pcss,vssm --projections uniform,csm "
+                                  "--sweep light.size=0.05:0.1:2 --size 96x64 --shadow-map 512 --samples 16 --frames 1 "
+                                  "--out out",
+                                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  ASSERT_EQ(json["rows"].size(), 3u * 2u * 2u);
+  auto fourDigits = [](double v) { return std::lround(v * 1e4); };
+  for (const nlohmann::json& row : json["rows"]) {
+    const std::string command = row["compare_command"].get<std::string>();
+    ASSERT_EQ(command.rfind("penumbra compare ", 0), 0u) << command;
+    const RunResult c = runPenumbra(command.substr(std::string("penumbra ").size()) + " --json --out imgs", dir);
+    ASSERT_EQ(c.exitCode, 0) << command << "\n" << c.err;
+    const nlohmann::json cmp = nlohmann::json::parse(c.out);
+    for (const char* metric : {"rmse", "penumbra_rmse", "leak_pct", "overdark_pct", "umbra_leak_pct"})
+      EXPECT_EQ(fourDigits(cmp[metric].get<double>()), fourDigits(row[metric].get<double>())) << command << ": " << metric;
+    EXPECT_EQ(cmp["pixels"].get<double>(), row["pixels"].get<double>()) << command;
+    EXPECT_EQ(cmp["shadow_map"].get<double>(), row["shadow_map"].get<double>()) << command;
+  }
+}
+
+// With no size, map or sample options, bench measures what render and compare show by default:
+// the same image size, each scene's own map and the same reference samples.
+TEST(BenchCli, DefaultsAreThoseOfCompare) {
+  const std::string dir = freshDir("bench-defaults");
+  const RunResult r = runPenumbra("bench --scenes pen --filters hard --projections uniform --frames 1 --out out", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json row = nlohmann::json::parse(slurp(dir + "/out/results.json"))["rows"][0];
+  const RunResult c = runPenumbra("compare --scene pen --filter hard --projection uniform --json --out imgs", dir);
+  ASSERT_EQ(c.exitCode, 0) << c.err;
+  const nlohmann::json cmp = nlohmann::json::parse(c.out);
+  for (const char* key : {"width", "height", "shadow_map", "rmse", "pixels"})
+    EXPECT_EQ(cmp[key].get<double>(), row[key].get<double>()) << key;
+  EXPECT_NE(row["compare_command"].get<std::string>().find("--samples " + std::to_string(cmp["reference_samples"].get<int>())),
+            std::string::npos);
+}
+
+// The recommendation of the quick run, checked against its own rows: for every situation the
+// three picks follow the stated rule (Recommendation.h) and lie on the whole-cost Pareto front of
+// the candidates, recomputed here by brute force; the report and choosing.md show them.
+TEST(BenchCli, QuickRecommendationNamesPicksOnTheWholeCostParetoFront) {
+  const std::string dir = freshDir("bench-recommend");
+  const RunResult r = runPenumbra("bench --quick --out out --choosing choosing.md", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  const nlohmann::json& rows = json["rows"];
+  const std::string html = slurp(dir + "/out/report.html"), page = slurp(dir + "/choosing.md");
+  EXPECT_FALSE(fs::exists(dir + "/out/choosing.md")) << "--choosing moves the page";
+  EXPECT_NE(page.find("](out/report.html)"), std::string::npos) << "the page links the report relative to itself";
+  ASSERT_EQ(json["recommendations"].size(), 4u) << "contact-hardening, wide sun, thin casters, static";
+  for (const nlohmann::json& rec : json["recommendations"]) {
+    const std::string situation = rec["situation"], scene = rec["scene"], metric = rec["metric"];
+    const bool staticCasters = rec["static_casters"];
+    // Candidates: the scene's rows at its own light; one-off work only where casters are static.
+    std::vector<size_t> candidates;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const nlohmann::json& row = rows[i];
+      if (row["scene"] != scene || row["params"].get<std::string>().find("light.") != std::string::npos) continue;
+      if (!staticCasters && !row["one_off_s"].is_null()) continue;
+      candidates.push_back(i);
+    }
+    ASSERT_FALSE(candidates.empty()) << situation << ": the quick run measures " << scene;
+    EXPECT_EQ(rec["candidates"].get<std::vector<size_t>>(), candidates) << situation;
+    auto cost = [&](size_t i) { return rows[i]["shadow_cost_ms_median"].get<double>(); };
+    auto error = [&](size_t i) { return rows[i][metric].get<double>(); };
+    auto dominated = [&](size_t i) {
+      return std::any_of(candidates.begin(), candidates.end(), [&](size_t j) {
+        return cost(j) <= cost(i) && error(j) <= error(i) && (cost(j) < cost(i) || error(j) < error(i));
+      });
+    };
+    double best = error(candidates[0]);
+    for (const size_t i : candidates) best = std::min(best, error(i));
+    const double acceptable = 2.0 * best;
+    EXPECT_DOUBLE_EQ(rec["acceptable_error"].get<double>(), acceptable) << situation;
+    double cheapestCost = 1e300;
+    for (const size_t i : candidates)
+      if (error(i) <= acceptable) cheapestCost = std::min(cheapestCost, cost(i));
+    for (const char* budget : {"cheapest_acceptable", "balanced", "best"}) {
+      ASSERT_TRUE(rec[budget].is_number()) << situation << " " << budget;
+      const size_t pick = rec[budget].get<size_t>();
+      const std::string name = situation + " " + budget + ": " + rows[pick]["filter"].get<std::string>() + " · " +
+                               rows[pick]["projection"].get<std::string>();
+      EXPECT_NE(std::find(candidates.begin(), candidates.end(), pick), candidates.end()) << name;
+      EXPECT_FALSE(dominated(pick)) << name << " is not on the whole-cost Pareto front";
+      EXPECT_LE(error(pick), acceptable) << name;
+      // The report and the page name the pick with its reproducing command.
+      const std::string command = rows[pick]["compare_command"].get<std::string>();
+      EXPECT_NE(page.find(command), std::string::npos) << name;
+      EXPECT_NE(html.find(command), std::string::npos) << name;
+    }
+    EXPECT_DOUBLE_EQ(error(rec["best"].get<size_t>()), best) << situation;
+    EXPECT_DOUBLE_EQ(cost(rec["cheapest_acceptable"].get<size_t>()), cheapestCost) << situation;
+    EXPECT_NE(html.find("id=\"choose-" + situation + "\""), std::string::npos) << situation;
+    EXPECT_NE(page.find("<a id=\"" + situation + "\">"), std::string::npos) << situation;
+  }
+  EXPECT_NE(page.find(json["machine"]["gl_renderer"].get<std::string>()), std::string::npos) << "the machine is named";
 }
 
 // bench --micro-only: the micro table alone, in micro.csv and results.json alike. Every block runs

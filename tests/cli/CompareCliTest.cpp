@@ -1,6 +1,9 @@
 #include "CliSupport.h"
 
+#include "report/Sheet.h"
+
 #include <penumbra/Exr.h>
+#include <penumbra/ImageIO.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -31,6 +34,40 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
   EXPECT_LT(j["rmse"].get<double>(), 0.5);
   for (const char* f : {"technique.png", "reference.png", "heatmap.png", "approximation.png", "sheet.png"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
+}
+
+// sheet.png reads on its own: a title band over each of its four tiles and a footer with the
+// heatmap's colour legend and the metrics, so it is taller than the 2 × 2 images by those bands,
+// and each band carries text (dark pixels on the light background).
+TEST(CompareCli, SheetHasTitledTilesALegendAndTheMetrics) {
+  const std::string dir = freshDir("compare-sheet");
+  const RunResult r = runPenumbra("compare --scene fence --filter vsm --size 320x180 --shadow-map 512 --samples 4 --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int w = 0, h = 0, sw = 0, sh = 0;
+  (void)penumbra::readPng(dir + "/imgs/technique.png", w, h);
+  const std::vector<uint8_t> sheet = penumbra::readPng(dir + "/imgs/sheet.png", sw, sh);
+  using penumbra::report::kSheetTitleBandPx;
+  constexpr int kMinFooterPx = 60;  // the legend's bar and labels and at least one line of metrics
+  ASSERT_EQ(sw, 2 * w);
+  ASSERT_GE(sh, 2 * (h + kSheetTitleBandPx) + kMinFooterPx) << "the tiles plus two title bands and the footer";
+  // Ink: pixels much darker than the sheet's light background, in a band of rows and columns.
+  auto ink = [&](int x0, int x1, int y0, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const uint8_t* p = &sheet[(static_cast<size_t>(y) * static_cast<size_t>(sw) + static_cast<size_t>(x)) * 4];
+        n += (p[0] + p[1] + p[2]) / 3 < 128;
+      }
+    return n;
+  };
+  constexpr int kMinInkPixels = 40;  // a few letters at the title size
+  for (int row = 0; row < 2; ++row)
+    for (int col = 0; col < 2; ++col) {
+      const int y0 = row * (h + kSheetTitleBandPx);
+      EXPECT_GT(ink(col * w, (col + 1) * w, y0, y0 + kSheetTitleBandPx), kMinInkPixels) << "tile " << row << "," << col << " has no title";
+    }
+  const int footer = 2 * (h + kSheetTitleBandPx);
+  EXPECT_GT(ink(0, sw, footer, sh), 10 * kMinInkPixels) << "the legend and the metrics";
 }
 
 // The JSON names the camera as a --camera argument; given back, it repeats the run's numbers.

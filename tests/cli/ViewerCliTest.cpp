@@ -411,3 +411,82 @@ TEST(ViewerCli, SelectedPointLightShowsItsSixCubeFaces) {
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("bad2.txt:1: light: direction: the light is a point"), std::string::npos) << bad.err;
 }
+
+// The viewer at 1280×720: each panel group (one tab each) fits without scrolling, with the
+// technique that has the most parameters (csm × evsm-soft, and every other filter on csm) and
+// the Lights tab with the most widgets (six lights listed, a spot selected); the
+// font has every glyph the labels, units and legends use ("Split λ", "texels²", "ΔV"); an
+// inset survives a filter that lacks its image; the split view shows two techniques; R flips
+// to the reference.
+TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-panels");
+  std::string script = "scene city\nprojection csm\nfilter evsm-soft\ninset shadow-map\nwait 2\n";
+  const std::vector<std::string> panels = {"technique", "filter", "lights", "camera", "views", "timings", "tools"};
+  for (const std::string& p : panels) script += "panel " + p + "\nwait 2\nprint layout\nscreenshot-window panel-" + p + ".png\n";
+  script += "panel filter\n";
+  for (const std::string& f : filterIds()) script += "filter " + f + "\nwait 2\nprint layout\n";
+  // sdf keeps no shadow-map: the inset waits for the next filter that has one.
+  script += "filter sdf\nwait 1\nfilter pcss\nwait 1\nscreenshot plain.png\nsplit vsm\nwait 1\nscreenshot split.png\nsplit off\n"
+            "heatmap 4\nwait-heatmap\nview shaded\nflip\nwait 1\nscreenshot reference.png\nflip\nwait 1\nscreenshot technique.png\n";
+  // The Lights tab at its tallest: room (a point lamp and a spot) and four more spots, a spot
+  // selected (cones and range: every widget the editor has).
+  script += "projection uniform\nscene room\nlight add spot\nlight add spot\nlight add spot\nlight add spot\nlight select 1\n"
+            "panel lights\nwait 2\nprint lights\nprint layout\nscreenshot-window panel-lights-room.png\n";
+  writeScript(dir + "/s.txt", script);
+  const RunResult r = runViewer("--size 1280x720 --shadow-map 512 --script s.txt", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+
+  const std::regex layout("layout panel=(\\S+) content-bottom=(\\d+) window-height=(\\d+) scroll-max=(\\d+) font=\"([^\"]*)\" "
+                          "missing-glyphs=(\\d+)(.*)");
+  std::istringstream lines(r.out);
+  size_t layouts = 0;
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (!std::regex_match(line, m, layout)) continue;
+    ++layouts;
+    EXPECT_EQ(m[3].str(), "720") << line;
+    EXPECT_LE(std::stoi(m[2].str()), 720) << "the panel's content runs past the window: " << line;
+    EXPECT_EQ(m[4].str(), "0") << "the panel scrolls: " << line;
+    EXPECT_EQ(m[6].str(), "0") << "glyphs the labels use are missing from the font:" << m[7].str();
+    EXPECT_NE(m[5].str().find("DejaVu"), std::string::npos) << line;
+  }
+  EXPECT_EQ(layouts, panels.size() + filterIds().size() + 1) << r.out;
+  EXPECT_NE(r.out.find("lights 6 selected 1: 0=point 1=spot 2=spot 3=spot 4=spot 5=spot\n"), std::string::npos) << r.out;
+
+  // Every panel is on screen: the sidebar (left of the 3D view) differs from panel to panel and
+  // carries text.
+  std::map<std::string, std::vector<uint8_t>> sidebars;
+  constexpr int kSidebarPx = 300;  // inside the sidebar whatever its exact width
+  for (const std::string& p : panels) {
+    int w = 0, h = 0;
+    const std::vector<uint8_t> rgba = readPng(dir + "/panel-" + p + ".png", w, h);
+    ASSERT_EQ(w, 1280);
+    ASSERT_EQ(h, 720);
+    std::vector<uint8_t>& side = sidebars[p];
+    for (int y = 0; y < h; ++y)
+      side.insert(side.end(), rgba.begin() + (static_cast<ptrdiff_t>(y) * w) * 4, rgba.begin() + (static_cast<ptrdiff_t>(y) * w + kSidebarPx) * 4);
+    EXPECT_GE(greyStats(side).levels, kMinGreyLevels) << p << ": no text in the sidebar";
+  }
+  for (size_t a = 0; a < panels.size(); ++a)
+    for (size_t b = a + 1; b < panels.size(); ++b)
+      EXPECT_GE(differingShare(sidebars[panels[a]], sidebars[panels[b]]), 0.01) << panels[a] << " and " << panels[b] << " look alike";
+
+  // Split: the left half is pcss as before, the right half another filter's picture.
+  int w = 0, h = 0;
+  const std::vector<uint8_t> plain = readPng(dir + "/plain.png", w, h), split = readPng(dir + "/split.png", w, h);
+  auto half = [&](const std::vector<uint8_t>& img, bool right) {
+    std::vector<uint8_t> out;
+    for (int y = 0; y < h; ++y) {
+      const ptrdiff_t x0 = right ? w / 2 + 2 : 0, x1 = right ? w : w / 2 - 2;  // off the divider
+      out.insert(out.end(), img.begin() + (y * w + x0) * 4, img.begin() + (y * w + x1) * 4);
+    }
+    return out;
+  };
+  EXPECT_EQ(differingShare(half(plain, false), half(split, false)), 0.0) << "the left half is the technique itself";
+  EXPECT_GE(differingShare(half(plain, true), half(split, true)), kMinDifferingShare) << "the right half shows vsm";
+  // R: the same frame lit with V_ref, then back to the technique's own picture.
+  const std::vector<uint8_t> reference = readPng(dir + "/reference.png", w, h), technique = readPng(dir + "/technique.png", w, h);
+  EXPECT_GE(differingShare(reference, technique), kMinDifferingShare) << "the reference looks like the technique";
+  EXPECT_EQ(differingShare(technique, plain), 0.0) << "flipping back shows the technique again";
+}

@@ -172,11 +172,11 @@ TEST(SecondDepth, MapStoresTheMidpointOfTwoPeeledLayers) {
   for (const DebugImage& d : renderer.filter().debugImages()) {
     std::vector<float>& m = maps[d.name];
     m.resize(static_cast<size_t>(d.texture->width()) * static_cast<size_t>(d.texture->height()));
-    const bool depth = d.name != "midpoint";
+    const bool depth = d.name != "shadow-map";  // the midpoint: a colour texture
     d.texture->read(depth ? GL_DEPTH_COMPONENT : GL_RED, GL_FLOAT, m.data(), m.size() * sizeof(float));
   }
   ASSERT_EQ(maps.size(), 3u);
-  const std::vector<float>&first = maps["first-layer"], &second = maps["second-layer"], &mid = maps["midpoint"];
+  const std::vector<float>&first = maps["first-layer"], &second = maps["second-layer"], &mid = maps["shadow-map"];
   constexpr float kPeelEpsilonDepth = 1e-5f;  // passes/depth_peel.frag.glsl
   constexpr float kTolerance = 1e-6f;
   size_t twoLayers = 0, oneLayer = 0, bad = 0;

@@ -19,24 +19,24 @@ namespace {
 TEST(BenchPlan, SweepParsesAndSpacesValuesEvenly) {
   const Sweep s = parseSweep("light.size=0.02:0.2:4");
   EXPECT_EQ(s.key, "light.size");
-  const ParamDesc numeric{"light.size", "", "", 0.0f, 0.0f, 10.0f, 0.0f};
+  const ParamDesc numeric{"light.size", "", "", "m", 0.0f, 0.0f, 10.0f, 0.0f};
   const std::vector<float> v = s.values(numeric);
   ASSERT_EQ(v.size(), 4u);
   EXPECT_FLOAT_EQ(v[0], 0.02f);
   EXPECT_FLOAT_EQ(v[1], 0.08f);
   EXPECT_FLOAT_EQ(v[3], 0.2f);
   // Integer parameters round and drop repeats: 1, 1.5, 2, 2.5, 3 → 1, 2, 3.
-  const ParamDesc integer{"x.n", "", "", 1.0f, 1.0f, 64.0f, 1.0f};
+  const ParamDesc integer{"x.n", "", "", "taps", 1.0f, 1.0f, 64.0f, 1.0f};
   EXPECT_EQ(parseSweep("x.n=1:3:5").values(integer), (std::vector<float>{1.0f, 2.0f, 3.0f}));
 }
 
 TEST(BenchPlan, SweepTakesAListOfValues) {
   const Sweep s = parseSweep("light.count=1,2,4,8");
   EXPECT_EQ(s.key, "light.count");
-  const ParamDesc integer{"light.count", "", "", 0.0f, 0.0f, 16.0f, 1.0f};
+  const ParamDesc integer{"light.count", "", "", "lights", 0.0f, 0.0f, 16.0f, 1.0f};
   EXPECT_EQ(s.values(integer), (std::vector<float>{1.0f, 2.0f, 4.0f, 8.0f}));
   EXPECT_EQ(parseSweep("x.n=3,2.6,7").values(integer), (std::vector<float>{3.0f, 7.0f}));  // rounded, repeats dropped
-  EXPECT_EQ(parseSweep("light.size=0.5").values(ParamDesc{"light.size", "", "", 0.0f, 0.0f, 10.0f, 0.0f}),
+  EXPECT_EQ(parseSweep("light.size=0.5").values(ParamDesc{"light.size", "", "", "m", 0.0f, 0.0f, 10.0f, 0.0f}),
             (std::vector<float>{0.5f}));
 }
 
@@ -118,6 +118,19 @@ TEST(BenchStats, MedianAndPercentilesInterpolate) {
   const std::vector<double> one = {7};
   EXPECT_DOUBLE_EQ(timeStats(one).p10, 7.0);
   EXPECT_DOUBLE_EQ(timeStats({}).median, 0.0);
+}
+
+TEST(BenchStats, ShadowCostIsTheQuantileOfPerFrameSumsOfTheCorePasses) {
+  // Three frames: one with a slow shadow pass, one with a slow visibility pass. The passes'
+  // medians (1 + 0 + 1 = 2 ms) miss that two of the three frames cost 11 ms; the per-frame sums
+  // {2, 11, 11} do not. The G-buffer and lit passes are not the technique's.
+  const FrameSamples frames = {{"gbuffer", {100, 100, 100}}, {"shadow", {1, 10, 1}}, {"prefilter", {0, 0, 0}},
+                               {"visibility", {1, 1, 10}}, {"lit", {50, 50, 50}}};
+  const TimeStats cost = shadowCostStats(frames);
+  EXPECT_DOUBLE_EQ(cost.median, 11.0);
+  EXPECT_DOUBLE_EQ(cost.p10, 2.0 + 0.2 * 9.0);  // position 0.2 between 2 and 11
+  EXPECT_DOUBLE_EQ(cost.p90, 11.0);
+  EXPECT_DOUBLE_EQ(shadowCostStats({}).median, 0.0);
 }
 
 TEST(BenchStats, ParetoFrontKeepsOnlyUndominatedPoints) {

@@ -102,6 +102,24 @@ TEST(Metrics, HeatmapTintsLeaksAndOverDarkeningOnGrey) {
   EXPECT_EQ(pixelAt(h, 0, 0)[0], 117);
 }
 
+TEST(Metrics, DilatedHeatmapSpreadsTheLargestErrorWithItsSign) {
+  // 5×1: one leak of 0.4 at x = 1, an over-dark of 0.2 at x = 4, a masked-out error at x = 3.
+  const std::vector<float> ref = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+  const std::vector<float> v = {0.5f, 0.9f, 0.5f, 0.0f, 0.3f};
+  const std::vector<uint8_t> mask = {1, 1, 1, 0, 1};
+  const ColorImage plain = errorHeatmap(v, ref, mask, 5, 1);
+  const ColorImage h = errorHeatmap(v, ref, mask, 5, 1, nullptr, HeatmapOptions{.fullScaleDeltaV = 0.5f, .dilatePx = 1});
+  auto reddish = [](const uint8_t* p) { return p[0] > p[2]; };
+  auto bluish = [](const uint8_t* p) { return p[2] > p[0]; };
+  EXPECT_FALSE(reddish(pixelAt(plain, 0, 0))) << "without dilation only the leaking pixel is red";
+  for (const int x : {0, 1, 2}) EXPECT_TRUE(reddish(pixelAt(h, x, 0))) << x << ": within 1 px of the leak";
+  EXPECT_EQ(pixelAt(h, 0, 0)[0], pixelAt(h, 1, 0)[0]) << "the neighbour shows the leak's own strength";
+  // x = 3 is masked out: it shows its neighbour's over-darkening, not its own larger error.
+  EXPECT_TRUE(bluish(pixelAt(h, 3, 0)));
+  EXPECT_EQ(pixelAt(h, 3, 0)[2], pixelAt(h, 4, 0)[2]);
+  EXPECT_THROW(errorHeatmap(v, ref, mask, 5, 1, nullptr, HeatmapOptions{.fullScaleDeltaV = 0.5f, .dilatePx = -1}), Error);
+}
+
 TEST(Metrics, HeatmapUsesTheBaseImageForItsGrey) {
   const std::vector<float> same = {0.5f, 0.5f};
   ColorImage base{2, 1, {0, 0, 0, 255, 255, 255, 255, 255}};

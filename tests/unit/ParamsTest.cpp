@@ -62,3 +62,24 @@ TEST(Params, EveryDeclaredDefaultIsInRange) {
   for (const std::string& id : projectionIds())
     for (const ParamDesc& d : makeProjection(id)->paramDescs()) EXPECT_NO_THROW(checkParamValue(d, d.def)) << d.key;
 }
+
+// Every numeric parameter names its unit (the viewer's sliders and penumbra list show it); a
+// choice has none.
+TEST(Params, EveryNumericParameterHasAUnit) {
+  std::vector<std::span<const ParamDesc>> tables = {sceneParamDescs()};
+  std::vector<std::unique_ptr<Parameterized>> owners;
+  for (const std::string& id : projectionIds()) owners.push_back(makeProjection(id));
+  for (const std::string& id : filterIds()) owners.push_back(makeFilter(id));
+  for (const auto& o : owners) tables.push_back(o->paramDescs());
+  size_t numeric = 0;
+  for (const auto& table : tables)
+    for (const ParamDesc& d : table) {
+      if (d.isChoice()) {
+        EXPECT_TRUE(d.unit.empty()) << d.key;
+      } else {
+        EXPECT_FALSE(d.unit.empty()) << d.key << " has no unit";
+        ++numeric;
+      }
+    }
+  EXPECT_GT(numeric, 40u);
+}

@@ -1,5 +1,6 @@
 // The viewer's script format (src/viewer/Script.h): what parses, and what fails with file:line.
 #include "viewer/Script.h"
+#include "viewer/Viewer.h"
 
 #include <penumbra/Error.h>
 
@@ -56,7 +57,7 @@ TEST(ViewerScript, MistakesNameTheLine) {
 
 TEST(ViewerScript, HelpListsEveryAction) {
   const std::string help = scriptHelp();
-  for (const char* verb : {"scene", "filter", "projection", "set", "camera", "light", "view", "inset", "wait", "screenshot",
+  for (const char* verb : {"scene", "filter", "projection", "set", "camera", "light", "view", "inset", "flip", "split", "panel", "wait", "screenshot",
                            "screenshot-window", "screenshot-inset", "print", "heatmap", "wait-heatmap", "reload", "save", "ui", "quit"})
     EXPECT_TRUE(help.find(std::string("\n  ") + verb + " ") != std::string::npos ||
                 help.find(std::string("\n  ") + verb + "\n") != std::string::npos ||
@@ -88,4 +89,15 @@ TEST(ViewerScript, LightMistakesNameTheLineAndTheProblem) {
   EXPECT_NE(errorOf("light set 0 mapSize 100.5\n").find("whole number of texels"), std::string::npos);
   EXPECT_NE(errorOf("light set 0 castsShadow maybe\n").find("on or off"), std::string::npos);
   EXPECT_NE(errorOf("light dim 0\n").find("expected light"), std::string::npos);
+}
+
+// `panel NAME` takes exactly the viewer's tab ids; `split` a filter (and projection) or off.
+TEST(ViewerScript, PanelAndSplitActions) {
+  for (const viewer::PanelInfo& p : viewer::kPanels)
+    EXPECT_NO_THROW(viewer::parseScript(std::string("panel ") + p.id + "\n", "s.txt")) << p.id;
+  EXPECT_THROW(viewer::parseScript("panel sidebar\n", "s.txt"), Error);
+  EXPECT_THROW(viewer::parseScript("panel light\n", "s.txt"), Error);  // the tabs are lights and camera
+  EXPECT_NO_THROW(viewer::parseScript("split vsm\nsplit pcss csm\nsplit off\nflip\nprint layout\nprint lights\n", "s.txt"));
+  EXPECT_THROW(viewer::parseScript("split off now\n", "s.txt"), Error);
+  EXPECT_THROW(viewer::parseScript("split\n", "s.txt"), Error);
 }

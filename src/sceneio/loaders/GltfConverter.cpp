@@ -4,6 +4,7 @@
 // the glTF field ("accessors[3]: …"). What is read and what is ignored: docs/scenes.md.
 #include "sceneio/loaders/GltfConverter.h"
 
+#include "sceneio/loaders/GltfAnimation.h"
 #include "sceneio/loaders/GltfTextures.h"
 
 #include "sceneio/loaders/TinyGltf.h"
@@ -76,7 +77,9 @@ private:
   int meshFor(int meshIndex, int primIndex);  // -1: the primitive draws nothing
   int materialFor(int gltfMaterial, const std::string& field, bool& invisible);
   int imageFor(int gltfImage, const std::string& field);
-  void visit(int node, const glm::mat4& parent, int depth);
+  /// `animParent`: the animation node of the nearest ancestor under an animated node, or -1.
+  void visit(int node, const glm::mat4& parent, int depth, int animParent);
+  int addAnimatedNode(const tinygltf::Node& n, const glm::mat4& parent, int animParent, const std::string& field);
   glm::mat4 localTransform(const tinygltf::Node& n, const std::string& field) const;
   void addLight(const tinygltf::Node& node, const glm::mat4& world, const std::string& field);
   void addCamera(const tinygltf::Camera& c, const glm::mat4& world, const std::string& field);
@@ -93,6 +96,7 @@ private:
   uint64_t mImageBytes = 0;  // decoded so far
   std::map<int, UvTransform> mUvTransforms;  // glTF material → its base-colour texture's transform
   std::vector<uint8_t> mOnPath, mVisited;
+  std::map<int, TransformTrack> mTracks;  // keyed channels by glTF node
   uint64_t mVertices = 0, mTriangles = 0;
 };
 
@@ -412,7 +416,17 @@ void Converter::addCamera(const tinygltf::Camera& c, const glm::mat4& world, con
   mOut.hasCamera = true;
 }
 
-void Converter::visit(int ni, const glm::mat4& parent, int depth) {
+// A node at or below an animated node becomes an animation node: its objects follow it.
+int Converter::addAnimatedNode(const tinygltf::Node& n, const glm::mat4& parent, int animParent, const std::string& field) {
+  const auto keyed = mTracks.find(static_cast<int>(&n - g.nodes.data()));
+  AnimatedNode a = makeAnimatedNode(n, keyed == mTracks.end() ? nullptr : &keyed->second, localTransform(n, field), mFile, field);
+  a.parent = animParent;
+  if (animParent < 0) a.offset = parent;
+  mOut.scene.animation.nodes.push_back(std::move(a));
+  return static_cast<int>(mOut.scene.animation.nodes.size() - 1);
+}
+
+void Converter::visit(int ni, const glm::mat4& parent, int depth, int animParent) {
   const std::string field = fmt::format("nodes[{}]", ni);
   if (ni < 0 || static_cast<size_t>(ni) >= g.nodes.size()) error(field, fmt::format("no such node ({} nodes)", g.nodes.size()));
   const auto i = static_cast<size_t>(ni);
@@ -422,6 +436,7 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth) {
   mOnPath[i] = mVisited[i] = 1;
   const tinygltf::Node& n = g.nodes[i];
   const glm::mat4 world = parent * localTransform(n, field);
+  const int animNode = animParent >= 0 || mTracks.count(ni) ? addAnimatedNode(n, parent, animParent, field) : -1;
   if (n.mesh >= 0) {
     if (static_cast<size_t>(n.mesh) >= g.meshes.size()) error(field + ".mesh", fmt::format("no mesh {} ({} meshes)", n.mesh, g.meshes.size()));
     const auto& prims = g.meshes[static_cast<size_t>(n.mesh)].primitives;
@@ -436,7 +451,10 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth) {
       o.material = static_cast<uint32_t>(materialFor(prims[p].material, field, invisible));
       o.worldFromObject = world;
       // A singular transform (scale 0 hides a node in glTF) draws nothing and has no normal matrix.
-      if (std::abs(glm::determinant(glm::mat3(world))) > 0.0f) mOut.scene.objects.push_back(std::move(o));
+      if (!(std::abs(glm::determinant(glm::mat3(world))) > 0.0f)) continue;
+      if (animNode >= 0)
+        mOut.scene.animation.objects.push_back({static_cast<uint32_t>(mOut.scene.objects.size()), static_cast<uint32_t>(animNode), glm::mat4(1.0f)});
+      mOut.scene.objects.push_back(std::move(o));
     }
   }
   if (n.camera >= 0) {
@@ -444,7 +462,7 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth) {
     addCamera(g.cameras[static_cast<size_t>(n.camera)], world, fmt::format("cameras[{}]", n.camera));
   }
   addLight(n, world, field);
-  for (int child : n.children) visit(child, world, depth + 1);
+  for (int child : n.children) visit(child, world, depth + 1, animNode);
   mOnPath[i] = 0;
 }
 
@@ -467,7 +485,17 @@ Model Converter::run() {
     for (size_t i = 0; i < g.nodes.size(); ++i)
       if (!child[i]) roots.push_back(static_cast<int>(i));
   }
-  for (int r : roots) visit(r, glm::mat4(1.0f), 0);
+  mTracks = readGltfAnimations(g, mFile, [this](int index, int type, const std::string& use) {
+    const AccessorData a = accessor(index, use, type,
+                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                     TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    std::vector<float> out;
+    out.reserve(a.count * static_cast<size_t>(a.components));
+    for (size_t i = 0; i < a.count; ++i)
+      for (int c = 0; c < a.components; ++c) out.push_back(static_cast<float>(a.component(i, c)));
+    return out;
+  });
+  for (int r : roots) visit(r, glm::mat4(1.0f), 0, -1);
   if (mOut.scene.objects.empty() || mOut.scene.triangleCount() == 0)
     error("", "the scene places no triangles (no mesh node with triangle primitives)");
   mOut.scene.name = mFile;

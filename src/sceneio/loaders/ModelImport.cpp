@@ -143,6 +143,20 @@ void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromMod
     if (m.baseColorTexture >= 0) m.baseColorTexture += imageBase;
     scene.materials.push_back(std::move(m));
   }
+  // The model's animation nodes follow it: roots are placed by worldFromModel.
+  const auto objectBase = static_cast<uint32_t>(scene.objects.size());
+  const auto nodeBase = static_cast<int>(scene.animation.nodes.size());
+  for (AnimatedNode n : model.animation.nodes) {
+    n.name = name + "/" + n.name;
+    if (n.parent < 0) n.offset = worldFromModel * n.offset;
+    else n.parent += nodeBase;
+    scene.animation.nodes.push_back(std::move(n));
+  }
+  for (ObjectAnimation a : model.animation.objects) {
+    a.object += objectBase;
+    a.node += static_cast<uint32_t>(nodeBase);
+    scene.animation.objects.push_back(a);
+  }
   for (Object o : model.objects) {
     o.name = name + "/" + o.name;
     o.mesh += meshBase;

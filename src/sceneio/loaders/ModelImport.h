@@ -76,7 +76,8 @@ void addDefaultLightAndCamera(Scene& scene, bool hasCamera);
 
 /// Appends `model`'s meshes, materials, images and objects to `scene`, placed by `worldFromModel`;
 /// objects are named "<name>/<object>" and cast shadows only when `castsShadow`. Lights and the
-/// camera of the model are not taken (the scene file has its own). Throws Error (naming
+/// camera of the model are not taken (the scene file has its own); its animated nodes are, placed
+/// by `worldFromModel` (their lights' and camera's keys are not). Throws Error (naming
 /// `where`) when the placed model breaks a limit.
 void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromModel, bool castsShadow,
                  const std::string& name, const std::string& where);

@@ -21,7 +21,7 @@ constexpr ParamDesc kParams[] = {
     {"esm.exponent", "Exponent",
      "c of the warp exp(c (2z - 1)) of linear depth z, V = E[exp(2c (z - t))]: larger makes the test sharper and "
      "darkens contacts again, smaller softens and lightens them; at most 86, where exp(c) and exp(-c) are the "
-     "extreme normal 32-bit floats",
+     "extreme normal 32-bit floats", "factor",
      kDefaultExponent, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32, 0.0f},
     footprintWidthParam("esm.filterTexels"),
     footprintParam("esm.footprint"),
@@ -56,6 +56,8 @@ void EsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/esm.glsl"));
 }
 
-std::vector<DebugImage> EsmFilter::debugImages() const { return {{"esm-warp", &mMaps.moments()}}; }
+std::vector<DebugImage> EsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.moments(), "exp(c·(2z − 1)) of the linear light depth z (esm.exponent = c)"}};
+}
 
 }  // namespace penumbra

@@ -14,14 +14,14 @@ constexpr std::string_view kComponentNames[] = {"2", "4"};
 constexpr ParamDesc kParams[] = {
     {"evsm.components", "Components",
      "2: the positive warp (p, p²); 4: also the negative warp (n, n²), and V is the smaller of the two bounds "
-     "(twice the memory, far less light where receivers are not planar)",
+     "(twice the memory, far less light where receivers are not planar)", "",
      1.0f, 0.0f, 1.0f, 1.0f, kComponentNames},
     expWarpStorageParam("evsm.storage"),
     positiveExponentParam("evsm.positiveExponent"),
     negativeExponentParam("evsm.negativeExponent"),
     {"evsm.minVariance", "Min variance",
      "floor of the depth variance in texels² (as vsm.minVariance), taken through each warp's slope: hides the "
-     "acne of receivers that are not quite planar",
+     "acne of receivers that are not quite planar", "texels²",
      4.0f, 0.0f, 64.0f, 0.0f},
     bleedReductionParam("evsm.bleedReduction"),
     footprintWidthParam("evsm.filterTexels"),
@@ -60,6 +60,8 @@ void EvsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm.glsl"));
 }
 
-std::vector<DebugImage> EvsmFilter::debugImages() const { return {{"evsm-moments", &mMaps.moments()}}; }
+std::vector<DebugImage> EvsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
+}
 
 }  // namespace penumbra

@@ -16,7 +16,7 @@ constexpr ParamDesc kParams[] = {
     negativeExponentParam("evsm-soft.negativeExponent"),
     {"evsm-soft.minVariance", "Min variance",
      "floor of the depth variance in texels² (as vssm.minVariance), taken through each warp's slope: keeps receivers "
-     "from shadowing themselves",
+     "from shadowing themselves", "texels²",
      3.0f, 0.0f, 256.0f, 0.0f},
     bleedReductionParam("evsm-soft.bleedReduction"),
     softMinRadiusParam("evsm-soft.minRadiusTexels"),
@@ -64,7 +64,8 @@ void EvsmSoftFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> EvsmSoftFilter::debugImages() const {
-  std::vector<DebugImage> out{{"evsm-soft-moments", &mMaps.moments()}};
+  std::vector<DebugImage> out{{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+                              {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

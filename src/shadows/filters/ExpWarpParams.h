@@ -19,7 +19,7 @@ static_assert(PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f == 43.0f && PN_EXP_WARP_MAX_LOG
 constexpr ParamDesc expWarpStorageParam(std::string_view key) {
   return {key, "Storage",
           "float32: 32-bit float moments, exponents up to 43; float16: half the memory, exponents clamped to 5.5 "
-          "(e^11, the second moment at the far plane, is the largest power of e a half holds)",
+          "(e^11, the second moment at the far plane, is the largest power of e a half holds)", "",
           0.0f, 0.0f, 1.0f, 1.0f, kExpWarpStorageNames};
 }
 
@@ -35,7 +35,7 @@ inline constexpr float kDefaultPositiveExponent = 20.0f;
 constexpr ParamDesc positiveExponentParam(std::string_view key) {
   return {key, "Positive exponent",
           "c+ of the positive warp exp(c+ (2z - 1)) of linear depth z: larger cuts more light bleeding between "
-          "occluders; clamped to 43 (float32) or 5.5 (float16) so that the stored p² stays finite",
+          "occluders; clamped to 43 (float32) or 5.5 (float16) so that the stored p² stays finite", "factor",
           kDefaultPositiveExponent, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f, 0.0f};
 }
 
@@ -43,7 +43,7 @@ constexpr ParamDesc positiveExponentParam(std::string_view key) {
 constexpr ParamDesc negativeExponentParam(std::string_view key) {
   return {key, "Negative exponent",
           "c- of the negative warp -exp(-c- (2z - 1)) (components=4): it bounds the receivers the positive warp "
-          "leaves lit near a far occluder; clamped to 43 (float32) or 5.5 (float16)",
+          "leaves lit near a far occluder; clamped to 43 (float32) or 5.5 (float16)", "factor",
           5.0f, 1.0f, PN_EXP_WARP_MAX_LOG_FLOAT32 / 2.0f, 0.0f};
 }
 

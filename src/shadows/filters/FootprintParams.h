@@ -12,7 +12,7 @@ namespace penumbra {
 /// "<filter>.filterTexels": the minimum filter width in texels, default 2.
 constexpr ParamDesc footprintWidthParam(std::string_view key) {
   return {key, "Filter width",
-          "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness", 2.0f, 1.0f,
+          "minimum filter width in shadow-map texels (the pixel footprint is widened to it): the softness", "texels", 2.0f, 1.0f,
           64.0f, 0.0f};
 }
 
@@ -20,13 +20,13 @@ constexpr ParamDesc footprintWidthParam(std::string_view key) {
 constexpr ParamDesc footprintParam(std::string_view key) {
   return {key, "Pixel footprint",
           "on: filter over the pixel's footprint in the map (mip chain, anisotropic taps; antialiased, "
-          "view-dependent); off: a fixed box of the filter's filterTexels texels, the same from every camera",
+          "view-dependent); off: a fixed box of the filter's filterTexels texels, the same from every camera", "",
           1.0f, 0.0f, 1.0f, 1.0f, kOffOn, "PN_FOOTPRINT_PIXEL"};
 }
 
 /// "<filter>.anisotropy": the most trilinear taps along the footprint's long axis, default 8.
 constexpr ParamDesc footprintAnisotropyParam(std::string_view key) {
-  return {key, "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)", 8.0f, 1.0f,
+  return {key, "Anisotropy", "maximum trilinear taps along the footprint's long axis (1 = trilinear only)", "taps", 8.0f, 1.0f,
           16.0f, 1.0f};
 }
 

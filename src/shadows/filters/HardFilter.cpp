@@ -12,13 +12,13 @@ static_assert(PN_BIAS_NONE == 0 && PN_BIAS_CONSTANT == 1 && PN_BIAS_SLOPE == 2 &
               "kBiasModes follows the PN_BIAS_* order");
 
 constexpr ParamDesc kParams[] = {
-    {"hard.bias", "Bias", "how self-shadowing (acne) is avoided: none, constant, slope (constant + slope-scaled) or normal (offset along the normal + constant)",
+    {"hard.bias", "Bias", "how self-shadowing (acne) is avoided: none, constant, slope (constant + slope-scaled) or normal (offset along the normal + constant)", "",
      PN_BIAS_SLOPE, 0, 3, 1, kBiasModes, "PN_HARD_BIAS"},
-    {"hard.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+    {"hard.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
      0.0002f, 0.0f, 0.05f, 0.0f},
-    {"hard.slopeBias", "Slope bias", "slope-scaled offset: multiples of texel size × tan(angle to the light)",
+    {"hard.slopeBias", "Slope bias", "slope-scaled offset: multiples of texel size × tan(angle to the light)", "texel·tanθ",
      1.0f, 0.0f, 16.0f, 0.0f},
-    {"hard.normalOffsetTexels", "Normal offset", "receiver moved along its normal by this many shadow-map texels",
+    {"hard.normalOffsetTexels", "Normal offset", "receiver moved along its normal by this many shadow-map texels", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -39,6 +39,6 @@ void HardFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl", *this));
 }
 
-std::vector<DebugImage> HardFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+std::vector<DebugImage> HardFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}}; }
 
 }  // namespace penumbra

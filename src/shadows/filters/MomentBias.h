@@ -12,7 +12,7 @@ constexpr ParamDesc momentBiasParam(std::string_view key) {
   return {key, "Moment bias",
           "moment bias α in texels² (α = this × (a texel's world size / the view's depth range)², at least the "
           "storage's minimum): the moments are mixed with those of a spread distribution, b' = (1-α) b + α·0.5; keeps "
-          "the solve stable and flat receivers lit, lightens shadows by up to α/2",
+          "the solve stable and flat receivers lit, lightens shadows by up to α/2", "texels²",
           10.0f, 0.0f, 1000.0f, 0.0f};
 }
 

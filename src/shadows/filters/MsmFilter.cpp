@@ -15,10 +15,10 @@ constexpr std::string_view kStorageNames[] = {"float32", "quantized16"};
 constexpr int kStorageFloat32 = 0;
 
 constexpr ParamDesc kParams[] = {
-    {"msm.storage", "Storage", "float32: RGBA32F moments (128 bits/texel); quantized16: RGBA16 in the optimised basis of Peters & Klein (64 bits/texel)",
+    {"msm.storage", "Storage", "float32: RGBA32F moments (128 bits/texel); quantized16: RGBA16 in the optimised basis of Peters & Klein (64 bits/texel)", "",
      kStorageFloat32, 0, 1, 1, kStorageNames, "PN_MSM_QUANTIZED"},
     momentBiasParam("msm.bias"),
-    {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
+    {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)", "depth range",
      0.0f, 0.0f, 0.05f, 0.0f},
     footprintWidthParam("msm.filterTexels"),
     footprintParam("msm.footprint"),
@@ -62,6 +62,8 @@ void MsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl", *this));
 }
 
-std::vector<DebugImage> MsmFilter::debugImages() const { return {{"msm-moments", &mMaps.color()}}; }
+std::vector<DebugImage> MsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.color(), "moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)"}};
+}
 
 }  // namespace penumbra

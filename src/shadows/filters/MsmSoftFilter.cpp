@@ -11,7 +11,7 @@ namespace {
 
 constexpr ParamDesc kParams[] = {
     momentBiasParam("msm-soft.bias"),
-    {"msm-soft.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)",
+    {"msm-soft.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)", "depth range",
      0.0f, 0.0f, 0.05f, 0.0f},
     softMinRadiusParam("msm-soft.minRadiusTexels"),
     softMaxRadiusParam("msm-soft.maxRadiusTexels"),
@@ -46,6 +46,7 @@ void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl", defines));
 }
 
-std::vector<DebugImage> MsmSoftFilter::debugImages() const { return {{"msm-soft-depth", &mMaps.depth()}}; }
+std::vector<DebugImage> MsmSoftFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
+}
 
 }  // namespace penumbra

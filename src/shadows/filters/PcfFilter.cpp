@@ -15,17 +15,17 @@ static_assert(PN_KERNEL_BOX == 0 && PN_KERNEL_POISSON == 1, "kKernelNames follow
 constexpr float kMaxPoissonTaps = 64.0f;
 
 constexpr ParamDesc kParams[] = {
-    {"pcf.kernel", "Kernel", "box: a (2·ceil(r)+1)² grid of comparisons, one per texel; poisson: pcf.samples taps of a Poisson disk rotated per pixel",
+    {"pcf.kernel", "Kernel", "box: a (2·ceil(r)+1)² grid of comparisons, one per texel; poisson: pcf.samples taps of a Poisson disk rotated per pixel", "",
      PN_KERNEL_POISSON, 0, 1, 1, kKernelNames, "PN_PCF_KERNEL"},
-    {"pcf.radiusTexels", "Radius", "kernel radius in shadow-map texels (0 = one comparison, a hard shadow)",
+    {"pcf.radiusTexels", "Radius", "kernel radius in shadow-map texels (0 = one comparison, a hard shadow)", "texels",
      2.0f, 0.0f, 32.0f, 0.0f},
-    {"pcf.samples", "Samples", "taps of the Poisson kernel (the box kernel's count follows its radius)",
+    {"pcf.samples", "Samples", "taps of the Poisson kernel (the box kernel's count follows its radius)", "taps",
      16.0f, 1.0f, kMaxPoissonTaps, 1.0f, {}, "PN_PCF_SAMPLES"},
-    {"pcf.hardwareCompare", "Hardware compare", "on: each tap is the hardware's bilinear 2x2 comparison (sampler2DShadow), smoother edges for the same tap count",
+    {"pcf.hardwareCompare", "Hardware compare", "on: each tap is the hardware's bilinear 2x2 comparison (sampler2DShadow), smoother edges for the same tap count", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+    {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
      0.0002f, 0.0f, 0.05f, 0.0f},
-    {"pcf.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)",
+    {"pcf.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -63,6 +63,6 @@ void PcfFilter::computeVisibility(FrameContext& frame) {
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
 }
 
-std::vector<DebugImage> PcfFilter::debugImages() const { return {{"shadow-map", &mMaps.depth()}}; }
+std::vector<DebugImage> PcfFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}}; }
 
 }  // namespace penumbra

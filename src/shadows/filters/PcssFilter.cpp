@@ -11,22 +11,22 @@ namespace {
 constexpr float kMaxTaps = 64.0f;
 
 constexpr ParamDesc kParams[] = {
-    {"pcss.blockerSamples", "Blocker samples", "taps of the blocker search (box pattern: the largest odd grid with at most this many)",
+    {"pcss.blockerSamples", "Blocker samples", "taps of the blocker search (box pattern: the largest odd grid with at most this many)", "taps",
      16.0f, 1.0f, kMaxTaps, 1.0f, {}, "PN_PCSS_BLOCKER_SAMPLES"},
-    {"pcss.filterSamples", "Filter samples", "taps of the percentage-closer filter (box pattern: the largest odd grid with at most this many)",
+    {"pcss.filterSamples", "Filter samples", "taps of the percentage-closer filter (box pattern: the largest odd grid with at most this many)", "taps",
      32.0f, 1.0f, kMaxTaps, 1.0f, {}, "PN_PCSS_FILTER_SAMPLES"},
-    {"pcss.pattern", "Pattern", "sampling pattern of both steps: box grid or Poisson disk rotated per pixel",
+    {"pcss.pattern", "Pattern", "sampling pattern of both steps: box grid or Poisson disk rotated per pixel", "",
      PN_KERNEL_POISSON, 0, 1, 1, kKernelNames, "PN_PCSS_PATTERN"},
-    {"pcss.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact",
+    {"pcss.minRadiusTexels", "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact", "texels",
      1.0f, 0.0f, 8.0f, 0.0f},
-    {"pcss.maxRadiusTexels", "Max radius", "largest search and filter radius in texels: bounds the footprint (wider penumbrae are cut to it)",
+    {"pcss.maxRadiusTexels", "Max radius", "largest search and filter radius in texels: bounds the footprint (wider penumbrae are cut to it)", "texels",
      96.0f, 1.0f, 512.0f, 0.0f},
-    {"pcss.hardwareCompare", "Hardware compare", "on: each filter tap is the hardware's bilinear 2x2 comparison (sampler2DShadow)",
+    {"pcss.hardwareCompare", "Hardware compare", "on: each filter tap is the hardware's bilinear 2x2 comparison (sampler2DShadow)", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)",
+    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
      0.0002f, 0.0f, 0.05f, 0.0f},
     tightSearchParam("pcss.tightSearch"),
-    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)",
+    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -62,7 +62,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> PcssFilter::debugImages() const {
-  std::vector<DebugImage> out = {{"shadow-map", &mMaps.depth()}};
+  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

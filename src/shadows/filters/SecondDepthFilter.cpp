@@ -36,7 +36,10 @@ void SecondDepthFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> SecondDepthFilter::debugImages() const {
-  return {{"first-layer", &mFirst.depth()}, {"second-layer", &mSecond.depth()}, {"midpoint", &mMidpoint}};
+  // Its shadow map is the midpoint of the first two surfaces: what a receiver is compared with.
+  return {{std::string(kShadowMapImage), &mMidpoint, "linear light depth midway between the first two surfaces: 0 = near plane, 1 = far plane"},
+          {"first-layer", &mFirst.depth(), "linear light depth of the nearest surface"},
+          {"second-layer", &mSecond.depth(), "linear light depth of the surface behind the nearest"}};
 }
 
 }  // namespace penumbra

@@ -10,13 +10,13 @@ namespace penumbra {
 
 /// "<filter>.minRadiusTexels": the smallest search and filter radius, default 1 texel.
 constexpr ParamDesc softMinRadiusParam(std::string_view key) {
-  return {key, "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact", 1.0f, 0.5f,
+  return {key, "Min radius", "smallest filter radius in texels: anti-aliases the hard edge at contact", "texels", 1.0f, 0.5f,
           16.0f, 0.0f};
 }
 
 /// "<filter>.maxRadiusTexels": the largest search and filter radius, default 512 texels.
 constexpr ParamDesc softMaxRadiusParam(std::string_view key) {
-  return {key, "Max radius", "largest search and filter radius in texels (the cost does not depend on it)", 512.0f,
+  return {key, "Max radius", "largest search and filter radius in texels (the cost does not depend on it)", "texels", 512.0f,
           1.0f, 4096.0f, 0.0f};
 }
 
@@ -25,13 +25,13 @@ constexpr ParamDesc mipSplitParam(std::string_view key) {
   return {key, "Mip split",
           "a region read from the mip chain is n x n sub-boxes, each one mip level finer per halving: 1 = one "
           "trilinear read of the whole box (its tent weighs twice the box's width), 2 = 2x2, 4 = 4x4 (near the exact "
-          "box, 16 reads)",
+          "box, 16 reads)", "boxes/side",
           2.0f, 1.0f, 4.0f, 1.0f};
 }
 
 /// "<filter>.anisotropy": trilinear taps along a non-square region's long axis, default 4.
 constexpr ParamDesc mipBoxAnisotropyParam(std::string_view key) {
-  return {key, "Anisotropy", "maximum trilinear taps along a non-square region's long axis (regions read from the mip chain)",
+  return {key, "Anisotropy", "maximum trilinear taps along a non-square region's long axis (regions read from the mip chain)", "taps",
           4.0f, 1.0f, 16.0f, 1.0f};
 }
 

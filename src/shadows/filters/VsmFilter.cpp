@@ -12,7 +12,7 @@ namespace {
 
 constexpr ParamDesc kParams[] = {
     {"vsm.minVariance", "Min variance",
-     "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers",
+     "floor of the variance, in texels² (depth spreads measured in the world size of a texel): hides float cancellation and the acne of flat receivers", "texels²",
      4.0f, 0.0f, 64.0f, 0.0f},
     bleedReductionParam("vsm.bleedReduction"),
     footprintWidthParam("vsm.filterTexels"),
@@ -47,6 +47,8 @@ void VsmFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl", *this));
 }
 
-std::vector<DebugImage> VsmFilter::debugImages() const { return {{"vsm-moments", &mMaps.color()}}; }
+std::vector<DebugImage> VsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
+          {std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"}};
+}
 
 }  // namespace penumbra

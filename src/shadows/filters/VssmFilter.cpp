@@ -14,9 +14,9 @@ constexpr std::string_view kSourceNames[] = {"sat", "mip"};
 static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames follows the PN_VSSM_SOURCE_* order");
 
 constexpr ParamDesc kParams[] = {
-    {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)",
+    {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)", "",
      PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames, "PN_VSSM_SOURCE"},
-    {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves",
+    {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves", "texels²",
      3.0f, 0.0f, 256.0f, 0.0f},
     bleedReductionParam("vssm.bleedReduction"),
     softMinRadiusParam("vssm.minRadiusTexels"),
@@ -73,11 +73,8 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
-  std::vector<DebugImage> out;
-  if (fromSat())
-    out.push_back({"vssm-depth", &mMaps.depth()});
-  else
-    out.push_back({"vssm-moments", &mMaps.color()});
+  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
+  if (!fromSat()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

@@ -16,14 +16,14 @@ namespace {
 constexpr std::string_view kOnOff[] = {"off", "on"};
 
 constexpr ParamDesc kParams[] = {
-    {"csm.cascades", "Cascades", "number of cascades (one shadow map each, same resolution)", 4.0f, 1.0f,
+    {"csm.cascades", "Cascades", "number of cascades (one shadow map each, same resolution)", "maps", 4.0f, 1.0f,
      static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
-    {"csm.lambda", "Split λ", "practical split blend: 0 = uniform slices, 1 = logarithmic slices", 0.9f, 0.0f, 1.0f, 0.0f},
-    {"csm.stabilize", "Stabilise", "sun: bounding-sphere cascades snapped to whole texels so edges do not shimmer",
+    {"csm.lambda", "Split λ", "practical split blend: 0 = uniform slices, 1 = logarithmic slices", "fraction", 0.9f, 0.0f, 1.0f, 0.0f},
+    {"csm.stabilize", "Stabilise", "sun: bounding-sphere cascades snapped to whole texels so edges do not shimmer", "",
      1.0f, 0.0f, 1.0f, 1.0f, kOnOff},
-    {"csm.blendBandM", "Blend band", "camera depth (m) before each split where two cascades are mixed; at most half the shortest cascade",
+    {"csm.blendBandM", "Blend band", "camera depth (m) before each split where two cascades are mixed; at most half the shortest cascade", "m",
      2.0f, 0.0f, 100.0f, 0.0f},
-    {"csm.marginTexels", "Margin", "border added around each cascade, in texels", 2.0f, 0.0f, 64.0f, 1.0f},
+    {"csm.marginTexels", "Margin", "border added around each cascade, in texels", "texels", 2.0f, 0.0f, 64.0f, 1.0f},
 };
 
 constexpr float kStepsPerOctave = 4.0f;  // stableFarDistance: ≤ 19% more depth than needed

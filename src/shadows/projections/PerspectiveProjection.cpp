@@ -12,9 +12,9 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"psm.slideBack", "Slide-back", "virtual camera distance behind the camera, in units of √(near·far) of the visible receivers; larger = weaker warp",
+    {"psm.slideBack", "Slide-back", "virtual camera distance behind the camera, in units of √(near·far) of the visible receivers; larger = weaker warp", "×√(near·far)",
      1.0f, 0.0f, 16.0f, 0.0f},
-    {"psm.marginTexels", "Margin", "border added around the fitted region, in texels", 2.0f, 0.0f, 64.0f, 1.0f},
+    {"psm.marginTexels", "Margin", "border added around the fitted region, in texels", "texels", 2.0f, 0.0f, 64.0f, 1.0f},
 };
 
 // |w| / |xyz| of the light's PPS image below which it is treated as a direction (orthographic).

@@ -11,11 +11,11 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"tsm.focusDistanceM", "Focus distance", "depth (m) past the nearest visible receiver up to which the focus region reaches; mapped to focusMapFraction of the map",
+    {"tsm.focusDistanceM", "Focus distance", "depth (m) past the nearest visible receiver up to which the focus region reaches; mapped to focusMapFraction of the map", "m",
      20.0f, 0.1f, 10000.0f, 0.0f},
-    {"tsm.focusMapFraction", "Focus share", "share of the map's height the focus region is mapped to (the paper's 80% rule)",
+    {"tsm.focusMapFraction", "Focus share", "share of the map's height the focus region is mapped to (the paper's 80% rule)", "of the map",
      0.8f, 0.05f, 0.95f, 0.0f},
-    {"tsm.marginTexels", "Margin", "border added around the trapezoid, in texels", 2.0f, 0.0f, 64.0f, 1.0f},
+    {"tsm.marginTexels", "Margin", "border added around the trapezoid, in texels", "texels", 2.0f, 0.0f, 64.0f, 1.0f},
 };
 
 // The centre line must span at least this much of the unwarped map (NDC units, the map is 2

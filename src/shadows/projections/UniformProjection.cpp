@@ -12,11 +12,11 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"uniform.marginTexels", "Margin", "border added around the fitted region, in texels of the map", 2.0f, 0.0f, 64.0f, 1.0f},
+    {"uniform.marginTexels", "Margin", "border added around the fitted region, in texels of the map", "texels", 2.0f, 0.0f, 64.0f, 1.0f},
     {"uniform.cubeGuardTexels", "Cube guard band",
      "point lights: each cube face's map reaches this many texels past the face's edge, so a kernel, blocker search or "
      "filter region near an edge reads the scene beyond it (what the neighbouring face holds) instead of clamping",
-     32.0f, 0.0f, 256.0f, 1.0f},
+     "texels", 32.0f, 0.0f, 256.0f, 1.0f},
 };
 
 // The six faces of a point light's cube, in the order the shaders pick them (common/shadow.glsl's

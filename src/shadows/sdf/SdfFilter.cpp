@@ -28,22 +28,22 @@ constexpr std::string_view kNoBaker =
 
 constexpr ParamDesc kParams[] = {
     {"sdf.kMode", "k from", "light: k = 1/tan(angular radius of the light seen from the receiver), so the scene's light size "
-     "sets the penumbra; manual: k = sdf.k", PN_SDF_K_LIGHT, 0, 1, 1, kKModes},
-    {"sdf.k", "k", "penumbra hardness in manual mode: V = min(k·d/t, 1) for free distance d at ray length t; larger = harder",
+     "sets the penumbra; manual: k = sdf.k", "", PN_SDF_K_LIGHT, 0, 1, 1, kKModes},
+    {"sdf.k", "k", "penumbra hardness in manual mode: V = min(k·d/t, 1) for free distance d at ray length t; larger = harder", "factor",
      16.0f, 0.5f, 1000.0f, 0.0f},
-    {"sdf.maxSteps", "Max steps", "sphere-tracing steps per pixel; a ray still marching after them counts as unoccluded beyond",
+    {"sdf.maxSteps", "Max steps", "sphere-tracing steps per pixel; a ray still marching after them counts as unoccluded beyond", "steps",
      128, 1, 1024, 1},
     {"sdf.epsilon", "Epsilon", "hit distance and smallest step, in voxels: a sample closer than this to a caster ends the march in "
-     "shadow (outer mode)", 0.1f, 0.001f, 2.0f, 0.0f},
+     "shadow (outer mode)", "voxels", 0.1f, 0.001f, 2.0f, 0.0f},
     {"sdf.startOffset", "Start offset", "the march starts this many voxels off the receiver along its geometric normal, out of "
-     "the field's blur around its own surface; larger values lift the start over nearby casters (leaks at contacts)",
+     "the field's blur around its own surface; larger values lift the start over nearby casters (leaks at contacts)", "voxels",
      0.25f, 0.0f, 8.0f, 0.0f},
     {"sdf.estimator", "Estimator", "classic: k·d/t at each sample; improved: at the closest approach estimated from the previous "
-     "sample's distance (Aaltonen 2018), less banding", PN_SDF_ESTIMATOR_CLASSIC, 0, 1, 1, kEstimators},
+     "sample's distance (Aaltonen 2018), less banding", "", PN_SDF_ESTIMATOR_CLASSIC, 0, 1, 1, kEstimators},
     {"sdf.penumbra", "Penumbra", "outer: V = min(k·d/t, 1), the penumbra grows outward from the hard shadow; centered: the "
-     "march goes on through casters (d < 0) and V is the visible part of a disc light at that angle, half inside, half outside",
+     "march goes on through casters (d < 0) and V is the visible part of a disc light at that angle, half inside, half outside", "",
      PN_SDF_PENUMBRA_CENTERED, 0, 1, 1, kPenumbrae},
-    {"sdf.resolution", "Resolution", "voxels along the longest side of the casters' bounds (cubic voxels); changing it rebakes",
+    {"sdf.resolution", "Resolution", "voxels along the longest side of the casters' bounds (cubic voxels); changing it rebakes", "voxels",
      sdf::kDefaultResolution, sdf::kMinResolution, sdf::kMaxResolution, 1},
 };
 
@@ -129,6 +129,13 @@ void SdfFilter::computeVisibility(FrameContext& frame) {
   frame.dispatchScreen(frame.visibilityProgram("shadows/sdf/sdf.glsl"));
 }
 
-std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice}}; }
+std::vector<DebugImage> SdfFilter::debugImages() const { return {{"sdf-slice", &mSlice, "signed distance to the nearest caster (m) in the field's middle z slice; < 0 inside"}};
+}
+
+std::vector<OneOffCost> SdfFilter::oneOffCosts() const {
+  if (!mHaveField) return {};
+  return {{fmt::format("distance-field bake, {}x{}x{} voxels", mGrid.dims.x, mGrid.dims.y, mGrid.dims.z),
+           mGrid.stats.bakeSeconds, mGrid.stats.fromCache}};
+}
 
 }  // namespace penumbra

@@ -28,6 +28,8 @@ public:
   void computeVisibility(FrameContext& frame) override;
   /// "sdf-slice": the field's middle z slice (m), as a 2D texture.
   std::vector<DebugImage> debugImages() const override;
+  /// The field's bake (its original time when the field came from the cache).
+  std::vector<OneOffCost> oneOffCosts() const override;
 
   /// The field on the GPU: grid dims (0 = none), lo, voxel, sheets, bake stats; the grid's
   /// distances are not kept on the CPU.

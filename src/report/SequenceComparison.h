@@ -1,0 +1,48 @@
+#pragma once
+// Error over time: an animated scene rendered frame by frame and compared with its reference
+// frame by frame (the per-frame metrics, their mean and worst frame), and the flicker between
+// consecutive frames (metrics/Flicker.h). `penumbra compare --frames N` prints it.
+#include "metrics/Flicker.h"
+
+#include <penumbra/Metrics.h>
+#include <penumbra/Reference.h>
+#include <penumbra/Renderer.h>
+
+#include <functional>
+#include <vector>
+
+namespace penumbra::report {
+
+/// The frame times: start, start + 1/fps, …
+struct SequenceTiming {
+  int frames = 1;        ///< ≥ 1
+  float fps = 30.0f;     ///< > 0
+  float startS = 0.0f;
+  float timeS(int frame) const { return startS + static_cast<float>(frame) / fps; }
+};
+
+struct SequenceFrame {
+  float timeS = 0.0f;
+  VisibilityMetrics metrics;  ///< the combined V against the combined V_ref
+  FlickerCounts flicker;      ///< from the frame before into this one (empty for the first)
+};
+
+struct SequenceComparison {
+  std::vector<SequenceFrame> frames;
+  double rmseMean = 0.0;      ///< rmse_mean: the mean of the frames' RMSE
+  size_t rmseWorstFrame = 0;  ///< rmse_worst_frame: the index of the frame with the largest RMSE
+  double rmseWorst = 0.0;
+  FlickerCounts flicker;      ///< every consecutive pair together: flicker_pct = flicker.pct()
+  double referenceSeconds = 0.0;
+  bool referenceCached = true;  ///< every frame's reference came from the cache
+};
+
+/// Renders `scene` (the renderer's scene with its animation, at any pose) at each frame time
+/// (poseScene, Renderer::setPose), traces each frame's reference (a BVH per pose where objects
+/// moved) and compares. `progress(frame)` is called after each frame when given. The renderer
+/// is left at the last frame's pose. Throws penumbra::Error on bad timing.
+SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const RenderOptions& render,
+                                   const SequenceTiming& timing, const ReferenceOptions& reference,
+                                   const FlickerOptions& flicker = {}, const std::function<void(int)>& progress = {});
+
+}  // namespace penumbra::report

@@ -1,0 +1,148 @@
+// Keyframe evaluation and posing a scene at a time (penumbra/Animation.h).
+#include <penumbra/Animation.h>
+#include <penumbra/Scene.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+// A rotation key's quaternion may be off unit length by float rounding of a file's numbers.
+constexpr float kUnitQuaternionTolerance = 1e-3f;
+
+glm::vec3 mix(const glm::vec3& a, const glm::vec3& b, float f) { return a + (b - a) * f; }
+float mix(float a, float b, float f) { return a + (b - a) * f; }
+glm::quat mix(const glm::quat& a, const glm::quat& b, float f) {
+  // Shortest arc: q and -q are the same rotation.
+  return glm::normalize(glm::slerp(a, glm::dot(a, b) < 0.0f ? -b : b, f));
+}
+
+template <class T>
+std::string keysProblem(const Keys<T>& k, const std::string& what) {
+  if (k.timesS.size() != k.values.size())
+    return fmt::format("{}: {} key times for {} values", what, k.timesS.size(), k.values.size());
+  for (size_t i = 0; i < k.timesS.size(); ++i) {
+    if (!std::isfinite(k.timesS[i])) return fmt::format("{}: key time {} is not finite", what, i);
+    if (i > 0 && !(k.timesS[i] > k.timesS[i - 1]))
+      return fmt::format("{}: key times must increase ({} s after {} s)", what, k.timesS[i], k.timesS[i - 1]);
+  }
+  return "";
+}
+
+std::string trackProblem(const TransformTrack& t, const std::string& what) {
+  for (const std::string& p : {keysProblem(t.translationKeys, what + " translation"), keysProblem(t.rotationKeys, what + " rotation"),
+                               keysProblem(t.scaleKeys, what + " scale")})
+    if (!p.empty()) return p;
+  for (const glm::quat& q : t.rotationKeys.values)
+    if (!(std::abs(glm::length(q) - 1.0f) < kUnitQuaternionTolerance)) return what + " rotation: a key is not a unit quaternion";
+  if (t.fixed && t.animated()) return what + ": a matrix transform cannot be keyed";
+  return "";
+}
+
+template <class T>
+float lastTime(const Keys<T>& k) { return k.empty() ? 0.0f : k.timesS.back(); }
+
+float lastTime(const TransformTrack& t) {
+  return std::max({lastTime(t.translationKeys), lastTime(t.rotationKeys), lastTime(t.scaleKeys)});
+}
+
+}  // namespace
+
+template <class T>
+T Keys<T>::at(float timeS) const {
+  if (timeS <= timesS.front()) return values.front();
+  if (timeS >= timesS.back()) return values.back();
+  const size_t next = static_cast<size_t>(std::upper_bound(timesS.begin(), timesS.end(), timeS) - timesS.begin());
+  const size_t prev = next - 1;
+  if (interpolation == Interpolation::Step) return values[prev];
+  const float f = (timeS - timesS[prev]) / (timesS[next] - timesS[prev]);
+  return mix(values[prev], values[next], f);
+}
+
+template struct Keys<glm::vec3>;
+template struct Keys<glm::quat>;
+template struct Keys<float>;
+
+glm::mat4 TransformTrack::matrixAt(float timeS) const {
+  if (fixed) return *fixed;
+  const glm::vec3 t = translationKeys.empty() ? translation : translationKeys.at(timeS);
+  const glm::quat r = rotationKeys.empty() ? rotation : rotationKeys.at(timeS);
+  const glm::vec3 s = scaleKeys.empty() ? scale : scaleKeys.at(timeS);
+  return glm::scale(glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r), s);
+}
+
+glm::vec3 sunDirection(float azimuthDeg, float elevationDeg) {
+  const float a = glm::radians(azimuthDeg), e = glm::radians(elevationDeg);
+  return -glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+}
+
+float SceneAnimation::durationS() const {
+  float d = std::max(lastTime(camera.position), lastTime(camera.target));
+  for (const AnimatedNode& n : nodes) d = std::max(d, lastTime(n.track));
+  for (const LightAnimation& l : lights) d = std::max(d, lastTime(l.track));
+  for (const SunPath& s : suns) d = std::max({d, lastTime(s.azimuthDeg), lastTime(s.elevationDeg)});
+  return d;
+}
+
+std::vector<bool> SceneAnimation::movingObjects(size_t objectCount) const {
+  std::vector<bool> nodeMoves(nodes.size(), false);
+  for (size_t i = 0; i < nodes.size(); ++i)
+    nodeMoves[i] = nodes[i].track.animated() || (nodes[i].parent >= 0 && nodeMoves[static_cast<size_t>(nodes[i].parent)]);
+  std::vector<bool> moving(objectCount, false);
+  for (const ObjectAnimation& o : objects)
+    if (o.object < objectCount && o.node < nodes.size() && nodeMoves[o.node]) moving[o.object] = true;
+  return moving;
+}
+
+std::string SceneAnimation::problem(size_t objectCount, size_t lightCount) const {
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const std::string what = fmt::format("animation node {} ('{}')", i, nodes[i].name);
+    if (nodes[i].parent >= static_cast<int>(i) || nodes[i].parent < -1) return what + ": its parent is not an earlier node";
+    if (std::string p = trackProblem(nodes[i].track, what); !p.empty()) return p;
+  }
+  for (const ObjectAnimation& o : objects)
+    if (o.object >= objectCount || o.node >= nodes.size())
+      return fmt::format("an object animation names object {} of {} and node {} of {}", o.object, objectCount, o.node, nodes.size());
+  for (const LightAnimation& l : lights) {
+    if (l.light >= lightCount) return fmt::format("a light animation names light {} of {}", l.light, lightCount);
+    if (std::string p = trackProblem(l.track, fmt::format("light {} animation", l.light)); !p.empty()) return p;
+  }
+  for (const SunPath& s : suns) {
+    const std::string what = fmt::format("light {} sun path", s.light);
+    if (s.light >= lightCount) return fmt::format("a sun path names light {} of {}", s.light, lightCount);
+    if (s.azimuthDeg.empty() || s.azimuthDeg.timesS != s.elevationDeg.timesS) return what + ": azimuth and elevation need the same key times";
+    if (std::string p = keysProblem(s.azimuthDeg, what); !p.empty()) return p;
+  }
+  for (const std::string& p : {keysProblem(camera.position, "camera position"), keysProblem(camera.target, "camera target")})
+    if (!p.empty()) return p;
+  return "";
+}
+
+void poseScene(Scene& scene, float timeS) {
+  const SceneAnimation& a = scene.animation;
+  if (a.empty()) return;
+  std::vector<glm::mat4> world(a.nodes.size());
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    const AnimatedNode& n = a.nodes[i];
+    const glm::mat4 parent = n.parent >= 0 ? world[static_cast<size_t>(n.parent)] : glm::mat4(1.0f);
+    world[i] = parent * n.offset * n.track.matrixAt(timeS);
+  }
+  for (const ObjectAnimation& o : a.objects) scene.objects[o.object].worldFromObject = world[o.node] * o.nodeFromObject;
+  for (const LightAnimation& la : a.lights) {
+    const glm::mat4 m = glm::translate(glm::mat4(1.0f), la.pivot) * la.track.matrixAt(timeS) * glm::translate(glm::mat4(1.0f), -la.pivot);
+    Light& l = scene.lights[la.light];
+    l.position = glm::vec3(m * glm::vec4(la.restPosition, 1.0f));
+    const glm::vec3 d = glm::mat3(m) * la.restDirection;
+    if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
+  }
+  for (const SunPath& s : a.suns)
+    scene.lights[s.light].direction = sunDirection(s.azimuthDeg.at(timeS), s.elevationDeg.at(timeS));
+  if (!a.camera.position.empty()) scene.camera.position = a.camera.position.at(timeS);
+  if (!a.camera.target.empty()) scene.camera.target = a.camera.target.at(timeS);
+}
+
+}  // namespace penumbra

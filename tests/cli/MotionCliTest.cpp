@@ -1,0 +1,67 @@
+// Sequences from the command line: render --frames writes numbered PNGs (and says what happened
+// to the MP4), compare --frames adds the error-over-time keys to the JSON.
+#include "CliSupport.h"
+
+#include <penumbra/ImageIO.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+TEST(MotionCli, RenderFramesWritesANumberedSequence) {
+  const std::string dir = freshDir("frames-seq");
+  const RunResult r = runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 0.5 --out seq.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f : {"seq-0000.png", "seq-0001.png", "seq-0002.png"}) EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/seq-0003.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/seq.mp4") || r.out.find("ffmpeg is not on the PATH") != std::string::npos) << r.out;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> first = readPng(dir + "/seq-0000.png", w, h), last = readPng(dir + "/seq-0002.png", w, h);
+  EXPECT_NE(first, last) << "the ball rolled and the sun moved in 4 s";
+  // The first frame is the still frame (the sun's direction comes back from its azimuth and
+  // elevation within a float's rounding: a texel on an edge may differ).
+  ASSERT_EQ(runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --out still.png", dir).exitCode, 0);
+  const std::vector<uint8_t> still = readPng(dir + "/still.png", w, h);
+  ASSERT_EQ(still.size(), first.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < still.size(); i += 4) differ += still[i] != first[i] || still[i + 1] != first[i + 1] || still[i + 2] != first[i + 2];
+  EXPECT_LE(differ, still.size() / 4 / 100) << "pixels of frame 0 that differ from the still frame";
+}
+
+TEST(MotionCli, FramesExcludesTheSingleFrameOptions) {
+  EXPECT_EQ(runPenumbra("render --frames 2 --repeat 2").exitCode, 2);
+  EXPECT_EQ(runPenumbra("render --frames 0").exitCode, 2);
+  EXPECT_EQ(runPenumbra("render --frames 2 --fps 0").exitCode, 2);
+}
+
+TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
+  const std::string dir = freshDir("compare-frames");
+  const RunResult r = runPenumbra("compare --scene boxes --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 --json --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* k : {"frames", "flicker_pct", "rmse_mean", "rmse_worst_frame", "frame_rmse"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["frame_rmse"].size(), 3u);
+  EXPECT_GE(j["flicker_pct"].get<double>(), 0.0);
+  EXPECT_LT(j["rmse_worst_frame"].get<int>(), 3);
+  EXPECT_NEAR(j["frame_rmse"][0].get<double>(), j["rmse"].get<double>(), 1e-9) << "frame 0 is the compared frame";
+}
+
+// --cache-maps: the sequence's frames are the same images as without it; the boxes' sun sweeps,
+// so every frame's map is drawn anew (the sun's view changes), and --verbose says so.
+TEST(MotionCli, CacheMapsRendersTheSameSequence) {
+  const std::string dir = freshDir("frames-cache");
+  const std::string common = "render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 1 --verbose";
+  RunResult r = runPenumbra(common + " --cache-maps --out cached.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cached maps: 0 restored, 3 drawn"), std::string::npos) << r.err;
+  ASSERT_EQ(runPenumbra(common + " --out plain.png", dir).exitCode, 0);
+  int w = 0, h = 0;
+  for (const char* f : {"-0000.png", "-0001.png", "-0002.png"})
+    EXPECT_EQ(readPng(dir + "/cached" + f, w, h), readPng(dir + "/plain" + f, w, h)) << f;
+}
