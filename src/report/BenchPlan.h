@@ -33,6 +33,10 @@ Sweep parseSweep(std::string_view text);
 /// Highest count one sweep may have: a guard against a typo that would run for hours.
 inline constexpr int kMaxSweepCount = 64;
 
+/// The plan that sweeps light.count, and the scene it runs on.
+inline constexpr std::string_view kLightCountPlan = "light-count";
+inline constexpr std::string_view kLightCountScene = "night";
+
 /// One cross product of scenes × projections × filters, each run once per combination of the
 /// values of the sweeps that apply to it (a sweep applies when its key is a scene parameter or
 /// is declared by the configuration's projection or filter).

@@ -51,6 +51,7 @@ inline constexpr double kBytesPerMiB = 1024.0 * 1024.0;
 struct BenchRow {
   BenchConfig config;
   float lightSize = 0.0f;  ///< the light size in effect (scene's own or swept)
+  int lights = 1;          ///< lights rendered, each with its own maps (light.count or all the scene's)
   int width = 0, height = 0, shadowMapSize = 0;
   int frames = 0;  ///< timed frames actually run (fewer than asked when the time cap hit)
   std::vector<PassStats> passes;  ///< in frame order, then kTotalPass

@@ -140,6 +140,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       BenchRow row;
       row.config = c;
       row.lightSize = renderer.scene().light().size;
+      row.lights = static_cast<int>(renderer.lightCount());
       row.width = set.width;
       row.height = set.height;
       row.shadowMapSize = render.shadowMapSize;

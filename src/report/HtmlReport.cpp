@@ -74,7 +74,7 @@ std::string header(const BenchResults& r) {
                      "not the scene's own.</p>\n",
                      esc(s.camera));
   h += "<p class=\"note\">Contents: <a href=\"#choose\">which technique?</a> · <a href=\"#quality\">1. quality vs whole cost and memory</a> · <a href=\"#light\">2. cost vs light "
-       "size</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
+       "size</a> · <a href=\"#lights\">2b. cost vs number of lights</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
   return h;
 }
 
@@ -126,6 +126,22 @@ std::string lightSection(const BenchResults& r) {
        "the machine's texture caches. Every technique run at two or more light sizes in one plan is drawn; bars are the "
        "p10–p90 spread over the timed frames.</p>\n";
   for (const LightSizeCharts& l : charts) h += "<div class=\"charts\">" + svgChart(l.cost) + svgChart(l.error) + "</div>\n";
+  return h;
+}
+
+std::string lightCountSection(const BenchResults& r) {
+  std::string h = "<h2 id=\"lights\">2b. Cost against the number of lights</h2>\n";
+  const std::vector<LightCountCharts> charts = lightCountCharts(r);
+  if (charts.empty())
+    return h + fmt::format("<p class=\"note\">This run swept no light count; add <code>--scenes {} --sweep "
+                           "light.count=1,2,4,8</code>.</p>\n", kLightCountScene);
+  h += "<p>Every shadowed light renders its own maps, prefilters them and runs its own visibility pass, so the whole "
+       "cost grows with the number of lights; a flat curve here means each light costs the same whatever the "
+       "number, a falling one that fixed per-frame work is shared. A point light renders six cube faces, a spot one "
+       "map. Memory is every light's maps and tables. The error is of all lights together, each light weighted by its "
+       "unshadowed light at the pixel (<a href=\"../lights.md\">lights.md</a>).</p>\n";
+  for (const LightCountCharts& l : charts)
+    h += "<div class=\"charts\">" + svgChart(l.costPerLight) + svgChart(l.memoryPerLight) + svgChart(l.error) + "</div>\n";
   return h;
 }
 
@@ -301,7 +317,7 @@ std::string htmlReport(const BenchResults& r) {
                   "<link rel=\"icon\" href=\"data:,\"><style>";
   h += kStyle;
   h += "</style></head><body>\n";
-  h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + gridSection(r);
+  h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + lightCountSection(r) + gridSection(r);
   h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + ratioTable(r) + resultsTables(r) + skippedTable(r) + machineTable(r);
   return h + "</body></html>\n";
 }

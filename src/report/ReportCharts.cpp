@@ -231,4 +231,55 @@ std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
   return out;
 }
 
+std::vector<LightCountCharts> lightCountCharts(const BenchResults& results) {
+  std::map<std::string, std::map<std::string, std::vector<size_t>>> byScene;  // scene → technique → rows
+  std::vector<std::string> scenes;
+  for (size_t i = 0; i < results.rows.size(); ++i) {
+    const BenchRow& r = results.rows[i];
+    if (r.config.plan != kLightCountPlan) continue;
+    if (!byScene.contains(r.config.scene)) scenes.push_back(r.config.scene);
+    byScene[r.config.scene][rowLabel(r)].push_back(i);
+  }
+  std::vector<LightCountCharts> out;
+  for (const std::string& scene : scenes) {
+    LightCountCharts l;
+    l.scene = scene;
+    const std::string xLabel = "shadowed lights (the scene's first N)";
+    l.costPerLight.title = fmt::format("{}: whole cost per light", scene);
+    l.costPerLight.yLabel = "(" + std::string(kCostName) + ") / lights, median ms (bars: p10–p90)";
+    l.memoryPerLight.title = fmt::format("{}: memory per light", scene);
+    l.memoryPerLight.yLabel = "GPU memory the technique keeps / lights, MiB";
+    l.error.title = fmt::format("{}: error of all lights together", scene);
+    l.error.yLabel = "RMSE of the combined V (lights weighted by their light)";
+    for (Chart* c : {&l.costPerLight, &l.memoryPerLight, &l.error}) c->xLabel = xLabel;
+    for (const auto& [label, rows] : byScene[scene]) {
+      std::set<int> counts;
+      for (const size_t i : rows) counts.insert(results.rows[i].lights);
+      if (counts.size() < 2) continue;
+      const BenchRow& first = results.rows[rows.front()];
+      ChartSeries cost{.color = filterColor(first.config.filter), .marker = projectionMarker(first.config.projection),
+                       .connect = true, .points = {}};
+      ChartSeries memory = cost, error = cost;
+      constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+      for (const size_t i : rows) {
+        const BenchRow& r = results.rows[i];
+        const double n = r.lights;
+        const TimeStats& t = r.shadowCost;
+        const std::string tip = fmt::format("{}, {} lights: whole cost {} ({} ms per light), {} MiB, RMSE {:.4f}", label,
+                                            r.lights, timeText(t), numberText(t.median / n), numberText(r.memoryMiB()),
+                                            r.metrics.rmse);
+        cost.points.push_back({n, t.median / n, t.p10 / n, t.p90 / n, tip, false});
+        memory.points.push_back({n, r.memoryMiB() / n, kNone, kNone, tip, false});
+        error.points.push_back({n, r.metrics.rmse, kNone, kNone, tip, false});
+      }
+      for (auto [chart, series] : {std::pair{&l.costPerLight, &cost}, {&l.memoryPerLight, &memory}, {&l.error, &error}}) {
+        chart->series.push_back(std::move(*series));
+        chart->legend.push_back({label, filterColor(first.config.filter), projectionMarker(first.config.projection), false, false});
+      }
+    }
+    if (!l.error.series.empty()) out.push_back(std::move(l));
+  }
+  return out;
+}
+
 }  // namespace penumbra::report

@@ -4,7 +4,8 @@
 //     visibility per frame) and against the memory the technique keeps, one point per
 //     configuration, colour = filter, marker = projection, each Pareto front marked; and a
 //     stacked bar per configuration showing where its time goes, pass by pass;
-//  2. whole cost (and error) against light size, for every technique run at several light sizes.
+//  2. whole cost (and error) against light size, for every technique run at several light sizes;
+//  3. per-light cost and memory, and error, against the number of lights (the light-count plan).
 #include "report/BenchResults.h"
 #include "report/SvgChart.h"
 
@@ -57,6 +58,16 @@ struct LightSizeCharts {
 /// light sizes: its whole cost (median, p10–p90 bars) and its RMSE against the light size.
 /// Empty when the run swept no light size.
 std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results);
+
+/// The light-count plan's charts: per light, the whole cost and the memory, and the combined
+/// RMSE, against the number of shadowed lights; one curve per filter.
+struct LightCountCharts {
+  std::string scene;
+  Chart costPerLight, memoryPerLight, error;
+};
+
+/// Empty when the run has no rows of the light-count plan (kLightCountPlan) at two counts or more.
+std::vector<LightCountCharts> lightCountCharts(const BenchResults& results);
 
 /// Stable colour of a filter and marker of a projection (by registry order) across charts.
 std::string filterColor(const std::string& filterId);

@@ -37,7 +37,7 @@ nlohmann::json statsJson(const TimeStats& t) { return {{"median", t.median}, {"p
 }  // namespace
 
 std::vector<std::string> tableColumns(const BenchResults& results) {
-  std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "width", "height",
+  std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "lights", "width", "height",
                                    "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "umbra_leak_pct",
                                    "overdark_pct", "penumbra_rmse", "pixels"};
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kShadowCostColumn) + suffix);
@@ -54,7 +54,7 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   // A float as the double its shortest text names (0.12f → 0.12, not 0.11999999731779099).
   auto numFloat = [](float v) { return Cell(std::stod(fmt::format("{}", v))); };
   std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
-                             r.config.paramsText(), numFloat(r.lightSize), num(r.width), num(r.height),
+                             r.config.paramsText(), numFloat(r.lightSize), num(r.lights), num(r.width), num(r.height),
                              num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
                              num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels),
                              num(r.shadowCost.median), num(r.shadowCost.p10), num(r.shadowCost.p90), num(r.memoryMiB())};
