@@ -95,9 +95,10 @@ public:
   /// The last frame's colour on the GPU (RGBA8 holding sRGB-encoded values, row 0 = bottom),
   /// for display without a read-back. An empty texture before the first render().
   const gl::Texture& colorTexture() const;
-  /// Every intermediate a viewer can show, by name: the visibility, the G-buffer, then the
-  /// filter's own (Filter::debugImages()). Renderer-level debug outputs belong in this list too.
-  std::vector<DebugImage> debugImages() const;
+  /// Every intermediate a viewer can show, by name: light `light`'s visibility, the G-buffer,
+  /// then that light's filter maps (Shadows::debugImages(light)). Renderer-level debug outputs
+  /// belong in this list too.
+  std::vector<DebugImage> debugImages(size_t light = 0) const;
   /// Writes every intermediate (G-buffer, shadow maps, visibility, colour) as images into dir.
   void dump(const std::string& dir) const;
 

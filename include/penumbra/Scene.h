@@ -77,6 +77,18 @@ struct LightShadowSettings {
 /// Largest spot cone half angle (rad): a cone near a hemisphere has no useful single frustum
 /// (a point light shadows every direction instead).
 inline constexpr float kMaxSpotConeRad = 1.4f;
+/// A spot's narrowest outer half angle (degrees), as scene files and the viewer accept it.
+inline constexpr float kMinSpotConeDeg = 1.0f;
+/// A spot given only its outer angle fades over the cone's last degrees (the look of earlier
+/// scene files): inner = outer − this.
+inline constexpr float kDefaultSpotFadeDeg = 5.0f;
+/// A spot or point light's largest sphere radius (m).
+inline constexpr float kMaxLightSphereM = 100.0f;
+/// Largest light intensity (Light::intensity), for scene files and the viewer alike.
+inline constexpr float kMaxLightIntensity = 1e6f;
+/// Shadow-map sizes (texels per side) that scene files and the viewer accept, for the scene's
+/// technique and for a light's own (LightShadowSettings::mapSize).
+inline constexpr int kMinMapSizeTexels = 16, kMaxMapSizeTexels = 16384;
 
 struct Light {
   LightType type = LightType::Directional;

@@ -296,8 +296,8 @@ void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>
 
 const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 
-std::vector<DebugImage> Renderer::debugImages() const {
-  std::vector<DebugImage> core = mImpl->shadows.debugImages();
+std::vector<DebugImage> Renderer::debugImages(size_t light) const {
+  std::vector<DebugImage> core = mImpl->shadows.debugImages(light);
   std::vector<DebugImage> out = {core.front(),  // the visibility
                                  {"gbuffer-depth", &mImpl->depth, "camera depth, reversed-Z: 1 = near plane, 0 = infinitely far"},
                                  {"gbuffer-normal", &mImpl->normal, "world-space shading normal, x y z in [−1, 1]"},

@@ -27,11 +27,9 @@ using Json = nlohmann::json;
 constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 // The sphere's tessellation (slices around, stacks from pole to pole).
 constexpr int kSphereSlices = 48, kSphereStacks = 24;
-constexpr float kMinMapSize = 16.0f, kMaxMapSize = 16384.0f;  // shadow-map texels per side
-constexpr float kMaxLightSphereM = 100.0f;  // a spot or point light's largest sphere radius
-constexpr float kMinSpotConeDeg = 1.0f;     // a spot's narrowest outer half angle
-// A spot without innerConeDeg fades over its cone's last degrees (the look of earlier files).
-constexpr float kDefaultSpotFadeDeg = 5.0f;
+// Light and map-size limits (kMaxLightSphereM, kMinSpotConeDeg, kMinMapSizeTexels, ...) are
+// Scene.h's: the viewer's edits obey them too.
+constexpr float kMinMapSize = kMinMapSizeTexels, kMaxMapSize = kMaxMapSizeTexels;
 
 /// A JSON object being read: remembers its path for messages and which keys were used.
 class Reader {
@@ -195,7 +193,7 @@ Light readLight(Reader& r) {
     s.finish();
   }
   l.color = r.vec<3>("color", l.color, 0.0f, kMaxRadiance);
-  l.intensity = r.number("intensity", l.intensity, 0.0f, 1e6f);
+  l.intensity = r.number("intensity", l.intensity, 0.0f, kMaxLightIntensity);
   r.finish();
   return l;
 }

@@ -140,7 +140,7 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
     // A lit-pass view not listed above: the colour output.
   } else {
     std::string meaning = "values as stored";
-    for (const DebugImage& d : mSession.renderer().debugImages())
+    for (const DebugImage& d : mSession.debugImages())  // the selected light's
       if (d.name == name && !d.meaning.empty()) meaning = std::string(d.meaning);
     ImGui::TextWrapped("%s: %s", name.c_str(), meaning.c_str());
     const DisplaySettings& s = view.settings;

@@ -34,7 +34,6 @@ constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in
 // with the scene and technique choices, the filter's own and the contact pass's in a tab of
 // their own (together they would run past 720 px).
 constexpr size_t kTechniqueTabGroups = 2;
-constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 // DejaVu Sans at this size: as tall as ImGui's default font's lines, readable at 100 % scale.
 constexpr float kFontPx = 15.0f;
@@ -155,7 +154,7 @@ void Viewer::loadFont() {
 
 std::string Viewer::layoutText() const {
   // Every label, unit and meaning the panels and legends can show, against the font's glyphs.
-  std::vector<std::string> texts = {"Split λ", "°", "²", "→", "−", "ΔV", "×", "…", "≤"};
+  std::vector<std::string> texts = {"Split λ", "°", "²", "→", "−", "ΔV", "×", "…", "≤", "Angular radius (°)", "Intensity @ 1 m"};
   auto addTable = [&](std::span<const ParamDesc> descs) {
     for (const ParamDesc& d : descs) {
       texts.emplace_back(d.label);
@@ -217,7 +216,8 @@ void Viewer::drawPanels() {
       switch (p.panel) {
         case Panel::Technique: drawTechniquePanel(); break;
         case Panel::Filter: drawParams(kTechniqueTabGroups, mSession.paramGroups().size()); break;
-        case Panel::LightCamera: drawLightCameraPanel(); break;
+        case Panel::Lights: drawLightsPanel(); break;
+        case Panel::Camera: drawCameraPanel(); break;
         case Panel::Views: drawViewsPanel(); break;
         case Panel::Timings: drawTimingPanel(); break;
         case Panel::Tools: drawToolsPanel(); break;
@@ -295,23 +295,9 @@ void Viewer::drawParams(size_t first, size_t last) {
   }
 }
 
-void Viewer::drawLightCameraPanel() {
+void Viewer::drawCameraPanel() {
   const Scene& scene = mSession.scene();
-  const Light& light = scene.light();
-  const glm::vec3 aim = lightAimPoint(light, scene.bounds());
-  glm::vec2 deg = glm::degrees(lightAngles(light, aim));
-  hint(isPositional(light) ? "spot or point light: right-drag in the view moves it around the point it lights"
-                           : "sun: right-drag in the view turns it");
-  bool moved = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
-  moved |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
-  if (moved) {
-    setLightAngles(mSession.light(), aim, glm::radians(deg.x), glm::radians(deg.y));
-    setStatus(fmt::format("light at azimuth {:.1f}°, elevation {:.1f}°", deg.x, deg.y), false);
-  }
-  ImGui::Text("Light size %g %s", static_cast<double>(light.size), light.type == LightType::Spot ? "m (sphere radius)" : "rad (angular radius)");
-
   int mode = mFly ? 1 : 0;
-  ImGui::Separator();
   bool modeChanged = ImGui::RadioButton("orbit", &mode, 0);
   ImGui::SameLine();
   modeChanged |= ImGui::RadioButton("fly (C)", &mode, 1);
@@ -354,7 +340,10 @@ void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
   const char* channels[] = {"r", "g", "b", "a", "rgb"};
   ImGui::Combo("Channel", &s.channel, channels, IM_ARRAYSIZE(channels));
   const int layers = t->desc().target == GL_TEXTURE_2D ? 1 : t->layers();
-  if (layers > 1) ImGui::SliderInt(t->desc().target == GL_TEXTURE_3D ? "Slice" : "Layer", &s.layer, 0, layers - 1, "%d (cascade, slice)");
+  const bool isArray = t->desc().target == GL_TEXTURE_2D_ARRAY;
+  if (layers > 1 && isArray) ImGui::Checkbox("All layers", &s.allLayers);
+  if (layers > 1 && !(isArray && s.allLayers))
+    ImGui::SliderInt(isArray ? "Layer" : "Slice", &s.layer, 0, layers - 1, isArray ? "%d (cascade, cube face)" : "%d (slice)");
   if (t->levels() > 1) ImGui::SliderInt("Mip level", &s.level, 0, t->levels() - 1, "level %d");
   ImGui::Checkbox("Turbo colours", &s.turbo);
   ImGui::SameLine();

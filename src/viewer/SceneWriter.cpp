@@ -62,7 +62,7 @@ Json objectJson(const Scene& scene, const Object& o) {
 
 Json lightJson(const Light& l) {
   Json j;
-  j["type"] = l.type == LightType::Spot ? "spot" : l.type == LightType::Point ? "point" : "sun";
+  j["type"] = lightTypeName(l.type);
   if (l.type != LightType::Point) j["direction"] = tidyVec(glm::normalize(l.direction));
   if (isPositional(l)) {
     j["position"] = tidyVec(l.position);

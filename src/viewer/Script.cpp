@@ -1,6 +1,9 @@
 #include "viewer/Script.h"
 
+#include "viewer/LightEdit.h"
+
 #include <penumbra/Error.h>
+#include <penumbra/Shadows.h>
 
 #include <fmt/format.h>
 
@@ -8,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 namespace penumbra::viewer {
@@ -20,10 +24,12 @@ struct Verb {
 };
 
 // The panels' script names (Viewer.h kPanels; checked against them by the viewer's test).
-constexpr std::string_view kPanelIds[] = {"technique", "filter", "light", "views", "timings", "tools"};
+constexpr std::string_view kPanelIds[] = {"technique", "filter", "lights", "camera", "views", "timings", "tools"};
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
+// The longest `light` action: set N KEY X Y Z.
+constexpr size_t kMaxLightArgs = 6;
 
 constexpr Verb kVerbs[] = {
     {"scene", 1, 1, "NAME|FILE", "load a built-in scene or a scene file (the technique stays)"},
@@ -32,17 +38,23 @@ constexpr Verb kVerbs[] = {
     {"set", 1, 1, "KEY=VALUE", "set a parameter (technique or scene), as --set does"},
     {"camera", 2, 7, "orbit YAW PITCH DIST | look PX PY PZ TX TY TZ | mode orbit|fly",
      "place the camera (degrees, metres; orbit is around the current target)"},
-    {"light", 3, 4, "angles AZIMUTH ELEVATION | direction X Y Z | position X Y Z",
-     "move the light (degrees; angles as seen from the point it lights)"},
+    {"light", 1, kMaxLightArgs,
+     "select N | add sun|spot|point | remove N | set N KEY VALUE | angles AZIMUTH ELEVATION | direction X Y Z | "
+     "position X Y Z",
+     "lights, numbered from 0: select one (what the debug views show and the other actions move), add one (and select "
+     "it; placed where the view shows it), remove one, set one's KEY (the scene file's: type, position, direction, "
+     "target, size, color, intensity, outerConeDeg, innerConeDeg, range, castsShadow on|off, mapSize; vectors as X Y Z "
+     "or X,Y,Z), or move the selected one (degrees; angles as seen from the point it lights)"},
     {"view", 1, 1, "NAME", "main view: shaded, heatmap, reference, or a debug image (visibility, shadow-map, moments, ...)"},
     {"inset", 1, 1, "NAME|none", "debug image shown in the corner of the view (kept across filter switches)"},
     {"flip", 0, 0, "", "as the R key: technique <-> reference (the heatmap is traced first if needed)"},
     {"split", 1, 2, "FILTER [PROJECTION] | off", "split view: the right half shows that technique (projection: the current)"},
-    {"panel", 1, 1, "technique|filter|light|views|timings|tools", "open that panel's tab"},
+    {"panel", 1, 1, "technique|filter|lights|camera|views|timings|tools", "open that panel's tab"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
-    {"print", 1, 1, "gl-objects|technique|timings|layout", "print a line on stdout (layout: the open panel's extent)"},
+    {"screenshot-inset", 1, 1, "PATH", "after this frame, write the inset (with its labels) as PNG"},
+    {"print", 1, 1, "gl-objects|technique|timings|lights|layout", "print a line on stdout (layout: the open panel's extent)"},
     {"heatmap", 0, 1, "[SAMPLES]", "start the error heatmap against the ray-traced reference"},
     {"wait-heatmap", 0, 0, "", "let frames pass until the heatmap is done"},
     {"reload", 0, 0, "", "reload shaders from the source tree (errors are printed)"},
@@ -61,6 +73,34 @@ const Verb* findVerb(std::string_view name) {
   throw usageError(fmt::format("{}: {}: {}", a.where, a.verb, what));
 }
 
+void checkLightAction(const ScriptAction& a, const Verb& v) {
+  const std::string& sub = a.args[0];
+  const int maxIndex = static_cast<int>(kMaxShadowedLights) - 1;
+  if (sub == "set") {
+    if (a.args.size() < 4) fail(a, "expected light set N KEY VALUE");
+    scriptInt(a, 1, 0, maxIndex);
+    try {
+      checkLightSetting(a.args[2], std::span(a.args).subspan(3));
+    } catch (const Error& e) {
+      fail(a, e.what());
+    }
+    return;
+  }
+  const size_t n = (sub == "select" || sub == "add" || sub == "remove") ? 2 : sub == "angles" ? 3
+                 : (sub == "direction" || sub == "position") ? 4 : 0;
+  if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected light {}", v.usage));
+  if (sub == "select" || sub == "remove") scriptInt(a, 1, 0, maxIndex);
+  if (sub == "add") {
+    try {
+      parseLightType(a.args[1]);
+    } catch (const Error& e) {
+      fail(a, e.what());
+    }
+  }
+  if (sub == "angles" || sub == "direction" || sub == "position")
+    for (size_t i = 1; i < n; ++i) scriptFloat(a, i);
+}
+
 void checkAction(const ScriptAction& a) {
   const Verb* v = findVerb(a.verb);
   if (!v) {
@@ -75,10 +115,10 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "wait") scriptInt(a, 0, 0, kMaxWaitFrames);
   if (a.verb == "heatmap" && !a.args.empty()) scriptInt(a, 0, 1, 1 << 16);
   if (a.verb == "ui" && sub != "on" && sub != "off") fail(a, "expected on or off");
-  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "layout")
-    fail(a, "expected gl-objects, technique, timings or layout");
+  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights" && sub != "layout")
+    fail(a, "expected gl-objects, technique, timings, lights or layout");
   if (a.verb == "panel" && std::none_of(std::begin(kPanelIds), std::end(kPanelIds), [&](std::string_view p) { return p == sub; }))
-    fail(a, "expected technique, filter, light, views, timings or tools");
+    fail(a, "expected technique, filter, lights, camera, views, timings or tools");
   if (a.verb == "split" && sub == "off" && a.args.size() != 1) fail(a, "expected split off");
   if (a.verb == "camera") {
     const size_t n = sub == "orbit" ? 4 : sub == "look" ? 7 : sub == "mode" ? 2 : 0;
@@ -86,11 +126,7 @@ void checkAction(const ScriptAction& a) {
     if (sub == "mode" && a.args[1] != "orbit" && a.args[1] != "fly") fail(a, "expected mode orbit or fly");
     for (size_t i = 1; sub != "mode" && i < n; ++i) scriptFloat(a, i);
   }
-  if (a.verb == "light") {
-    const size_t n = sub == "angles" ? 3 : (sub == "direction" || sub == "position") ? 4 : 0;
-    if (n == 0 || a.args.size() != n) fail(a, fmt::format("expected light {}", v->usage));
-    for (size_t i = 1; i < n; ++i) scriptFloat(a, i);
-  }
+  if (a.verb == "light") checkLightAction(a, *v);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // The viewer's scripted mode: Script.h's actions executed on the Viewer, one frame at a time.
 #include "viewer/Viewer.h"
 
+#include "viewer/LightEdit.h"
+
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
 
@@ -83,18 +85,7 @@ bool Viewer::execute(const ScriptAction& a) {
       mFlyCamera = FlyCamera::fromCamera(c);
     }
   } else if (v == "light") {
-    const glm::vec3 xyz = a.args.size() == 4 ? glm::vec3(scriptFloat(a, 1), scriptFloat(a, 2), scriptFloat(a, 3)) : glm::vec3(0.0f);
-    Light& light = mSession.light();
-    if (arg == "angles") {
-      setLightAngles(light, lightAimPoint(light, mSession.scene().bounds()), glm::radians(scriptFloat(a, 1)),
-                     glm::radians(scriptFloat(a, 2)));
-    } else if (arg == "direction") {
-      if (glm::length(xyz) <= 0.0f) throw usageError("the direction must not be zero");
-      light.direction = glm::normalize(xyz);
-    } else {
-      if (!isPositional(light)) throw usageError("the light is a sun: it has a direction, not a position");
-      light.position = xyz;
-    }
+    executeLight(a);
   } else if (v == "view") {
     setView(mMain, arg, "main view");
   } else if (v == "inset") {
@@ -128,9 +119,18 @@ bool Viewer::execute(const ScriptAction& a) {
   } else if (v == "screenshot-window") {
     mWindowShot = arg;
     return true;
+  } else if (v == "screenshot-inset") {
+    if (mInset.name == kNoInset) throw usageError("no inset is shown (inset NAME first)");
+    mInsetShot = arg;
+    return true;
   } else if (v == "print") {
     if (arg == "gl-objects") {
       std::printf("gl-objects %d\n", gl::liveObjectCount());
+    } else if (arg == "lights") {
+      const Scene& scene = mSession.scene();
+      std::string line = fmt::format("lights {} selected {}:", scene.lights.size(), mSession.selectedLight());
+      for (size_t i = 0; i < scene.lights.size(); ++i) line += fmt::format(" {}={}", i, lightTypeName(scene.lights[i].type));
+      std::printf("%s\n", line.c_str());
     } else if (arg == "layout") {
       std::printf("%s\n", layoutText().c_str());
     } else if (arg == "technique") {

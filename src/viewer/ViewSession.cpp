@@ -1,5 +1,7 @@
 #include "viewer/ViewSession.h"
 
+#include "viewer/LightEdit.h"
+
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
 #include <penumbra/SceneIO.h>
@@ -47,10 +49,63 @@ void ViewSession::setShadowMapSize(int texels) {
 }
 
 Light& ViewSession::light() {
-  PN_CHECK(!mScene.lights.empty(), "the scene has no light");
+  PN_CHECK(mSelected < mScene.lights.size(), "the scene has no light");
   ++mVersion;
-  return mScene.lights.front();
+  return mScene.lights[mSelected];
 }
+
+void ViewSession::checkLight(const Light& light, const std::string& which) {
+  if (const std::string problem = lightProblem(light); !problem.empty()) throw usageError(fmt::format("{}: {}", which, problem));
+  Renderer& r = mRenderer;
+  if (const std::string why = r.projection().incompatibility(light); !why.empty())
+    throw usageError(fmt::format("{}: --projection {} cannot shadow it: {}", which, mProjectionId, why));
+  if (const std::string why = r.filter().incompatibility(mProjectionId, light); !why.empty())
+    throw usageError(fmt::format("{}: --filter {} with --projection {} cannot shadow it: {}", which, mFilterId, mProjectionId, why));
+}
+
+const Light& ViewSession::lightAt(size_t index) const {
+  if (index >= mScene.lights.size())
+    throw usageError(fmt::format("there is no light {}: the scene has {} (0..{})", index, mScene.lights.size(), mScene.lights.size() - 1));
+  return mScene.lights[index];
+}
+
+void ViewSession::selectLight(size_t index) {
+  lightAt(index);  // throws when there is no such light
+  mSelected = index;
+}
+
+void ViewSession::addLight(const Light& light) {
+  if (mScene.lights.size() >= kMaxShadowedLights)
+    throw usageError(fmt::format("the scene has {} lights, the most one frame shadows (kMaxShadowedLights)", mScene.lights.size()));
+  checkLight(light, lightLabel(light, mScene.lights.size()));
+  mScene.lights.push_back(light);
+  mSelected = mScene.lights.size() - 1;
+  ++mVersion;
+}
+
+void ViewSession::removeLight(size_t index) {
+  lightAt(index);  // throws when there is no such light
+  if (mScene.lights.size() <= 1)
+    throw usageError(fmt::format("cannot remove {}: it is the scene's only light, and a scene needs at least one",
+                                 lightLabel(mScene.lights[index], index)));
+  mScene.lights.erase(mScene.lights.begin() + static_cast<std::ptrdiff_t>(index));
+  if (mSelected > index || (mSelected == index && index > 0)) --mSelected;
+  ++mVersion;
+}
+
+void ViewSession::setLight(size_t index, const Light& light) {
+  lightAt(index);  // throws when there is no such light
+  checkLight(light, lightLabel(light, index));
+  mScene.lights[index] = light;
+  ++mVersion;
+}
+
+size_t ViewSession::shownLight() const {
+  const size_t count = mRenderer.lightCount();
+  return count == 0 ? 0 : std::min(mSelected, count - 1);
+}
+
+std::vector<DebugImage> ViewSession::debugImages() const { return mRenderer.debugImages(shownLight()); }
 
 void ViewSession::applyRemembered(Parameterized& p) const {
   for (const ParamDesc& d : p.paramDescs())
@@ -67,6 +122,14 @@ void ViewSession::rebuildTechnique(const std::string& projectionId, const std::s
   }
   applyRemembered(*projection);
   applyRemembered(*filter);
+  // The renderer checks the pair against light 0; the others are checked here.
+  for (size_t i = 1; i < mScene.lights.size(); ++i) {
+    const Light& l = mScene.lights[i];
+    if (const std::string why = projection->incompatibility(l); !why.empty())
+      throw usageError(fmt::format("--projection {} is not supported for {}: {}", projectionId, lightLabel(l, i), why));
+    if (const std::string why = filter->incompatibility(projectionId, l); !why.empty())
+      throw usageError(fmt::format("{}: --filter {} with --projection {} is not supported: {}", lightLabel(l, i), filterId, projectionId, why));
+  }
   mRenderer.setTechnique(std::move(projection), std::move(filter));  // throws before changing anything
   mProjectionId = projectionId;
   mFilterId = filterId;
@@ -94,6 +157,7 @@ void ViewSession::loadScene(const std::string& nameOrPath) {
     throw;
   }
   mHasFrame = false;
+  mSelected = 0;
   ++mVersion;
 }
 

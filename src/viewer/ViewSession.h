@@ -53,8 +53,31 @@ public:
 
   /// Camera and light edits: take effect at the next render().
   Camera& camera() { ++mVersion; return mScene.camera; }
+  /// The selected light (what the light panels, the script's `light` actions and right-drag
+  /// edit), writable; edits through it are not checked (setLight() checks).
   Light& light();
   std::vector<Light>& lights() { ++mVersion; return mScene.lights; }
+
+  /// Lights (docs/viewer.md, "Lights"). The selection is an index into scene().lights; it is
+  /// 0 after a scene loads. Each throws a usage Error and leaves the lights unchanged when the
+  /// edit cannot be made.
+  size_t selectedLight() const { return mSelected; }
+  /// Light `index`; a usage Error naming the scene's lights when there is none of that index.
+  const Light& lightAt(size_t index) const;
+  void selectLight(size_t index);
+  /// Appends a light (at most kMaxShadowedLights) and selects it. Refused if lightProblem()
+  /// finds one or the technique cannot shadow it (csm and a point light).
+  void addLight(const Light& light);
+  /// Removes light `index` (never the last one left). The selection stays on the light it was
+  /// on; if that was the removed one, on the one before it (or the new light 0).
+  void removeLight(size_t index);
+  /// Replaces light `index`, with addLight()'s checks.
+  void setLight(size_t index, const Light& light);
+  /// The renderer's debug images of the selected light (light 0's until a frame has it).
+  std::vector<DebugImage> debugImages() const;
+  /// The light whose images debugImages() lists: the selection, or the last light the last
+  /// frame had.
+  size_t shownLight() const;
 
   /// Renders a width × height frame of the current state; `litView` = what the lit pass writes
   /// (RenderOptions::debugView). Throws Error on GL/shader failures.
@@ -67,6 +90,8 @@ public:
 private:
   void rebuildTechnique(const std::string& projectionId, const std::string& filterId);
   void applyRemembered(Parameterized& p) const;
+  /// Throws a usage Error naming `which` if the light is not one to add or keep.
+  void checkLight(const Light& light, const std::string& which);
 
   Renderer mRenderer;
   Scene mScene;
@@ -76,6 +101,7 @@ private:
   std::map<std::string, float, std::less<>> mRemembered;
   uint64_t mVersion = 1;
   bool mHasFrame = false;
+  size_t mSelected = 0;
 };
 
 }  // namespace penumbra::viewer

@@ -147,12 +147,14 @@ void Viewer::drawFrame() {
   renderFrame();
   if (mHeatmapRequest) startHeatmap(*std::exchange(mHeatmapRequest, std::nullopt));  // on this frame
   drawViews();
+  drawViewLabels();
   if (mViewShot) screenshotView(*std::exchange(mViewShot, std::nullopt));
   ImGui::Render();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, mFramebuffer.x, mFramebuffer.y);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (mWindowShot) screenshotWindow(*std::exchange(mWindowShot, std::nullopt));
+  if (mInsetShot) screenshotInset(*std::exchange(mInsetShot, std::nullopt));
   glfwSwapBuffers(mWindow.window());
 }
 
@@ -284,7 +286,7 @@ const gl::Texture* Viewer::findView(const std::string& name) const {
   if (findLitView(name)) return &mSession.renderer().colorTexture();
   if (name == kHeatmapView) return mHeatmapTexture ? &mHeatmapTexture : nullptr;
   if (name == kReferenceView) return mReferenceTexture && mReferenceVersion != 0 ? &mReferenceTexture : nullptr;
-  for (const DebugImage& d : mSession.renderer().debugImages())
+  for (const DebugImage& d : mSession.debugImages())
     if (d.name == name && d.texture && *d.texture) return d.texture;
   return nullptr;
 }
@@ -294,7 +296,7 @@ std::vector<std::string> Viewer::viewNames() const {
   for (const LitView& v : kLitViews) names.emplace_back(v.name);
   if (mHeatmapTexture) names.emplace_back(kHeatmapView);
   if (mReferenceTexture && mReferenceVersion != 0) names.emplace_back(kReferenceView);
-  for (const DebugImage& d : mSession.renderer().debugImages())
+  for (const DebugImage& d : mSession.debugImages())
     if (d.texture && *d.texture) names.push_back(d.name);
   return names;
 }
@@ -491,6 +493,12 @@ void Viewer::screenshotWindow(const std::filesystem::path& path) {
   const ColorImage img = readWindow({0, 0, mFramebuffer.x, mFramebuffer.y});
   writePng(path, img.width, img.height, img.rgba);
   setStatus(fmt::format("screenshot-window {} {}x{}", path.string(), img.width, img.height), false);
+}
+
+void Viewer::screenshotInset(const std::filesystem::path& path) {
+  const ColorImage img = readWindow(mInsetRect);
+  writePng(path, img.width, img.height, img.rgba);
+  setStatus(fmt::format("screenshot-inset {} {}x{} view={}", path.string(), img.width, img.height, mInset.name), false);
 }
 
 void Viewer::saveSettings(const std::filesystem::path& path) {

@@ -1,7 +1,8 @@
 #pragma once
 // `penumbra view`: a GLFW window with Dear ImGui panels around the Renderer's output.
 //  - Panels (Panels.cpp): scene, projection, filter and every parameter as a widget generated
-//    from its ParamDesc; light and camera; debug views; per-pass times; shaders; heatmap; save.
+//    from its ParamDesc; lights (LightsPanel.cpp); camera; debug views; per-pass times; shaders;
+//    heatmap; save.
 //  - The view (this file): orbit/fly camera, light dragging, the main view + an inset (any
 //    Renderer::debugImages() entry, the colour output or the error heatmap), screenshots,
 //    shader hot reload, and the scripted mode (Script.h) used by tests and demos.
@@ -16,6 +17,7 @@
 
 #include <penumbra/Reference.h>
 
+#include <array>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -44,12 +46,14 @@ inline constexpr const char* kHeatmapView = "heatmap";
 /// The same frame lit with the reference's V_ref (after a heatmap of this view): R flips to it.
 inline constexpr const char* kReferenceView = "reference";
 inline constexpr const char* kNoInset = "none";
+/// The shadow-map sizes (texels per side) the panels offer, for the technique and for one light.
+inline constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 
 /// True for the lit pass's views (shaded, cascades, texel-density): the colour output.
 bool isLitView(std::string_view name);
 
 /// The panel groups, one tab each; the script's `panel NAME` opens one.
-enum class Panel { Technique, Filter, LightCamera, Views, Timings, Tools };
+enum class Panel { Technique, Filter, Lights, Camera, Views, Timings, Tools };
 struct PanelInfo {
   Panel panel;
   const char* id;     ///< script name
@@ -57,7 +61,8 @@ struct PanelInfo {
 };
 inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Technique"},
                                         {Panel::Filter, "filter", "Filter"},
-                                        {Panel::LightCamera, "light", "Light"},
+                                        {Panel::Lights, "lights", "Lights"},
+                                        {Panel::Camera, "camera", "Camera"},
                                         {Panel::Views, "views", "Views"},
                                         {Panel::Timings, "timings", "Timings"},
                                         {Panel::Tools, "tools", "Tools"}};
@@ -111,6 +116,7 @@ private:
   void setView(ViewState& view, const std::string& name, const char* slot);
   void screenshotView(const std::filesystem::path& path);
   void screenshotWindow(const std::filesystem::path& path);
+  void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
   void saveSettings(const std::filesystem::path& path);
   void reloadShaders();
   void resetCamera();
@@ -124,13 +130,19 @@ private:
   void runScript();
   bool execute(const ScriptAction& a);  ///< true = let this frame pass before the next action
 
+  // Lights (LightsPanel.cpp): the light list and the selected light's editor, labels over the
+  // views that name the light and the layer (cube face, cascade) shown, the `light` action.
+  void drawLightsPanel();
+  void drawViewLabels();
+  void executeLight(const ScriptAction& a);
+
   // Panels (Panels.cpp).
   void drawPanels();
   void drawOverlay();  ///< the heatmap's progress, over the view
   void drawTechniquePanel();
   /// The parameter groups [first, last) of ViewSession::paramGroups().
   void drawParams(size_t first, size_t last);
-  void drawLightCameraPanel();
+  void drawCameraPanel();
   void drawViewsPanel();
   void drawViewSettings(const char* id, ViewState& view, bool allowNone);
   void drawTimingPanel();
@@ -195,7 +207,7 @@ private:
   int mWaitFrames = 0;
   bool mWaitHeatmap = false;
   bool mQuit = false;
-  std::optional<std::filesystem::path> mViewShot, mWindowShot;
+  std::optional<std::filesystem::path> mViewShot, mWindowShot, mInsetShot;
   char mSavePath[512] = {};
   char mScenePath[512] = {};
 };

@@ -6,8 +6,11 @@
 // Skipped, saying why, only where xvfb-run is missing (scripts/install-deps installs it).
 #include "CliSupport.h"
 
+#include "viewer/DebugDisplay.h"
+
 #include <penumbra/ImageIO.h>
 #include <penumbra/Registry.h>
+#include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>
 
@@ -312,8 +315,106 @@ TEST(ViewerCli, ScreenshotCameraRendersTheSameImage) {
   EXPECT_GT(differingBytes(dir, "view.png", "own.png"), 1000u) << "the orbit did not move the camera";
 }
 
+namespace {
+
+// A room lit by a spot (light 0) and a point lamp (light 1) with something in every direction of
+// the lamp, so that each of its six cube faces sees depth that varies across the face. A face's
+// map holds depth along its axis, so a plane square to that axis would look flat: the ceiling
+// slopes, and the floor casts no shadow (the -Y face sees the objects' tops).
+constexpr const char* kTwoLightRoom = R"({"name": "two-lights",
+  "camera": {"position": [0, 2.2, 4.5], "target": [0, 0.8, 0]},
+  "lights": [
+    {"type": "spot", "position": [2, 2.6, 2], "target": [0, 0, 0], "outerConeDeg": 40, "innerConeDeg": 30,
+     "size": 0.05, "intensity": 20},
+    {"type": "point", "position": [0, 1.2, 0], "size": 0.03, "range": 12, "intensity": 6}],
+  "objects": [
+    {"name": "floor", "shape": "plane", "size": [8, 8], "castsShadow": false},
+    {"name": "ceiling", "shape": "box", "size": [8, 0.1, 8], "translate": [0, 3, 0], "rotateDeg": [0, 0, 10]},
+    {"name": "box", "shape": "box", "size": [0.6, 1.0, 0.6], "translate": [1.6, 0.5, 0], "rotateDeg": [0, 30, 0]},
+    {"name": "ball", "shape": "sphere", "radius": 0.4, "translate": [-1.5, 0.6, 0.3]},
+    {"name": "post", "shape": "cylinder", "radius": 0.2, "height": 1.8, "translate": [0.4, 0, 1.4]},
+    {"name": "cone", "shape": "cone", "radius": 0.5, "height": 1.4, "translate": [-0.3, 0, -1.6]}]})";
+
+// A cell's grey statistics, a few pixels inside its edges (labels and letterbox bars aside).
+constexpr int kCellInsetPx = 4;
+// A face shows its scene when it has at least this many grey levels and this deviation (0..255).
+constexpr int kMinFaceGreyLevels = 8;
+constexpr double kMinFaceStdDev = 4.0;
+
+std::vector<uint8_t> cellPixels(const std::vector<uint8_t>& rgba, int width, int height, const glm::ivec4& cell) {
+  std::vector<uint8_t> out;
+  const int top = height - (cell.y + cell.w);  // window y grows upward, PNG rows downward
+  for (int y = top + kCellInsetPx; y < top + cell.w - kCellInsetPx; ++y)
+    for (int x = cell.x + kCellInsetPx; x < cell.x + cell.z - kCellInsetPx; ++x)
+      if (x >= 0 && x < width && y >= 0 && y < height)
+        out.insert(out.end(), rgba.begin() + (size_t(y) * size_t(width) + size_t(x)) * 4,
+                   rgba.begin() + (size_t(y) * size_t(width) + size_t(x)) * 4 + 4);
+  return out;
+}
+
+}  // namespace
+
+// The light list in a script: a scene of a spot and a point lamp, the lamp selected, its shadow
+// map shown as six cube faces; each face must show depth, not a flat colour, and the faces must
+// differ from each other. Then lights are added, edited and removed, and mistakes name the light.
+TEST(ViewerCli, SelectedPointLightShowsItsSixCubeFaces) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-lights");
+  std::ofstream(dir + "/room.json") << kTwoLightRoom;
+  writeScript(dir + "/s.txt",
+              "print lights\nlight select 1\nprint lights\nview shadow-map\nscreenshot faces.png\n"
+              "screenshot-window faces-window.png\nview shaded\nlight add sun\nlight set 2 castsShadow off\n"
+              "light set 1 position 0.2 1.3 0\nlight set 0 mapSize 256\nprint lights\nlight remove 0\nprint lights\n"
+              "screenshot after.png\nsave saved.json\n");
+  constexpr int kMapSize = 256;
+  const RunResult r = runViewer("--scene room.json --size 800x400 --shadow-map " + std::to_string(kMapSize) + " --script s.txt", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("lights 2 selected 0: 0=spot 1=point\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lights 2 selected 1: 0=spot 1=point\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lights 3 selected 2: 0=spot 1=point 2=sun\n"), std::string::npos) << r.out;
+  // Removing light 0 keeps the sun selected, now light 1.
+  EXPECT_NE(r.out.find("lights 2 selected 1: 0=point 1=sun\n"), std::string::npos) << r.out;
+
+  int w = 0, h = 0;
+  const std::vector<uint8_t> faces = readPng(dir + "/faces.png", w, h);
+  ASSERT_GT(w, 200);  // the view: the window less the panels
+  const std::vector<glm::ivec4> cells = viewer::layerCells({0, 0, w, h}, kMapSize, kMapSize, 6);
+  ASSERT_EQ(cells.size(), 6u);
+  std::vector<std::vector<uint8_t>> faceImages;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    faceImages.push_back(cellPixels(faces, w, h, cells[i]));
+    const Grey g = greyStats(faceImages.back());
+    std::printf("face %zu at %d,%d %dx%d: %d grey levels, deviation %.1f\n", i, cells[i].x, cells[i].y, cells[i].z, cells[i].w,
+                g.levels, g.stdDev);
+    EXPECT_GE(g.levels, kMinFaceGreyLevels) << "cube face " << i << " looks flat";
+    EXPECT_GE(g.stdDev, kMinFaceStdDev) << "cube face " << i << " looks flat";
+  }
+  for (size_t a = 0; a < faceImages.size(); ++a)
+    for (size_t b = a + 1; b < faceImages.size(); ++b)
+      EXPECT_GE(differingShare(faceImages[a], faceImages[b]), kMinDifferingShare) << "cube faces " << a << " and " << b << " look alike";
+
+  // The saved scene holds the edits: the moved lamp, and the sun that casts no shadow.
+  const Scene saved = loadSceneFile(dir + "/saved.json");
+  ASSERT_EQ(saved.lights.size(), 2u);
+  EXPECT_EQ(saved.lights[0].type, LightType::Point);
+  EXPECT_NEAR(glm::length(saved.lights[0].position - glm::vec3(0.2f, 1.3f, 0.0f)), 0.0f, 1e-5f);
+  EXPECT_EQ(saved.lights[1].type, LightType::Directional);
+  EXPECT_FALSE(saved.lights[1].castsShadow);
+
+  // Mistakes that only the scene can reveal stop the script with the line and the light.
+  writeScript(dir + "/bad.txt", "light select 1\nlight select 5\n");
+  RunResult bad = runViewer("--scene room.json --size 160x120 --shadow-map 64 --script bad.txt", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("bad.txt:2: light: there is no light 5: the scene has 2 (0..1)"), std::string::npos) << bad.err;
+  writeScript(dir + "/bad2.txt", "light set 1 direction 0 -1 0\n");
+  bad = runViewer("--scene room.json --size 160x120 --shadow-map 64 --script bad2.txt", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("bad2.txt:1: light: direction: the light is a point"), std::string::npos) << bad.err;
+}
+
 // The viewer at 1280×720: each panel group (one tab each) fits without scrolling, with the
-// technique that has the most parameters (csm × evsm-soft, and every other filter on csm); the
+// technique that has the most parameters (csm × evsm-soft, and every other filter on csm) and
+// the Lights tab with the most widgets (six lights listed, a spot selected); the
 // font has every glyph the labels, units and legends use ("Split λ", "texels²", "ΔV"); an
 // inset survives a filter that lacks its image; the split view shows two techniques; R flips
 // to the reference.
@@ -321,13 +422,17 @@ TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
   SKIP_WITHOUT_XVFB();
   const std::string dir = freshDir("viewer-panels");
   std::string script = "scene city\nprojection csm\nfilter evsm-soft\ninset shadow-map\nwait 2\n";
-  const std::vector<std::string> panels = {"technique", "filter", "light", "views", "timings", "tools"};
+  const std::vector<std::string> panels = {"technique", "filter", "lights", "camera", "views", "timings", "tools"};
   for (const std::string& p : panels) script += "panel " + p + "\nwait 2\nprint layout\nscreenshot-window panel-" + p + ".png\n";
   script += "panel filter\n";
   for (const std::string& f : filterIds()) script += "filter " + f + "\nwait 2\nprint layout\n";
   // sdf keeps no shadow-map: the inset waits for the next filter that has one.
   script += "filter sdf\nwait 1\nfilter pcss\nwait 1\nscreenshot plain.png\nsplit vsm\nwait 1\nscreenshot split.png\nsplit off\n"
             "heatmap 4\nwait-heatmap\nview shaded\nflip\nwait 1\nscreenshot reference.png\nflip\nwait 1\nscreenshot technique.png\n";
+  // The Lights tab at its tallest: room (a point lamp and a spot) and four more spots, a spot
+  // selected (cones and range: every widget the editor has).
+  script += "projection uniform\nscene room\nlight add spot\nlight add spot\nlight add spot\nlight add spot\nlight select 1\n"
+            "panel lights\nwait 2\nprint lights\nprint layout\nscreenshot-window panel-lights-room.png\n";
   writeScript(dir + "/s.txt", script);
   const RunResult r = runViewer("--size 1280x720 --shadow-map 512 --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
@@ -346,7 +451,8 @@ TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
     EXPECT_EQ(m[6].str(), "0") << "glyphs the labels use are missing from the font:" << m[7].str();
     EXPECT_NE(m[5].str().find("DejaVu"), std::string::npos) << line;
   }
-  EXPECT_EQ(layouts, panels.size() + filterIds().size()) << r.out;
+  EXPECT_EQ(layouts, panels.size() + filterIds().size() + 1) << r.out;
+  EXPECT_NE(r.out.find("lights 6 selected 1: 0=point 1=spot 2=spot 3=spot 4=spot 5=spot\n"), std::string::npos) << r.out;
 
   // Every panel is on screen: the sidebar (left of the 3D view) differs from panel to panel and
   // carries text.

@@ -129,3 +129,64 @@ TEST(SceneWriter, MeshesWithoutAFileFormAreRefusedByName) {
     EXPECT_NE(std::string(e.what()).find("teapot"), std::string::npos) << e.what();
   }
 }
+
+// Several lights of every type, each field away from its default: what the viewer saves loads
+// back light by light.
+TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
+  Scene s = makeBuiltinScene("boxes");
+  Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  sun.size = 0.02f;
+  sun.color = {1.0f, 0.9f, 0.8f};
+  sun.intensity = 2.5f;
+  sun.castsShadow = false;
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {1.0f, 4.0f, -2.0f};
+  spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.4f));
+  spot.coneAngleRad = glm::radians(35.0f);
+  spot.innerConeAngleRad = glm::radians(20.0f);
+  spot.rangeM = 15.0f;
+  spot.size = 0.15f;
+  spot.intensity = 60.0f;
+  spot.shadow.mapSize = 512;
+  spot.shadow.params = {{"pcf.radiusTexels", "2"}};
+  Light point;
+  point.type = LightType::Point;
+  point.position = {-1.5f, 2.0f, 0.5f};
+  point.size = 0.05f;
+  point.rangeM = 8.0f;
+  point.color = {0.7f, 0.85f, 1.0f};
+  point.intensity = 25.0f;
+  point.shadow.mapSize = 256;
+  s.lights = {sun, spot, point};
+  auto projection = makeProjection("uniform");
+  auto filter = makeFilter("pcf");
+  const auto path = tempFile("lights.json");
+  saveSceneFile(path, s, *projection, *filter, 1024);
+  const Scene back = loadSceneFile(path);
+  ASSERT_EQ(back.lights.size(), s.lights.size());
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& a = s.lights[i];
+    const Light& b = back.lights[i];
+    const std::string which = "light " + std::to_string(i);
+    EXPECT_EQ(b.type, a.type) << which;
+    if (a.type != LightType::Point) {
+      EXPECT_NEAR(glm::length(b.direction - a.direction), 0.0f, 1e-5f) << which;
+    }
+    if (isPositional(a)) {
+      EXPECT_NEAR(glm::length(b.position - a.position), 0.0f, kEpsM) << which;
+      EXPECT_NEAR(b.rangeM, a.rangeM, 1e-5f) << which;
+    }
+    if (a.type == LightType::Spot) {
+      EXPECT_NEAR(b.coneAngleRad, a.coneAngleRad, 1e-5f) << which;
+      EXPECT_NEAR(b.innerConeAngleRad, a.innerConeAngleRad, 1e-5f) << which;
+    }
+    EXPECT_NEAR(b.size, a.size, 1e-6f) << which;
+    EXPECT_NEAR(glm::length(b.color - a.color), 0.0f, 1e-6f) << which;
+    EXPECT_NEAR(b.intensity, a.intensity, 1e-5f) << which;
+    EXPECT_EQ(b.castsShadow, a.castsShadow) << which;
+    EXPECT_EQ(b.shadow.mapSize, a.shadow.mapSize) << which;
+    EXPECT_EQ(b.shadow.params, a.shadow.params) << which;
+  }
+}
