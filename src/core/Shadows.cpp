@@ -130,12 +130,16 @@ struct Shadows::Impl {
     }
   }
 
+  /// The visibility array (one layer per light) and each slot's view of its layer. Slots remade by
+  /// ensureSlots (a new technique, more lights) get their views here even when the array stays.
   void ensureVisibility(glm::ivec2 size, int layers) {
-    if (visibility && visibility.width() == size.x && visibility.height() == size.y && visibility.layers() == layers) return;
-    for (auto& s : slots) s->visibilityView = gl::Texture();
-    visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, layers, 1});
-    visibility.setSampling(GL_NEAREST, GL_NEAREST);
+    if (!visibility || visibility.width() != size.x || visibility.height() != size.y || visibility.layers() != layers) {
+      for (auto& s : slots) s->visibilityView = gl::Texture();
+      visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, layers, 1});
+      visibility.setSampling(GL_NEAREST, GL_NEAREST);
+    }
     for (size_t i = 0; i < slots.size(); ++i) {
+      if (slots[i]->visibilityView) continue;
       slots[i]->visibilityView = gl::Texture::layerView(fmt::format("visibility of light {}", i), visibility, static_cast<int>(i));
       slots[i]->visibilityView.setSampling(GL_NEAREST, GL_NEAREST);
     }

@@ -78,3 +78,20 @@ TEST(ManyLights, EachLightIsShadowedAsIfAloneAndTheCombinationAddsNoError) {
     EXPECT_LE(c.metrics.rmse, 1.5 * worstAlone) << n << " lights";
   }
 }
+
+// A new technique remakes the lights' copies of it; each still reads its own layer (the bench
+// switching filters on `room` read a 1-pixel V for light 1 after the first filter).
+TEST(ManyLights, EveryLightKeepsItsLayerWhenTheTechniqueChanges) {
+  const Scene room = makeBuiltinScene("room");
+  ASSERT_GE(room.lights.size(), 2u);
+  const auto renderer = makeTestRenderer(room, "uniform", "hard");
+  renderer->render(smallFrame());
+  const std::vector<float> hard = renderer->readVisibility(1);
+  for (const std::string filter : {"pcf", "hard"}) {
+    renderer->setTechnique(makeProjection("uniform"), makeFilter(filter));
+    renderer->render(smallFrame());
+    for (size_t light = 0; light < room.lights.size(); ++light)
+      EXPECT_EQ(renderer->readVisibility(light).size(), static_cast<size_t>(kW) * kH) << filter << ", light " << light;
+  }
+  EXPECT_EQ(renderer->readVisibility(1), hard) << "back to hard: the same V as at first";
+}
