@@ -137,8 +137,8 @@ std::string lightCountSection(const BenchResults& r) {
                            "light.count=1,2,4,8</code>.</p>\n", kLightCountScene);
   h += "<p>Every shadowed light renders its own maps, prefilters them and runs its own visibility pass, so the whole "
        "cost grows with the number of lights; a flat curve here means each light costs the same whatever the "
-       "number, a falling one that fixed per-frame work is shared. A point light renders six cube faces, a spot one "
-       "map. Memory is every light's maps and tables. The error is of all lights together, each light weighted by its "
+       "number. A point light renders six cube faces, a spot one map, so where the first light is a point and the "
+       "others mix both (night), the step from one light to two is the spot's single map, not shared work. Memory is every light's maps and tables. The error is of all lights together, each light weighted by its "
        "unshadowed light at the pixel (<a href=\"../lights.md\">lights.md</a>).</p>\n";
   for (const LightCountCharts& l : charts)
     h += "<div class=\"charts\">" + svgChart(l.costPerLight) + svgChart(l.memoryPerLight) + svgChart(l.error) + "</div>\n";
