@@ -53,6 +53,17 @@ std::string outputsHelp() {
                 "hold the lights' V combined, each weighted by its unshadowed light at the pixel";
 }
 
+// The metrics' JSON keys, the same for the combined result and for each light.
+void putMetrics(nlohmann::json& j, const VisibilityMetrics& m) {
+  j["rmse"] = m.rmse;
+  j["mae"] = m.mae;
+  j["leak_pct"] = m.leakPct;
+  j["overdark_pct"] = m.overDarkPct;
+  j["umbra_leak_pct"] = m.umbraLeakPct;
+  j["penumbra_rmse"] = m.penumbraRmse;
+  j["pixels"] = m.pixels;
+}
+
 }  // namespace
 
 void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
@@ -185,12 +196,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["height"] = gbuffer.height;
       j["shadow_map"] = s.render.shadowMapSize;
       j["light_size"] = s.scene.light().size;
-      j["rmse"] = m.rmse;
-      j["mae"] = m.mae;
-      j["leak_pct"] = m.leakPct;
-      j["overdark_pct"] = m.overDarkPct;
-      j["umbra_leak_pct"] = m.umbraLeakPct;
-      j["penumbra_rmse"] = m.penumbraRmse;
+      putMetrics(j, m);
       j["approximation_rmse"] = approximationRmse;
       j["texel_density_median"] = densityStats.median;
       j["texel_density_p95"] = densityStats.p95;
@@ -201,7 +207,6 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["shimmer_edge_points"] = shimmer->edgePoints;
         j["shimmer_steps"] = shimmer->steps;
       }
-      j["pixels"] = m.pixels;
       if (sequence) {
         j["frames"] = sequence->frames.size();
         j["fps"] = o->fps;
@@ -221,15 +226,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         jl["index"] = l.index;
         jl["type"] = lightTypeName(l.type);
         jl["casts_shadow"] = l.castsShadow;
-        if (l.castsShadow) {
-          jl["rmse"] = l.metrics.rmse;
-          jl["mae"] = l.metrics.mae;
-          jl["leak_pct"] = l.metrics.leakPct;
-          jl["overdark_pct"] = l.metrics.overDarkPct;
-          jl["umbra_leak_pct"] = l.metrics.umbraLeakPct;
-          jl["penumbra_rmse"] = l.metrics.penumbraRmse;
-          jl["pixels"] = l.metrics.pixels;
-        }
+        if (l.castsShadow) putMetrics(jl, l.metrics);
         jl["map_texels"] = l.map.texels();
         jl["map_size"] = l.map.mapSize;
         jl["map_size_requested"] = l.map.requestedMapSize;
