@@ -93,10 +93,12 @@ std::string tuneHtml(const TuneResults& res) {
   h += kStyle;
   h += "</style></head><body>\n";
   h += fmt::format("<h1>penumbra tune: {} on {}</h1>\n", escapeXml(objectiveKey(o)), escapeXml(res.request.scene));
-  h += fmt::format("<p class=\"note\">{} on {} ({}), {}; {}×{} pixels, reference {} samples per pixel; budget {:.3f} ms{}; "
+  h += fmt::format("<p class=\"note\">{} on {}{}, {}; {}×{} pixels, reference {} samples per pixel; budget {:.3f} ms{}; "
                    "{} configurations measured ({} read back from an earlier run) in {:.0f} s. Raw data: "
                    "<a href=\"tune.json\">tune.json</a>.</p>\n",
-                   escapeXml(res.machine.glRenderer), escapeXml(res.machine.cpu), escapeXml(res.machine.clock),
+                   escapeXml(res.machine.glRenderer), escapeXml(res.machine.cpu),
+                   // A run read back whole from an earlier one timed nothing: no clock to name.
+                   res.machine.clock.empty() ? std::string() : " (" + escapeXml(res.machine.clock) + ")",
                    escapeXml(res.machine.date), res.request.settings.width, res.request.settings.height,
                    res.request.settings.referenceSamples, res.budgetMs,
                    res.request.budget.memoryMiB ? fmt::format(", {:.1f} MiB", *res.request.budget.memoryMiB) : "",
