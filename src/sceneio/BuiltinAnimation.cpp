@@ -1,5 +1,5 @@
 // The built-in scenes' motion: a rolling ball and a sweeping sun on boxes, a vehicle and a
-// walking camera on city. Every key at time 0 is the still scene's value, so the still frame
+// walking camera on city, a swinging lamp in room. Every key at time 0 is the still scene's value, so the still frame
 // (every test and cached reference of it) stays what it was.
 #include "sceneio/BuiltinAnimation.h"
 
@@ -85,6 +85,37 @@ void animateCity(Scene& s) {
   const glm::vec3 step(0.0f, 0.0f, -kWalkMps * kBuiltinDurationS);
   s.animation.camera.position = straight(s.camera.position, s.camera.position + step);
   s.animation.camera.target = straight(s.camera.target, s.camera.target + step);
+}
+
+void animateRoom(Scene& s) {
+  // The lamp (light 0, its shade and its cord) swings from the cord's hook in the ceiling like a
+  // pendulum, across the room (about Z, so the table's shadow sweeps along the floor and the wall).
+  constexpr float kAmplitudeDeg = 12.0f, kGravityMps2 = 9.81f;
+  constexpr int kKeysPerSecond = 10;  // a smooth sine; slerp between keys 3 degrees apart at most
+  PN_CHECK(!s.lights.empty() && s.lights.front().type == LightType::Point, "built-in scene room: light 0 is the lamp");
+  const uint32_t cord = objectNamed(s, "lamp cord"), shade = objectNamed(s, "lamp shade");
+  const Aabb cordBounds = s.meshes[s.objects[cord].mesh].bounds().transformed(s.objects[cord].worldFromObject);
+  const Light& lamp = s.lights.front();
+  const glm::vec3 hook(lamp.position.x, cordBounds.hi.y, lamp.position.z);
+  const float periodS = glm::two_pi<float>() * std::sqrt((hook.y - lamp.position.y) / kGravityMps2);
+  TransformTrack swing;
+  const int keys = static_cast<int>(kBuiltinDurationS) * kKeysPerSecond;
+  for (int k = 0; k <= keys; ++k) {
+    const float t = kBuiltinDurationS * static_cast<float>(k) / static_cast<float>(keys);
+    const float angle = glm::radians(kAmplitudeDeg) * std::sin(glm::two_pi<float>() * t / periodS);
+    swing.rotationKeys.timesS.push_back(t);
+    swing.rotationKeys.values.push_back(glm::angleAxis(angle, glm::vec3(0.0f, 0.0f, 1.0f)));
+  }
+  s.animation.lights.push_back({.light = 0, .pivot = hook, .restPosition = lamp.position,
+                                .restDirection = lamp.direction, .track = swing});
+  AnimatedNode node;
+  node.name = "swinging lamp";
+  node.track = swing;
+  node.track.translation = hook;
+  const uint32_t nodeIndex = static_cast<uint32_t>(s.animation.nodes.size());
+  s.animation.nodes.push_back(std::move(node));
+  for (const uint32_t o : {shade, cord})
+    s.animation.objects.push_back({o, nodeIndex, glm::translate(glm::mat4(1.0f), -hook) * s.objects[o].worldFromObject});
 }
 
 }  // namespace penumbra::sceneio

@@ -11,6 +11,10 @@ void animateBoxes(Scene& boxes);
 /// and walks the camera down it.
 void animateCity(Scene& city);
 
+/// room: the hanging lamp (light 0 with its shade and cord) swings 12 degrees either way from its
+/// hook, at a pendulum's period.
+void animateRoom(Scene& room);
+
 /// Length of the built-in animations (s).
 inline constexpr float kBuiltinDurationS = 4.0f;
 

@@ -207,7 +207,12 @@ const std::vector<Builtin>& builtins() {
       {"fence", "rows of thin slats before a wall: overlapping occluders (variance light bleeding behind the wall: --camera 4,3,-6:0,0,-3.5:50)", makeFence},
       {"grazing", "a large plane (a slab's top) lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},
       {"city", "a 640 m city under a low sun, seen from eye height: perspective aliasing (csm/psm/tsm)", makeCity},
-      {"room", "a room under a hanging point lamp (light 0, a 5 cm sphere) and a spot on the shelves: the table's shadow on the floor and up the left wall, the chair's, the books'", makeRoomScene},
+      {"room", "a room under a hanging point lamp (light 0, a 5 cm sphere) and a spot on the shelves: the table's shadow on the floor and up the left wall, the chair's, the books'; animated: the lamp swings 12 degrees from its hook",
+       [] {
+         Scene s = makeRoomScene();
+         sceneio::animateRoom(s);
+         return s;
+       }},
       {"night", "a street at night under 8 lamps (4 point, 4 spot) whose shadows overlap; lights ordered near to far for sweeps of the first N", makeNightScene},
   };
   return list;
