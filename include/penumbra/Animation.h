@@ -104,6 +104,9 @@ struct SceneAnimation {
   float durationS() const;
   /// Whether object `object` moves (it follows an animated node or one below an animated node).
   std::vector<bool> movingObjects(size_t objectCount) const;
+  /// Light `index` was removed from the scene: its animation and sun path go, later lights'
+  /// indices move down by one.
+  void removeLight(uint32_t index);
   /// "" when consistent with a scene of these counts; otherwise what is wrong (an index out of
   /// range, a parent that is not earlier, key times not increasing or not finite, counts that
   /// differ, a non-unit quaternion).

@@ -88,6 +88,16 @@ float SceneAnimation::durationS() const {
   return d;
 }
 
+void SceneAnimation::removeLight(uint32_t index) {
+  const auto renumber = [index](auto& list) {
+    std::erase_if(list, [index](const auto& entry) { return entry.light == index; });
+    for (auto& entry : list)
+      if (entry.light > index) --entry.light;
+  };
+  renumber(lights);
+  renumber(suns);
+}
+
 std::vector<bool> SceneAnimation::movingObjects(size_t objectCount) const {
   std::vector<bool> nodeMoves(nodes.size(), false);
   for (size_t i = 0; i < nodes.size(); ++i)

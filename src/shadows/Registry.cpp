@@ -93,6 +93,8 @@ void applyParams(const std::vector<std::pair<std::string, std::string>>& setting
       if (n > static_cast<int>(scene.lights.size()))
         throw usageError(fmt::format("light.count={}: the scene has {} light{}", value, scene.lights.size(),
                                      scene.lights.size() == 1 ? "" : "s"));
+      for (int i = static_cast<int>(scene.lights.size()) - 1; n > 0 && i >= n; --i)
+        scene.animation.removeLight(static_cast<uint32_t>(i));
       if (n > 0) scene.lights.resize(static_cast<size_t>(n));
     } else if (key == "light.size") {
       const float v = parseParamValue(sceneParamDesc(key), value);

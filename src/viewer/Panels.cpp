@@ -34,6 +34,9 @@ constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in
 // with the scene and technique choices, the filter's own and the contact pass's in a tab of
 // their own (together they would run past 720 px).
 constexpr size_t kTechniqueTabGroups = 2;
+constexpr float kPlayButtonEm = 4.0f;  // Play / Pause, in font heights
+// The Speed slider's range (× real time): a 4 s animation from a minute to a quarter second.
+constexpr float kMinPlaySpeed = 1.0f / 16.0f, kMaxPlaySpeed = 16.0f;
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 // DejaVu Sans at this size: as tall as ImGui's default font's lines, readable at 100 % scale.
 constexpr float kFontPx = 15.0f;
@@ -209,6 +212,7 @@ void Viewer::drawPanels() {
     ImGui::EndTooltip();
   }
 
+  drawTimeControls();
   if (ImGui::BeginTabBar("##panels", ImGuiTabBarFlags_FittingPolicyResizeDown)) {
     for (const PanelInfo& p : kPanels) {
       const bool select = mSelectPanel && *mSelectPanel == p.panel;
@@ -295,6 +299,19 @@ void Viewer::drawParams(size_t first, size_t last) {
   }
 }
 
+void Viewer::drawTimeControls() {
+  const float duration = mSession.duration();
+  if (duration <= 0.0f) return;  // a still scene: nothing to play
+  if (ImGui::Button(mPlaying ? "Pause" : "Play", ImVec2(kPlayButtonEm * ImGui::GetFontSize(), 0.0f))) setPlaying(!mPlaying);
+  ImGui::SameLine();
+  float t = mSession.time();
+  if (ImGui::SliderFloat("Time", &t, 0.0f, duration, "%.2f s")) {
+    mPlaying = false;  // scrubbing holds the frame under the cursor
+    setTime(t);
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("drag to scrub (pauses); Space plays and pauses; loop and speed: Camera tab");
+}
+
 void Viewer::drawCameraPanel() {
   const Scene& scene = mSession.scene();
   int mode = mFly ? 1 : 0;
@@ -322,6 +339,19 @@ void Viewer::drawCameraPanel() {
     setStatus("copied " + argument, false);
   }
   hint(("this view for penumbra render / compare: " + argument).c_str());
+  if (mSession.duration() <= 0.0f) return;
+  ImGui::Separator();
+  ImGui::TextUnformatted("Animation");
+  ImGui::Checkbox("Loop", &mLoop);
+  ImGui::SliderFloat("Speed", &mPlaySpeed, kMinPlaySpeed, kMaxPlaySpeed, "%.2f × real time", ImGuiSliderFlags_Logarithmic);
+  if (mSession.animatesCamera()) {
+    bool follow = mSession.cameraFollows();
+    if (ImGui::Checkbox("Camera follows the animation", &follow)) {
+      mSession.setCameraFollows(follow);
+      setTime(mSession.time());  // orbit and fly take the animated camera
+    }
+  }
+  hint(fmt::format("this frame for penumbra render / compare: --time {:.3f}", mSession.time()).c_str());
 }
 
 void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {

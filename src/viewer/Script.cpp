@@ -28,6 +28,8 @@ constexpr std::string_view kPanelIds[] = {"technique", "filter", "lights", "came
 
 // Upper bound on `wait`: 10 minutes at 60 fps; longer is a typo, not a plan.
 constexpr int kMaxWaitFrames = 36000;
+// Fastest `play`: beyond it a 4 s animation passes in a frame or two.
+constexpr float kMaxPlaySpeed = 16.0f;
 // The longest `light` action: set N KEY X Y Z.
 constexpr size_t kMaxLightArgs = 6;
 
@@ -50,11 +52,14 @@ constexpr Verb kVerbs[] = {
     {"flip", 0, 0, "", "as the R key: technique <-> reference (the heatmap is traced first if needed)"},
     {"split", 1, 2, "FILTER [PROJECTION] | off", "split view: the right half shows that technique (projection: the current)"},
     {"panel", 1, 1, "technique|filter|lights|camera|views|timings|tools", "open that panel's tab"},
+    {"time", 1, 1, "SECONDS", "pose the animated scene at this time (clamped to its length) and pause"},
+    {"play", 0, 1, "[SPEED]", "play the animation from the current time, SPEED x real time (default 1; scripted: 1/30 s per frame)"},
+    {"pause", 0, 0, "", "stop the animation where it is"},
     {"wait", 1, 1, "FRAMES", "let frames pass"},
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
     {"screenshot-inset", 1, 1, "PATH", "after this frame, write the inset (with its labels) as PNG"},
-    {"print", 1, 1, "gl-objects|technique|timings|lights|layout", "print a line on stdout (layout: the open panel's extent)"},
+    {"print", 1, 1, "gl-objects|technique|timings|lights|layout|time", "print a line on stdout (layout: the open panel's extent)"},
     {"heatmap", 0, 1, "[SAMPLES]", "start the error heatmap against the ray-traced reference"},
     {"wait-heatmap", 0, 0, "", "let frames pass until the heatmap is done"},
     {"reload", 0, 0, "", "reload shaders from the source tree (errors are printed)"},
@@ -115,8 +120,12 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "wait") scriptInt(a, 0, 0, kMaxWaitFrames);
   if (a.verb == "heatmap" && !a.args.empty()) scriptInt(a, 0, 1, 1 << 16);
   if (a.verb == "ui" && sub != "on" && sub != "off") fail(a, "expected on or off");
-  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights" && sub != "layout")
-    fail(a, "expected gl-objects, technique, timings, lights or layout");
+  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights" && sub != "layout" &&
+      sub != "time")
+    fail(a, "expected gl-objects, technique, timings, lights, layout or time");
+  if (a.verb == "time" && scriptFloat(a, 0) < 0.0f) fail(a, "expected a time of at least 0 s");
+  if (a.verb == "play" && !a.args.empty() && !(scriptFloat(a, 0) > 0.0f && scriptFloat(a, 0) <= kMaxPlaySpeed))
+    fail(a, fmt::format("expected a speed above 0 and at most {}", kMaxPlaySpeed));
   if (a.verb == "panel" && std::none_of(std::begin(kPanelIds), std::end(kPanelIds), [&](std::string_view p) { return p == sub; }))
     fail(a, "expected technique, filter, lights, camera, views, timings or tools");
   if (a.verb == "split" && sub == "off" && a.args.size() != 1) fail(a, "expected split off");

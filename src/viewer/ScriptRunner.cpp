@@ -133,6 +133,8 @@ bool Viewer::execute(const ScriptAction& a) {
       std::printf("%s\n", line.c_str());
     } else if (arg == "layout") {
       std::printf("%s\n", layoutText().c_str());
+    } else if (arg == "time") {
+      std::printf("time %.3f of %.3f s %s\n", mSession.time(), mSession.duration(), mPlaying ? "playing" : "paused");
     } else if (arg == "technique") {
       std::printf("technique scene=%s projection=%s filter=%s\n", mSession.scene().name.c_str(), mSession.projectionId().c_str(),
                   mSession.filterId().c_str());
@@ -143,6 +145,14 @@ bool Viewer::execute(const ScriptAction& a) {
       std::printf("%s frame=%.3f clock=%s\n", line.c_str(), mLastFrameMs, t.clock.c_str());
     }
     std::fflush(stdout);
+  } else if (v == "time") {
+    mPlaying = false;
+    setTime(scriptFloat(a, 0));
+  } else if (v == "play") {
+    mPlaySpeed = a.args.empty() ? 1.0f : scriptFloat(a, 0);
+    setPlaying(true);
+  } else if (v == "pause") {
+    setPlaying(false);
   } else if (v == "heatmap") {
     mHeatmapRequest = a.args.empty() ? mHeatmapSamples : scriptInt(a, 0, 1, 1 << 16);
     return true;

@@ -2,6 +2,7 @@
 
 #include "viewer/LightEdit.h"
 
+#include <penumbra/Animation.h>
 #include <penumbra/Error.h>
 #include <penumbra/Registry.h>
 #include <penumbra/SceneIO.h>
@@ -89,6 +90,7 @@ void ViewSession::removeLight(size_t index) {
     throw usageError(fmt::format("cannot remove {}: it is the scene's only light, and a scene needs at least one",
                                  lightLabel(mScene.lights[index], index)));
   mScene.lights.erase(mScene.lights.begin() + static_cast<std::ptrdiff_t>(index));
+  mScene.animation.removeLight(static_cast<uint32_t>(index));
   if (mSelected > index || (mSelected == index && index > 0)) --mSelected;
   ++mVersion;
 }
@@ -158,6 +160,26 @@ void ViewSession::loadScene(const std::string& nameOrPath) {
   }
   mHasFrame = false;
   mSelected = 0;
+  mTimeS = 0.0f;
+  ++mVersion;
+}
+
+void ViewSession::setCameraFollows(bool follows) {
+  mCameraFollows = follows;
+  if (!follows || !animatesCamera()) return;
+  poseScene(mScene, mTimeS);  // the same pose again, with the camera this time
+  mRenderer.setPose(mScene);
+  ++mVersion;
+}
+
+void ViewSession::setTime(float timeS) {
+  timeS = std::clamp(timeS, 0.0f, duration());
+  if (timeS == mTimeS) return;
+  mTimeS = timeS;
+  const Camera camera = mScene.camera;
+  poseScene(mScene, timeS);  // moves only what is animated: the rest keeps its edits
+  if (!mCameraFollows) mScene.camera = camera;
+  mRenderer.setPose(mScene);
   ++mVersion;
 }
 

@@ -79,6 +79,19 @@ public:
   /// frame had.
   size_t shownLight() const;
 
+  /// Animation (docs/viewer.md, "Time"). The scene's time in seconds, in [0, duration()]; 0 when
+  /// a scene loads. duration() is 0 for a still scene.
+  float time() const { return mTimeS; }
+  float duration() const { return mScene.animation.durationS(); }
+  /// Poses the scene at `timeS` (clamped to [0, duration()]): animated objects, lights and, when
+  /// cameraFollows(), the camera move; an edit to an animated light lasts until the next pose.
+  void setTime(float timeS);
+  /// Whether setTime() moves the camera along the scene's camera animation (if it has one).
+  bool cameraFollows() const { return mCameraFollows; }
+  /// Following again puts the camera where the animation has it now.
+  void setCameraFollows(bool follows);
+  bool animatesCamera() const { return !mScene.animation.camera.empty(); }
+
   /// Renders a width × height frame of the current state; `litView` = what the lit pass writes
   /// (RenderOptions::debugView). Throws Error on GL/shader failures.
   void render(int width, int height, int litView);
@@ -102,6 +115,8 @@ private:
   uint64_t mVersion = 1;
   bool mHasFrame = false;
   size_t mSelected = 0;
+  float mTimeS = 0.0f;
+  bool mCameraFollows = true;
 };
 
 }  // namespace penumbra::viewer

@@ -32,6 +32,7 @@ constexpr int kInsetMarginPx = 8;
 constexpr float kMaxSidebarFraction = 0.5f;  // as in Panels.cpp: the panels never take more than half
 constexpr size_t kHistoryFrames = 240;       // rolling graphs: 4 s at 60 fps
 constexpr float kFlySpeedPerSceneRadius = 0.5f;  // metres per second per metre of scene radius
+constexpr float kScriptedFrameS = 1.0f / 30.0f;   // a script's frame plays this much of the animation
 
 // The lit pass's views (RenderOptions::debugView), shown as the colour output.
 struct LitView {
@@ -138,7 +139,16 @@ void Viewer::drawFrame() {
   layout();
   drawOverlay();
   drawLegends();
-  handleInput(static_cast<float>(mLastFrameMs) * 1e-3f);
+  const float dt = static_cast<float>(mLastFrameMs) * 1e-3f;
+  const Camera before = mSession.scene().camera;
+  handleInput(dt);
+  const Camera& after = mSession.scene().camera;
+  if (mSession.animatesCamera() && mSession.cameraFollows() &&
+      (before.position != after.position || before.target != after.target || before.fovYRad != after.fovYRad)) {
+    mSession.setCameraFollows(false);  // the user took the camera
+    setStatus("camera: yours now (Camera tab: follow the animation again)", false);
+  }
+  advanceTime(mOptions.scripted ? kScriptedFrameS : dt);
   pollHeatmap();
   if (mWatcher && mAutoReload && mWatcher->poll())
     setStatus(mWatcher->errors().empty() ? "shaders reloaded" : fmt::format("shader reload: {} error(s), last good kept", mWatcher->errors().size()),
@@ -190,6 +200,7 @@ void Viewer::handleInput(float dt) {
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) mHeatmapRequest = mHeatmapSamples;
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) flipReference();
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) setPlaying(!mPlaying);
     if (mFly) {
       glm::vec3 move(0.0f);
       move.x = float(ImGui::IsKeyDown(GLFW_KEY_D)) - float(ImGui::IsKeyDown(GLFW_KEY_A));
@@ -236,6 +247,40 @@ void Viewer::handleInput(float dt) {
   }
 }
 
+void Viewer::advanceTime(float dt) {
+  const float duration = mSession.duration();
+  if (!mPlaying || duration <= 0.0f) return;
+  float t = mSession.time() + dt * mPlaySpeed;
+  if (t >= duration) {
+    if (mLoop) {
+      t = std::fmod(t, duration);
+    } else {
+      t = duration;
+      mPlaying = false;
+    }
+  }
+  setTime(t);
+}
+
+void Viewer::setTime(float timeS) {
+  mSession.setTime(timeS);
+  if (mSession.animatesCamera() && mSession.cameraFollows()) {
+    // Orbit and fly go on from where the animation put the camera.
+    mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
+    mFlyCamera = FlyCamera::fromCamera(mSession.scene().camera);
+  }
+}
+
+void Viewer::setPlaying(bool playing) {
+  if (playing && mSession.duration() <= 0.0f) {
+    setStatus(fmt::format("scene {} is still: nothing to play", mSession.scene().name), false);
+    return;
+  }
+  if (playing && !mLoop && mSession.time() >= mSession.duration()) setTime(0.0f);
+  mPlaying = playing;
+  setStatus(fmt::format("{} at {:.2f} s of {:.2f} s", playing ? "playing" : "paused", mSession.time(), mSession.duration()), false);
+}
+
 void Viewer::renderFrame() {
   if (mViewRect.z <= 0 || mViewRect.w <= 0) return;
   const int w = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.z))));
@@ -251,7 +296,8 @@ void Viewer::renderFrame() {
 }
 
 void Viewer::renderSplit(int width, int height) {
-  // The right half sees what the left half sees: the same camera, lights and map size.
+  // The right half sees what the left half sees: the same pose, camera, lights and map size.
+  mSplit->setTime(mSession.time());
   mSplit->camera() = mSession.scene().camera;
   mSplit->lights() = mSession.scene().lights;
   if (mSplit->shadowMapSize() != mSession.shadowMapSize()) mSplit->setShadowMapSize(mSession.shadowMapSize());

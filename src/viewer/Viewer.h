@@ -99,6 +99,11 @@ private:
   void layout();
   void handleInput(float dtSeconds);
   void renderFrame();
+  // Time (Panels.cpp draws its controls): play, pause, scrub.
+  void advanceTime(float dtSeconds);  ///< when playing: dt × speed, looping or stopping at the end
+  void setTime(float timeS);          ///< poses both halves of the view; the camera follows if asked
+  void setPlaying(bool playing);      ///< play from the start again when at the end and not looping
+  void drawTimeControls();
   void drawViews();
   void recordTimings(double frameMs);
   void pollHeatmap();
@@ -189,6 +194,11 @@ private:
   OrbitCamera mOrbit;
   FlyCamera mFlyCamera;
   float mFlySpeedMps = 2.0f;
+
+  // Time: the animation plays at mPlaySpeed × real time (a script's frames: 1/30 s each).
+  bool mPlaying = false;
+  bool mLoop = true;
+  float mPlaySpeed = 1.0f;
 
   ViewState mMain{kShadedView, {}, true}, mInset{kNoInset, {}, true};
   glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};

@@ -315,6 +315,37 @@ TEST(ViewerCli, ScreenshotCameraRendersTheSameImage) {
   EXPECT_GT(differingBytes(dir, "view.png", "own.png"), 1000u) << "the orbit did not move the camera";
 }
 
+// Time: `time T` poses the scene as `render --time T` does (the rolling ball on boxes; city's
+// walking camera, which the view follows), and `play` moves the time on by 1/30 s per scripted
+// frame at the speed asked.
+TEST(ViewerCli, TimePosesTheSceneAsRenderDoes) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-time");
+  writeScript(dir + "/s.txt",
+              "time 2\nscreenshot boxes.png\nplay 2\nwait 15\npause\nprint time\n"
+              "scene city\ntime 4\nscreenshot city.png\nprint time\n");
+  const std::string technique = "--projection uniform --filter pcf --size 320x200 --shadow-map 512";
+  const RunResult v = runViewer("--scene boxes " + technique + " --hide-ui --script s.txt", dir);
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const std::smatch m = [&] {
+    std::smatch match;
+    std::regex_search(v.out, match, std::regex(R"(time ([0-9.]+) of 4\.000 s paused)"));
+    return match;
+  }();
+  ASSERT_FALSE(m.empty()) << v.out;
+  // 15 frames of 1/30 s at 2x: 1 s on from 2 s (a frame either way: where the actions fall).
+  EXPECT_NEAR(std::stod(m[1].str()), 3.0, 2.0 * 2.0 / 30.0 + 1e-3) << v.out;
+  EXPECT_NE(v.out.find("time 4.000 of 4.000 s paused"), std::string::npos) << v.out;
+  for (const auto& [scene, time] : {std::pair<std::string, std::string>{"boxes", "2"}, {"city", "4"}}) {
+    const RunResult r = runPenumbra("render --scene " + scene + " " + technique + " --time " + time + " --out r-" + scene + ".png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(differingBytes(dir, scene + ".png", "r-" + scene + ".png"), 0u) << scene << " at " << time << " s";
+    const RunResult still = runPenumbra("render --scene " + scene + " " + technique + " --out s-" + scene + ".png", dir);
+    ASSERT_EQ(still.exitCode, 0) << still.err;
+    EXPECT_GT(differingBytes(dir, scene + ".png", "s-" + scene + ".png"), 100u) << scene << ": nothing moved";
+  }
+}
+
 namespace {
 
 // A room lit by a spot (light 0) and a point lamp (light 1) with something in every direction of

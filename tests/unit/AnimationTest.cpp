@@ -239,3 +239,21 @@ TEST(Animation, RoomLampSwingsWithItsShadeAndCord) {
   const float hookY = 2.6f, armM = hookY - still.lights[0].position.y;
   EXPECT_NEAR(widestM, armM * std::sin(glm::radians(12.0f)), 0.02f * armM * std::sin(glm::radians(12.0f)));
 }
+
+TEST(Animation, RemovingALightRenumbersTheOthersAnimations) {
+  SceneAnimation a;
+  for (uint32_t light : {0u, 1u, 2u}) {
+    LightAnimation l;
+    l.light = light;
+    a.lights.push_back(l);
+    SunPath sun;
+    sun.light = light;
+    a.suns.push_back(sun);
+  }
+  a.removeLight(1);
+  ASSERT_EQ(a.lights.size(), 2u);
+  ASSERT_EQ(a.suns.size(), 2u);
+  EXPECT_EQ(a.lights[0].light, 0u);
+  EXPECT_EQ(a.lights[1].light, 1u) << "light 2 is light 1 now";
+  EXPECT_EQ(a.suns[1].light, 1u);
+}
