@@ -2,6 +2,8 @@
 
 #include "report/ReportCharts.h"
 
+#include <penumbra/Registry.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -44,13 +46,41 @@ std::optional<size_t> SituationPicks::pick(Budget b) const {
   return std::nullopt;
 }
 
+namespace {
+
+/// True when every swept parameter of `c` is a technique parameter at its default (the contact
+/// plan's `contact.shadows=off` row): the same configuration as the plain row, measured again.
+bool sweepsOnlyDefaults(const BenchConfig& c) {
+  if (c.params.empty()) return false;
+  const std::unique_ptr<Parameterized> owners[] = {makeFilter(c.filter), makeProjection(c.projection), makeContactShadows()};
+  for (const auto& [key, value] : c.params) {
+    const Parameterized* owner = nullptr;
+    for (const auto& o : owners)
+      if (o->hasParam(key)) owner = o.get();
+    if (!owner) return false;  // a scene parameter (light.size, light.count): another scene
+    const auto descs = owner->paramDescs();
+    const auto d = std::find_if(descs.begin(), descs.end(), [&](const ParamDesc& desc) { return desc.key == key; });
+    if (parseParamValue(*d, value) != d->def) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<SituationPicks> recommend(const BenchResults& results) {
   std::vector<SituationPicks> out;
   for (const Situation& situation : kSituations) {
     SituationPicks p;
     p.situation = &situation;
-    for (const size_t i : sceneRows(results, situation.scene)) {
+    const std::vector<size_t> rows = sceneRows(results, situation.scene);
+    for (const size_t i : rows) {
       const BenchRow& r = results.rows[i];
+      // The plain row stands for its re-measured twin, under the name a user would type.
+      const bool twin = sweepsOnlyDefaults(r.config) && std::any_of(rows.begin(), rows.end(), [&](size_t j) {
+        const BenchConfig& o = results.rows[j].config;
+        return o.params.empty() && o.projection == r.config.projection && o.filter == r.config.filter;
+      });
+      if (twin) continue;
       if (!situation.staticCasters && !r.oneOff.empty()) {
         p.excluded.push_back(fmt::format("{}: one-off work ({}) would be redone whenever a caster moves", rowLabel(r),
                                          r.oneOff.front().what));
