@@ -71,6 +71,9 @@ struct ObjectAnimation {
 /// from its hook). The rest values are the light's own at load time.
 struct LightAnimation {
   uint32_t light = 0;
+  /// ≥ 0: the light hangs in that animation node (a glTF light under an animated node): M(t) is
+  /// the node's world transform, the rest values are in the node's frame and the pivot is unused.
+  int node = -1;
   glm::vec3 pivot{0.0f};
   glm::vec3 restPosition{0.0f};
   glm::vec3 restDirection{0.0f, -1.0f, 0.0f};
@@ -87,10 +90,14 @@ struct SunPath {
 /// The direction from a sun toward the scene (Light::direction) for azimuth a, elevation e.
 glm::vec3 sunDirection(float azimuthDeg, float elevationDeg);
 
-/// A camera's position and target over time (each optional); up, field of view, near and far stay.
+/// A camera's position and target over time (each optional), or a node it hangs in; field of
+/// view, near and far stay (and up, except in a node).
 struct CameraAnimation {
   Vec3Keys position, target;
-  bool empty() const { return position.empty() && target.empty(); }
+  /// ≥ 0: the camera hangs in that animation node (a glTF camera under an animated node): it sits
+  /// at the node's origin looking down its -Z with its +Y up, at the keys' place (none are given).
+  int node = -1;
+  bool empty() const { return position.empty() && target.empty() && node < 0; }
 };
 
 struct SceneAnimation {

@@ -119,6 +119,8 @@ std::string SceneAnimation::problem(size_t objectCount, size_t lightCount) const
       return fmt::format("an object animation names object {} of {} and node {} of {}", o.object, objectCount, o.node, nodes.size());
   for (const LightAnimation& l : lights) {
     if (l.light >= lightCount) return fmt::format("a light animation names light {} of {}", l.light, lightCount);
+    if (l.node >= static_cast<int>(nodes.size()))
+      return fmt::format("light {} animation names node {} of {}", l.light, l.node, nodes.size());
     if (std::string p = trackProblem(l.track, fmt::format("light {} animation", l.light)); !p.empty()) return p;
   }
   for (const SunPath& s : suns) {
@@ -129,6 +131,9 @@ std::string SceneAnimation::problem(size_t objectCount, size_t lightCount) const
   }
   for (const std::string& p : {keysProblem(camera.position, "camera position"), keysProblem(camera.target, "camera target")})
     if (!p.empty()) return p;
+  if (camera.node >= static_cast<int>(nodes.size())) return fmt::format("the camera animation names node {} of {}", camera.node, nodes.size());
+  if (camera.node >= 0 && !(camera.position.empty() && camera.target.empty()))
+    return "the camera follows a node and keys: one or the other";
   return "";
 }
 
@@ -143,7 +148,9 @@ void poseScene(Scene& scene, float timeS) {
   }
   for (const ObjectAnimation& o : a.objects) scene.objects[o.object].worldFromObject = world[o.node] * o.nodeFromObject;
   for (const LightAnimation& la : a.lights) {
-    const glm::mat4 m = glm::translate(glm::mat4(1.0f), la.pivot) * la.track.matrixAt(timeS) * glm::translate(glm::mat4(1.0f), -la.pivot);
+    const glm::mat4 m = la.node >= 0 ? world[static_cast<size_t>(la.node)]
+                                     : glm::translate(glm::mat4(1.0f), la.pivot) * la.track.matrixAt(timeS) *
+                                           glm::translate(glm::mat4(1.0f), -la.pivot);
     Light& l = scene.lights[la.light];
     l.position = glm::vec3(m * glm::vec4(la.restPosition, 1.0f));
     const glm::vec3 d = glm::mat3(m) * la.restDirection;
@@ -151,6 +158,15 @@ void poseScene(Scene& scene, float timeS) {
   }
   for (const SunPath& s : a.suns)
     scene.lights[s.light].direction = sunDirection(s.azimuthDeg.at(timeS), s.elevationDeg.at(timeS));
+  if (a.camera.node >= 0) {
+    const glm::mat4& m = world[static_cast<size_t>(a.camera.node)];
+    const glm::vec3 forward = glm::mat3(m) * glm::vec3(0.0f, 0.0f, -1.0f), up = glm::mat3(m) * glm::vec3(0.0f, 1.0f, 0.0f);
+    if (glm::length(forward) > 0.0f && glm::length(up) > 0.0f) {  // a node scaled to 0 leaves the camera be
+      scene.camera.position = glm::vec3(m[3]);
+      scene.camera.target = scene.camera.position + glm::normalize(forward);
+      scene.camera.up = glm::normalize(up);
+    }
+  }
   if (!a.camera.position.empty()) scene.camera.position = a.camera.position.at(timeS);
   if (!a.camera.target.empty()) scene.camera.target = a.camera.target.at(timeS);
 }

@@ -165,7 +165,11 @@ TEST(Animation, GltfAnimationMovesItsNode) {
                   {{"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC3"}},
                   {{"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC4"}}],
     "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
-    "nodes": [{{"mesh": 0, "translation": [0, 0, 5]}}, {{"name": "mover", "mesh": 0, "children": [2]}}, {{"mesh": 0, "translation": [0, 1, 0]}}],
+    "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "spot", "intensity": 5}}]}}}},
+    "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
+    "nodes": [{{"mesh": 0, "translation": [0, 0, 5]}}, {{"name": "mover", "mesh": 0, "children": [2, 3]}}, {{"mesh": 0, "translation": [0, 1, 0]}},
+              {{"name": "rig", "translation": [0, 0, 1], "camera": 0, "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
     "scenes": [{{"nodes": [0, 1]}}],
     "animations": [{{"samplers": [{{"input": 2, "output": 3}}, {{"input": 2, "output": 4, "interpolation": "STEP"}}],
                      "channels": [{{"sampler": 0, "target": {{"node": 1, "path": "translation"}}}},
@@ -183,6 +187,17 @@ TEST(Animation, GltfAnimationMovesItsNode) {
   const glm::vec3 x = glm::vec3(scene.objects[1].worldFromObject * glm::vec4(1, 0, 0, 0));
   EXPECT_NEAR(glm::length(x - glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
   EXPECT_NEAR(glm::length(origin(scene, 2) - glm::vec3(2, 1, 0)), 0.0f, 1e-5f);
+  // Node 3 below the mover holds the spot light and the camera, 1 m down its +Z: they turn and
+  // move with it (local -Z, where both look, turns to -X).
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_NEAR(glm::length(scene.lights[0].position - glm::vec3(3, 0, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(scene.lights[0].direction - glm::vec3(-1, 0, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(scene.camera.position - glm::vec3(3, 0, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(scene.camera.target - glm::vec3(2, 0, 0)), 0.0f, 1e-5f);
+  poseScene(scene, 2.0f);
+  EXPECT_NEAR(glm::length(scene.lights[0].position - glm::vec3(1, 0, 1)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(scene.lights[0].direction - glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(scene.camera.target - glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
 }
 
 TEST(Animation, BuiltinsAtTimeZeroAreTheStillScene) {

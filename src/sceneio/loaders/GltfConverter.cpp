@@ -81,8 +81,9 @@ private:
   void visit(int node, const glm::mat4& parent, int depth, int animParent);
   int addAnimatedNode(const tinygltf::Node& n, const glm::mat4& parent, int animParent, const std::string& field);
   glm::mat4 localTransform(const tinygltf::Node& n, const std::string& field) const;
-  void addLight(const tinygltf::Node& node, const glm::mat4& world, const std::string& field);
-  void addCamera(const tinygltf::Camera& c, const glm::mat4& world, const std::string& field);
+  /// `animNode`: the animation node the light or camera hangs in (it moves with it), or -1.
+  void addLight(const tinygltf::Node& node, const glm::mat4& world, int animNode, const std::string& field);
+  void addCamera(const tinygltf::Camera& c, const glm::mat4& world, int animNode, const std::string& field);
   void reserve(uint64_t vertices, uint64_t triangles, const std::string& field);
 
   const tinygltf::Model& g;
@@ -341,7 +342,7 @@ glm::mat4 Converter::localTransform(const tinygltf::Node& n, const std::string& 
   return m;
 }
 
-void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, const std::string& field) {
+void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, int animNode, const std::string& field) {
   const auto ext = node.extensions.find("KHR_lights_punctual");
   if (ext == node.extensions.end()) return;
   const std::string lf = field + ".extensions.KHR_lights_punctual.light";
@@ -393,10 +394,18 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, con
                                              l.type == LightType::Directional ? "angular radius, rad" : "sphere radius, m"));
     l.size = static_cast<float>(size);
   }
+  if (animNode >= 0) {  // at the node's origin, shining down its -Z, wherever the node goes
+    LightAnimation a;
+    a.light = static_cast<uint32_t>(mOut.scene.lights.size());
+    a.node = animNode;
+    a.restPosition = glm::vec3(0.0f);
+    a.restDirection = glm::vec3(0.0f, 0.0f, -1.0f);
+    mOut.scene.animation.lights.push_back(a);
+  }
   mOut.scene.lights.push_back(l);
 }
 
-void Converter::addCamera(const tinygltf::Camera& c, const glm::mat4& world, const std::string& field) {
+void Converter::addCamera(const tinygltf::Camera& c, const glm::mat4& world, int animNode, const std::string& field) {
   if (mOut.hasCamera || c.type != "perspective") return;  // orthographic cameras are not supported: skipped
   const auto& p = c.perspective;
   if (!(p.yfov > 0.0 && p.yfov < 3.14)) error(field + ".perspective.yfov", "must be in (0, pi)");
@@ -413,6 +422,7 @@ void Converter::addCamera(const tinygltf::Camera& c, const glm::mat4& world, con
   cam.fovYRad = std::clamp(static_cast<float>(p.yfov), glm::radians(1.0f), glm::radians(170.0f));
   cam.nearM = static_cast<float>(p.znear);
   cam.farM = p.zfar > 0.0 ? static_cast<float>(p.zfar) : 1e6f;
+  mOut.scene.animation.camera.node = animNode;
   mOut.hasCamera = true;
 }
 
@@ -459,9 +469,9 @@ void Converter::visit(int ni, const glm::mat4& parent, int depth, int animParent
   }
   if (n.camera >= 0) {
     if (static_cast<size_t>(n.camera) >= g.cameras.size()) error(field + ".camera", fmt::format("no camera {} ({} cameras)", n.camera, g.cameras.size()));
-    addCamera(g.cameras[static_cast<size_t>(n.camera)], world, fmt::format("cameras[{}]", n.camera));
+    addCamera(g.cameras[static_cast<size_t>(n.camera)], world, animNode, fmt::format("cameras[{}]", n.camera));
   }
-  addLight(n, world, field);
+  addLight(n, world, animNode, field);
   for (int child : n.children) visit(child, world, depth + 1, animNode);
   mOnPath[i] = 0;
 }
