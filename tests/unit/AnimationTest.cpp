@@ -166,7 +166,7 @@ TEST(Animation, GltfAnimationMovesItsNode) {
                   {{"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC4"}}],
     "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
     "extensionsUsed": ["KHR_lights_punctual"],
-    "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "spot", "intensity": 5}}]}}}},
+    "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "spot", "intensity": 5, "spot": {{"outerConeAngle": 0.5}}}}]}}}},
     "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
     "nodes": [{{"mesh": 0, "translation": [0, 0, 5]}}, {{"name": "mover", "mesh": 0, "children": [2, 3]}}, {{"mesh": 0, "translation": [0, 1, 0]}},
               {{"name": "rig", "translation": [0, 0, 1], "camera": 0, "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
