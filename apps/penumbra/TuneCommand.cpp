@@ -22,8 +22,9 @@ namespace penumbra::app {
 
 void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
-    TechniqueOptions technique;  // --scene, --camera, --size, --shadow-map (the defaults of compare)
-    std::vector<std::string> filters, projections;
+    TechniqueOptions technique;  // --size, --shadow-map (the defaults of compare)
+    std::vector<std::string> scenes, cameras, filters, projections, params;
+    std::string aggregate = "worst", cost = "measured";
     std::optional<double> budgetMs, budgetMb, maxError;
     std::string objective = "rmse";
     double maxMinutes = 10.0;
@@ -37,11 +38,27 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
-      "tune", "search a technique's parameters and map size for the most accurate configuration within a cost budget "
-              "on one scene; write tune.json and tune.html");
-  sub->add_option("--scene", o->technique.scene, "built-in scene name (penumbra list), scene .json file or model file")
-      ->required();
-  sub->add_option("--camera", o->technique.camera, "the view, as compare's: X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's)");
+      "tune", "search a technique's parameters and maps for the most accurate configuration within a cost budget "
+              "on one or several views; write tune.json and tune.html");
+  sub->add_option("--scene", o->scenes,
+                  "built-in scene name (penumbra list), scene .json file or model file; several (repeated or "
+                  "comma-separated): every configuration is measured on each")
+      ->required()->delimiter(',');
+  sub->add_option("--camera", o->cameras,
+                  "a view, as compare's: X,Y,Z:TX,TY,TZ[:FOV]; repeatable: each scene is seen from each camera "
+                  "(default: each scene's own)");
+  sub->add_option("--aggregate", o->aggregate,
+                  "with several views, a configuration's error and cost: worst (the highest of the views') or mean")
+      ->capture_default_str();
+  sub->add_option("--cost", o->cost,
+                  "what the search ranks cost by: measured (whole shadow cost, median ms on this machine; noisy) or "
+                  "model (memory written + taps read per frame, millions: the same on every machine and run, so shards, "
+                  "merges and reruns give the same front; the budget is then the default's own work)")
+      ->capture_default_str();
+  sub->add_option("--params", o->params,
+                  "search only these keys, comma-separated (parameter keys, shadow.mapSize, shadow.budgetTexels); the "
+                  "rest stays at the default. csm.cascades without shadow.budgetTexels keeps the default's map memory")
+      ->delimiter(',');
   sub->add_option("--filters", o->filters, "filter ids to tune, comma-separated (default: the scene's own)")->delimiter(',');
   sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: the scene's own)")
       ->delimiter(',');
@@ -67,8 +84,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--size", o->technique.size, "full image size WxH, as compare (the screen stage uses a quarter of each side, the shorter at least 32)")
       ->capture_default_str();
   sub->add_option("--shadow-map", o->technique.shadowMapSize,
-                  "the default configuration's map size, searched over powers of two from half to twice it (not with "
-                  "--objective acne; default: the scene's own, as compare)")
+                  "the default configuration's map size, searched over powers of two from half to twice it, or with a "
+                  "map count (csm.cascades) the maps' texels in all (compare's --shadow-budget) from a quarter to four "
+                  "times the default's (not with --objective acne; default: the first scene's own, as compare)")
       ->check(CLI::Range(16, 16384));
   sub->add_option("--samples", o->samples, "reference light samples per pixel (as compare)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
@@ -86,17 +104,32 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "DIR..., the --out folders of --shard runs: gather their evaluations.jsonl into OUT and go on from them "
                   "(the rest of the search runs here)")
       ->expected(1, -1);
-  sub->add_flag("--json", o->json, "print tune.json on stdout instead of the summary");
+  sub->add_flag("--json", o->json, "print tune.json on stdout instead of the summary (the progress stays on stderr)");
   sub->add_flag("--no-cache", o->noCache, "recompute the references even if cached ones exist");
   sub->add_flag("--verbose", o->technique.verbose, "one line per configuration on stderr");
   commands.push_back({sub, [o] {
     report::TuneRequest req;
     req.objective = report::parseObjective(o->objective);
+    req.aggregate = report::parseAggregate(o->aggregate);
+    req.cost = report::parseCost(o->cost);
     if (o->budgetMs && o->maxError)
       throw usageError("--budget-ms and --max-error: give a cost budget or an error target, not both");
-    // The scene's own choices and the defaults of compare; usage errors before any GL.
+    if (o->budgetMs && req.cost == report::TuneCost::Model)
+      throw usageError("--budget-ms with --cost model: the model counts work, not milliseconds (its budget is the default's work)");
+    // The views: each scene from each camera; usage errors before any GL.
+    for (const std::string& scene : o->scenes) {
+      if (o->cameras.empty()) req.views.push_back({.scene = scene, .camera = ""});
+      for (const std::string& camera : o->cameras) req.views.push_back({.scene = scene, .camera = camera});
+    }
+    for (const report::TuneView& v : req.views) {
+      TechniqueOptions t = o->technique;
+      t.scene = v.scene;
+      if (!v.camera.empty()) t.camera = v.camera;
+      (void)makeSetup(t);
+    }
+    // The first scene's own choices and the defaults of compare.
+    o->technique.scene = req.views.front().scene;
     const Setup scene = makeSetup(o->technique);
-    req.scene = o->technique.scene;
     req.filters = o->filters.empty() ? std::vector<std::string>{std::string(scene.filter->id())} : o->filters;
     req.projections = o->projections.empty() ? std::vector<std::string>{std::string(scene.projection->id())} : o->projections;
     for (const std::string& f : req.filters) (void)makeFilter(f);
@@ -107,7 +140,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     req.settings.referenceSamples = o->samples;
     req.settings.useCache = !o->noCache;
     req.settings.warmupFrames = 1;
-    if (o->technique.camera) req.settings.camera = *o->technique.camera;
+    req.searchKeys = o->params;
     req.budget = {.costMs = o->budgetMs, .memoryMiB = o->budgetMb, .maxError = o->maxError};
     req.maxMinutes = o->maxMinutes;
     req.candidates = o->candidates;
@@ -127,7 +160,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, req.settings.width, req.settings.height, kCompareHostBytesPerPixel);
-    const report::SetupFactory factory = benchSetupFactory(o->technique.camera);
+    const report::TuneSetupFactory factory = [](const report::BenchConfig& c, const std::string& camera) {
+      return benchSetupFactory(camera.empty() ? std::nullopt : std::optional<std::string>(camera))(c);
+    };
     report::TuneResults res = report::runTune(context, req, factory);
     if (req.shard) {
       std::printf("shard %d/%d: %zu configurations measured (%zu resumed) in %.0f s into %s\n", req.shard->index,
@@ -144,13 +179,13 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     const report::TuneRow* def = report::tuneDefaultFor(res);
     const auto line = [&](const char* what, const report::TuneRow& r) {
       std::printf("  %-12s %s %.4g  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%% (umbra %.3f%%)  acne %.3f%%  cost %.3f ms  "
-                  "memory %.1f MiB\n",
+                  "work %.4g Mops  memory %.1f MiB\n",
                   what, report::objectiveKey(req.objective), r.error, r.metrics.rmse, r.metrics.penumbraRmse,
-                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, r.memoryMiB);
+                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, r.workM, r.memoryMiB);
     };
-    std::printf("tune %s: %zu configurations measured (%zu resumed) in %.0f s on %s (%s); budget %.3f ms%s\n",
-                req.scene.c_str(), res.evaluations, res.resumed, res.seconds, res.machine.glRenderer.c_str(),
-                res.machine.clock.c_str(), res.budgetMs,
+    std::printf("tune %s: %zu configurations measured (%zu resumed) in %.0f s on %s (%s); budget %.4g %s%s\n",
+                report::tuneViewsText(req).c_str(), res.evaluations, res.resumed, res.seconds, res.machine.glRenderer.c_str(),
+                res.machine.clock.c_str(), res.budget, req.cost == report::TuneCost::Model ? "Mops (--cost model)" : "ms",
                 o->budgetMb ? fmt::format(", {:.1f} MiB", *o->budgetMb).c_str() : "");
     if (!res.recommended) {
       std::printf("no configuration fits the budget; the front is in %s\n", (req.outDir / "tune.html").string().c_str());
@@ -160,8 +195,16 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     const report::TuneRow& rec = res.confirmed[*res.recommended];
     line("recommended", rec);
     if (def) line("default", *def);
-    std::printf("set:      %s\ncompare:  %s\nscene file:\n%s\nfront (%zu configurations) and chart: %s\n",
-                report::tuneSetLine(rec).c_str(), rec.command.c_str(), report::tuneSceneSnippet(rec).c_str(),
+    std::printf("set:      %s\n", report::tuneSetLine(rec).c_str());
+    if (rec.views.size() > 1) {
+      std::printf("views (%s of each row's):\n", report::aggregateKey(req.aggregate));
+      for (size_t v = 0; v < rec.views.size(); ++v)
+        std::printf("  %s %.4g (default %.4g)\n  compare:  %s\n", report::objectiveKey(req.objective), rec.views[v].error,
+                    def && v < def->views.size() ? def->views[v].error : 0.0, rec.views[v].command.c_str());
+    } else {
+      std::printf("compare:  %s\n", rec.command.c_str());
+    }
+    std::printf("scene file:\n%s\nfront (%zu configurations) and chart: %s\n", report::tuneSceneSnippet(rec).c_str(),
                 res.front.size(), (req.outDir / "tune.html").string().c_str());
     return 0;
   }});

@@ -66,6 +66,9 @@ struct BenchSettings {
   int width = RenderOptions{}.width, height = RenderOptions{}.height;  ///< image size (pixels)
   /// Texels per side of each shadow map; unset = each scene's own (ShadowSettings::mapSize).
   std::optional<int> shadowMapSize;
+  /// Texels every light's maps share (RenderOptions::shadowBudgetTexels, compare's
+  /// --shadow-budget); 0 = none.
+  int64_t shadowBudgetTexels = 0;
   int warmupFrames = 1;           ///< untimed frames first: the first one compiles the shaders
   /// Timed frames per configuration (median and spread over them). Nine keeps the median steady
   /// on a loaded machine (llvmpipe shares the CPU with everything else) at ~1 s per configuration.

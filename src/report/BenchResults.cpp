@@ -86,6 +86,7 @@ std::string compareCommand(const BenchResults& results, const BenchRow& row) {
   for (const auto& [key, value] : c.params) cmd += " --set " + shellWord(key + "=" + value);
   cmd += fmt::format(" --size {}x{} --shadow-map {} --samples {}", row.width, row.height, row.shadowMapSize,
                      results.settings.referenceSamples);
+  if (results.settings.shadowBudgetTexels > 0) cmd += fmt::format(" --shadow-budget {}", results.settings.shadowBudgetTexels);
   if (!results.settings.camera.empty()) cmd += " --camera " + shellWord(results.settings.camera);
   return cmd;
 }

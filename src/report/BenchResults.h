@@ -53,6 +53,8 @@ struct BenchRow {
   float lightSize = 0.0f;  ///< the light size in effect (scene's own or swept)
   int lights = 1;          ///< lights rendered, each with its own maps (light.count or all the scene's)
   int width = 0, height = 0, shadowMapSize = 0;
+  /// The side the first shadowed light's maps got: shadowMapSize, or less under a budget.
+  int grantedMapSize = 0;
   int frames = 0;  ///< timed frames actually run (fewer than asked when the time cap hit)
   std::vector<PassStats> passes;  ///< in frame order, then kTotalPass
   FrameSamples frameMs;           ///< the samples behind `passes` (no total)

@@ -98,7 +98,12 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       currentLight = light;
     }
     const RenderOptions render{.width = set.width, .height = set.height,
-                               .shadowMapSize = set.shadowMapSize.value_or(s.scene.shadow.mapSize), .debugView = 0};
+                               .shadowMapSize = set.shadowMapSize.value_or(s.scene.shadow.mapSize),
+                               .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
+    const auto done = [&] {
+      bar.advance(1);
+      if (options.configDone) options.configDone();
+    };
     const auto configStart = Clock::now();
     try {
       renderer.setTechnique(std::move(s.projection), std::move(s.filter));
@@ -106,7 +111,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     } catch (const Error& e) {
       if (e.kind() != ErrorKind::Usage) throw;
       results.skipped.push_back({c, e.what(), false});
-      bar.advance(1);
+      done();
       continue;
     }
     try {
@@ -144,6 +149,12 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.width = set.width;
       row.height = set.height;
       row.shadowMapSize = render.shadowMapSize;
+      row.grantedMapSize = render.shadowMapSize;
+      for (const LightShadowReport& l : renderer.shadows().lightReports())
+        if (l.views > 0) {
+          row.grantedMapSize = l.mapSize;
+          break;
+        }
       row.frames = frames;
       for (const std::string& name : samples.order) {
         row.passes.push_back({name, timeStats(samples.ms[name])});
@@ -177,7 +188,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       results.skipped.push_back({c, e.what(), true});
       if (options.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
     }
-    bar.advance(1);
+    done();
   }
   if (!options.microBenchmarks) {
     if (results.machine.clock.empty()) results.machine.clock = PassTimer(context.info().softwareRenderer).endFrame().clock;

@@ -38,6 +38,8 @@ struct RunOptions {
   bool verbose = false;          ///< one line per configuration on stderr
   /// The micro-benchmarks after the configurations (off: only the rows; `penumbra tune`).
   bool microBenchmarks = true;
+  /// Called after each configuration, measured or not (`penumbra tune`'s progress line).
+  std::function<void()> configDone = {};
 };
 
 /// Runs every configuration on `context` (current on this thread). A pair the renderer refuses

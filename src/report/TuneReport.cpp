@@ -27,15 +27,24 @@ nlohmann::json sceneValue(const std::string& text) {
 
 std::string technique(const TuneRow& r) { return r.filter + " · " + r.projection; }
 
+std::string viewText(const TuneRow& r) { return r.camera.empty() ? r.scene : r.scene + " from " + r.camera; }
+
 std::string paramsText(const TuneRow& r) {
   std::string out;
   for (const auto& [k, v] : r.params) out += (out.empty() ? "" : " ") + k + "=" + v;
   return out.empty() ? "(defaults)" : out;
 }
 
+// The cost the search ranked by, as the chart's x.
+double rankedCost(const TuneRow& r, TuneCost c) { return r.point(c).costMs; }
+
+std::string mapText(const TuneRow& r) {
+  return r.budgetTexels > 0 ? fmt::format("{} (budget {} texels)", r.grantedMapSize, r.budgetTexels) : std::to_string(r.mapSize);
+}
+
 std::string tooltip(const TuneRow& r, TuneObjective o) {
-  return fmt::format("{} map {}: {} {:.4g}, {:.3g} ms, {:.1f} MiB\n{}", technique(r), r.mapSize, objectiveKey(o), r.error,
-                     r.costMs, r.memoryMiB, paramsText(r));
+  return fmt::format("{} map {}: {} {:.4g}, {:.3g} ms, {:.4g} Mops, {:.1f} MiB\n{}", technique(r), mapText(r), objectiveKey(o),
+                     r.error, r.costMs, r.workM, r.memoryMiB, paramsText(r));
 }
 
 const char* const kStyle = R"(
@@ -49,15 +58,18 @@ tr.rec { font-weight: bold; } .note { color: #555; }
 std::string rowHtml(const TuneRow& r, const std::string& what, bool recommended) {
   return fmt::format(
       "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td class=\"l\"><code>{}</code></td><td>{:.4f}</td>"
-      "<td>{:.4f}</td><td>{:.2f}</td><td>{:.3f} <small>{:.3f}–{:.3f}</small></td><td>{:.1f}</td></tr>\n",
-      recommended ? " class=\"rec\"" : "", escapeXml(what), escapeXml(technique(r)), r.mapSize, escapeXml(paramsText(r)),
-      r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct, r.costMs, r.costP10Ms, r.costP90Ms, r.memoryMiB);
+      "<td>{:.4f}</td><td>{:.2f}</td><td>{:.3f} <small>{:.3f}–{:.3f}</small></td><td>{:.4g}</td><td>{:.1f}</td></tr>\n",
+      recommended ? " class=\"rec\"" : "", escapeXml(what), escapeXml(technique(r)), escapeXml(mapText(r)), escapeXml(paramsText(r)),
+      r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct, r.costMs, r.costP10Ms, r.costP90Ms, r.workM, r.memoryMiB);
 }
 
 std::string tuneHtml(const TuneResults& res) {
   const TuneObjective o = res.request.objective;
-  Chart chart{.title = fmt::format("{} against whole shadow cost on {}", objectiveKey(o), res.request.scene),
-              .xLabel = fmt::format("shadow + prefilter + visibility, ms per frame ({})", res.machine.clock),
+  const TuneCost c = res.request.cost;
+  Chart chart{.title = fmt::format("{} against {} on {}", objectiveKey(o),
+                                   c == TuneCost::Model ? "modelled work" : "whole shadow cost", tuneViewsText(res.request)),
+              .xLabel = c == TuneCost::Model ? std::string("memory written + taps read, millions per frame (--cost model)")
+                                             : fmt::format("shadow + prefilter + visibility, ms per frame ({})", res.machine.clock),
               .yLabel = objectiveKey(o), .logX = true, .logY = o != TuneObjective::Leak, .width = 900, .height = 520, .series = {}, .front = {},
               .legend = {}};
   std::vector<std::string> names;
@@ -66,25 +78,25 @@ std::string tuneHtml(const TuneResults& res) {
   for (size_t n = 0; n < names.size(); ++n) {
     ChartSeries explored{.color = paletteColor(n), .marker = Marker::Circle, .connect = false, .points = {}};
     for (const TuneRow& r : res.explored)
-      if (technique(r) == names[n]) explored.points.push_back({.x = r.costMs, .y = r.error, .tooltip = tooltip(r, o)});
+      if (technique(r) == names[n]) explored.points.push_back({.x = rankedCost(r, c), .y = r.error, .tooltip = tooltip(r, o)});
     ChartSeries confirmed{.color = paletteColor(n), .marker = Marker::Diamond, .connect = false, .points = {}};
     for (size_t i = 0; i < res.confirmed.size(); ++i)
       if (technique(res.confirmed[i]) == names[n] && !res.confirmed[i].isDefault) {
         const TuneRow& r = res.confirmed[i];
-        confirmed.points.push_back({.x = r.costMs, .y = r.error, .tooltip = "confirmed: " + tooltip(r, o),
+        confirmed.points.push_back({.x = rankedCost(r, c), .y = r.error, .tooltip = "confirmed: " + tooltip(r, o),
                                     .emphasised = res.recommended == i});
       }
     ChartSeries defaults{.color = paletteColor(n), .marker = Marker::Square, .connect = false, .points = {}};
     for (const size_t d : res.defaults)
       if (technique(res.confirmed[d]) == names[n])
-        defaults.points.push_back({.x = res.confirmed[d].costMs, .y = res.confirmed[d].error,
+        defaults.points.push_back({.x = rankedCost(res.confirmed[d], c), .y = res.confirmed[d].error,
                                    .tooltip = "default: " + tooltip(res.confirmed[d], o)});
     chart.series.push_back(std::move(explored));
     chart.series.push_back(std::move(confirmed));
     chart.series.push_back(std::move(defaults));
     chart.legend.push_back({.label = names[n], .color = paletteColor(n), .marker = Marker::Circle});
   }
-  for (const size_t i : res.front) chart.front.emplace_back(res.confirmed[i].costMs, res.confirmed[i].error);
+  for (const size_t i : res.front) chart.front.emplace_back(rankedCost(res.confirmed[i], c), res.confirmed[i].error);
   chart.legend.push_back({.label = "confirmed (ring: the pick)", .color = "#777", .marker = Marker::Diamond});
   chart.legend.push_back({.label = "default", .color = "#777", .marker = Marker::Square});
   chart.legend.push_back({.label = "Pareto front (confirmed)", .color = kFrontColor, .line = true, .dashed = true});
@@ -92,15 +104,15 @@ std::string tuneHtml(const TuneResults& res) {
   std::string h = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>penumbra tune</title><style>";
   h += kStyle;
   h += "</style></head><body>\n";
-  h += fmt::format("<h1>penumbra tune: {} on {}</h1>\n", escapeXml(objectiveKey(o)), escapeXml(res.request.scene));
-  h += fmt::format("<p class=\"note\">{} on {}{}, {}; {}×{} pixels, reference {} samples per pixel; budget {:.3f} ms{}; "
+  h += fmt::format("<h1>penumbra tune: {} on {}</h1>\n", escapeXml(objectiveKey(o)), escapeXml(tuneViewsText(res.request)));
+  h += fmt::format("<p class=\"note\">{} on {}{}, {}; {}×{} pixels, reference {} samples per pixel; budget {:.4g} {}{}; "
                    "{} configurations measured ({} read back from an earlier run) in {:.0f} s. Raw data: "
                    "<a href=\"tune.json\">tune.json</a>.</p>\n",
                    escapeXml(res.machine.glRenderer), escapeXml(res.machine.cpu),
                    // A run read back whole from an earlier one timed nothing: no clock to name.
                    res.machine.clock.empty() ? std::string() : " (" + escapeXml(res.machine.clock) + ")",
                    escapeXml(res.machine.date), res.request.settings.width, res.request.settings.height,
-                   res.request.settings.referenceSamples, res.budgetMs,
+                   res.request.settings.referenceSamples, res.budget, c == TuneCost::Model ? "Mops (--cost model)" : "ms",
                    res.request.budget.memoryMiB ? fmt::format(", {:.1f} MiB", *res.request.budget.memoryMiB) : "",
                    res.evaluations + res.resumed, res.resumed, res.seconds);
   if (res.recommended) {
@@ -111,9 +123,23 @@ std::string tuneHtml(const TuneResults& res) {
     h += "<h2>Recommended</h2>\n<p>No configuration fits the budget.</p>\n";
   }
   h += svgChart(chart);
+  if (res.request.views.size() > 1) {
+    h += fmt::format("\n<h2>Views</h2>\n<p class=\"note\">Each row's error and cost are the {} of its views'.</p>\n"
+                     "<table><tr><th class=\"l\"></th><th class=\"l\">view</th><th>{}</th><th>RMSE</th><th>cost ms</th>"
+                     "<th class=\"l\">compare</th></tr>\n",
+                     aggregateKey(res.request.aggregate), objectiveKey(o));
+    for (const auto& [what, row] : {std::pair<const char*, const TuneRow*>{"recommended", res.recommended ? &res.confirmed[*res.recommended] : nullptr},
+                                    std::pair<const char*, const TuneRow*>{"default", tuneDefaultFor(res)}})
+      if (row)
+        for (const TuneRow& v : row->views)
+          h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{:.4g}</td><td>{:.4f}</td><td>{:.3f}</td>"
+                           "<td class=\"l\"><code>{}</code></td></tr>\n",
+                           what, escapeXml(viewText(v)), v.error, v.metrics.rmse, v.costMs, escapeXml(v.command));
+    h += "</table>\n";
+  }
   h += "\n<h2>Confirmed configurations</h2>\n<table><tr><th class=\"l\"></th><th class=\"l\">technique</th><th>map</th>"
        "<th class=\"l\">--set</th><th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>cost ms <small>p10–p90</small></th>"
-       "<th>MiB</th></tr>\n";
+       "<th>work Mops</th><th>MiB</th></tr>\n";
   for (size_t i = 0; i < res.confirmed.size(); ++i) {
     const bool onFront = std::find(res.front.begin(), res.front.end(), i) != res.front.end();
     const std::string what = res.recommended == i ? "recommended" : res.confirmed[i].isDefault ? "default"
@@ -127,8 +153,20 @@ std::string tuneHtml(const TuneResults& res) {
 
 }  // namespace
 
+std::string tuneViewsText(const TuneRequest& request) {
+  std::string out;
+  for (const TuneView& v : request.views) {
+    TuneRow r;
+    r.scene = v.scene;
+    r.camera = v.camera;
+    out += (out.empty() ? "" : ", ") + viewText(r);
+  }
+  return out;
+}
+
 std::string tuneSetLine(const TuneRow& r) {
   std::string line = fmt::format("--projection {} --filter {} --shadow-map {}", r.projection, r.filter, r.mapSize);
+  if (r.budgetTexels > 0) line += fmt::format(" --shadow-budget {}", r.budgetTexels);
   for (const auto& [k, v] : r.params) line += fmt::format(" --set {}={}", k, v);
   return line;
 }
@@ -136,7 +174,9 @@ std::string tuneSetLine(const TuneRow& r) {
 std::string tuneSceneSnippet(const TuneRow& r) {
   nlohmann::ordered_json params = nlohmann::ordered_json::object();
   for (const auto& [k, v] : r.params) params[k] = sceneValue(v);
-  nlohmann::ordered_json shadow = {{"projection", r.projection}, {"filter", r.filter}, {"mapSize", r.mapSize}};
+  // Under a budget, the side the maps got: one light's maps at that side hold what the budget gave.
+  nlohmann::ordered_json shadow = {{"projection", r.projection}, {"filter", r.filter},
+                                   {"mapSize", r.budgetTexels > 0 ? r.grantedMapSize : r.mapSize}};
   if (!r.params.empty()) shadow["params"] = params;
   return "\"shadow\": " + shadow.dump(2);
 }
@@ -144,7 +184,14 @@ std::string tuneSceneSnippet(const TuneRow& r) {
 nlohmann::json tuneRowJson(const TuneRow& r, TuneObjective objective) {
   nlohmann::json params = nlohmann::json::object();
   for (const auto& [k, v] : r.params) params[k] = v;
+  nlohmann::json views = nlohmann::json::array();
+  for (const TuneRow& v : r.views)
+    views.push_back({{"scene", v.scene}, {"camera", v.camera}, {"error", v.error}, {"rmse", v.metrics.rmse},
+                     {"penumbra_rmse", v.metrics.penumbraRmse}, {"leak_pct", v.metrics.leakPct}, {"acne_pct", v.metrics.acnePct},
+                     {"shadow_cost_ms", v.costMs}, {"work_mops", v.workM}, {"shadow_memory_mb", v.memoryMiB}, {"command", v.command}});
   return {{"filter", r.filter}, {"projection", r.projection}, {"params", params}, {"shadow_map", r.mapSize},
+          {"shadow_budget", r.budgetTexels > 0 ? nlohmann::json(r.budgetTexels) : nlohmann::json()},
+          {"granted_map", r.grantedMapSize}, {"work_mops", r.workM}, {"views", views},
           {"width", r.width}, {"height", r.height}, {"frames", r.frames}, {"objective", objectiveKey(objective)},
           {"error", r.error}, {"rmse", r.metrics.rmse}, {"penumbra_rmse", r.metrics.penumbraRmse},
           {"leak_pct", r.metrics.leakPct}, {"overdark_pct", r.metrics.overDarkPct},
@@ -166,7 +213,11 @@ const TuneRow* tuneDefaultFor(const TuneResults& res) {
 nlohmann::json tuneJson(const TuneResults& res) {
   const TuneObjective o = res.request.objective;
   nlohmann::json j;
-  j["scene"] = res.request.scene;
+  j["scene"] = res.request.views.front().scene;
+  j["views"] = nlohmann::json::array();
+  for (const TuneView& v : res.request.views) j["views"].push_back({{"scene", v.scene}, {"camera", v.camera}});
+  j["aggregate"] = aggregateKey(res.request.aggregate);
+  j["cost"] = costKey(res.request.cost);
   j["objective"] = objectiveKey(o);
   j["recommended"] = res.recommended ? tuneRowJson(res.confirmed[*res.recommended], o) : nlohmann::json();
   j["default"] = tuneDefaultFor(res) ? tuneRowJson(*tuneDefaultFor(res), o) : nlohmann::json();
@@ -176,13 +227,13 @@ nlohmann::json tuneJson(const TuneResults& res) {
   for (const size_t i : res.front) j["front"].push_back(tuneRowJson(res.confirmed[i], o));
   j["explored"] = nlohmann::json::array();
   for (const TuneRow& r : res.explored) j["explored"].push_back(tuneRowJson(r, o));
-  j["budget_ms"] = res.budgetMs;
+  // The cost budget in the unit the search ranked by.
+  j[res.request.cost == TuneCost::Model ? "budget_mops" : "budget_ms"] = res.budget;
   j["budget_mb"] = res.request.budget.memoryMiB ? nlohmann::json(*res.request.budget.memoryMiB) : nlohmann::json();
   j["max_error"] = res.request.budget.maxError ? nlohmann::json(*res.request.budget.maxError) : nlohmann::json();
   j["width"] = res.request.settings.width;
   j["height"] = res.request.settings.height;
   j["samples"] = res.request.settings.referenceSamples;
-  j["camera"] = res.request.settings.camera;
   j["evaluations"] = res.evaluations;
   j["resumed"] = res.resumed;
   j["seconds"] = res.seconds;

@@ -10,6 +10,9 @@
 
 namespace penumbra::report {
 
+/// "pen, city from 0,2,5:0,0,0": the views of a request, for titles.
+std::string tuneViewsText(const TuneRequest& request);
+
 /// "--projection uniform --filter pcf --shadow-map 2048 --set pcf.radiusTexels=3.5 …": what to
 /// add to `penumbra compare` or `render` for the row.
 std::string tuneSetLine(const TuneRow& row);
@@ -17,8 +20,9 @@ std::string tuneSetLine(const TuneRow& row);
 /// The "shadow" block of a scene file (docs/scene-format.md) that makes the row the scene's own.
 std::string tuneSceneSnippet(const TuneRow& row);
 
-/// One row: {"filter", "projection", "params": {key: value}, "shadow_map", "rmse", …,
-/// "shadow_cost_ms", "shadow_memory_mb", "command", "set"}.
+/// One row: {"filter", "projection", "params": {key: value}, "shadow_map", "shadow_budget", "rmse",
+/// …, "shadow_cost_ms", "work_mops", "shadow_memory_mb", "command", "set", "views": [{"scene",
+/// "camera", "error", "rmse", …, "command"}, …]} (aggregated over the views: worst or mean).
 nlohmann::json tuneRowJson(const TuneRow& row, TuneObjective objective);
 
 /// The whole result: recommended, default (the recommended technique's default), defaults,

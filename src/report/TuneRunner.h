@@ -1,6 +1,7 @@
 #pragma once
 // `penumbra tune`'s run (docs/tune.md): per technique (projection × filter), a search over its
-// parameters and map size on one scene, measured by runBench against the cached reference:
+// parameters and maps on one or several views (scene × camera), measured by runBench against the
+// cached reference, the views' errors and costs aggregated (worst or mean):
 //  1. screen:  Latin-hypercube candidates (and the default) at a small image, few frames;
 //  2. promote: successive halving keeps the small-size front and the most accurate to the full size;
 //  3. descend: coordinate descent around the best configuration within the budget, at full size;
@@ -40,10 +41,36 @@ struct TuneShard {
   int index = 1, count = 1;  ///< K and N of --shard K/N
 };
 
+/// One view a configuration is measured on.
+struct TuneView {
+  std::string scene;   ///< built-in name or scene file
+  std::string camera;  ///< compare's --camera text; "" = the scene's own
+};
+
+/// How the views' errors and costs make a configuration's: the worst view's, or the mean.
+enum class TuneAggregate { Worst, Mean };
+/// "worst", "mean"; parseAggregate throws a usage Error naming the choices.
+const char* aggregateKey(TuneAggregate a);
+TuneAggregate parseAggregate(std::string_view text);
+
+/// What the search ranks cost by. Measured: the whole shadow cost per frame on this machine
+/// (median ms): what a budget in ms means, but noisy, so two runs (or shards and one run) may
+/// decide differently. Model: a count of work that a configuration implies, the same on every
+/// machine and every run (TuneRow::workM), so the search is a function of the errors and the
+/// configurations alone: shards, merges and reruns give the same front.
+enum class TuneCost { Measured, Model };
+/// "measured", "model"; parseCost throws a usage Error naming the choices.
+const char* costKey(TuneCost c);
+TuneCost parseCost(std::string_view text);
+
 struct TuneRequest {
-  std::string scene;  ///< built-in name or scene file
+  std::vector<TuneView> views;  ///< at least one; the first scene's map size is the default's
+  TuneAggregate aggregate = TuneAggregate::Worst;
+  TuneCost cost = TuneCost::Measured;
   std::vector<std::string> projections, filters;  ///< each pair is one technique searched
-  BenchSettings settings;  ///< the full size, reference samples, cache, camera; its map size = the default's
+  /// --params: the keys searched (parameter keys, kMapSizeKey, kMapBudgetKey); empty = all.
+  std::vector<std::string> searchKeys;
+  BenchSettings settings;  ///< the full size, reference samples, cache; its map size = the default's
   TuneObjective objective = TuneObjective::Rmse;
   TuneBudget budget;  ///< no cost budget and no error target: the default configuration's own cost
   double maxMinutes = 10.0;  ///< descent stops when the estimate says the run would pass this
@@ -51,6 +78,7 @@ struct TuneRequest {
   uint64_t seed = 1;
   std::filesystem::path outDir;
   bool verbose = false;
+  bool progress = true;  ///< the progress line on stderr
   /// --shard K/N: measure only every N-th screen configuration from the K-th (1-based) into
   /// OUT/evaluations.jsonl and stop; `--merge` of the shards' folders goes on from all of them.
   std::optional<TuneShard> shard;
@@ -70,18 +98,34 @@ inline constexpr int kMaxDescentRounds = 8;
 /// time left assumes it.
 inline constexpr int kExpectedDescentRounds = 4;
 
-/// One measured configuration.
+/// The work model of TuneCost::Model, in millions of operations per frame: every texel of
+/// the GPU memory the technique keeps written once (maps, moments, tables are rebuilt each
+/// frame; kModelBytesPerTexel bytes a texel), plus one read per declared tap per pixel (the
+/// parameters whose unit is "taps", at least one).
+inline constexpr double kModelBytesPerTexel = 4.0;
+/// The unit that marks a parameter as taps per pixel (pcf.samples, pcss.filterSamples).
+inline constexpr std::string_view kTapsUnit = "taps";
+
+/// One configuration measured on one view, or (views non-empty) aggregated over several.
 struct TuneRow {
   std::string projection, filter;
   std::vector<std::pair<std::string, std::string>> params;  ///< --set keys and values
   int mapSize = 0, width = 0, height = 0, frames = 0;
+  int64_t budgetTexels = 0;  ///< --shadow-budget; 0 = none
+  int grantedMapSize = 0;    ///< the side the first shadowed light's maps got (= mapSize without a budget)
   VisibilityMetrics metrics;
   double error = 0.0;  ///< the objective's value
   double costMs = 0.0, costP10Ms = 0.0, costP90Ms = 0.0;
+  double workM = 0.0;  ///< TuneCost::Model's work, millions of operations per frame
   double memoryMiB = 0.0;
   bool isDefault = false;
-  std::string command;  ///< the `penumbra compare` line that reproduces the row
-  TunePoint point() const { return {.error = error, .costMs = costMs, .memoryMiB = memoryMiB}; }
+  std::string scene, camera;  ///< the view (of the first view when aggregated)
+  std::string command;  ///< the `penumbra compare` line that reproduces the row (the first view's)
+  std::vector<TuneRow> views;  ///< per view, when measured on several (or one) views
+  /// What the search ranks: error, the cost of `cost`'s kind, memory.
+  TunePoint point(TuneCost cost) const {
+    return {.error = error, .costMs = cost == TuneCost::Model ? workM : costMs, .memoryMiB = memoryMiB};
+  }
 };
 
 struct TuneResults {
@@ -91,14 +135,17 @@ struct TuneResults {
   std::vector<size_t> front;          ///< indices into confirmed, ascending cost
   std::optional<size_t> recommended;  ///< into confirmed; empty when nothing fits the budget
   std::vector<size_t> defaults;       ///< into confirmed, one per technique
-  double budgetMs = 0.0;              ///< the cost budget applied (given or the default's)
+  double budget = 0.0;                ///< the cost budget applied (given or the default's), in the cost's unit
   size_t evaluations = 0, resumed = 0;  ///< configurations measured, and read back from a past run
   double seconds = 0.0;
   std::vector<TuneRow> explored;  ///< every full-size row of stages 2 and 3 (the chart's cloud)
 };
 
-/// Runs the search. `makeSetup` turns a configuration into scene + technique (the CLI's
-/// makeSetup). Throws a usage Error when no technique's default can be rendered.
-TuneResults runTune(gl::Context& context, const TuneRequest& request, const SetupFactory& makeSetup);
+/// Turns a configuration seen from a camera (compare's --camera text, "" = the scene's own) into
+/// scene + technique (the CLI's makeSetup).
+using TuneSetupFactory = std::function<BenchSetup(const BenchConfig&, const std::string& camera)>;
+
+/// Runs the search. Throws a usage Error when no technique's default can be rendered.
+TuneResults runTune(gl::Context& context, const TuneRequest& request, const TuneSetupFactory& makeSetup);
 
 }  // namespace penumbra::report

@@ -1,5 +1,6 @@
 #include "report/TuneSearch.h"
 
+#include "core/ShadowBudget.h"
 #include "report/BenchResults.h"
 
 #include <penumbra/Error.h>
@@ -25,6 +26,11 @@ constexpr float kLinearStepFraction = 1.0f / 8.0f;
 
 const ParamDesc kMapSizeDesc{kMapSizeKey, "Map size", "shadow-map texels per side (compare's --shadow-map)", "texels",
                              2048.0f, static_cast<float>(kMinTuneMapSize), static_cast<float>(kMaxTuneMapSize), 1.0f};
+// The budget's range: from one smallest map to eight largest ones (a float holds these exactly
+// on the default's octaves for any default below 2^24 texels per map).
+const ParamDesc kMapBudgetDesc{kMapBudgetKey, "Map budget", "texels of all shadow maps together (compare's --shadow-budget)",
+                               "texels", 4.0f * 2048.0f * 2048.0f, static_cast<float>(kMinTuneMapSize) * kMinTuneMapSize,
+                               8.0f * kMaxTuneMapSize * kMaxTuneMapSize, 1.0f};
 
 float roundSignificant(float v) {
   if (v == 0.0f || !std::isfinite(v)) return v;
@@ -35,7 +41,7 @@ float roundSignificant(float v) {
 // The value as the table can hold it: power of two, integer, or rounded; inside [lo, hi].
 float snap(const TuneDim& d, float v) {
   v = std::clamp(v, d.lo, d.hi);
-  if (d.powerOfTwo) v = std::exp2(std::round(std::log2(v)));
+  if (d.powerOfTwo) v = d.def * std::exp2(std::round(std::log2(v / d.def)));
   else if (d.desc.isInteger()) v = std::round(v);
   else v = roundSignificant(v);
   return std::clamp(v, d.desc.min, d.desc.max);
@@ -57,13 +63,16 @@ float valueAt(const TuneDim& d, double u) {
 
 }  // namespace
 
-std::vector<TuneDim> tuneSpace(std::span<const ParamDesc> descs, std::span<const float> current, int mapSize,
+std::vector<TuneDim> tuneSpace(std::span<const ParamDesc> descs, std::span<const float> current, TuneMapDefault maps,
                                std::span<const std::string> fixed) {
   PN_CHECK(descs.size() == current.size(), "tuneSpace: one current value per parameter");
+  const auto isFixed = [&](std::string_view key) { return std::find(fixed.begin(), fixed.end(), std::string(key)) != fixed.end(); };
   std::vector<TuneDim> space;
+  bool countsMaps = false;
   for (size_t i = 0; i < descs.size(); ++i) {
     const ParamDesc& p = descs[i];
-    if (std::find(fixed.begin(), fixed.end(), std::string(p.key)) != fixed.end()) continue;
+    if (isFixed(p.key)) continue;
+    countsMaps = countsMaps || p.unit == kMapCountUnit;
     TuneDim d{.desc = p, .scale = TuneScale::Linear, .lo = p.min, .hi = p.max, .def = current[i], .powerOfTwo = false};
     if (p.isChoice()) {
       d.scale = TuneScale::Choice;
@@ -75,12 +84,15 @@ std::vector<TuneDim> tuneSpace(std::span<const ParamDesc> descs, std::span<const
     }
     if (d.hi > d.lo) space.push_back(d);
   }
-  if (mapSize > 0) {
-    TuneDim d{.desc = kMapSizeDesc, .scale = TuneScale::Log, .lo = 0.0f, .hi = 0.0f,
-              .def = static_cast<float>(mapSize), .powerOfTwo = true};
+  const bool budget = countsMaps && maps.texels > 0;
+  if (maps.size > 0 && !isFixed(budget ? kMapBudgetKey : kMapSizeKey)) {
+    // Texels scale as the side squared: the budget spans the span factor squared.
+    const float span = budget ? static_cast<float>(kMapSizeSpanFactor * kMapSizeSpanFactor) : static_cast<float>(kMapSizeSpanFactor);
+    TuneDim d{.desc = budget ? kMapBudgetDesc : kMapSizeDesc, .scale = TuneScale::Log, .lo = 0.0f, .hi = 0.0f,
+              .def = budget ? static_cast<float>(maps.texels) : static_cast<float>(maps.size), .powerOfTwo = true};
     d.desc.def = d.def;
-    d.lo = std::max(static_cast<float>(kMinTuneMapSize), d.def / kMapSizeSpanFactor);
-    d.hi = std::min(static_cast<float>(kMaxTuneMapSize), d.def * kMapSizeSpanFactor);
+    d.lo = std::max(d.desc.min, d.def / span);
+    d.hi = std::min(d.desc.max, d.def * span);
     if (d.hi > d.lo) space.push_back(d);
   }
   return space;
@@ -147,18 +159,43 @@ std::vector<TuneCandidate> neighbours(std::span<const TuneDim> space, const Tune
   return out;
 }
 
+std::optional<TuneCandidate> combinedMove(const TuneCandidate& center, std::span<const TuneCandidate> better) {
+  TuneCandidate out = center;
+  size_t moved = 0;
+  for (const TuneCandidate& n : better)
+    for (size_t d = 0; d < center.size(); ++d)
+      if (n[d] != center[d] && out[d] == center[d]) {
+        out[d] = n[d];
+        ++moved;
+      }
+  if (moved < 2) return std::nullopt;
+  return out;
+}
+
 std::vector<std::pair<std::string, std::string>> tuneParams(std::span<const TuneDim> space, const TuneCandidate& c) {
   std::vector<std::pair<std::string, std::string>> out;
   for (size_t d = 0; d < space.size(); ++d)
-    if (space[d].desc.key != kMapSizeKey && c[d] != space[d].def)
+    if (space[d].desc.key != kMapSizeKey && space[d].desc.key != kMapBudgetKey && c[d] != space[d].def)
       out.emplace_back(std::string(space[d].desc.key), formatParamValue(space[d].desc, c[d]));
   return out;
 }
 
-int tuneMapSize(std::span<const TuneDim> space, const TuneCandidate& c, int fallback) {
-  for (size_t d = 0; d < space.size(); ++d)
-    if (space[d].desc.key == kMapSizeKey) return static_cast<int>(c[d]);
-  return fallback;
+TuneMaps tuneMaps(std::span<const TuneDim> space, const TuneCandidate& c, const TuneMapDefault& maps) {
+  TuneMaps out{.size = maps.size, .budgetTexels = 0};
+  bool countsMaps = false, atDefault = true;
+  int64_t budget = maps.texels;
+  for (size_t d = 0; d < space.size(); ++d) {
+    if (space[d].desc.key == kMapSizeKey) out.size = static_cast<int>(c[d]);
+    if (space[d].desc.key == kMapBudgetKey) budget = static_cast<int64_t>(c[d]);
+    if (space[d].desc.unit == kMapCountUnit) countsMaps = true;
+    if (space[d].desc.unit == kMapCountUnit || space[d].desc.key == kMapBudgetKey) atDefault = atDefault && c[d] == space[d].def;
+  }
+  if (!countsMaps || budget <= 0 || atDefault) return out;
+  out.budgetTexels = budget;
+  // The side one map would take of the whole budget, on the core's step (it rounds sides down to it).
+  const int step = core::kMinBudgetMapSize;
+  out.size = std::max(step, static_cast<int>(std::sqrt(static_cast<double>(budget)) / step) * step);
+  return out;
 }
 
 bool isBiasKey(std::string_view key) {

@@ -21,6 +21,14 @@ enum class TuneScale { Linear, Log, Choice };
 
 /// The key of the shadow-map size dimension: not a --set key (it is compare's --shadow-map).
 inline constexpr std::string_view kMapSizeKey = "shadow.mapSize";
+/// The key of the map-budget dimension, which replaces the map size when the technique has a
+/// map-count parameter (unit "maps": csm.cascades): the texels of all maps together, compare's
+/// --shadow-budget, each map's side following from it (core::allocateMapSizes). Equal memory is
+/// then one value of one dimension, and a step in the count alone trades resolution for coverage
+/// at that memory; with the map size as the dimension, that trade needs two steps at once.
+inline constexpr std::string_view kMapBudgetKey = "shadow.budgetTexels";
+/// The unit that marks a parameter as a count of shadow maps per light.
+inline constexpr std::string_view kMapCountUnit = "maps";
 
 /// One searched dimension.
 struct TuneDim {
@@ -28,7 +36,7 @@ struct TuneDim {
   TuneScale scale = TuneScale::Linear;
   float lo = 0.0f, hi = 1.0f;  ///< the sampled range, inside [desc.min, desc.max]
   float def = 0.0f;            ///< the default configuration's value (scene params applied)
-  bool powerOfTwo = false;     ///< the map size: sampled on powers of two
+  bool powerOfTwo = false;     ///< map size and budget: sampled on the default's octaves (def × 2^k)
 };
 
 /// A point of the space: one value per dimension, in the space's order.
@@ -41,10 +49,18 @@ inline constexpr float kLogSpanFactor = 16.0f;
 inline constexpr int kMapSizeSpanFactor = 2;
 inline constexpr int kMinTuneMapSize = 256, kMaxTuneMapSize = 8192;
 
+/// The default configuration's maps: the side of each and the texels of all together.
+struct TuneMapDefault {
+  int size = 0;           ///< texels per side; 0: no map dimension
+  int64_t texels = 0;     ///< Σ views × side² over the shadowed lights (the map-budget dimension's default)
+};
+
 /// The space of `descs` around `current` (the default configuration's values, same order as
-/// descs), minus the keys in `fixed` (e.g. "csm.stabilize": not a quality trade). A map-size
-/// dimension is added when mapSize > 0.
-std::vector<TuneDim> tuneSpace(std::span<const ParamDesc> descs, std::span<const float> current, int mapSize,
+/// descs), minus the keys in `fixed` (e.g. "csm.stabilize": not a quality trade). A map
+/// dimension is added when maps.size > 0 and its key is not in `fixed`: the map budget when a
+/// searched parameter counts maps (kMapCountUnit), else the map size; both span the same memory,
+/// ÷ / × kMapSizeSpanFactor² around the default's.
+std::vector<TuneDim> tuneSpace(std::span<const ParamDesc> descs, std::span<const float> current, TuneMapDefault maps,
                                std::span<const std::string> fixed = {});
 
 /// The default configuration: every dimension at `def`.
@@ -62,11 +78,29 @@ std::vector<TuneCandidate> latinHypercube(std::span<const TuneDim> space, int co
 inline constexpr float kDescentFactor = 1.5f;
 std::vector<TuneCandidate> neighbours(std::span<const TuneDim> space, const TuneCandidate& center);
 
+/// Coordinate descent's combined move: `center` with every dimension in which one of `better`
+/// (neighbours of center, each differing in one dimension, that improved on it; best first) moved,
+/// set to the best such neighbour's value. Empty when they moved fewer than two dimensions (the
+/// best single neighbour is then the move). Without it, a round moves one dimension, and the
+/// dimensions that gain most (a filter's radius) take every round while the others (cascades'
+/// splits) never move within the rounds allowed.
+std::optional<TuneCandidate> combinedMove(const TuneCandidate& center, std::span<const TuneCandidate> better);
+
 /// The --set assignments of a candidate: "key" → value text (formatParamValue), only the
-/// parameters whose value differs from the default's, without the map size.
+/// parameters whose value differs from the default's, without the map size and budget (tuneMaps).
 std::vector<std::pair<std::string, std::string>> tuneParams(std::span<const TuneDim> space, const TuneCandidate& c);
-/// The candidate's map size (the default `fallback` when the space has no map dimension).
-int tuneMapSize(std::span<const TuneDim> space, const TuneCandidate& c, int fallback);
+/// What compare needs for a candidate's maps: --shadow-map and --shadow-budget.
+struct TuneMaps {
+  int size = 0;                 ///< --shadow-map: the side each map asks for
+  int64_t budgetTexels = 0;     ///< --shadow-budget; 0 = none
+  bool operator==(const TuneMaps&) const = default;
+};
+/// The candidate's maps. A map-size dimension: that size. With a map count (kMapCountUnit): no
+/// budget when the count and the budget are the default's (the default configuration as compare
+/// renders it), else the budget (the dimension's value, or the default's texels when the budget
+/// is fixed: equal memory), asking for the side one map would take of all of it, so that one map
+/// gets the whole budget and N maps share it. Otherwise the default's side.
+TuneMaps tuneMaps(std::span<const TuneDim> space, const TuneCandidate& c, const TuneMapDefault& maps);
 
 /// A bias parameter (acne against peter-panning): its name after the technique holds "bias" or
 /// "offset" (hard.bias, pcf.constantBias, hard.normalOffsetTexels). `--objective acne` searches these only.

@@ -1,11 +1,15 @@
 // penumbra tune as a user runs it: at a tiny size, the recommended configuration is no worse than
 // the default within the budget, and `compare` with its printed command reproduces its error;
-// an interrupted (or repeated) run resumes from evaluations.jsonl; bad input fails clearly.
+// tuned cascades beat the default ones on city at equal memory; several views are each measured
+// and aggregated; shards merged give one run's front (--cost model); an interrupted (or
+// repeated) run resumes from evaluations.jsonl; bad input fails clearly.
 #include "CliSupport.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,6 +32,13 @@ nlohmann::json readJson(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return nlohmann::json::parse(ss.str());
+}
+
+// The --json output of a run that must succeed; null (after a failure naming the run) otherwise.
+nlohmann::json jsonOf(const std::string& args, const std::string& dir) {
+  const RunResult r = runPenumbra(args, dir);
+  EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
+  return r.exitCode == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
 }
 
 }  // namespace
@@ -60,9 +71,9 @@ TEST(TuneCli, RecommendsNoWorseThanTheDefaultWithinBudgetAndCompareReproducesIt)
   std::string command = rec["command"].get<std::string>();
   ASSERT_EQ(command.rfind("penumbra compare ", 0), 0u) << command;
   command = command.substr(std::string("penumbra ").size()) + " --json --out cmp";
-  const RunResult c = runPenumbra(command, dir);
-  ASSERT_EQ(c.exitCode, 0) << c.err;
-  const double rmse = nlohmann::json::parse(c.out)["rmse"].get<double>();
+  const nlohmann::json c = jsonOf(command, dir);
+  ASSERT_FALSE(c.is_null());
+  const double rmse = c["rmse"].get<double>();
   EXPECT_NEAR(rmse, rec["rmse"].get<double>(), kReproduceFraction * rec["rmse"].get<double>()) << command;
 
   // The same run again reads every configuration back instead of measuring it.
@@ -87,6 +98,10 @@ TEST(TuneCli, BadInputFailsWithOneClearLine) {
            {"tune --scene pen --budget-ms -1", "--budget-ms"},
            {"tune --filters pcf", "--scene"},
            {"tune --scene pen --shard 1/2 --merge a", "not both"},
+           {"tune --scene pen --aggregate median", "--aggregate median"},
+           {"tune --scene pen --cost guessed", "--cost guessed"},
+           {"tune --scene pen --cost model --budget-ms 5", "--cost model"},
+           {"tune --scene pen,nosuch", "nosuch"},
        }) {
     const RunResult r = runPenumbra(k.args, dir);
     EXPECT_NE(r.exitCode, 0) << k.args;
@@ -98,18 +113,17 @@ TEST(TuneCli, HelpNamesTheOptionsAndOutputs) {
   const RunResult r = runPenumbra("tune --help");
   ASSERT_EQ(r.exitCode, 0);
   for (const char* word : {"--budget-ms", "--budget-mb", "--objective", "--max-minutes", "--filters", "--projections",
-                           "tune.json", "tune.html", "evaluations.jsonl", "--json"})
+                           "--aggregate", "--cost", "--params", "--camera", "tune.json", "tune.html", "evaluations.jsonl", "--json"})
     EXPECT_NE(r.out.find(word), std::string::npos) << word;
 }
 
 TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
   const std::string dir = freshDir("tune-acne");
-  const RunResult r = runPenumbra(
+  const nlohmann::json j = jsonOf(
       "tune --scene grazing --filters hard --objective acne --size 96x54 --samples 1 --candidates 6 --max-minutes 1 "
       "--out out --json",
       dir);
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(j.is_null());
   const nlohmann::json& rec = j["recommended"];
   EXPECT_EQ(j["objective"], "acne");
   EXPECT_LE(rec["acne_pct"].get<double>(), 0.1);
@@ -120,9 +134,10 @@ TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
         << key;
 }
 
-TEST(TuneCli, ShardsMergeIntoTheRunThatMeasuresTheirScreenOnce) {
+TEST(TuneCli, ShardsMergedGiveTheSameFrontAsOneRunWithTheModelledCost) {
   const std::string dir = freshDir("tune-shards");
-  const std::string base = "tune --scene pen --filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 6 --max-minutes 1";
+  const std::string base = "tune --scene pen --filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 6 "
+                           "--max-minutes 1 --cost model";
   const std::vector<std::pair<std::string, std::string>> shards = {{"1/2", "s1"}, {"2/2", "s2"}};
   for (const auto& [shard, out] : shards) {
     const RunResult r = runPenumbra(base + " --shard " + shard + " --out " + out, dir);
@@ -130,18 +145,20 @@ TEST(TuneCli, ShardsMergeIntoTheRunThatMeasuresTheirScreenOnce) {
     EXPECT_NE(r.out.find("configurations measured"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(fs::path(dir) / out / "tune.json"));
   }
-  const RunResult merged = runPenumbra(base + " --merge s1 s2 --out m --json", dir);
-  ASSERT_EQ(merged.exitCode, 0) << merged.err;
-  const RunResult single = runPenumbra(base + " --out one --json", dir);
-  ASSERT_EQ(single.exitCode, 0) << single.err;
-  const nlohmann::json m = nlohmann::json::parse(merged.out), one = nlohmann::json::parse(single.out);
-  // The default and the 6 candidates of the screen came from the shards: the merge measured none
-  // of them. (The rest of the search may take another path than a single run's: the screen's
-  // costs are measured, and noisy, so the halving may keep other candidates.)
-  EXPECT_EQ(m["resumed"], 7) << merged.err;
-  EXPECT_NE(merged.err.find("1/4 screen: 7 configurations at 57x32 (0 to measure"), std::string::npos) << merged.err;
-  EXPECT_EQ(m["default"]["rmse"], one["default"]["rmse"]);
-  EXPECT_FALSE(m["front"].empty());
+  const nlohmann::json m = jsonOf(base + " --merge s1 s2 --out m --json", dir), one = jsonOf(base + " --out one --json", dir);
+  ASSERT_FALSE(m.is_null() || one.is_null());
+  // The default and the 6 candidates of the screen came from the shards: the merge measured none of them.
+  EXPECT_EQ(m["resumed"], 7);
+  EXPECT_EQ(m["cost"], "model");
+  // The same front: the same configurations with the same errors and work, in the same order;
+  // the same recommendation. (Their milliseconds, measured by different processes, differ.)
+  ASSERT_FALSE(one["front"].empty());
+  ASSERT_EQ(m["front"].size(), one["front"].size());
+  for (size_t i = 0; i < one["front"].size(); ++i)
+    for (const char* key : {"params", "shadow_map", "shadow_budget", "rmse", "error", "work_mops", "shadow_memory_mb"})
+      EXPECT_EQ(m["front"][i][key], one["front"][i][key]) << key << " of front row " << i;
+  EXPECT_EQ(m["recommended"]["params"], one["recommended"]["params"]);
+  EXPECT_EQ(m["budget_mops"], one["budget_mops"]);
 
   const RunResult bad = runPenumbra(base + " --shard 3/2 --out x", dir);
   EXPECT_NE(bad.exitCode, 0);
@@ -149,6 +166,64 @@ TEST(TuneCli, ShardsMergeIntoTheRunThatMeasuresTheirScreenOnce) {
   const RunResult missing = runPenumbra(base + " --merge nowhere --out y", dir);
   EXPECT_NE(missing.exitCode, 0);
   EXPECT_NE(missing.err.find("nowhere"), std::string::npos) << missing.err;
+}
+
+TEST(TuneCli, SeveralViewsAreEachMeasuredAndTheWorstDecides) {
+  const std::string dir = freshDir("tune-views");
+  // Two cameras on the pen, from the right and from above the left of the scene's own.
+  const std::string views = "tune --scene pen --camera 1.5,1.8,2:-0.5,0.1,-0.3 --camera 0.6,2.4,2.2:-0.8,0.1,-0.2 "
+                            "--filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 4 --max-minutes 1 --out out --json";
+  const nlohmann::json j = jsonOf(views + " --aggregate worst", dir);
+  ASSERT_FALSE(j.is_null());
+  ASSERT_EQ(j["views"].size(), 2u);
+  EXPECT_EQ(j["aggregate"], "worst");
+  for (const char* which : {"recommended", "default"}) {
+    const nlohmann::json& row = j[which];
+    ASSERT_EQ(row["views"].size(), 2u) << which;
+    const double a = row["views"][0]["rmse"].get<double>(), b = row["views"][1]["rmse"].get<double>();
+    EXPECT_NE(a, b) << which << ": two views see different images";
+    EXPECT_DOUBLE_EQ(row["rmse"].get<double>(), std::max(a, b)) << which;
+    EXPECT_DOUBLE_EQ(row["shadow_cost_ms"].get<double>(),
+                     std::max(row["views"][0]["shadow_cost_ms"].get<double>(), row["views"][1]["shadow_cost_ms"].get<double>()));
+  }
+  // Each view's printed compare line reproduces that view.
+  for (const nlohmann::json& v : j["recommended"]["views"]) {
+    std::string command = v["command"].get<std::string>();
+    ASSERT_NE(command.find("--camera " + v["camera"].get<std::string>()), std::string::npos) << command;
+    command = command.substr(std::string("penumbra ").size()) + " --json --out cmp";
+    const nlohmann::json c = jsonOf(command, dir);
+    ASSERT_FALSE(c.is_null());
+    EXPECT_NEAR(c["rmse"].get<double>(), v["rmse"].get<double>(),
+                kReproduceFraction * v["rmse"].get<double>()) << command;
+  }
+  // The mean over the same views: the default's rows read back, averaged.
+  const nlohmann::json m = jsonOf(views + " --aggregate mean", dir);
+  ASSERT_FALSE(m.is_null());
+  const nlohmann::json& d = m["default"];
+  EXPECT_DOUBLE_EQ(d["rmse"].get<double>(), 0.5 * (d["views"][0]["rmse"].get<double>() + d["views"][1]["rmse"].get<double>()));
+}
+
+TEST(TuneCli, TunedCascadesBeatTheDefaultCascadesOnCityAtEqualMapMemory) {
+  const std::string dir = freshDir("tune-city");
+  // Only the cascades' count, split λ and blend band are searched; the maps' texels in all stay
+  // the default's (4 cascades of 2048²), so a count moves each map's side, not the memory.
+  const nlohmann::json j = jsonOf(
+      "tune --scene city --projections csm --filters hard --params csm.cascades,csm.lambda,csm.blendBandM --size 160x90 "
+      "--samples 16 --candidates 6 --cost model --out out --json",
+      dir);
+  ASSERT_FALSE(j.is_null());
+  const nlohmann::json &rec = j["recommended"], &def = j["default"];
+  ASSERT_FALSE(rec["params"].empty()) << "the default cascades were kept";
+  for (const auto& [key, value] : rec["params"].items()) EXPECT_TRUE(key.starts_with("csm.")) << key;
+  EXPECT_LT(rec["rmse"].get<double>(), def["rmse"].get<double>());
+  EXPECT_LE(rec["shadow_memory_mb"].get<double>(), def["shadow_memory_mb"].get<double>());
+  constexpr int64_t kDefaultTexels = int64_t{4} * 2048 * 2048;
+  if (rec["params"].contains("csm.cascades")) {
+    EXPECT_EQ(rec["shadow_budget"], kDefaultTexels);
+    EXPECT_NE(rec["command"].get<std::string>().find("--shadow-budget " + std::to_string(kDefaultTexels)), std::string::npos);
+  }
+  std::printf("city cascades: %s RMSE %.5f against the default's %.5f, %.1f MiB both\n", rec["set"].get<std::string>().c_str(),
+              rec["rmse"].get<double>(), def["rmse"].get<double>(), def["shadow_memory_mb"].get<double>());
 }
 
 TEST(TuneCli, AnInterruptedRunResumesFromTheRowsItFinished) {
@@ -173,6 +248,8 @@ TEST(TuneCli, AnInterruptedRunResumesFromTheRowsItFinished) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["resumed"], 7) << r.err;
   EXPECT_GT(j["evaluations"].get<int>(), 0);
-  EXPECT_NE(r.err.find("(0 to measure"), std::string::npos) << r.err;  // the screen
+  // Progress counts what is measured: the screen, read back whole, shows none; the next stage does.
+  EXPECT_EQ(r.err.find("1/4 screen"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2/4 full size: 1/"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(fs::path(dir) / "out" / "tune.json"));
 }

@@ -18,7 +18,7 @@ constexpr int kMapSize = 2048;   // grazing's own map
 constexpr double kMaxAcneFraction = 0.001;  // the 0.1 %
 constexpr double kMaxContactGapTexels = 2.0;
 
-report::BenchSetup setupFor(const report::BenchConfig& c) {
+report::BenchSetup setupFor(const report::BenchConfig& c, const std::string& /*camera: the scene's own*/) {
   report::BenchSetup s{makeBuiltinScene(c.scene), makeProjection(c.projection), makeFilter(c.filter)};
   applyParams(c.params, s.scene, *s.projection, *s.filter, s.contact.get());
   return s;
@@ -31,7 +31,7 @@ TEST(TuneAcne, GrazingHardBiasHasNoAcneAndKeepsContact) {
   std::filesystem::remove_all(out);
   std::filesystem::create_directories(out);
   report::TuneRequest req;
-  req.scene = "grazing";
+  req.views = {{.scene = "grazing", .camera = ""}};
   req.projections = {"uniform"};
   req.filters = {"hard"};
   req.objective = report::TuneObjective::Acne;

@@ -46,7 +46,7 @@ TEST(TuneAcne, BiasKeysAndBiasSize) {
   const std::unique_ptr<Filter> f = makeFilter("hard");
   std::vector<float> current;
   for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
-  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, 0);
+  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, TuneMapDefault{});
   TuneCandidate lo = defaultCandidate(space), hi = lo;
   for (size_t d = 0; d < space.size(); ++d) {
     lo[d] = space[d].lo;

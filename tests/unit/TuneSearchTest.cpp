@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 using namespace penumbra;
 using namespace penumbra::report;
@@ -18,7 +19,16 @@ std::vector<TuneDim> pcfSpace(int mapSize = 2048) {
   const std::unique_ptr<Filter> f = makeFilter("pcf");
   std::vector<float> current;
   for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
-  return tuneSpace(f->paramDescs(), current, mapSize);
+  return tuneSpace(f->paramDescs(), current, {.size = mapSize, .texels = int64_t{mapSize} * mapSize});
+}
+
+// csm's own parameters (no filter), `cascades` maps of 2048² by default.
+std::vector<TuneDim> csmSpace(std::span<const std::string> fixed = {}) {
+  const std::unique_ptr<Projection> p = makeProjection("csm");
+  std::vector<float> current;
+  for (const ParamDesc& d : p->paramDescs()) current.push_back(p->param(d.key));
+  constexpr int kSide = 2048;
+  return tuneSpace(p->paramDescs(), current, {.size = kSide, .texels = int64_t{4} * kSide * kSide}, fixed);
 }
 
 TunePoint point(double costMs, double error, double memoryMiB) {
@@ -55,7 +65,7 @@ TEST(TuneSearch, FixedKeysAndZeroMapSizeAreLeftOut) {
   std::vector<float> current;
   for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
   const std::vector<std::string> fixed = {"pcf.kernel"};
-  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, 0, fixed);
+  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, TuneMapDefault{}, fixed);
   for (const TuneDim& d : space) {
     EXPECT_NE(d.desc.key, "pcf.kernel");
     EXPECT_NE(d.desc.key, kMapSizeKey);
@@ -122,7 +132,7 @@ TEST(TuneSearch, ParamsListOnlyWhatDiffersFromTheDefault) {
   const std::vector<TuneDim> space = pcfSpace(1024);
   TuneCandidate c = defaultCandidate(space);
   EXPECT_TRUE(tuneParams(space, c).empty());
-  EXPECT_EQ(tuneMapSize(space, c, 0), 1024);
+  EXPECT_EQ(tuneMaps(space, c, {.size = 1024, .texels = 1024 * 1024}), (TuneMaps{.size = 1024, .budgetTexels = 0}));
   for (size_t d = 0; d < space.size(); ++d) {
     if (space[d].desc.key == "pcf.radiusTexels") c[d] = 3.5f;
     if (space[d].desc.key == "pcf.kernel") c[d] = 0.0f;
@@ -132,7 +142,64 @@ TEST(TuneSearch, ParamsListOnlyWhatDiffersFromTheDefault) {
   ASSERT_EQ(params.size(), 2u);
   EXPECT_EQ(params[0], (std::pair<std::string, std::string>{"pcf.kernel", "box"}));
   EXPECT_EQ(params[1], (std::pair<std::string, std::string>{"pcf.radiusTexels", "3.5"}));
-  EXPECT_EQ(tuneMapSize(space, c, 0), 2048);
+  EXPECT_EQ(tuneMaps(space, c, {.size = 1024, .texels = 1024 * 1024}), (TuneMaps{.size = 2048, .budgetTexels = 0}));
+}
+
+TEST(TuneSearch, AMapCountMakesTheMapBudgetTheDimensionSoCountStepsKeepTheMemory) {
+  const std::vector<TuneDim> space = csmSpace();
+  const auto dim = [&](std::string_view key) {
+    const auto it = std::find_if(space.begin(), space.end(), [&](const TuneDim& d) { return d.desc.key == key; });
+    return it == space.end() ? std::optional<size_t>() : std::optional<size_t>(static_cast<size_t>(it - space.begin()));
+  };
+  ASSERT_TRUE(dim(kMapBudgetKey));
+  EXPECT_FALSE(dim(kMapSizeKey));
+  const size_t budget = *dim(kMapBudgetKey), count = *dim("csm.cascades");
+  constexpr float kDefaultTexels = 4.0f * 2048.0f * 2048.0f;
+  EXPECT_EQ(space[budget].def, kDefaultTexels);
+  EXPECT_EQ(space[budget].lo, kDefaultTexels / 4.0f);  // the memory a map size from half to twice spans
+  EXPECT_EQ(space[budget].hi, kDefaultTexels * 4.0f);
+
+  // The default renders as compare's default (no budget); any other count at the same budget
+  // asks for the budget, one map's side being the whole of it.
+  const TuneMapDefault maps{.size = 2048, .texels = 4 * 2048 * 2048};
+  const TuneCandidate def = defaultCandidate(space);
+  EXPECT_EQ(tuneMaps(space, def, maps), (TuneMaps{.size = 2048, .budgetTexels = 0}));
+  TuneCandidate two = def;
+  two[count] = 2.0f;
+  EXPECT_EQ(tuneMaps(space, two, maps), (TuneMaps{.size = 4096, .budgetTexels = maps.texels}));
+  TuneCandidate more = def;
+  more[budget] = 2.0f * kDefaultTexels;
+  EXPECT_EQ(tuneMaps(space, more, maps), (TuneMaps{.size = 5792, .budgetTexels = 2 * maps.texels}));
+  EXPECT_TRUE(tuneParams(space, more).empty());  // not a --set key
+  // Coordinate descent's count steps keep the budget: equal memory.
+  for (const TuneCandidate& n : neighbours(space, def))
+    if (n[count] != def[count]) {
+      EXPECT_EQ(n[budget], def[budget]);
+    }
+  // Candidates sit on the default's octaves of texels.
+  for (const TuneCandidate& c : latinHypercube(space, 16, 3)) {
+    const float octaves = std::log2(c[budget] / kDefaultTexels);
+    EXPECT_EQ(octaves, std::round(octaves)) << c[budget];
+  }
+  // Fixed, the budget stays the default's: equal memory for every candidate.
+  const std::vector<std::string> fixed = {std::string(kMapBudgetKey)};
+  const std::vector<TuneDim> equal = csmSpace(fixed);
+  EXPECT_TRUE(std::none_of(equal.begin(), equal.end(), [](const TuneDim& d) { return d.desc.key == kMapBudgetKey; }));
+  TuneCandidate three = defaultCandidate(equal);
+  for (size_t d = 0; d < equal.size(); ++d)
+    if (equal[d].desc.key == "csm.cascades") three[d] = 3.0f;
+  EXPECT_EQ(tuneMaps(equal, three, maps), (TuneMaps{.size = 4096, .budgetTexels = maps.texels}));
+  EXPECT_EQ(tuneMaps(equal, defaultCandidate(equal), maps), (TuneMaps{.size = 2048, .budgetTexels = 0}));
+}
+
+TEST(TuneSearch, TheCombinedMoveTakesEveryImprovedDimensionAtItsBestStep) {
+  const TuneCandidate center = {1.0f, 2.0f, 3.0f};
+  // Best first: dimension 1 down, dimension 1 up (worse: ignored), dimension 2 up.
+  const std::vector<TuneCandidate> better = {{1.0f, 1.5f, 3.0f}, {1.0f, 2.5f, 3.0f}, {1.0f, 2.0f, 4.0f}};
+  EXPECT_EQ(combinedMove(center, better), (TuneCandidate{1.0f, 1.5f, 4.0f}));
+  // One dimension only: no combined move (the best neighbour is the move).
+  EXPECT_FALSE(combinedMove(center, std::vector<TuneCandidate>{{1.0f, 1.5f, 3.0f}, {1.0f, 2.5f, 3.0f}}));
+  EXPECT_FALSE(combinedMove(center, {}));
 }
 
 TEST(TuneSearch, FrontAndBudgetPick) {
