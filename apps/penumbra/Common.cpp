@@ -85,7 +85,7 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draw
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(s.scene);
   renderer->setTechnique(std::move(s.projection), std::move(s.filter));
-  renderer->shadows().contactShadows() = *s.contact;
+  renderer->shadows().addOns() = *s.addOns;
   return renderer;
 }
 
@@ -159,8 +159,10 @@ Setup makeSetup(const TechniqueOptions& o) {
   for (const auto& kv : s.scene.shadow.params) {
     const std::string field = "shadow.params." + kv.first;
     const std::string prefix = kv.first.substr(0, kv.first.find('.'));
-    if (prefix == "light" || prefix == "contact" || prefix == s.projection->id() || prefix == s.filter->id()) {
-      sceneChoice(s.scene, field, [&] { applyParams({kv}, s.scene, *s.projection, *s.filter, s.contact.get()); });
+    const bool addOn = std::any_of(addOnGroups().begin(), addOnGroups().end(),
+                                   [&](const AddOnGroup& g) { return !g.params.empty() && g.params.front().key.starts_with(prefix + "."); });
+    if (prefix == "light" || addOn || prefix == s.projection->id() || prefix == s.filter->id()) {
+      sceneChoice(s.scene, field, [&] { applyParams({kv}, s.scene, *s.projection, *s.filter, s.addOns.get()); });
     } else {
       const std::vector<std::string> p = projectionIds(), f = filterIds();
       if (std::find(p.begin(), p.end(), prefix) == p.end() && std::find(f.begin(), f.end(), prefix) == f.end())
@@ -169,7 +171,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   }
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
-  applyParams(cli, s.scene, *s.projection, *s.filter, s.contact.get());
+  applyParams(cli, s.scene, *s.projection, *s.filter, s.addOns.get());
   if (o.camera) {
     s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
     s.scene.animation.camera = {};  // the camera given stays where it is
@@ -193,7 +195,7 @@ report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera)
     t.projection = c.projection;
     for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
     Setup s = makeSetup(t);
-    return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.contact)};
+    return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.addOns)};
   };
 }
 

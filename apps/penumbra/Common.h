@@ -41,7 +41,7 @@ struct Setup {
   Scene scene;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
-  std::unique_ptr<Parameterized> contact = makeContactShadows();  ///< "contact.*"
+  std::unique_ptr<Parameterized> addOns = makeAddOns();  ///< "contact.*", "temporal.*"
   RenderOptions render;
 };
 

@@ -92,8 +92,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::Range(1, 1000));
   sub->add_option("--frames", o->frames,
                   "also render the animated scene's frames at --time, --time + 1/--fps, ... and compare each with its reference: "
-                  "rmse_mean, rmse_worst_frame and flicker_pct (followed surface points whose V changes by > 0.1 between consecutive "
-                  "frames while V_ref changes by < 0.02); the images and the other metrics are of the first frame")
+                  "rmse_mean, rmse_worst_frame, flicker_pct (followed surface points whose V changes by > 0.1 between consecutive "
+                  "frames while V_ref changes by < 0.02), lag_rmse and ghost_pct (the error, and the share off by > 0.1, on pixels "
+                  "whose V_ref changed by > 0.1 within the last 4 frames); the images and the other metrics are of the first frame")
       ->check(CLI::Range(1, 100000));
   sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
   sub->add_option("--time", o->timeS, "the scene's time in seconds of the (first) frame")->check(CLI::Range(-1e6, 1e6))->capture_default_str();
@@ -216,6 +217,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["rmse_worst"] = sequence->rmseWorst;
         j["flicker_pct"] = sequence->flicker.pct();
         j["flicker_followed"] = sequence->flicker.followed;
+        j["lag_rmse"] = sequence->lag.rmse();
+        j["ghost_pct"] = sequence->lag.ghostPct();
+        j["ghost_dark_pct"] = sequence->lag.darkPct();
+        j["lag_pixels"] = sequence->lag.pixels;
         j["frame_rmse"] = nlohmann::json::array();
         for (const report::SequenceFrame& f : sequence->frames) j["frame_rmse"].push_back(f.metrics.rmse);
         j["sequence_reference_seconds"] = sequence->referenceSeconds;
@@ -271,6 +276,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       std::printf("  %zu frames at %g fps from %g s: RMSE mean %.4f, worst %.4f at frame %zu; flicker %.4f%% of %zu followed points\n",
                   sequence->frames.size(), o->fps, o->timeS, sequence->rmseMean, sequence->rmseWorst, sequence->rmseWorstFrame,
                   sequence->flicker.pct(), sequence->flicker.followed);
+    if (sequence)
+      std::printf("  lag             RMSE %.4f on %zu pixels whose reference changed in the last %d frames; %.2f%% off by > %.1f "
+                  "(%zu too dark, %zu too bright)\n",
+                  sequence->lag.rmse(), sequence->lag.pixels, LagOptions{}.frames, sequence->lag.ghostPct(), LagOptions{}.ghostV,
+                  sequence->lag.tooDark, sequence->lag.tooBright);
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);

@@ -57,7 +57,7 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     j["scenes"] = nlohmann::json::array();
     for (const std::string& n : builtinSceneNames()) j["scenes"].push_back({{"name", n}, {"description", builtinSceneDescription(n)}});
     j["scene_params"] = paramsJson(sceneParamDescs());
-    j["add_on_params"] = paramsJson(makeContactShadows()->paramDescs());
+    j["add_on_params"] = paramsJson(makeAddOns()->paramDescs());
     j["projections"] = nlohmann::json::array();
     for (const std::string& id : projectionIds()) {
       auto p = makeProjection(id);
@@ -76,8 +76,10 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     for (const std::string& n : builtinSceneNames()) std::printf("  %-10s %s\n", n.c_str(), std::string(builtinSceneDescription(n)).c_str());
     std::printf("\nScene parameters (--set key=value):\n");
     printParams(sceneParamDescs());
-    std::printf("\nContact shadows, with any filter (--set key=value):\n");
-    printParams(makeContactShadows()->paramDescs());
+    for (const AddOnGroup& g : addOnGroups()) {
+      std::printf("\n%s, with any filter (--set key=value):\n", std::string(g.label).c_str());
+      printParams(g.params);
+    }
     std::printf("\nProjections (--projection ID):\n");
     for (const std::string& id : projectionIds()) {
       auto p = makeProjection(id);

@@ -4,6 +4,7 @@
 #include <penumbra/Projection.h>
 
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -17,13 +18,20 @@ std::vector<std::string> filterIds();
 std::unique_ptr<Projection> makeProjection(std::string_view id);
 std::unique_ptr<Filter> makeFilter(std::string_view id);
 
-/// The add-on parameter group every filter can take: contact shadows ("contact.*",
-/// docs/contact.md), with its defaults.
-std::unique_ptr<Parameterized> makeContactShadows();
+/// A parameter group any filter can take: a pass the core runs after the filter's own.
+struct AddOnGroup {
+  std::string_view label;             ///< "Contact shadows"
+  std::span<const ParamDesc> params;  ///< keys "prefix.name"
+};
+/// Every add-on group: contact shadows ("contact.*", docs/contact.md) and temporal accumulation
+/// ("temporal.*", docs/temporal.md).
+std::span<const AddOnGroup> addOnGroups();
+/// Every add-on group's parameters in one set, at their defaults (what Shadows::addOns holds).
+std::unique_ptr<Parameterized> makeAddOns();
 
 /// Applies "key" → "value" settings: "light.size" to the scene's first light, the others to
-/// the projection, the filter or `addOns` (makeContactShadows) by key. Usage Error for a key
-/// none of them has.
+/// the projection, the filter or `addOns` (makeAddOns) by key. Usage Error for a key none of
+/// them has.
 void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
                  Projection& projection, Filter& filter, Parameterized* addOns = nullptr);
 

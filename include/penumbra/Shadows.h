@@ -111,6 +111,11 @@ struct ShadowFrameInputs {
   /// share by its importance on screen, never more than it asks for (lightReports() says what).
   int64_t mapBudgetTexels = 0;
   RestoreState restore = RestoreState::All;
+  /// With temporal accumulation on (addOns(), docs/temporal.md): this frame does not continue the
+  /// last one (a camera cut, a teleport), so no V of earlier frames is reused. Penumbra keeps the
+  /// previous frame's camera and surfaces itself; the history is also dropped when the surfaces'
+  /// size, the light count or the technique or its parameters change.
+  bool cameraCut = false;
 };
 
 /// What one light got in the last frame.
@@ -140,16 +145,17 @@ public:
   void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter,
                     const Light* light = nullptr);
   /// By id (penumbra list names them) with "key" → "value" parameters (the projection's, the
-  /// filter's and "contact.*"); usage Errors name what is unknown or out of range.
+  /// filter's and the add-ons'); usage Errors name what is unknown or out of range.
   void setTechnique(std::string_view projectionId, std::string_view filterId,
                     const std::vector<std::pair<std::string, std::string>>& params = {});
   /// The technique every light uses: parameters set here reach every light's copy at the next
   /// render(), under the light's own overrides.
   Projection& projection();
   Filter& filter();
-  /// Contact shadows, the add-on any filter can take ("contact.*" parameters, docs/contact.md):
-  /// off by default; setParam("contact.shadows", "on") turns them on.
-  Parameterized& contactShadows();
+  /// The add-ons any filter can take (Registry.h's addOnGroups), each off by default: contact
+  /// shadows ("contact.*", docs/contact.md; setParam("contact.shadows", "on")) and temporal
+  /// accumulation ("temporal.*", docs/temporal.md; setParam("temporal.accumulate", "on")).
+  Parameterized& addOns();
 
   /// The casters (validated: buffers exist and hold the ranges drawn) and the world bounds of
   /// the receivers that cast no shadow (a ground that is not in `casters`): the light's views
@@ -184,7 +190,9 @@ public:
   uint32_t visibilityArrayTexture() const;
   /// The same, read back (row 0 = bottom).
   std::vector<float> readVisibility(size_t light = 0) const;
-  /// V of `light` at world points with the last frame's maps (the visibility pass over a point list).
+  /// V of `light` at world points with the last frame's maps (the visibility pass over a point
+  /// list). With temporal accumulation on, V as accumulated instead: the last frame's visibility
+  /// layer, bilinear at the point's position on screen (points off screen read the pass's V).
   std::vector<float> visibilityAt(std::span<const SurfaceSample> points, size_t light = 0);
 
   /// Binds Penumbra's frame and shadow-view blocks (PN_UBO_FRAME, PN_UBO_SHADOW of
@@ -195,8 +203,8 @@ public:
   const LightFrusta& frusta(size_t light = 0) const;  ///< the last frame's views of `light`
   /// What each light got in the last frame (map size, views, importance).
   const std::vector<LightShadowReport>& lightReports() const;
-  /// "shadow", "prefilter", "visibility" (and "contact" when on) of the last frame, each the sum
-  /// over the lights
+  /// "shadow", "prefilter", "visibility" (and "contact", "temporal" when on) of the last frame,
+  /// each the sum over the lights
   const PassTimings& timings() const;
   /// GPU memory the technique keeps now, in bytes: every texture and buffer its filters (one copy
   /// per light) and the contact pass, when on, created during their passes and still hold (shadow

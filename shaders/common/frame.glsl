@@ -10,6 +10,10 @@ layout(std430, binding = PN_SSBO_OBJECTS) readonly buffer ObjectBlock { ObjectGp
 
 const float kPi = 3.14159265358979;
 
+// The frame index stochastic patterns turn by (common/sampling.glsl's pixelNoise): 0 unless the
+// core accumulates V over frames (temporal.accumulate), so a single frame's pattern never moves.
+int samplingFrame() { return u_frame.screen.w; }
+
 // Any light's kind, direction toward it and falloff (the frame's light below, or one of the lit
 // pass's list).
 bool isPositional(LightGpu l) { return int(l.direction.w) != PN_LIGHT_SUN; }

@@ -33,10 +33,21 @@ float interleavedGradientNoise(vec2 pixel) {
   return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
+// The pixel's noise in frame `frame` of an accumulated sequence (temporal.*, docs/temporal.md):
+// advanced by the golden ratio each frame, so the values one pixel takes over successive frames
+// spread evenly over [0,1). Frame 0 is the plain per-pixel noise, bit for bit (what every frame
+// uses when nothing accumulates).
+float pixelNoise(ivec2 pixel, int frame) {
+  float noise = interleavedGradientNoise(vec2(pixel));
+  const float kGoldenRatioFraction = 0.61803398875;  // the most evenly spreading step mod 1
+  return frame == 0 ? noise : fract(noise + float(frame) * kGoldenRatioFraction);
+}
+
 // A rotation by a per-pixel angle: rotating the disk per pixel trades the banding of one fixed
-// pattern for noise (Poisson-disk PCF's usual choice).
-mat2 pixelRotation(ivec2 pixel) {
-  float angle = 6.28318530718 * interleavedGradientNoise(vec2(pixel));
+// pattern for noise (Poisson-disk PCF's usual choice); a frame index other than 0 turns it on
+// further each frame, so that accumulating frames averages different taps.
+mat2 pixelRotation(ivec2 pixel, int frame) {
+  float angle = 6.28318530718 * pixelNoise(pixel, frame);
   float c = cos(angle), s = sin(angle);
   return mat2(c, s, -s, c);
 }

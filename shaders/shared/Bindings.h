@@ -27,6 +27,10 @@
 #define PN_TEX_FILTER2 10
 #define PN_TEX_FILTER3 11
 #define PN_TEX_MIN_DEPTH PN_TEX_FILTER2  // a searching filter's min-depth pyramid (shadows/TightSearch.h)
+// The core's passes after the filter's (temporal accumulation) reuse the filter's units.
+#define PN_TEX_HISTORY PN_TEX_FILTER0           // R32F 2D array: V accumulated over earlier frames, a layer per light
+#define PN_TEX_PREVIOUS_SURFACE PN_TEX_FILTER1  // RGBA32F: the previous frame's world position per pixel, w = 1 where geometry
+#define PN_TEX_PREVIOUS_NORMAL PN_TEX_FILTER2   // RGBA16F: the previous frame's geometric normal per pixel
 
 // Image units
 #define PN_IMG_VISIBILITY 0  // r32f output of the visibility pass

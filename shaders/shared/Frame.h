@@ -21,7 +21,7 @@ struct FrameUniforms {
   vec4 cameraPosition;   // xyz: world (m)
   LightGpu light;        // the light this pass shadows
   vec4 ambient;          // rgb: ambient radiance
-  ivec4 screen;          // x, y: size in pixels; z: frame index; w: unused
+  ivec4 screen;          // x, y: size in pixels; z: frame index; w: sampling frame (0 unless V accumulates over frames)
   vec4 sceneInfo;        // x: scene bounding radius (m); yzw: unused
   vec4 depthInfo;        // ndc.z = x · stored depth + y; z: the stored depth of background pixels; w: unused
 };

@@ -1,6 +1,6 @@
 // The engine-facing core (penumbra/Shadows.h): for each light, projection → shadow pass →
-// prefilter → visibility (→ contact shadows), against the caller's camera, surfaces and casters,
-// into that light's layer of the visibility array. No technique-specific branch lives here: the
+// prefilter → visibility (→ contact shadows → temporal accumulation), against the caller's
+// camera, surfaces and casters, into that light's layer of the visibility array. No technique-specific branch lives here: the
 // Projection and the Filter do that work. Each light has its own technique objects (their maps
 // are its own): light 0 runs the technique set with setTechnique itself, the others copies of it,
 // and a light's own shadow settings are applied over its copy for its frame.
@@ -10,6 +10,7 @@
 
 #include "core/FrameBlocks.h"
 #include "core/GlState.h"
+#include "base/Hash.h"
 #include "core/ShadowBudget.h"
 #include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
@@ -18,11 +19,14 @@
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
 #include "shadows/contact/ContactShadows.h"
+#include "shadows/temporal/TemporalAccumulation.h"
 #include "shared/Bindings.h"
 #include "shared/VisibilityPoints.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace penumbra {
@@ -80,7 +84,10 @@ struct Shadows::Impl {
   // What the filter allocates during its passes; a replaced filter's storage leaves the count
   // when it is destroyed.
   gl::MemoryAccount techniqueMemory;
-  ContactShadows contact;
+  std::unique_ptr<Parameterized> addOns = makeAddOns();  // contact.*, temporal.*
+  TemporalAccumulation temporal;
+  int samplingFrame = 0;               // this frame's (TemporalAccumulation::beginFrame)
+  glm::mat4 clipFromWorld{1.0f};       // the last frame's camera
   std::vector<std::unique_ptr<LightSlot>> slots;
   std::vector<LightShadowReport> reports;
   PassTimings timings;
@@ -185,8 +192,11 @@ struct Shadows::Impl {
   void renderLight(size_t i, const ShadowFrameInputs& in) {
     LightSlot& slot = *slots[i];
     const ShadowSurfaces& s = in.surfaces;
-    slot.frameBlock.upload(core::frameUniforms(in.camera, slot.light, screen, frameIndex, extent.bounds().radius()));
+    gpu::FrameUniforms frame = core::frameUniforms(in.camera, slot.light, screen, frameIndex, extent.bounds().radius());
+    frame.screen.w = samplingFrame;
+    slot.frameBlock.upload(frame);
     if (!slot.light.castsShadow) {  // lit wherever the light reaches: V = 1 in its layer
+      temporal.skip(static_cast<int>(i));
       const float one = 1.0f;
       glClearTexSubImage(visibility.id(), 0, 0, 0, static_cast<GLint>(i), screen.x, screen.y, 1, GL_RED, GL_FLOAT, &one);
       return;
@@ -208,22 +218,87 @@ struct Shadows::Impl {
       filterI.prefilter(ctx);
     }
     gl::throwIfGlError("the prefilter pass");
-    glBindTextureUnit(PN_TEX_GBUF_POSITION, surface == SurfaceSource::Position ? s.position : s.depth);
-    glBindTextureUnit(PN_TEX_GBUF_GEONORMAL, s.normal);
-    surfaceSampler.bindUnit(PN_TEX_GBUF_POSITION);
-    surfaceSampler.bindUnit(PN_TEX_GBUF_GEONORMAL);
+    bindSurfaces(s);
     {
       ScopedPass pass(timer, "visibility");
       filterI.computeVisibility(ctx);
     }
-    if (contact.enabled()) {
+    if (ContactShadows::enabled(*addOns)) {
       ScopedPass pass(timer, "contact");
-      contact.apply(ctx);
+      ContactShadows::apply(ctx, *addOns);
     }
-    gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
-    gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);
+    if (TemporalAccumulation::enabled(*addOns)) {
+      ScopedPass pass(timer, "temporal");
+      temporal.apply(ctx, *addOns);
+    }
+    unbindSurfaces();
     gl::throwIfGlError("the visibility pass");
     restore(i, snapshot);
+  }
+
+  /// The caller's surfaces where the screen passes read them, through Penumbra's own sampler.
+  void bindSurfaces(const ShadowSurfaces& s) {
+    glBindTextureUnit(PN_TEX_GBUF_POSITION, surface == SurfaceSource::Position ? s.position : s.depth);
+    glBindTextureUnit(PN_TEX_GBUF_GEONORMAL, s.normal);
+    surfaceSampler.bindUnit(PN_TEX_GBUF_POSITION);
+    surfaceSampler.bindUnit(PN_TEX_GBUF_GEONORMAL);
+  }
+  static void unbindSurfaces() {
+    gl::Sampler::unbindUnit(PN_TEX_GBUF_POSITION);
+    gl::Sampler::unbindUnit(PN_TEX_GBUF_GEONORMAL);
+  }
+
+  /// What the accumulated V depends on besides the surfaces and the lights: the technique and
+  /// every parameter but the accumulation's own (its history is dropped when this changes).
+  uint64_t techniqueKey() const {
+    Hasher h;
+    const auto values = [&h](const Parameterized& p, bool skipTemporal) {
+      for (const ParamDesc& d : p.paramDescs())
+        if (!(skipTemporal && d.key.starts_with("temporal."))) h.value(p.param(d.key));
+    };
+    h.text(projection->id());
+    h.text(filter->id());
+    values(*projection, false);
+    values(*filter, false);
+    values(*addOns, true);
+    return h.digest();
+  }
+
+  /// With accumulation on, V at world points as accumulated: the last frame's layer, bilinear
+  /// between the four pixel centres around each point's position on screen. Points off screen
+  /// keep the V they have.
+  void accumulatedAt(std::span<const SurfaceSample> points, size_t light, std::vector<float>& v) const {
+    const gl::Texture& layer = slots[light]->visibilityView;
+    std::vector<float> image(static_cast<size_t>(screen.x) * static_cast<size_t>(screen.y));
+    layer.read(GL_RED, GL_FLOAT, image.data(), image.size() * sizeof(float));
+    const auto at = [&](int x, int y) {
+      return image[static_cast<size_t>(std::clamp(y, 0, screen.y - 1)) * static_cast<size_t>(screen.x) +
+                   static_cast<size_t>(std::clamp(x, 0, screen.x - 1))];
+    };
+    for (size_t k = 0; k < points.size(); ++k) {
+      const glm::vec4 clip = clipFromWorld * glm::vec4(points[k].position, 1.0f);
+      if (clip.w <= 0.0f) continue;
+      const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(screen);
+      if (!(px.x >= 0.0f && px.y >= 0.0f && px.x < static_cast<float>(screen.x) && px.y < static_cast<float>(screen.y))) continue;
+      const glm::vec2 c = px - 0.5f;  // pixel-centre coordinates
+      const int x = static_cast<int>(std::floor(c.x)), y = static_cast<int>(std::floor(c.y));
+      const float fx = c.x - static_cast<float>(x), fy = c.y - static_cast<float>(y);
+      v[k] = (1.0f - fy) * ((1.0f - fx) * at(x, y) + fx * at(x + 1, y)) + fy * ((1.0f - fx) * at(x, y + 1) + fx * at(x + 1, y + 1));
+    }
+  }
+
+  /// Ends the frame's accumulation (the surfaces become the next frame's), on the frame block of
+  /// a light that casts shadows (one that has views); without one nothing was accumulated.
+  void endTemporalFrame(const ShadowFrameInputs& in) {
+    for (size_t i = 0; i < slots.size(); ++i) {
+      if (!slots[i]->light.castsShadow) continue;
+      bindBlocks(i);
+      bindSurfaces(in.surfaces);
+      FrameContext ctx = frameContext(i);
+      temporal.endFrame(ctx, *addOns);
+      unbindSurfaces();
+      return;
+    }
   }
 };
 
@@ -262,8 +337,8 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
       projection->setParam(key, std::string_view(value));
     else if (filter->hasParam(key))
       filter->setParam(key, std::string_view(value));
-    else if (mImpl->contact.hasParam(key))
-      mImpl->contact.setParam(key, std::string_view(value));
+    else if (mImpl->addOns->hasParam(key))
+      mImpl->addOns->setParam(key, std::string_view(value));
     else
       throw usageError(fmt::format("unknown parameter '{}' for projection {} and filter {}", key, projectionId, filterId));
   }
@@ -272,7 +347,7 @@ void Shadows::setTechnique(std::string_view projectionId, std::string_view filte
 
 Projection& Shadows::projection() { return *mImpl->projection; }
 Filter& Shadows::filter() { return *mImpl->filter; }
-Parameterized& Shadows::contactShadows() { return mImpl->contact; }
+Parameterized& Shadows::addOns() { return *mImpl->addOns; }
 
 void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aabb> receiverBounds) {
   mImpl->casters.set(casters);
@@ -341,6 +416,14 @@ void Shadows::render(const ShadowFrameInputs& in) {
   const std::vector<int> sizes = core::allocateMapSizes(requests, in.mapBudgetTexels);
   im.reports.assign(in.lights.size(), {});
   const gl::MemoryAccount::Charge charge(im.techniqueMemory);
+  im.clipFromWorld = in.camera.clipFromView * in.camera.viewFromWorld;
+  // A pixel's width per metre of distance: 2·tan(fovY/2) / height, from the projection's y scale.
+  im.samplingFrame = im.temporal.beginFrame(*im.addOns, {.screen = im.screen,
+                                                         .layers = static_cast<int>(in.lights.size()),
+                                                         .techniqueKey = im.techniqueKey(),
+                                                         .cut = in.cameraCut,
+                                                         .clipFromWorld = im.clipFromWorld,
+                                                         .pixelFootprintPerM = 2.0f / (in.camera.clipFromView[1][1] * static_cast<float>(s.height))});
   im.timer.beginFrame();
   for (size_t i = 0; i < in.lights.size(); ++i) {
     LightSlot& slot = *im.slots[i];
@@ -349,6 +432,10 @@ void Shadows::render(const ShadowFrameInputs& in) {
     im.renderLight(i, in);
     im.reports[i] = {requests[i].requestedMapSize, sizes[i],
                      slot.light.castsShadow ? static_cast<int>(slot.frusta.views.size()) : 0, requests[i].importance};
+  }
+  if (TemporalAccumulation::enabled(*im.addOns)) {
+    ScopedPass pass(im.timer, "temporal");
+    im.endTemporalFrame(in);
   }
   ++im.frameIndex;
   im.timings = im.timer.endFrame();
@@ -395,6 +482,7 @@ std::vector<float> Shadows::visibilityAt(std::span<const SurfaceSample> points, 
   gl::throwIfGlError("the visibility pass at points");
   std::vector<float> v(points.size());
   out.download(v.data(), v.size() * sizeof(float));
+  if (TemporalAccumulation::enabled(*im.addOns) && im.temporal.historyFrames() > 0) im.accumulatedAt(points, light, v);
   return v;
 }
 

@@ -67,6 +67,9 @@ public:
   glm::ivec2 screen() const { return mScreen; }
   ShaderLibrary& shaders() { return mShaders; }
   PassTimer& timer() { return mTimer; }
+  /// The visibility array (a layer per light) and this frame's light's layer in it.
+  const gl::Texture& visibility() const { return *mVisibility; }
+  int visibilityLayer() const { return mVisibilityLayer; }
 
   const gl::Program& program(const ProgramDesc& desc) { return mShaders.program(desc); }
   /// The programs of a shadow pass: one for alpha-tested casters and one for opaque casters

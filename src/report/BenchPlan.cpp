@@ -31,7 +31,7 @@ std::optional<ParamDesc> findDesc(std::string_view key, const Projection& projec
     if (d.key == key) return d;
   for (const ParamDesc& d : filter.paramDescs())
     if (d.key == key) return d;
-  for (const ParamDesc& d : makeContactShadows()->paramDescs())
+  for (const ParamDesc& d : makeAddOns()->paramDescs())
     if (d.key == key) return d;
   return std::nullopt;
 }

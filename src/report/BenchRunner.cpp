@@ -107,7 +107,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     const auto configStart = Clock::now();
     try {
       renderer.setTechnique(std::move(s.projection), std::move(s.filter));
-      renderer.shadows().contactShadows() = *s.contact;
+      renderer.shadows().addOns() = *s.addOns;
     } catch (const Error& e) {
       if (e.kind() != ErrorKind::Usage) throw;
       results.skipped.push_back({c, e.what(), false});

@@ -27,7 +27,7 @@ struct BenchSetup {
   Scene scene;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
-  std::unique_ptr<Parameterized> contact = makeContactShadows();  ///< "contact.*"
+  std::unique_ptr<Parameterized> addOns = makeAddOns();  ///< "contact.*", "temporal.*"
 };
 using SetupFactory = std::function<BenchSetup(const BenchConfig&)>;
 

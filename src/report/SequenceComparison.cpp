@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <memory>
 
 namespace penumbra::report {
@@ -26,14 +27,14 @@ std::vector<glm::mat4> transforms(const Scene& s) {
 
 SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const RenderOptions& render, const SequenceTiming& timing,
                                    const ReferenceOptions& reference, const FlickerOptions& flickerOptions,
-                                   const std::function<void(int)>& progress) {
+                                   const std::function<void(int)>& progress, const LagOptions& lagOptions) {
   if (timing.frames < 1 || !(timing.fps > 0.0f) || !std::isfinite(timing.fps) || !std::isfinite(timing.startS))
     throw usageError(fmt::format("a sequence needs at least 1 frame and a positive frame rate ({} frames at {} fps)", timing.frames, timing.fps));
   SequenceComparison out;
   Scene posed = scene;
   std::unique_ptr<ReferenceTracer> tracer;
   std::vector<glm::mat4> traced;  // the objects' transforms the tracer was built with
-  FlickerFrame previous;
+  std::deque<FlickerFrame> earlier;  // the last frames, nearest first: flicker reads the first, lag them all
   for (int f = 0; f < timing.frames; ++f) {
     SequenceFrame frame;
     frame.timeS = timing.timeS(f);
@@ -58,6 +59,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     FlickerFrame now = makeFlickerFrame(gbuffer, posed.camera, light.visibility, refs[light.index].visibility,
                                         refs[light.index].litMask, std::move(placed));
     if (f > 0) {
+      const FlickerFrame& previous = earlier.front();
       const std::vector<FollowedPoint> points = followPoints(previous, now, flickerOptions);
       std::vector<SurfaceSample> samples;
       samples.reserve(points.size());
@@ -65,8 +67,13 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
       const std::vector<float> vAt = samples.empty() ? std::vector<float>() : renderer.visibilityAt(samples, light.index);
       frame.flicker = countFlicker(previous, now, points, vAt, flickerOptions);
       out.flicker += frame.flicker;
+      std::vector<const FlickerFrame*> before;
+      for (const FlickerFrame& e : earlier) before.push_back(&e);
+      frame.lag = countLag(now, before, lagOptions);
+      out.lag += frame.lag;
     }
-    previous = std::move(now);
+    earlier.push_front(std::move(now));
+    if (earlier.size() > static_cast<size_t>(std::max(lagOptions.frames, 1))) earlier.pop_back();
     out.frames.push_back(frame);
     if (progress) progress(f);
   }

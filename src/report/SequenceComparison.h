@@ -1,8 +1,10 @@
 #pragma once
 // Error over time: an animated scene rendered frame by frame and compared with its reference
-// frame by frame (the per-frame metrics, their mean and worst frame), and the flicker between
-// consecutive frames (metrics/Flicker.h). `penumbra compare --frames N` prints it.
+// frame by frame (the per-frame metrics, their mean and worst frame), the flicker between
+// consecutive frames (metrics/Flicker.h) and the lag on pixels whose reference changed lately
+// (metrics/Lag.h). `penumbra compare --frames N` prints it.
 #include "metrics/Flicker.h"
+#include "metrics/Lag.h"
 
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
@@ -25,6 +27,7 @@ struct SequenceFrame {
   float timeS = 0.0f;
   VisibilityMetrics metrics;  ///< the combined V against the combined V_ref
   FlickerCounts flicker;      ///< from the frame before into this one (empty for the first)
+  LagCounts lag;              ///< this frame's changing pixels (empty for the first)
 };
 
 struct SequenceComparison {
@@ -33,6 +36,7 @@ struct SequenceComparison {
   size_t rmseWorstFrame = 0;  ///< rmse_worst_frame: the index of the frame with the largest RMSE
   double rmseWorst = 0.0;
   FlickerCounts flicker;      ///< every consecutive pair together: flicker_pct = flicker.pct()
+  LagCounts lag;              ///< every frame's changing pixels: lag_rmse = lag.rmse(), ghost_pct = lag.ghostPct()
   double referenceSeconds = 0.0;
   bool referenceCached = true;  ///< every frame's reference came from the cache
 };
@@ -43,6 +47,7 @@ struct SequenceComparison {
 /// is left at the last frame's pose. Throws penumbra::Error on bad timing.
 SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const RenderOptions& render,
                                    const SequenceTiming& timing, const ReferenceOptions& reference,
-                                   const FlickerOptions& flicker = {}, const std::function<void(int)>& progress = {});
+                                   const FlickerOptions& flicker = {}, const std::function<void(int)>& progress = {},
+                                   const LagOptions& lag = {});
 
 }  // namespace penumbra::report

@@ -19,6 +19,7 @@
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
 #include "shadows/sdf/SdfFilter.h"
+#include "shadows/temporal/TemporalAccumulation.h"
 
 #include <fmt/format.h>
 
@@ -83,7 +84,20 @@ std::vector<std::string> filterIds() { return ids(filters()); }
 std::unique_ptr<Projection> makeProjection(std::string_view id) { return make(projections(), id, "projection"); }
 std::unique_ptr<Filter> makeFilter(std::string_view id) { return make(filters(), id, "filter"); }
 
-std::unique_ptr<Parameterized> makeContactShadows() { return std::make_unique<ContactShadows>(); }
+std::span<const AddOnGroup> addOnGroups() {
+  static const AddOnGroup groups[] = {{"Contact shadows", ContactShadows::params()},
+                                      {"Temporal accumulation", TemporalAccumulation::params()}};
+  return groups;
+}
+
+std::unique_ptr<Parameterized> makeAddOns() {
+  static const std::vector<ParamDesc> all = [] {
+    std::vector<ParamDesc> out;
+    for (const AddOnGroup& g : addOnGroups()) out.insert(out.end(), g.params.begin(), g.params.end());
+    return out;
+  }();
+  return std::make_unique<Parameterized>(all);
+}
 
 void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
                  Projection& projection, Filter& filter, Parameterized* addOns) {

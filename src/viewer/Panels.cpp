@@ -30,9 +30,9 @@ constexpr float kMinSidebarWidthPx = 160.0f;
 constexpr float kMaxSidebarFraction = 0.5f;  // the panels never take more than half the window
 constexpr float kStatusLines = 2.0f;         // the status line's fixed height; longer text: tooltip
 constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in font heights
-// ViewSession::paramGroups() is Scene, Projection, Filter, Contact shadows: the first two sit
-// with the scene and technique choices, the filter's own and the contact pass's in a tab of
-// their own (together they would run past 720 px).
+// ViewSession::paramGroups() is Scene, Projection, Filter, then the add-ons (contact shadows,
+// temporal accumulation): the first two sit with the scene and technique choices, the filter's
+// own and the add-ons' in a tab of their own (together they would run past 720 px).
 constexpr size_t kTechniqueTabGroups = 2;
 constexpr float kPlayButtonEm = 4.0f;  // Play / Pause, in font heights
 // The Speed slider's range (× real time): a 4 s animation from a minute to a quarter second.
@@ -275,7 +275,7 @@ void Viewer::drawTechniquePanel() {
   ImGui::SliderFloat("Render scale", &mRenderScale, 0.25f, 1.0f, "%.2f × view");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("render at this fraction of the view's size (faster on software GL)");
   drawParams(0, kTechniqueTabGroups);
-  hint("the filter's own parameters and contact shadows: the Filter tab");
+  hint("the filter's own parameters, contact shadows and temporal accumulation: the Filter tab");
 }
 
 void Viewer::drawParams(size_t first, size_t last) {

@@ -192,17 +192,18 @@ std::vector<ParamGroup> ViewSession::paramGroups() {
       if (d.key != "light.count") out.push_back(d);
     return out;
   }();
-  return {{"Scene", kScene},
-          {fmt::format("Projection: {}", mProjectionId), r.projection().paramDescs()},
-          {fmt::format("Filter: {}", mFilterId), r.filter().paramDescs()},
-          {"Contact shadows", r.shadows().contactShadows().paramDescs()}};
+  std::vector<ParamGroup> groups = {{"Scene", kScene},
+                                    {fmt::format("Projection: {}", mProjectionId), r.projection().paramDescs()},
+                                    {fmt::format("Filter: {}", mFilterId), r.filter().paramDescs()}};
+  for (const AddOnGroup& g : addOnGroups()) groups.push_back({std::string(g.label), g.params});
+  return groups;
 }
 
 float ViewSession::paramValue(const ParamDesc& desc) {
   Renderer& r = mRenderer;
   if (r.projection().hasParam(desc.key)) return r.projection().param(desc.key);
   if (r.filter().hasParam(desc.key)) return r.filter().param(desc.key);
-  if (r.shadows().contactShadows().hasParam(desc.key)) return r.shadows().contactShadows().param(desc.key);
+  if (r.shadows().addOns().hasParam(desc.key)) return r.shadows().addOns().param(desc.key);
   // Scene parameters have no getter of their own: light.size is the light's size.
   if (desc.key == "light.size" && !mScene.lights.empty()) return mScene.lights.front().size;
   if (auto it = mRemembered.find(desc.key); it != mRemembered.end()) return it->second;
@@ -216,7 +217,7 @@ void ViewSession::setParam(const ParamDesc& desc, float value) {
   } else {
     if (mRenderer.projection().hasParam(desc.key)) mRenderer.projection().setParam(desc.key, value);
     else if (mRenderer.filter().hasParam(desc.key)) mRenderer.filter().setParam(desc.key, value);
-    else if (mRenderer.shadows().contactShadows().hasParam(desc.key)) mRenderer.shadows().contactShadows().setParam(desc.key, value);
+    else if (mRenderer.shadows().addOns().hasParam(desc.key)) mRenderer.shadows().addOns().setParam(desc.key, value);
     else throw usageError(fmt::format("parameter '{}' belongs to neither --projection {} nor --filter {}", desc.key, mProjectionId, mFilterId));
     mRemembered[std::string(desc.key)] = value;
   }

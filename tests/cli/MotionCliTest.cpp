@@ -44,7 +44,8 @@ TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
   const RunResult r = runPenumbra("compare --scene boxes --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 --json --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* k : {"frames", "flicker_pct", "rmse_mean", "rmse_worst_frame", "frame_rmse"}) EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* k : {"frames", "flicker_pct", "rmse_mean", "rmse_worst_frame", "frame_rmse", "lag_rmse", "ghost_pct", "lag_pixels"})
+    EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["frames"], 3);
   EXPECT_EQ(j["frame_rmse"].size(), 3u);
   EXPECT_GE(j["flicker_pct"].get<double>(), 0.0);

@@ -16,13 +16,13 @@ std::unique_ptr<Renderer> makeTestRenderer(const Scene& sceneIn, const std::stri
   Scene scene = sceneIn;
   auto p = makeProjection(projection);
   auto f = makeFilter(filter);
-  const std::unique_ptr<Parameterized> contact = makeContactShadows();
-  applyParams(params, scene, *p, *f, contact.get());
+  const std::unique_ptr<Parameterized> addOns = makeAddOns();
+  applyParams(params, scene, *p, *f, addOns.get());
   glContext();  // made current before the renderer
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(scene);
   renderer->setTechnique(std::move(p), std::move(f));
-  renderer->shadows().contactShadows() = *contact;
+  renderer->shadows().addOns() = *addOns;
   return renderer;
 }
 

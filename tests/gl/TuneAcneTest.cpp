@@ -20,7 +20,7 @@ constexpr double kMaxContactGapTexels = 2.0;
 
 report::BenchSetup setupFor(const report::BenchConfig& c, const std::string& /*camera: the scene's own*/) {
   report::BenchSetup s{makeBuiltinScene(c.scene), makeProjection(c.projection), makeFilter(c.filter)};
-  applyParams(c.params, s.scene, *s.projection, *s.filter, s.contact.get());
+  applyParams(c.params, s.scene, *s.projection, *s.filter, s.addOns.get());
   return s;
 }
 

@@ -26,16 +26,16 @@ constexpr ParamDesc kParams[] = {
 
 }  // namespace
 
-ContactShadows::ContactShadows() : Parameterized(kParams) {}
+std::span<const ParamDesc> ContactShadows::params() { return kParams; }
 
-bool ContactShadows::enabled() const { return paramInt("contact.shadows") != 0; }
+bool ContactShadows::enabled(const Parameterized& addOns) { return addOns.paramInt("contact.shadows") != 0; }
 
-void ContactShadows::apply(FrameContext& frame) const {
+void ContactShadows::apply(FrameContext& frame, const Parameterized& addOns) {
   gpu::ContactUniforms u{};
-  u.march = glm::vec4(param("contact.distanceM"), param("contact.thicknessM"), param("contact.startOffsetM"),
-                      param("contact.tolerance"));
+  u.march = glm::vec4(addOns.param("contact.distanceM"), addOns.param("contact.thicknessM"), addOns.param("contact.startOffsetM"),
+                      addOns.param("contact.tolerance"));
   frame.setFilterBlock(u);
-  frame.dispatchScreen(frame.screenProgram("shadows/contact/contact_shadows.glsl", *this), true);
+  frame.dispatchScreen(frame.screenProgram("shadows/contact/contact_shadows.glsl", addOns), true);
 }
 
 }  // namespace penumbra

@@ -10,15 +10,16 @@ namespace penumbra {
 
 class FrameContext;
 
-class ContactShadows : public Parameterized {
+class ContactShadows {
 public:
-  ContactShadows();
-  /// True when contact.shadows is on.
-  bool enabled() const;
+  /// The "contact.*" parameters (one group of the add-ons, Registry.h's addOnGroups).
+  static std::span<const ParamDesc> params();
+  /// True when contact.shadows is on in `addOns` (a Parameterized over the add-on groups).
+  static bool enabled(const Parameterized& addOns);
   /// Marches every pixel of the frame's surfaces and lowers the visibility image where the
   /// march passes behind the depth buffer (within the thickness). The surfaces and the frame
   /// block must be bound, the visibility written (the core calls it after the filter).
-  void apply(FrameContext& frame) const;
+  static void apply(FrameContext& frame, const Parameterized& addOns);
 };
 
 }  // namespace penumbra

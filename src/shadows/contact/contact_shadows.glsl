@@ -42,7 +42,7 @@ float contactHitM(vec3 ws, vec3 n, ivec2 px) {
   vec3 start = ws + n * u_contact.march.z;
   float stepM = u_contact.march.x / float(PN_CONTACT_STEPS);
   // Per-pixel jitter of the first step: a fixed lattice would band along the caster.
-  float jitter = interleavedGradientNoise(vec2(px));
+  float jitter = pixelNoise(px, samplingFrame());
   for (int i = 0; i < PN_CONTACT_STEPS; ++i) {
     float t = (float(i) + jitter) * stepM;
     vec3 p = start + l * t;

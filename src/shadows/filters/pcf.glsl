@@ -31,6 +31,6 @@ float shadowVisibility(SurfacePoint s) {
   return percentageCloserBox(s_shadowMap, r, radiusUv, int(ceil(radiusTexels)));
 #endif
 #else
-  return percentageCloserPoisson(s_shadowMap, r, radiusUv, PN_PCF_SAMPLES, pixelRotation(s.pixel));
+  return percentageCloserPoisson(s_shadowMap, r, radiusUv, PN_PCF_SAMPLES, pixelRotation(s.pixel, samplingFrame()));
 #endif
 }

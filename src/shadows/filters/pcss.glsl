@@ -54,7 +54,7 @@ float shadowVisibility(SurfacePoint s) {
   ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcss.params.x, u_pcss.params.y);
   float texelUv = 1.0 / shadowMapSize();
   vec2 maxRadiusUv = vec2(u_pcss.params.w * texelUv);
-  mat2 rotation = pixelRotation(s.pixel);
+  mat2 rotation = pixelRotation(s.pixel, samplingFrame());
 
   vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, vec2(0.0), maxRadiusUv);
   float blockerDepth;
