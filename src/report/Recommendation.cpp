@@ -52,7 +52,7 @@ namespace {
 /// plan's `contact.shadows=off` row): the same configuration as the plain row, measured again.
 bool sweepsOnlyDefaults(const BenchConfig& c) {
   if (c.params.empty()) return false;
-  const std::unique_ptr<Parameterized> owners[] = {makeFilter(c.filter), makeProjection(c.projection), makeContactShadows()};
+  const std::unique_ptr<Parameterized> owners[] = {makeFilter(c.filter), makeProjection(c.projection), makeAddOns()};
   for (const auto& [key, value] : c.params) {
     const Parameterized* owner = nullptr;
     for (const auto& o : owners)
