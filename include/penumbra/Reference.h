@@ -74,7 +74,7 @@ struct ReferenceResult {
   double seconds = 0.0;       ///< wall-clock seconds of this call (a cache hit: the load time)
   double traceSeconds = 0.0;  ///< wall-clock seconds of the trace that produced the data
   bool fromCache = false;
-  uint64_t cacheKey = 0;
+  uint64_t cacheKey = 0;       ///< the key it is cached under; 0 where no cache was used (useCache off, no folder)
 };
 
 /// An Embree BVH of the scene's shadow casters (objects with castsShadow), in world space, and

@@ -46,21 +46,37 @@ const float kMaxReceiverTangent = 10.0;
 
 // The receiver's tangent plane as depth over map uv (Isidoro 2006, "receiver plane depth bias"):
 // the plane is stepped one texel's width along two tangents and both steps projected into the
-// map. Exact for orthographic, perspective and warped views alike. (For a spot light depth is
-// measured along the light's axis, not along the ray, so a surface facing the light head-on
-// can still change depth from texel to texel; the angle to the ray, slopeTangent, misses that.)
+// map (an orthographic view: the same in closed form). Exact for orthographic, perspective and
+// warped views alike. (For a spot light depth is measured along the light's axis, not along the
+// ray, so a surface facing the light head-on can still change depth from texel to texel; the
+// angle to the ray, slopeTangent, misses that.)
 // The gradient's length is bounded by kMaxReceiverTangent texels of slope per texel.
 vec2 receiverDepthGradient(int view, SurfacePoint s) {
   vec3 n = s.geoNormal;
-  vec3 t1 = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
-  vec3 t2 = cross(n, t1);
-  float stepM = shadowTexelWorldSize(view, s.ws);
-  vec3 c0 = shadowCoord(view, s.ws);
-  vec3 d1 = shadowCoord(view, s.ws + stepM * t1) - c0;
-  vec3 d2 = shadowCoord(view, s.ws + stepM * t2) - c0;
-  mat2 uvFromPlane = mat2(d1.xy, d2.xy);  // plane coordinates → map uv
-  if (determinant(uvFromPlane) == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
-  vec2 depthPerUv = vec2(d1.z, d2.z) * inverse(uvFromPlane);
+  vec2 depthPerUv;
+  if (!isPerspectiveView(view) && !isWarpedView(view)) {
+    // An orthographic view (the sun's) maps the world to (u, v, depth) linearly, x ↦ (a_u·x,
+    // a_v·x, p·x) + const, so the plane's step x for a step (du, dv) in the map solves
+    // [a_u; a_v; n] x = (du, dv, 0): Cramer's rule gives the same gradient in closed form, with
+    // no differences of nearby projections.
+    mat4 m = u_shadow.views[view].clipFromWorld;
+    vec3 au = 0.5 * vec3(m[0][0], m[1][0], m[2][0]);
+    vec3 av = 0.5 * vec3(m[0][1], m[1][1], m[2][1]);
+    vec3 p = u_shadow.views[view].depthPlane.xyz;
+    float det = dot(n, cross(au, av));
+    if (det == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
+    depthPerUv = vec2(dot(n, cross(p, av)), dot(n, cross(au, p))) / det;
+  } else {
+    vec3 t1 = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 t2 = cross(n, t1);
+    float stepM = shadowTexelWorldSize(view, s.ws);
+    vec3 c0 = shadowCoord(view, s.ws);
+    vec3 d1 = shadowCoord(view, s.ws + stepM * t1) - c0;
+    vec3 d2 = shadowCoord(view, s.ws + stepM * t2) - c0;
+    mat2 uvFromPlane = mat2(d1.xy, d2.xy);  // plane coordinates → map uv
+    if (determinant(uvFromPlane) == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
+    depthPerUv = vec2(d1.z, d2.z) * inverse(uvFromPlane);
+  }
   float maxPerUv = slopeDepthOffset(view, s.ws, kMaxReceiverTangent, 1.0) * shadowMapSize();
   float len = length(depthPerUv);
   return len > maxPerUv ? depthPerUv * (maxPerUv / len) : depthPerUv;
@@ -81,26 +97,57 @@ ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, floa
   return r;
 }
 
-// The receiver's depth at a tap offsetUv away from it, biased.
-float tapDepth(ComparisonReceiver r, vec2 offsetUv) { return r.depth + dot(r.depthPerUv, offsetUv) - r.bias; }
+// A kernel of taps around a receiver, placed in texels of its map: each tap is two multiply-adds
+// from its point of a unit pattern, one more pair for the receiver's plane there, and the fetch.
+// The whole kernel is kept on the map's outermost texel centres by moving its centre, not each tap:
+// within its reach of the edge it is shifted inward (at most its radius, ×√2 for a turned
+// pattern), and every tap is compared with the receiver's plane at the tap, so plane and map agree
+// there (a tap past the edge would read the edge texel, clamp to edge, against the plane continued
+// past it: a false blocker wherever the plane deepens outward, a shadow line along the map's edge
+// on a lit floor).
+struct TapKernel {
+  vec2 centre;         // the kernel's centre, in texels
+  mat2 texelsPerUnit;  // a pattern point (unit disk or square) → texel offset: radius and rotation
+  float depth;         // the receiver's plane at the centre, minus its bias
+  vec2 depthPerUnit;   // the plane's depth change per unit of the pattern
+  vec2 uvPerTexel;
+  int layer;
+};
 
-// A tap's offset with the tap kept inside the map (its outermost texel centres). A tap past the
-// edge would read the edge texel (clamp to edge) but compare it with the receiver's plane
-// continued past the edge: a false blocker wherever that plane deepens outward, i.e. a shadow
-// line along the map's edge on a lit floor. Moved onto the edge, plane and map agree again.
-// mapSize: the map's texels per side (textureSize).
-vec2 tapInsideMap(ComparisonReceiver r, vec2 offsetUv, ivec2 mapSize) {
-  vec2 halfTexelUv = 0.5 / vec2(mapSize);
-  return clamp(r.uv + offsetUv, halfTexelUv, 1.0 - halfTexelUv) - r.uv;
+// The kernel of radius radiusUv (per axis) around r, its pattern turned by `rotation`, in a map of
+// mapSize (textureSize) texels.
+TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
+  vec2 size = vec2(mapSize);
+  vec2 radiusTexels = radiusUv * size;
+  TapKernel k;
+  k.texelsPerUnit = mat2(rotation[0] * radiusTexels, rotation[1] * radiusTexels);
+  // The farthest tap per axis. The filters keep a kernel inside the map (their radii at most
+  // maxKernelRadiusTexels, PcfFilter.h): narrowing it here, per pixel, cost pcf's pass 5 %.
+  vec2 reach = abs(k.texelsPerUnit[0]) + abs(k.texelsPerUnit[1]);
+  vec2 receiver = r.uv * size;
+  k.centre = clamp(receiver, 0.5 + reach, size - 0.5 - reach);
+  vec2 depthPerTexel = r.depthPerUv / size;
+  k.depth = r.depth - r.bias + dot(depthPerTexel, k.centre - receiver);
+  k.depthPerUnit = depthPerTexel * k.texelsPerUnit;
+  k.uvPerTexel = 1.0 / size;
+  k.layer = r.layer;
+  return k;
 }
 
-// One comparison at uv: the nearest texel's stored depth …
-float comparisonTap(sampler2DArray map, vec2 uv, int layer, float depth) {
-  return compareDepth(depth, texelFetch(map, mapTexel(map, uv, layer), 0).r);
+// Where the tap at pattern point `unit` falls (texels) and the receiver's biased depth there.
+vec2 tapTexel(TapKernel k, vec2 unit) { return k.centre + k.texelsPerUnit * unit; }
+float tapDepth(TapKernel k, vec2 unit) { return k.depth + dot(k.depthPerUnit, unit); }
+
+// The depth stored at a tap's texel (inside the map: truncation is the floor).
+float storedDepth(sampler2DArray map, TapKernel k, vec2 texel) { return texelFetch(map, ivec3(ivec2(texel), k.layer), 0).r; }
+
+// One comparison at pattern point `unit`: the nearest texel's stored depth …
+float comparisonTap(sampler2DArray map, TapKernel k, vec2 unit) {
+  return compareDepth(tapDepth(k, unit), storedDepth(map, k, tapTexel(k, unit)));
 }
 // … or the hardware's bilinear blend of the four surrounding comparisons.
-float comparisonTap(sampler2DArrayShadow map, vec2 uv, int layer, float depth) {
-  return texture(map, vec4(uv, float(layer), depth));
+float comparisonTap(sampler2DArrayShadow map, TapKernel k, vec2 unit) {
+  return texture(map, vec4(tapTexel(k, unit) * k.uvPerTexel, float(k.layer), tapDepth(k, unit)));
 }
 
 // The receiver's map coordinate moved onto the outermost texel centres, its depth carried along
@@ -116,24 +163,18 @@ vec3 coordInsideMap(int view, SurfacePoint s, vec3 coord, ivec2 mapSize) {
 // Percentage-closer filtering over a (2·halfSide + 1)² grid spanning ±radiusUv on each axis.
 float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int halfSide) {
   int taps = boxTapCount(halfSide);
-  ivec2 mapSize = textureSize(map, 0).xy;
+  TapKernel k = tapKernel(r, radiusUv, mat2(1.0), textureSize(map, 0).xy);
   float lit = 0.0;
-  for (int i = 0; i < taps; ++i) {
-    vec2 offset = tapInsideMap(r, boxTap(i, halfSide) * radiusUv, mapSize);
-    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
-  }
+  for (int i = 0; i < taps; ++i) lit += comparisonTap(map, k, boxTap(i, halfSide));
   return lit / float(taps);
 }
 
-// Percentage-closer filtering over the first `taps` points of the rotated Poisson disk of
-// radius radiusUv (per axis).
+// Percentage-closer filtering over the first `taps` points of the Poisson disk of radius radiusUv
+// (per axis), turned by `rotation`.
 float percentageCloserPoisson(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int taps, mat2 rotation) {
   int n = clamp(taps, 1, kPoissonDiskSize);
-  ivec2 mapSize = textureSize(map, 0).xy;
+  TapKernel k = tapKernel(r, radiusUv, rotation, textureSize(map, 0).xy);
   float lit = 0.0;
-  for (int i = 0; i < n; ++i) {
-    vec2 offset = tapInsideMap(r, poissonTap(i, rotation) * radiusUv, mapSize);
-    lit += comparisonTap(map, r.uv + offset, r.layer, tapDepth(r, offset));
-  }
+  for (int i = 0; i < n; ++i) lit += comparisonTap(map, k, kPoissonDisk[i]);
   return lit / float(n);
 }

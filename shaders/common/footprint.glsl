@@ -29,6 +29,13 @@ vec3 hitTangentPlane(vec2 ndc, vec3 ws, vec3 n) {
   return t > 0.0 ? o + t * d : ws;
 }
 
+// Shortens each axis of a footprint in a map of mapSize texels to kMaxFootprintTexels.
+void limitFootprint(float mapSize, inout vec2 dUVdx, inout vec2 dUVdy) {
+  float maxUV = kMaxFootprintTexels / mapSize;
+  if (length(dUVdx) > maxUV) dUVdx *= maxUV / length(dUVdx);
+  if (length(dUVdy) > maxUV) dUVdy *= maxUV / length(dUVdy);
+}
+
 // Map-uv offsets of one pixel step in screen x and y at s, in view `view`; `uv` is s's map uv.
 // The steps start from s's own projection in the current camera, not from s.pixel: a point
 // list (Renderer::visibilityAt) keeps the pixel a point was first seen at while the camera moves,
@@ -40,9 +47,7 @@ void shadowFootprint(int view, SurfacePoint s, vec2 uv, out vec2 dUVdx, out vec2
   vec2 stepNdc = 2.0 / screen;
   dUVdx = shadowCoord(view, hitTangentPlane(ndc + vec2(stepNdc.x, 0.0), s.ws, s.geoNormal)).xy - uv;
   dUVdy = shadowCoord(view, hitTangentPlane(ndc + vec2(0.0, stepNdc.y), s.ws, s.geoNormal)).xy - uv;
-  float maxUV = kMaxFootprintTexels / shadowMapSize();
-  if (length(dUVdx) > maxUV) dUVdx *= maxUV / length(dUVdx);
-  if (length(dUVdy) > maxUV) dUVdy *= maxUV / length(dUVdy);
+  limitFootprint(shadowMapSize(), dUVdx, dUVdy);
 }
 
 // Widens a footprint so that each axis spans at least minUV (a minimum filter width: the

@@ -52,9 +52,6 @@ mat2 pixelRotation(ivec2 pixel, int frame) {
   return mat2(c, s, -s, c);
 }
 
-// Tap i (< kPoissonDiskSize) of the Poisson disk, rotated: a point of the unit disk.
-vec2 poissonTap(int i, mat2 rotation) { return rotation * kPoissonDisk[i]; }
-
 // Number of taps of a (2·halfSide + 1)² box grid.
 int boxTapCount(int halfSide) { return (2 * halfSide + 1) * (2 * halfSide + 1); }
 

@@ -4,18 +4,22 @@
 // no N·L, no bias geometry (one constant bias), no edge handling beyond clamping. The bench times
 // each next to the real visibility pass of its filter on the same G-buffer and map; their ratio
 // is the pass's overhead over its own arithmetic (docs/bench.md). LOOKUP_KIND: a PN_LOOKUP_*
-// (micro/lookup.shared.h); LOOKUP_SIDE: the box's taps per side.
+// (micro/lookup.shared.h); LOOKUP_SIDE: the box's taps per side (the Poisson disk's: its square
+// root); LOOKUP_FOOTPRINT: the moments' tap is the pixel's footprint.
 #include "shared/Bindings.h"
 #include "micro/lookup.shared.h"
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std140, binding = PN_UBO_FILTER) uniform LookupBlock { LookupUniforms u_lookup; };
-layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_position;
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
 
-// Functions only, besides sat.glsl's read-only table (bound only for the SAT kind). Included
-// whatever the kind: the include expander honours #pragma once, not #if.
+// Functions only, besides the G-buffer's samplers (common/visibility.glsl, through footprint.glsl:
+// the kernel reads s_gbufPosition, and s_gbufGeoNormal for the footprint) and sat.glsl's read-only
+// table (bound only for the SAT kind); the frame and shadow blocks they declare are not read.
+// Included whatever the kind: the include expander honours #pragma once, not #if.
+#include "common/footprint.glsl"
 #include "common/moments.glsl"
+#include "common/sampling.glsl"
 #include "common/sat.glsl"
 
 #if LOOKUP_KIND == PN_LOOKUP_SAT
@@ -25,7 +29,7 @@ layout(binding = PN_TEX_FILTER0) uniform sampler2DArrayShadow s_map;
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_map;
 #endif
 
-#if LOOKUP_KIND == PN_LOOKUP_COMPARE || (LOOKUP_KIND == PN_LOOKUP_BOX && !defined(PN_HARDWARE_COMPARE))
+#if LOOKUP_KIND == PN_LOOKUP_COMPARE || LOOKUP_KIND == PN_LOOKUP_POISSON || (LOOKUP_KIND == PN_LOOKUP_BOX && !defined(PN_HARDWARE_COMPARE))
 float fetchCompare(vec2 uv, float depth) {
   ivec2 size = textureSize(s_map, 0).xy;
   ivec2 texel = clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1);
@@ -33,7 +37,42 @@ float fetchCompare(vec2 uv, float depth) {
 }
 #endif
 
-float lookup(vec2 uv, float depth) {
+#if LOOKUP_KIND == PN_LOOKUP_MOMENTS2 || LOOKUP_KIND == PN_LOOKUP_MOMENTS4
+#ifdef LOOKUP_FOOTPRINT
+// The map-uv step of one pixel along rayStep on the plane through ws with normal n: the camera ray
+// through the neighbouring pixel met with that plane (common/footprint.glsl's ray differentials).
+vec2 footprintStep(vec3 ws, vec3 n, vec2 uv, vec3 rayStep) {
+  vec3 o = u_lookup.cameraPosition.xyz;
+  vec3 d = (ws - o) / dot(ws - o, u_lookup.cameraForward.xyz) + rayStep;
+  float dn = dot(d, n);
+  float t = abs(dn) > 1e-6 ? dot(ws - o, n) / dn : -1.0;
+  vec4 c = u_lookup.mapFromWorld * vec4(t > 0.0 ? o + t * d : ws, 1.0);
+  return c.xy / c.w - uv;
+}
+
+// The moments under the pixel's footprint, as vsm and msm read them.
+vec4 footprintMoments(vec2 uv, ivec2 px, vec3 ws) {
+  vec3 n = normalize(texelFetch(s_gbufGeoNormal, px, 0).xyz);
+  vec2 dx = footprintStep(ws, n, uv, u_lookup.rayStepX.xyz);
+  vec2 dy = footprintStep(ws, n, uv, u_lookup.rayStepY.xyz);
+  float mapSize = float(u_lookup.mapSize.x);
+  limitFootprint(mapSize, dx, dy);
+  widenFootprint(u_lookup.params.y / mapSize, dx, dy);
+  return textureFootprint(s_map, vec3(uv, 0.0), dx, dy, u_lookup.mapSize.z);
+}
+#endif
+
+// The moments' one filtered tap.
+vec4 filteredMoments(vec2 uv, ivec2 px, vec3 ws) {
+#ifdef LOOKUP_FOOTPRINT
+  return footprintMoments(uv, px, ws);
+#else
+  return textureLod(s_map, vec3(uv, 0.0), u_lookup.params.z);
+#endif
+}
+#endif
+
+float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
   float biased = depth - u_lookup.params.x;
 #if LOOKUP_KIND == PN_LOOKUP_COMPARE
   return fetchCompare(uv, biased);
@@ -49,11 +88,16 @@ float lookup(vec2 uv, float depth) {
 #endif
     }
   return lit / float(LOOKUP_SIDE * LOOKUP_SIDE);
+#elif LOOKUP_KIND == PN_LOOKUP_POISSON
+  mat2 turn = pixelRotation(px) * u_lookup.params.y;
+  float lit = 0.0;
+  for (int i = 0; i < LOOKUP_SIDE * LOOKUP_SIDE; ++i) lit += fetchCompare(uv + turn * kPoissonDisk[i], biased);
+  return lit / float(LOOKUP_SIDE * LOOKUP_SIDE);
 #elif LOOKUP_KIND == PN_LOOKUP_MOMENTS2
-  vec2 mv = meanVariance(textureLod(s_map, vec3(uv, 0.0), u_lookup.params.z).rg, u_lookup.params.w);
+  vec2 mv = meanVariance(filteredMoments(uv, px, ws).rg, u_lookup.params.w);
   return chebyshevUpperBound(mv.x, mv.y, depth);
 #elif LOOKUP_KIND == PN_LOOKUP_MOMENTS4
-  vec4 b = biasMoments(textureLod(s_map, vec3(uv, 0.0), u_lookup.params.z), u_lookup.params.w);
+  vec4 b = biasMoments(filteredMoments(uv, px, ws), u_lookup.params.w);
   return 1.0 - hamburgerShadowIntensity(b, depth);
 #else
   ivec2 size = u_lookup.mapSize.xy;
@@ -66,13 +110,13 @@ float lookup(vec2 uv, float depth) {
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 screen = textureSize(s_position, 0);
+  ivec2 screen = textureSize(s_gbufPosition, 0);
   if (any(greaterThanEqual(px, screen))) return;
-  vec4 ws = texelFetch(s_position, px, 0);
+  vec4 ws = texelFetch(s_gbufPosition, px, 0);
   float v = 1.0;
   if (ws.w > 0.5) {
     vec4 c = u_lookup.mapFromWorld * vec4(ws.xyz, 1.0);
-    v = lookup(c.xy / c.w, c.z);
+    v = lookup(c.xy / c.w, c.z, px, ws.xyz);
   }
   imageStore(i_visibility, px, vec4(v));
 }

@@ -9,6 +9,10 @@
 #define PN_LOOKUP_MOMENTS2 2  // vsm: one trilinear tap of the (z, z²) chain + Chebyshev
 #define PN_LOOKUP_MOMENTS4 3  // msm: one trilinear tap of the four-moment chain + Hamburger 4MSM
 #define PN_LOOKUP_SAT 4       // vssm: one exact box mean of the (z, z²) summed-area table + Chebyshev
+#define PN_LOOKUP_POISSON 5   // pcf: LOOKUP_SIDE² fetch-and-compares on the Poisson disk, turned per pixel as pcf's
+// LOOKUP_FOOTPRINT (with MOMENTS2 or MOMENTS4): the tap is the pixel's footprint (ray differentials
+// against the tangent plane, anisotropic trilinear taps: common/footprint.glsl) instead of one
+// trilinear tap at the filter's width.
 
 PN_GPU_BEGIN
 
@@ -16,14 +20,22 @@ struct LookupUniforms {
   // The one matrix: rows 0, 1, 3 are the view's clipFromWorld taken to map uv (uv = xy / w), row 2
   // is its depth plane (linear light depth, not divided by w).
   mat4 mapFromWorld;
-  // x: depth bias (linear depth), y: box tap spacing (uv), z: mip level (moments) or box
-  // half-size (texels, SAT), w: variance floor (linear depth², Chebyshev) or moment bias α (msm)
+  // x: depth bias (linear depth), y: box tap spacing or Poisson radius (uv), or the footprint's
+  // minimum width (texels), z: mip level (moments) or box half-size (texels, SAT), w: variance
+  // floor (linear depth², Chebyshev) or moment bias α (msm)
   vec4 params;
-  ivec4 mapSize;  // xy: the map's (and the summed-area table's) texels per side; zw: unused
+  ivec4 mapSize;  // xy: the map's (and the summed-area table's) texels per side; z: the footprint's
+                  // most taps; w: unused
+  // The camera, for the footprint: its position (xyz, m), its forward axis, and the change of a
+  // camera ray's direction (at unit view depth, world space) from one pixel to the next in x and y.
+  vec4 cameraPosition;
+  vec4 cameraForward;
+  vec4 rayStepX;
+  vec4 rayStepY;
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::LookupUniforms) == 96, "std140 size of LookupUniforms");
+static_assert(sizeof(penumbra::gpu::LookupUniforms) == 160, "std140 size of LookupUniforms");
 #endif

@@ -3,6 +3,8 @@
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -75,21 +77,24 @@ std::vector<std::vector<ReceiverTriangle>> receiverTriangles(const Scene& scene)
 
 std::vector<Receiver> receiversOf(const GBufferData& g, const std::vector<std::vector<ReceiverTriangle>>& triangles) {
   std::vector<Receiver> out(g.position.size());
-  for (size_t i = 0; i < out.size(); ++i) {
-    const glm::vec3 p = glm::abs(glm::vec3(g.position[i]));
-    float magnitude = std::max({p.x, p.y, p.z});
-    if (!g.triangle.empty() && g.triangle[i].x > 0) {
-      const uint32_t object = g.triangle[i].x - 1, triangle = g.triangle[i].y;
-      PN_CHECK(object < triangles.size() && triangle < triangles[object].size(),
-               fmt::format("reference: G-buffer pixel {} shows triangle {} of object {}, which the scene does not have",
-                           i, triangle, object));
-      const ReceiverTriangle& t = triangles[object][triangle];
-      out[i].triangle = {object, triangle};
-      out[i].planeNormal = glm::dot(t.normal, glm::vec3(g.geoNormal[i])) < 0.0f ? -t.normal : t.normal;
-      magnitude = std::max(magnitude, t.magnitude);
+  // Over every core: one pass over the G-buffer before any ray is cast.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size()), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const glm::vec3 p = glm::abs(glm::vec3(g.position[i]));
+      float magnitude = std::max({p.x, p.y, p.z});
+      if (!g.triangle.empty() && g.triangle[i].x > 0) {
+        const uint32_t object = g.triangle[i].x - 1, triangle = g.triangle[i].y;
+        PN_CHECK(object < triangles.size() && triangle < triangles[object].size(),
+                 fmt::format("reference: G-buffer pixel {} shows triangle {} of object {}, which the scene does not have",
+                             i, triangle, object));
+        const ReceiverTriangle& t = triangles[object][triangle];
+        out[i].triangle = {object, triangle};
+        out[i].planeNormal = glm::dot(t.normal, glm::vec3(g.geoNormal[i])) < 0.0f ? -t.normal : t.normal;
+        magnitude = std::max(magnitude, t.magnitude);
+      }
+      out[i].errorM = kPositionToleranceUlps * floatSpacing(magnitude);
     }
-    out[i].errorM = kPositionToleranceUlps * floatSpacing(magnitude);
-  }
+  });
   return out;
 }
 

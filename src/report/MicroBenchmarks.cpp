@@ -157,10 +157,24 @@ std::vector<MicroResult> runMicroItems(const std::vector<MicroItem>& items, int 
       state[i].ms.clear();
     }
   };
-  for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].work = items[i].prepare(); });
-  for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].work(); });  // untimed
+  auto runs = [&](size_t i) { return items[i].sameAs.empty(); };
+  for (size_t i = 0; i < items.size(); ++i)
+    if (runs(i)) attempt(i, [&] { state[i].work = items[i].prepare(); });
+  for (size_t i = 0; i < items.size(); ++i)
+    if (runs(i)) attempt(i, [&] { state[i].work(); });  // untimed
   for (int r = 0; r < rounds; ++r)
-    for (size_t i = 0; i < items.size(); ++i) attempt(i, [&] { state[i].ms.push_back(state[i].work()); });
+    for (size_t i = 0; i < items.size(); ++i)
+      if (runs(i)) attempt(i, [&] { state[i].ms.push_back(state[i].work()); });
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (runs(i)) continue;
+    const auto same = std::find_if(items.begin(), items.end(), [&](const MicroItem& m) { return m.name == items[i].sameAs; });
+    if (same == items.end()) {
+      state[i].error = fmt::format("no item '{}' to take the times of", items[i].sameAs);
+    } else {
+      state[i].ms = state[static_cast<size_t>(same - items.begin())].ms;
+      state[i].error = state[static_cast<size_t>(same - items.begin())].error;
+    }
+  }
 
   std::vector<MicroResult> out;
   for (size_t i = 0; i < items.size(); ++i) {

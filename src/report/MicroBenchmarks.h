@@ -21,6 +21,9 @@ struct MicroItem {
   std::string description;  ///< what is timed, on what data
   std::string baseline;     ///< the item it is measured against; "" = none
   std::function<std::function<double()>()> prepare;
+  /// Non-empty: not run; the times of the item of this name, measured against another baseline
+  /// (a second yardstick for the same work). `prepare` is then unused.
+  std::string sameAs = {};
 };
 
 /// `work` timed with the renderer's clock (GL timer queries, or glFinish + steady_clock when

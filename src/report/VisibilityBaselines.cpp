@@ -36,18 +36,28 @@ struct KernelInputs {
   int mapSize;
 };
 
-// One filter's visibility pass and the kernel of the same lookup.
+// A kernel of one filter's lookup.
+struct KernelDesc {
+  const char* name;
+  const char* text;  // what the kernel does, for the table
+  int kind;          // PN_LOOKUP_*
+  std::function<glm::vec4(const KernelInputs&)> params4;  // LookupUniforms::params
+  bool footprint = false;  // LOOKUP_FOOTPRINT
+};
+
+// One filter's visibility pass and the kernels of its lookup: the first is the minimal one (the
+// filter's arithmetic at its simplest: one tap, a plain box); a second, where the filter's own
+// pattern or footprint is more work than that, does the same taps as the pass, so that the pass's
+// overhead beyond its taps is a ratio of its own (its row: passName + kSameTapsSuffix).
 struct Pairing {
   const char* filter;  // registry id
   std::vector<std::pair<std::string, std::string>> params;  // over the filter's defaults
   const char* passName;
-  const char* kernelName;
-  const char* kernelText;  // what the kernel does, for the table
-  int kind;                // PN_LOOKUP_*
   bool hardwareCompare;
   std::string_view mapImage;  // the Filter::debugImages() entry that holds the map the kernel reads
-  std::function<glm::vec4(const KernelInputs&)> params4;  // LookupUniforms::params
+  std::vector<KernelDesc> kernels;
 };
+constexpr const char* kSameTapsSuffix = ", against the kernel of its own taps";
 
 // The kernels have one constant depth bias where the filters slope-scale theirs per pixel (that
 // needs the normal: bias geometry, the overhead being measured). Without a slope term a constant
@@ -77,49 +87,73 @@ glm::vec4 pcfParams(const KernelInputs& in) {
   return {kernelBias(in, "pcf") + radiusTexels * in.texelDepth * kKernelSlopeTangent, spacingTexels / static_cast<float>(in.mapSize), 0.0f, 0.0f};
 }
 
+// pcf's Poisson disk as the kernel reads it: its radius in uv, the bias grown over that radius.
+glm::vec4 poissonParams(const KernelInputs& in) {
+  const float radiusTexels = in.filter.param("pcf.radiusTexels");
+  return {kernelBias(in, "pcf") + radiusTexels * in.texelDepth * kKernelSlopeTangent, radiusTexels / static_cast<float>(in.mapSize), 0.0f, 0.0f};
+}
+
+// The moments' kernels (vsm: 2, msm: 4): one trilinear tap at the filter's width, or the pixel's
+// footprint widened to it; the variance floor or moment bias from `floorKey`.
+glm::vec4 momentParams(const KernelInputs& in, const char* filter, const char* floorKey) {
+  const float widthTexels = in.filter.param(fmt::format("{}.filterTexels", filter));
+  return {0.0f, widthTexels, log2Texels(widthTexels), texelsSquaredToDepth(in, in.filter.param(floorKey))};
+}
+glm::vec4 vsmParams(const KernelInputs& in) { return momentParams(in, "vsm", "vsm.minVariance"); }
+glm::vec4 msmParams(const KernelInputs& in) { return momentParams(in, "msm", "msm.bias"); }
+
 const std::vector<Pairing>& pairings() {
   static const std::vector<Pairing> list = {
-      {"hard", {}, "visibility: hard", "lookup: one fetch and compare",
-       "one texelFetch of the depth map and a compare with one constant bias", PN_LOOKUP_COMPARE, false, kShadowMapImage,
-       [](const KernelInputs& in) { return glm::vec4(kernelBias(in, "hard"), 0.0f, 0.0f, 0.0f); }},
-      {"pcf", {}, "visibility: pcf", "lookup: box of fetch-and-compares",
-       "a box of texelFetch-and-compares with as many taps as pcf's default (16 Poisson taps: 4x4) over its radius",
-       PN_LOOKUP_BOX, false, kShadowMapImage, pcfParams},
-      {"pcf", {{"pcf.hardwareCompare", "on"}}, "visibility: pcf, hardwareCompare=on", "lookup: box of hardware 2x2 compares",
-       "the same box, each tap the hardware's bilinear 2x2 comparison (sampler2DArrayShadow)", PN_LOOKUP_BOX, true,
-       kShadowMapImage, pcfParams},
-      {"vsm", {}, "visibility: vsm", "lookup: one trilinear (z, z²) tap + Chebyshev",
-       "one trilinear textureLod of the moments' mip chain at vsm's filter width, Chebyshev's bound over its variance floor",
-       PN_LOOKUP_MOMENTS2, false, kMomentsImage,
-       [](const KernelInputs& in) {
-         return glm::vec4(0.0f, 0.0f, log2Texels(in.filter.param("vsm.filterTexels")),
-                          texelsSquaredToDepth(in, in.filter.param("vsm.minVariance")));
-       }},
-      {"vssm", {}, "visibility: vssm", "lookup: one SAT box mean + Chebyshev",
-       "one exact box mean of the (z, z²) summed-area table (16 corner reads, vssm's filter step at its minimum radius), "
-       "Chebyshev's bound over its variance floor",
-       PN_LOOKUP_SAT, false, kShadowMapImage,
-       [](const KernelInputs& in) {
-         return glm::vec4(0.0f, 0.0f, in.filter.param("vssm.minRadiusTexels"),
-                          texelsSquaredToDepth(in, in.filter.param("vssm.minVariance")));
-       }},
-      {"msm", {}, "visibility: msm", "lookup: one trilinear 4-moment tap + Hamburger 4MSM",
-       "one trilinear textureLod of the four moments' mip chain at msm's filter width, the moment bias, the Hamburger 4MSM bound",
-       PN_LOOKUP_MOMENTS4, false, kMomentsImage,
-       [](const KernelInputs& in) {
-         return glm::vec4(0.0f, 0.0f, log2Texels(in.filter.param("msm.filterTexels")),
-                          texelsSquaredToDepth(in, in.filter.param("msm.bias")));
-       }},
+      {"hard", {}, "visibility: hard", false, kShadowMapImage,
+       {{"lookup: one fetch and compare", "one texelFetch of the depth map and a compare with one constant bias", PN_LOOKUP_COMPARE,
+         [](const KernelInputs& in) { return glm::vec4(kernelBias(in, "hard"), 0.0f, 0.0f, 0.0f); }}}},
+      {"pcf", {}, "visibility: pcf", false, kShadowMapImage,
+       {{"lookup: box of fetch-and-compares",
+         "a box of texelFetch-and-compares with as many taps as pcf's default (16 Poisson taps: 4x4) over its radius",
+         PN_LOOKUP_BOX, pcfParams},
+        {"lookup: turned Poisson disk of fetch-and-compares",
+         "pcf's own taps: its 16 Poisson points over its radius, turned per pixel as pcf turns them, each a "
+         "texelFetch-and-compare with one constant bias",
+         PN_LOOKUP_POISSON, poissonParams}}},
+      {"pcf", {{"pcf.hardwareCompare", "on"}}, "visibility: pcf, hardwareCompare=on", true, kShadowMapImage,
+       {{"lookup: box of hardware 2x2 compares", "the same box, each tap the hardware's bilinear 2x2 comparison (sampler2DArrayShadow)",
+         PN_LOOKUP_BOX, pcfParams}}},
+      {"vsm", {}, "visibility: vsm", false, kMomentsImage,
+       {{"lookup: one trilinear (z, z²) tap + Chebyshev",
+         "one trilinear textureLod of the moments' mip chain at vsm's filter width, Chebyshev's bound over its variance floor",
+         PN_LOOKUP_MOMENTS2, vsmParams},
+        {"lookup: one pixel footprint of (z, z²) + Chebyshev",
+         "vsm's own taps: the pixel's footprint (ray differentials on the tangent plane, widened to vsm's filter "
+         "width) read as up to vsm.anisotropy trilinear taps along its long axis (common/footprint.glsl), "
+         "Chebyshev's bound over its variance floor",
+         PN_LOOKUP_MOMENTS2, vsmParams, true}}},
+      {"vssm", {}, "visibility: vssm", false, kShadowMapImage,
+       {{"lookup: one SAT box mean + Chebyshev",
+         "one exact box mean of the (z, z²) summed-area table (16 corner reads, vssm's filter step at its minimum radius), "
+         "Chebyshev's bound over its variance floor",
+         PN_LOOKUP_SAT, [](const KernelInputs& in) {
+           return glm::vec4(0.0f, 0.0f, in.filter.param("vssm.minRadiusTexels"),
+                            texelsSquaredToDepth(in, in.filter.param("vssm.minVariance")));
+         }}}},
+      {"msm", {}, "visibility: msm", false, kMomentsImage,
+       {{"lookup: one trilinear 4-moment tap + Hamburger 4MSM",
+         "one trilinear textureLod of the four moments' mip chain at msm's filter width, the moment bias, the Hamburger 4MSM bound",
+         PN_LOOKUP_MOMENTS4, msmParams},
+        {"lookup: one pixel footprint of 4 moments + Hamburger 4MSM",
+         "msm's own taps: the pixel's footprint read as vsm's (up to msm.anisotropy trilinear taps), the moment bias, "
+         "the Hamburger 4MSM bound",
+         PN_LOOKUP_MOMENTS4, msmParams, true}}},
   };
   return list;
 }
 
 // The renderer of one pairing's filter (one per pairing, so that nothing is rebuilt between
-// rounds), the G-buffer's positions copied out of it, and the kernel's own output.
+// rounds), the G-buffer's positions and geometric normals copied out of it, and the kernel's own
+// output.
 struct PassFixture {
   Renderer renderer;
   RenderOptions options;
-  gl::Texture position, visibility;
+  gl::Texture position, geoNormal, visibility;
 
   PassFixture(const VisibilityBaselineSettings& s, const Pairing& p)
       : options{.width = s.width, .height = s.height, .shadowMapSize = s.mapSize, .debugView = 0} {
@@ -131,10 +165,16 @@ struct PassFixture {
     renderer.setTechnique(std::move(projection), std::move(filter));
     renderer.render(options);
     const GBufferData g = renderer.readGBuffer();
-    position = gl::Texture("lookup kernel positions", {GL_TEXTURE_2D, GL_RGBA32F, s.width, s.height, 1, 1});
-    position.setSampling(GL_NEAREST, GL_NEAREST);
-    glTextureSubImage2D(position.id(), 0, 0, 0, s.width, s.height, GL_RGBA, GL_FLOAT, g.position.data());
+    position = gBufferTexture("lookup kernel positions", s, g.position);
+    geoNormal = gBufferTexture("lookup kernel geometric normals", s, g.geoNormal);
     visibility = gl::Texture("lookup kernel visibility", {GL_TEXTURE_2D, GL_R32F, s.width, s.height, 1, 1});
+  }
+
+  static gl::Texture gBufferTexture(const char* label, const VisibilityBaselineSettings& s, const std::vector<glm::vec4>& texels) {
+    gl::Texture t(label, {GL_TEXTURE_2D, GL_RGBA32F, s.width, s.height, 1, 1});
+    t.setSampling(GL_NEAREST, GL_NEAREST);
+    glTextureSubImage2D(t.id(), 0, 0, 0, s.width, s.height, GL_RGBA, GL_FLOAT, texels.data());
+    return t;
   }
 
   const gl::Texture& map(std::string_view name) {
@@ -176,6 +216,17 @@ double shadowOverlap(const std::vector<float>& kernel, const std::vector<float>&
   return either > 0 ? static_cast<double>(both) / static_cast<double>(either) : 1.0;
 }
 
+// The camera's part of the kernel's block: what the footprint's ray differentials need.
+void setCamera(gpu::LookupUniforms& u, const Camera& camera, int width, int height) {
+  const glm::mat4 viewFromWorld = camera.viewFromWorld();
+  const glm::mat4 clipFromView = camera.clipFromView(static_cast<float>(width) / static_cast<float>(height));
+  // A ray's direction at unit view depth is V⁻¹(ndc.x / P00, ndc.y / P11, −1); one pixel is 2 / size of ndc.
+  u.cameraPosition = glm::vec4(camera.position, 1.0f);
+  u.cameraForward = glm::vec4(-glm::vec3(glm::row(viewFromWorld, 2)), 0.0f);
+  u.rayStepX = glm::vec4(glm::vec3(glm::row(viewFromWorld, 0)) * (2.0f / (static_cast<float>(width) * clipFromView[0][0])), 0.0f);
+  u.rayStepY = glm::vec4(glm::vec3(glm::row(viewFromWorld, 1)) * (2.0f / (static_cast<float>(height) * clipFromView[1][1])), 0.0f);
+}
+
 // The kernel's program, inputs and dispatch, bound to one fixture.
 struct Kernel {
   std::shared_ptr<PassFixture> fixture;
@@ -186,22 +237,26 @@ struct Kernel {
   const gl::Texture* map = nullptr;
   const gl::Program* program = nullptr;
   int kind = 0;
+  bool footprint = false;
 
-  Kernel(std::shared_ptr<PassFixture> f, const Pairing& p, int mapSize) : fixture(std::move(f)), kind(p.kind) {
+  Kernel(std::shared_ptr<PassFixture> f, const Pairing& p, const KernelDesc& k, int mapSize)
+      : fixture(std::move(f)), kind(k.kind), footprint(k.footprint) {
+    const Filter& filter = fixture->renderer.filter();
     ProgramDesc d;
-    d.label = p.kernelName;
+    d.label = k.name;
     d.compute = {"micro/lookup.comp.glsl"};
-    d.defines.set("LOOKUP_KIND", p.kind);
-    if (p.kind == PN_LOOKUP_BOX) d.defines.set("LOOKUP_SIDE", boxSide(fixture->renderer.filter()));
+    d.defines.set("LOOKUP_KIND", k.kind);
+    if (k.kind == PN_LOOKUP_BOX || k.kind == PN_LOOKUP_POISSON) d.defines.set("LOOKUP_SIDE", boxSide(filter));
+    if (k.footprint) d.defines.set("LOOKUP_FOOTPRINT");
     if (p.hardwareCompare) d.defines.set("PN_HARDWARE_COMPARE");
     program = &shaders.program(d);
     map = &fixture->map(p.mapImage);
-    if (p.kind == PN_LOOKUP_SAT) sat.build(shaders, *map, 2);
+    if (k.kind == PN_LOOKUP_SAT) sat.build(shaders, *map, 2);
     if (p.hardwareCompare) {
       gl::SamplerDesc compare;
       compare.compare = true;  // bilinear, clamp to edge: as pcf's ComparisonSampler
       sampler = gl::Sampler("lookup kernel comparison", compare);
-    } else if (p.kind == PN_LOOKUP_MOMENTS2 || p.kind == PN_LOOKUP_MOMENTS4) {
+    } else if (k.kind == PN_LOOKUP_MOMENTS2 || k.kind == PN_LOOKUP_MOMENTS4) {
       gl::SamplerDesc trilinear;
       trilinear.minFilter = GL_LINEAR_MIPMAP_LINEAR;
       sampler = gl::Sampler("lookup kernel trilinear", trilinear);
@@ -209,14 +264,17 @@ struct Kernel {
     const ShadowView& view = fixture->renderer.frusta().views.front();
     gpu::LookupUniforms u{};
     u.mapFromWorld = mapFromWorld(view);
-    u.params = p.params4({fixture->renderer.filter(), texelDepth(view, mapSize), mapSize});
-    u.mapSize = glm::ivec4(map->width(), map->height(), 0, 0);
+    u.params = k.params4({filter, texelDepth(view, mapSize), mapSize});
+    const int maxTaps = k.footprint ? filter.paramInt(fmt::format("{}.anisotropy", p.filter)) : 0;
+    u.mapSize = glm::ivec4(map->width(), map->height(), maxTaps, 0);
+    setCamera(u, fixture->renderer.scene().camera, fixture->position.width(), fixture->position.height());
     block.upload(u);
   }
 
   void run() const {
     block.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
     fixture->position.bindUnit(PN_TEX_GBUF_POSITION);
+    if (footprint) fixture->geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
     fixture->visibility.bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
     if (kind == PN_LOOKUP_SAT) {
       sat.bindTable();
@@ -241,30 +299,37 @@ std::vector<MicroResult> runVisibilityBaselines(const VisibilityBaselineSettings
   std::vector<MicroItem> items;
   for (const Pairing& p : pairings()) {
     const SharedFixture shared = std::make_shared<std::shared_ptr<PassFixture>>();
-    items.push_back({p.kernelName, fmt::format("{} ({}; micro/lookup.comp.glsl)", p.kernelText, where), "", [shared, s, &p] {
-                       auto kernel = std::make_shared<Kernel>(fixtureOf(shared, s, p), p, s.mapSize);
-                       // It must compute what its pass computes before it stands for the pass's arithmetic.
-                       kernel->run();
-                       std::vector<float> v(static_cast<size_t>(s.width) * static_cast<size_t>(s.height));
-                       kernel->fixture->visibility.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
-                       const double overlap = shadowOverlap(v, kernel->fixture->renderer.readVisibility());
-                       PN_CHECK(overlap >= kMinShadowOverlap,
-                                fmt::format("the kernel's shadow overlaps {}'s by {:.2f} (intersection over union; at "
-                                            "least {} expected): it does not do the same lookup",
-                                            p.passName, overlap, kMinShadowOverlap));
-                       return timedWork(s.cpuClock, p.kernelName, [kernel] { kernel->run(); });
-                     }});
+    auto kernelItem = [&](const KernelDesc& k) {
+      return MicroItem{k.name, fmt::format("{} ({}; micro/lookup.comp.glsl)", k.text, where), "", [shared, s, &p, &k] {
+                         auto kernel = std::make_shared<Kernel>(fixtureOf(shared, s, p), p, k, s.mapSize);
+                         // It must compute what its pass computes before it stands for the pass's arithmetic.
+                         kernel->run();
+                         std::vector<float> v(static_cast<size_t>(s.width) * static_cast<size_t>(s.height));
+                         kernel->fixture->visibility.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
+                         const double overlap = shadowOverlap(v, kernel->fixture->renderer.readVisibility());
+                         PN_CHECK(overlap >= kMinShadowOverlap,
+                                  fmt::format("the kernel's shadow overlaps {}'s by {:.2f} (intersection over union; at "
+                                              "least {} expected): it does not do the same lookup",
+                                              p.passName, overlap, kMinShadowOverlap));
+                         return timedWork(s.cpuClock, k.name, [kernel] { kernel->run(); });
+                       }};
+    };
     std::string params;
     for (const auto& [k, v] : p.params) params += fmt::format(", {}={}", k, v);
-    items.push_back({p.passName,
-                     fmt::format("the visibility pass of {} (its defaults{}) in a frame of penumbra::Renderer ({})", p.filter, params, where),
-                     p.kernelName, [shared, s, &p] {
+    const std::string passText =
+        fmt::format("the visibility pass of {} (its defaults{}) in a frame of penumbra::Renderer ({})", p.filter, params, where);
+    items.push_back(kernelItem(p.kernels.front()));
+    items.push_back({p.passName, passText, p.kernels.front().name, [shared, s, &p] {
                        auto f = fixtureOf(shared, s, p);
                        return std::function<double()>([f] {
                          f->renderer.render(f->options);
                          return f->renderer.timings().get("visibility");
                        });
                      }});
+    for (size_t k = 1; k < p.kernels.size(); ++k) {
+      items.push_back(kernelItem(p.kernels[k]));
+      items.push_back({std::string(p.passName) + kSameTapsSuffix, passText, p.kernels[k].name, {}, p.passName});
+    }
   }
   return runMicroItems(items, s.rounds);
 }

@@ -25,9 +25,12 @@ struct VisibilityBaselineSettings {
 
 /// Rows in pairs: "lookup: …" (a kernel, no baseline) then "visibility: <filter>" (the real pass,
 /// through penumbra::Renderer with the filter's defaults, measured as the frame's "visibility"
-/// pass; baseline = that kernel, `ratio` = pass / kernel per round). A kernel is checked against
-/// its pass before it is timed: one that disagrees on the visibility (it would not be measuring
-/// the same lookup) is reported as failed. Needs a current GL 4.5 context.
+/// pass; baseline = that kernel, `ratio` = pass / kernel per round). Where the filter's own taps
+/// are more work than its minimal kernel's (pcf's turned Poisson disk, vsm's and msm's pixel
+/// footprint), a second pair follows: the kernel of those taps, and "visibility: <filter>, against
+/// the kernel of its own taps" (the same timings as the pass's row, measured against it). A kernel
+/// is checked against its pass before it is timed: one that disagrees on the visibility (it would
+/// not be measuring the same lookup) is reported as failed. Needs a current GL 4.5 context.
 std::vector<MicroResult> runVisibilityBaselines(const VisibilityBaselineSettings& settings);
 
 }  // namespace penumbra::report

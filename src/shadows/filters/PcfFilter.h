@@ -5,6 +5,7 @@
 
 #include <penumbra/Filter.h>
 
+#include <numbers>
 #include <string_view>
 
 namespace penumbra {
@@ -16,6 +17,13 @@ inline constexpr std::string_view kKernelNames[] = {"box", "poisson"};
 /// ref ≤ stored) with bilinear filtering, bound over a depth texture's unit for one dispatch:
 /// the texture's own state (raw depths, nearest) stays as other passes expect. Created on first
 /// use, so filters can be made without a GL context; a gl::Sampler, so gl::liveObjectCount sees it.
+/// The largest radius (texels) of a kernel of taps in a map of mapSize texels per side: turned, a
+/// kernel reaches √2 × its radius from its centre, and common/depth_compare.glsl's tapKernel
+/// moves it inward at the map's edge but never narrows it. pcf and pcss keep their radii to it.
+inline float maxKernelRadiusTexels(int mapSize) {
+  return 0.5f * static_cast<float>(mapSize - 1) / std::numbers::sqrt2_v<float>;
+}
+
 class ComparisonSampler {
 public:
   void bind(GLuint unit);

@@ -4,6 +4,8 @@
 #include "shadows/filters/pcss.shared.h"
 #include "shared/Bindings.h"
 
+#include <algorithm>
+
 namespace penumbra {
 namespace {
 
@@ -45,8 +47,9 @@ void PcssFilter::prefilter(FrameContext& frame) {
 
 void PcssFilter::computeVisibility(FrameContext& frame) {
   gpu::PcssUniforms u{};
-  u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), param("pcss.minRadiusTexels"),
-                       param("pcss.maxRadiusTexels"));
+  const float mapRadius = maxKernelRadiusTexels(frame.mapSize());
+  u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), std::min(param("pcss.minRadiusTexels"), mapRadius),
+                       std::min(param("pcss.maxRadiusTexels"), mapRadius));
   frame.setFilterBlock(u);
   const bool hardware = paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;

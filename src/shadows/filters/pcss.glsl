@@ -15,10 +15,12 @@ layout(std140, binding = PN_UBO_FILTER) uniform PcssBlock { PcssUniforms u_pcss;
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_depthMap;       // raw depths: blocker search
 layout(binding = PN_TEX_FILTER1) uniform PN_COMPARISON_MAP s_compareMap;  // the same map: filtering
 
-// Tap i of `taps` in the chosen pattern, in the unit disk (Poisson) or square (box).
-vec2 patternTap(int i, int taps, mat2 rotation) {
-  return PN_PCSS_PATTERN == PN_KERNEL_BOX ? boxTap(i, boxHalfSideForTaps(taps)) : poissonTap(i, rotation);
+// Tap i of `taps` in the chosen pattern, in the unit disk (Poisson: turned by patternRotation) or
+// square (box).
+vec2 patternTap(int i, int taps) {
+  return PN_PCSS_PATTERN == PN_KERNEL_BOX ? boxTap(i, boxHalfSideForTaps(taps)) : kPoissonDisk[i];
 }
+mat2 patternRotation(mat2 rotation) { return PN_PCSS_PATTERN == PN_KERNEL_BOX ? mat2(1.0) : rotation; }
 int patternTapCount(int taps) {
   return PN_PCSS_PATTERN == PN_KERNEL_BOX ? boxTapCount(boxHalfSideForTaps(taps)) : clamp(taps, 1, kPoissonDiskSize);
 }
@@ -28,13 +30,13 @@ int patternTapCount(int taps) {
 // False when there is none: the receiver is fully lit.
 bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
   int taps = patternTapCount(PN_PCSS_BLOCKER_SAMPLES);
-  ivec2 mapSize = textureSize(s_depthMap, 0).xy;
+  TapKernel k = tapKernel(r, radiusUv, patternRotation(rotation), textureSize(s_depthMap, 0).xy);
   float sum = 0.0;
   int blockers = 0;
   for (int i = 0; i < taps; ++i) {
-    vec2 offset = tapInsideMap(r, patternTap(i, PN_PCSS_BLOCKER_SAMPLES, rotation) * radiusUv, mapSize);
-    float stored = texelFetch(s_depthMap, mapTexel(s_depthMap, r.uv + offset, r.layer), 0).r;
-    if (compareDepth(tapDepth(r, offset), stored) == 0.0) {
+    vec2 unit = patternTap(i, PN_PCSS_BLOCKER_SAMPLES);
+    float stored = storedDepth(s_depthMap, k, tapTexel(k, unit));
+    if (compareDepth(tapDepth(k, unit), stored) == 0.0) {
       sum += stored;
       ++blockers;
     }
