@@ -64,6 +64,13 @@ TEST(MotionCli, MapUpdatesCountTheMapsAndRefuseABadPolicy) {
   r = runPenumbra(common + " --map-updates 1 --out budget.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("3 drawn, 0 kept (--map-updates budget 1); staleness max 0"), std::string::npos) << r.err;
+  // A still sun over a rolling ball (tests/data/scenes/rolling-ball.json): the map's static
+  // casters are restored in every frame after the first.
+  r = runPenumbra("render --scene '" PENUMBRA_TEST_DATA "/scenes/rolling-ball.json' --size 48x32 --shadow-map 256 --frames 3 --verbose "
+                  "--map-updates invalid --out ball.png",
+                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cached maps: 2 restored, 1 drawn, 0 kept"), std::string::npos) << r.err;
   for (const char* bad : {"0", "sometimes", "2x"}) {
     r = runPenumbra(common + " --map-updates " + bad + " --out bad.png", dir);
     EXPECT_NE(r.exitCode, 0) << bad;
