@@ -39,6 +39,50 @@ void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o) {
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 32));
 }
 
+void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o) {
+  app.add_option("--map-updates", o.mapUpdates,
+                 "when shadow maps are drawn again: 'every' map every frame (no cache); 'invalid': each map keeps its "
+                 "static casters and redraws them only when its view or a static caster changes, the dynamic "
+                 "(animated) casters drawn over every frame and the light's views fitted to the static casters; N: "
+                 "as 'invalid', but only N maps per frame across every light are updated (the least recently "
+                 "updated first), the others keep an earlier frame's map and view (docs/embedding.md#cached-maps); "
+                 "--verbose counts the maps restored, drawn and kept and their staleness in frames")
+      ->check([](const std::string& text) {
+        try {
+          parseMapUpdates(text);
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      })
+      ->capture_default_str();
+}
+
+MapUpdates parseMapUpdates(const std::string& text) {
+  if (text == "every") return {};
+  if (text == "invalid") return {MapUpdates::Policy::WhenInvalid};
+  int maps = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), maps);
+  if (ec != std::errc() || end != text.data() + text.size() || maps < 1)
+    throw usageError(fmt::format("--map-updates {}: expected every, invalid or a number of maps per frame >= 1", text));
+  return {MapUpdates::Policy::Budget, maps};
+}
+
+std::string mapUpdatesName(const MapUpdates& u) {
+  switch (u.policy) {
+    case MapUpdates::Policy::EveryFrame: return "every";
+    case MapUpdates::Policy::WhenInvalid: return "invalid";
+    case MapUpdates::Policy::Budget: break;
+  }
+  return fmt::format("budget {}", u.budgetMaps);
+}
+
+std::string mapUpdatesSummary(const Shadows& shadows) {
+  const Shadows::MapCacheStats c = shadows.mapCacheStats();
+  return fmt::format("cached maps: {} restored, {} drawn, {} kept (--map-updates {}); staleness max {}, mean {:.2f} frames",
+                     c.restored, c.rendered, c.kept, mapUpdatesName(shadows.mapUpdates()), c.maxStaleness, c.meanStaleness);
+}
+
 void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what) {
   app.add_option("--cache-max-mb", mib,
                  fmt::format("cap of the cache folder in MiB, applied {}: the least recently used entries are removed "
@@ -86,6 +130,7 @@ std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draw
   renderer->setScene(s.scene);
   renderer->setTechnique(std::move(s.projection), std::move(s.filter));
   renderer->shadows().addOns() = *s.addOns;
+  renderer->shadows().setMapUpdates(s.mapUpdates);
   return renderer;
 }
 
@@ -183,6 +228,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   if (s.render.shadowMapSize < 16)
     throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
   s.render.shadowBudgetTexels = o.shadowBudgetTexels;
+  s.mapUpdates = parseMapUpdates(o.mapUpdates);
   return s;
 }
 

@@ -28,6 +28,7 @@ struct TechniqueOptions {
   std::string size = defaultSizeText();
   std::optional<int> shadowMapSize;
   int64_t shadowBudgetTexels = 0;  ///< 0 = no budget
+  std::string mapUpdates = "every";  ///< --map-updates: every | invalid | N
   std::optional<std::string> camera;  ///< "X,Y,Z:TX,TY,TZ[:FOV]"; unset = the scene's camera
   bool verbose = false;
 };
@@ -36,6 +37,14 @@ struct TechniqueOptions {
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o);
 /// Adds --shadow-budget (render and compare; the viewer sizes maps without a budget).
 void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o);
+/// Adds --map-updates every|invalid|N (render and compare): Shadows::setMapUpdates.
+void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o);
+/// "every", "invalid" or a whole number of maps ≥ 1 as a policy; a usage Error otherwise.
+MapUpdates parseMapUpdates(const std::string& text);
+/// "every", "invalid" or "budget N": the policy as --map-updates names it.
+std::string mapUpdatesName(const MapUpdates& u);
+/// One line of what the map updates did (Shadows::mapCacheStats), for stderr and reports.
+std::string mapUpdatesSummary(const Shadows& shadows);
 
 struct Setup {
   Scene scene;
@@ -43,6 +52,7 @@ struct Setup {
   std::unique_ptr<Filter> filter;
   std::unique_ptr<Parameterized> addOns = makeAddOns();  ///< "contact.*", "temporal.*"
   RenderOptions render;
+  MapUpdates mapUpdates;  ///< --map-updates
 };
 
 /// Loads the scene, makes the technique, applies the scene's params then --set (usage errors

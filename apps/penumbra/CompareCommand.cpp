@@ -81,6 +81,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
   addShadowBudgetOption(*sub, o->technique);
+  addMapUpdatesOption(*sub, o->technique);
   sub->add_option("--samples", o->samples, "reference light samples per pixel (soft lights)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--out", o->out, outputsHelp())->capture_default_str();
@@ -225,6 +226,15 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         for (const report::SequenceFrame& f : sequence->frames) j["frame_rmse"].push_back(f.metrics.rmse);
         j["sequence_reference_seconds"] = sequence->referenceSeconds;
       }
+      j["map_updates"] = mapUpdatesName(renderer.shadows().mapUpdates());
+      if (renderer.shadows().mapUpdates().cached()) {  // over every frame rendered, the two still ones first
+        const Shadows::MapCacheStats c = renderer.shadows().mapCacheStats();
+        j["maps_restored"] = c.restored;
+        j["maps_drawn"] = c.rendered;
+        j["maps_kept"] = c.kept;
+        j["staleness_max"] = c.maxStaleness;
+        j["staleness_mean"] = c.meanStaleness;
+      }
       j["lights"] = nlohmann::json::array();
       for (const report::LightComparison& l : cmp.lights) {
         nlohmann::json jl;
@@ -281,6 +291,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                   "(%zu too dark, %zu too bright)\n",
                   sequence->lag.rmse(), sequence->lag.pixels, LagOptions{}.frames, sequence->lag.ghostPct(), LagOptions{}.ghostV,
                   sequence->lag.tooDark, sequence->lag.tooBright);
+    if (renderer.shadows().mapUpdates().cached()) std::printf("  %s\n", mapUpdatesSummary(renderer.shadows()).c_str());
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);

@@ -61,6 +61,11 @@ void printMedians(const PassTimings& last, const std::vector<PassTimings>& frame
                               : fmt::format(" (medians of the {} frames after the first)", frames.size()).c_str());
 }
 
+/// With cached maps, what they did (--verbose).
+void printMapUpdates(const Shadows& shadows) {
+  if (shadows.mapUpdates().cached()) std::fprintf(stderr, "penumbra: %s\n", mapUpdatesSummary(shadows).c_str());
+}
+
 /// Renders the sequence; returns the message line of what was written.
 std::string renderSequence(Renderer& renderer, const Setup& s, const std::string& out, int frames, float fps, float startS,
                            bool verbose, const std::string& gpu) {
@@ -77,9 +82,7 @@ std::string renderSequence(Renderer& renderer, const Setup& s, const std::string
   }
   if (verbose) {
     printMedians(renderer.timings(), warm, renderer.timings().clock, gpu);
-    if (renderer.shadows().mapCaching())
-      std::fprintf(stderr, "penumbra: cached maps: %zu restored, %zu drawn\n", renderer.shadows().mapCacheStats().restored,
-                   renderer.shadows().mapCacheStats().rendered);
+    printMapUpdates(renderer.shadows());
   }
   std::string written = fmt::format("wrote {} frames {}..{} at {} fps from {} s", frames, first.string(), framePath(out, frames - 1).string(), fps, startS);
   if (s.scene.animation.empty()) written += " (the scene has no animation: every frame is the same)";
@@ -106,12 +109,12 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
     int repeat = 1;
     std::optional<int> frames;
     float fps = 30.0f, timeS = 0.0f;
-    bool cacheMaps = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("render", "render one frame to a PNG (the default subcommand)");
   addTechniqueOptions(*sub, o->technique);
   addShadowBudgetOption(*sub, o->technique);
+  addMapUpdatesOption(*sub, o->technique);
   sub->add_option("--out", o->out, "output PNG")->capture_default_str();
   sub->add_option("--visibility", o->visibility, "also write the visibility (1 = lit) as a float EXR");
   sub->add_option("--dump", o->dump, "write every intermediate (shadow maps, G-buffer, visibility) into this folder");
@@ -130,9 +133,6 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::Range(-1e6, 1e6))
       ->capture_default_str();
   for (const char* single : {"--repeat", "--visibility", "--dump"}) frames->excludes(single);
-  sub->add_flag("--cache-maps", o->cacheMaps,
-                "cached shadow maps: each map keeps its static casters and draws only the animated ones over them while its view "
-                "stays (docs/embedding.md); --verbose then also counts the maps restored and drawn");
   commands.push_back({sub, [o] {
     checkOutput("--out", o->out);
     if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
@@ -143,7 +143,6 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
                    kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
-    renderer.shadows().setMapCaching(o->cacheMaps);
     if (o->frames) {
       checkOutput("--out", framePath(o->out, 0).string());
       std::printf("%s\n", renderSequence(renderer, s, o->out, *o->frames, o->fps, o->timeS, o->technique.verbose,
@@ -168,7 +167,10 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       writeExr(o->visibility, s.render.width, s.render.height, flipRows<float>(v, s.render.width, s.render.height));
     }
     if (!o->dump.empty()) renderer.dump(o->dump);
-    if (o->technique.verbose) printMedians(renderer.timings(), warm, renderer.timings().clock, context.info().renderer);
+    if (o->technique.verbose) {
+      printMedians(renderer.timings(), warm, renderer.timings().clock, context.info().renderer);
+      printMapUpdates(renderer.shadows());
+    }
     std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
                 s.scene.name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
     return 0;

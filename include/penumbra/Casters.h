@@ -31,10 +31,10 @@ struct CasterMesh {
   /// nearest texel of `uvOffset`'s coordinate, repeat wrapping). 0 = opaque.
   uint32_t alphaTexture = 0;
   float alphaCutoff = 0.5f;
-  /// With cached maps (Shadows::setMapCaching): a dynamic caster is drawn every frame over the
-  /// cached static casters; a static one (false) is drawn into a map once and kept while the
-  /// map's view and every static caster stay as they were (a static caster that moves invalidates
-  /// the maps it was in). Without caching it changes nothing.
+  /// With cached maps (Shadows::setMapUpdates): a dynamic caster is drawn every frame over the
+  /// cached static casters and left out of the light views' fit; a static one (false) is drawn
+  /// into a map once and kept while the map's view and every static caster stay as they were (a
+  /// static caster that moves invalidates the maps it was in). Without caching it changes nothing.
   bool dynamic = false;
 };
 

@@ -52,6 +52,10 @@ struct Object {
   uint32_t material = 0;
   glm::mat4 worldFromObject{1.0f};
   bool castsShadow = true;
+  /// Declared a dynamic caster though it does not move (cached shadow maps draw it every frame
+  /// instead of keeping it in a map's static layer: a caster the application moves itself).
+  /// Animated objects are dynamic whatever this says (SceneAnimation::movingObjects).
+  bool dynamic = false;
 };
 
 /// Largest angular radius of a sun (rad): beyond it the cone of directions is no longer a

@@ -127,6 +127,28 @@ struct LightShadowReport {
   int64_t texels() const { return static_cast<int64_t>(views) * mapSize * mapSize; }
 };
 
+/// When each shadow map (a view: a cascade, a cube face, a spot's or sun's map) is drawn again.
+/// Cached policies keep each map's static casters (CasterMesh::dynamic false) in a copy that is
+/// restored while the map's view, the shadow pass's programs and parameters and the static casters
+/// are unchanged, draw the dynamic casters over it, and fit the light's views to the static
+/// casters and the receivers only (so that a moving caster does not move them; depth clamping
+/// keeps casters in front of the near plane). Prefilters run on the result as before.
+struct MapUpdates {
+  enum class Policy {
+    EveryFrame,   ///< every map drawn anew every frame, every caster in the views' fit (no cache)
+    WhenInvalid,  ///< cached: every map updated every frame, its static casters redrawn only when invalid
+    /// Cached, and only `budgetMaps` maps updated per frame across every light, the least
+    /// recently updated first (round-robin); the others keep what an earlier frame drew (dynamic
+    /// casters included) with the view it was drawn with, which the visibility pass then reads
+    /// (Shadows::frusta gives it). A map never drawn yet (the first frame, a new light, a new map
+    /// size or view count) is drawn outside the budget.
+    Budget,
+  };
+  Policy policy = Policy::EveryFrame;
+  int budgetMaps = 1;  ///< Budget: maps updated per frame, ≥ 1
+  bool cached() const { return policy != Policy::EveryFrame; }
+};
+
 /// Runs one technique (projection × filter) on the caller's context. Not thread-safe; every call
 /// needs the same GL 4.5 context current as at construction.
 class Shadows {
@@ -165,15 +187,17 @@ public:
   /// scene must outlive its use.
   void setCasterGeometry(const Scene* scene);
 
-  /// Cached shadow maps (off by default): each map (cascade, view) keeps its static casters'
-  /// depth (and moments) and is restored from it while its view, the shadow pass's program and
-  /// parameters and the static casters are unchanged; the dynamic casters (CasterMesh::dynamic)
-  /// are drawn over it every frame. Prefilters then run on the result as before.
-  void setMapCaching(bool on);
-  bool mapCaching() const;
-  /// Maps (layers) restored from their cache, and rendered into it, since setMapCaching(true).
+  /// When the shadow maps are drawn again (MapUpdates; every map every frame by default).
+  void setMapUpdates(const MapUpdates& updates);
+  const MapUpdates& mapUpdates() const;
+  /// What the map updates did since the last setMapUpdates. A map's staleness in a frame is the
+  /// number of frames since it was last updated (0: updated in that frame).
   struct MapCacheStats {
-    size_t restored = 0, rendered = 0;
+    size_t restored = 0;  ///< maps whose static casters' depth was restored from their cache
+    size_t rendered = 0;  ///< maps whose static casters were drawn (and stored in their cache)
+    size_t kept = 0;      ///< MapUpdates::Budget: maps left as an earlier frame drew them
+    int maxStaleness = 0;         ///< the most any map reached (frames)
+    double meanStaleness = 0.0;   ///< over every map of every shadowed light in every frame
   };
   MapCacheStats mapCacheStats() const;
 
@@ -200,7 +224,9 @@ public:
   /// caller's that includes shaders/common/shadow.glsl (a debug view of the cascades, say).
   void bindFrameBlocks(size_t light = 0) const;
 
-  const LightFrusta& frusta(size_t light = 0) const;  ///< the last frame's views of `light`
+  /// The last frame's views of `light` as its maps were drawn (with MapUpdates::Budget, a kept
+  /// map's view is the one an earlier frame drew it with).
+  const LightFrusta& frusta(size_t light = 0) const;
   /// What each light got in the last frame (map size, views, importance).
   const std::vector<LightShadowReport>& lightReports() const;
   /// "shadow", "prefilter", "visibility" (and "contact", "temporal" when on) of the last frame,

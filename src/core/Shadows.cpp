@@ -11,6 +11,7 @@
 #include "core/FrameBlocks.h"
 #include "core/GlState.h"
 #include "base/Hash.h"
+#include "core/MapUpdateSchedule.h"
 #include "core/ShadowBudget.h"
 #include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
@@ -67,6 +68,7 @@ struct LightSlot {
   gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
   gl::Texture visibilityView;  ///< its layer of the visibility array, as a 2D texture
   int mapSize = 0;
+  std::vector<uint8_t> keptViews;  ///< per view: kept from an earlier frame (MapUpdates::Budget)
 };
 
 struct Shadows::Impl {
@@ -77,7 +79,9 @@ struct Shadows::Impl {
   gl::Sampler surfaceSampler{"surface sampler", {GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, false}};
   gl::Texture visibility;  ///< 2D array, one layer per light
   CasterSet casters;
-  SceneExtent extent;
+  SceneExtent extent;        ///< every caster and receiver
+  SceneExtent staticExtent;  ///< the static casters and the receivers
+  bool staticCasters = false;
   const Scene* cpuScene = nullptr;
   std::unique_ptr<Projection> projection;
   std::unique_ptr<Filter> filter;
@@ -94,7 +98,14 @@ struct Shadows::Impl {
   glm::ivec2 screen{0};
   SurfaceSource surface = SurfaceSource::Position;
   int frameIndex = 0;
+  MapUpdates mapUpdates;
   MapCacheState mapCache;
+  core::MapUpdateSchedule schedule;
+
+  /// What the light's views are fitted to: every body, or with cached maps the static casters
+  /// and the receivers (a moving dynamic caster then leaves the views, and so the maps' static
+  /// layers, where they are), unless no caster is static.
+  const SceneExtent& fitExtent() const { return mapUpdates.cached() && staticCasters ? staticExtent : extent; }
 
   Projection& projectionOf(size_t i) { return i == 0 ? *projection : *slots[i]->ownProjection; }
   Filter& filterOf(size_t i) { return i == 0 ? *filter : *slots[i]->ownFilter; }
@@ -103,7 +114,7 @@ struct Shadows::Impl {
   FrameContext frameContext(size_t i) {
     LightSlot& s = *slots[i];
     return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
-                         &visibility, static_cast<int>(i), &mapCache});
+                         &visibility, static_cast<int>(i), &mapCache, s.keptViews});
   }
   void bindBlocks(size_t i) const {
     slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -178,7 +189,7 @@ struct Shadows::Impl {
   /// How many maps light i's projection makes for it (with its own settings).
   int viewCount(size_t i, const Light& light, const ShadowCamera& camera, int mapSize) {
     const auto snapshot = applySettings(i, light);
-    const int views = static_cast<int>(projectionOf(i).computeFrusta(camera.fit, camera.aspect, light, extent, mapSize).views.size());
+    const int views = static_cast<int>(projectionOf(i).computeFrusta(camera.fit, camera.aspect, light, fitExtent(), mapSize).views.size());
     restore(i, snapshot);
     return views;
   }
@@ -204,7 +215,8 @@ struct Shadows::Impl {
     const auto snapshot = applySettings(i, slot.light);
     Projection& projectionI = projectionOf(i);
     Filter& filterI = filterOf(i);
-    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, extent, slot.mapSize);
+    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, fitExtent(), slot.mapSize);
+    slot.keptViews = schedule.apply(i, slot.frusta, slot.mapSize);
     slot.shadowBlock.upload(core::shadowUniforms(slot.frusta, slot.mapSize));
     bindBlocks(i);
     FrameContext ctx = frameContext(i);
@@ -317,6 +329,7 @@ void Shadows::setTechnique(std::unique_ptr<Projection> projection, std::unique_p
   PN_CHECK(projection && filter, "setTechnique needs a projection and a filter");
   std::swap(mImpl->projection, projection);
   std::swap(mImpl->filter, filter);
+  mImpl->schedule.reset();  // the new technique's maps are drawn anew
   if (light) {
     try {
       mImpl->checkPair(*light);
@@ -350,21 +363,33 @@ Filter& Shadows::filter() { return *mImpl->filter; }
 Parameterized& Shadows::addOns() { return *mImpl->addOns; }
 
 void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aabb> receiverBounds) {
-  mImpl->casters.set(casters);
-  mImpl->extent.bodies = mImpl->casters.bodies();
-  for (const Aabb& b : receiverBounds) mImpl->extent.bodies.push_back({b, false});
+  Impl& im = *mImpl;
+  im.casters.set(casters);
+  im.extent.bodies = im.casters.bodies();
+  im.staticExtent.bodies = im.casters.bodies(CasterSet::Which::Static);
+  im.staticCasters = !im.staticExtent.bodies.empty();
+  for (const Aabb& b : receiverBounds)
+    for (SceneExtent* e : {&im.extent, &im.staticExtent}) e->bodies.push_back({b, false});
 }
 
 void Shadows::setCasterGeometry(const Scene* scene) { mImpl->cpuScene = scene; }
 
-void Shadows::setMapCaching(bool on) {
-  if (on && !mImpl->mapCache.on) mImpl->mapCache = {};
-  mImpl->mapCache.on = on;
+void Shadows::setMapUpdates(const MapUpdates& updates) {
+  if (updates.policy == MapUpdates::Policy::Budget && updates.budgetMaps < 1)
+    throw usageError(fmt::format("MapUpdates::budgetMaps = {}: a budget updates at least 1 map per frame", updates.budgetMaps));
+  Impl& im = *mImpl;
+  im.mapUpdates = updates;
+  im.mapCache = {};
+  im.mapCache.on = updates.cached();
+  im.schedule.reset();
 }
 
-bool Shadows::mapCaching() const { return mImpl->mapCache.on; }
+const MapUpdates& Shadows::mapUpdates() const { return mImpl->mapUpdates; }
 
-Shadows::MapCacheStats Shadows::mapCacheStats() const { return {mImpl->mapCache.restored, mImpl->mapCache.rendered}; }
+Shadows::MapCacheStats Shadows::mapCacheStats() const {
+  const Impl& im = *mImpl;
+  return {im.mapCache.restored, im.mapCache.rendered, im.schedule.kept(), im.schedule.maxStaleness(), im.schedule.meanStaleness()};
+}
 
 void Shadows::render(const ShadowFrameInputs& in) {
   Impl& im = *mImpl;
@@ -424,6 +449,9 @@ void Shadows::render(const ShadowFrameInputs& in) {
                                                          .cut = in.cameraCut,
                                                          .clipFromWorld = im.clipFromWorld,
                                                          .pixelFootprintPerM = 2.0f / (in.camera.clipFromView[1][1] * static_cast<float>(s.height))});
+  std::vector<bool> shadowed;
+  for (const Light& l : in.lights) shadowed.push_back(l.castsShadow);
+  im.schedule.beginFrame(im.mapUpdates, shadowed);
   im.timer.beginFrame();
   for (size_t i = 0; i < in.lights.size(); ++i) {
     LightSlot& slot = *im.slots[i];

@@ -57,6 +57,10 @@ void check(const CasterMesh& m, size_t i) {
   }
 }
 
+bool isOf(const CasterMesh& m, CasterSet::Which which) {
+  return which == CasterSet::Which::All || (which == CasterSet::Which::Dynamic) == m.dynamic;
+}
+
 }  // namespace
 
 size_t CasterSet::vaoFor(const Layout& layout) {
@@ -133,7 +137,7 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
     for (size_t i = 0; i < mDraws.size(); ++i) {
       const CasterMesh& m = mDraws[i].mesh;
       if ((m.alphaTexture != 0) != masked) continue;
-      if ((which == Which::Static && m.dynamic) || (which == Which::Dynamic && !m.dynamic)) continue;
+      if (!isOf(m, which)) continue;
       glBindVertexArray(mVaos[mDraws[i].vao].id());
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
@@ -147,10 +151,11 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
   }
 }
 
-std::vector<SceneExtent::Body> CasterSet::bodies() const {
+std::vector<SceneExtent::Body> CasterSet::bodies(Which which) const {
   std::vector<SceneExtent::Body> out;
   out.reserve(mDraws.size());
-  for (const Draw& d : mDraws) out.push_back({d.mesh.objectBounds.transformed(d.mesh.worldFromObject), true});
+  for (const Draw& d : mDraws)
+    if (isOf(d.mesh, which)) out.push_back({d.mesh.objectBounds.transformed(d.mesh.worldFromObject), true});
   return out;
 }
 

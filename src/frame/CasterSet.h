@@ -28,8 +28,8 @@ public:
   /// A hash of the static casters (their records and placements, in order): it changes when one
   /// is added, removed, moved or altered. For cached maps.
   uint64_t staticKey() const { return mStaticKey; }
-  /// Each caster's world bounds, in order (for SceneExtent).
-  std::vector<SceneExtent::Body> bodies() const;
+  /// The world bounds of each caster of `which`, in order (for SceneExtent).
+  std::vector<SceneExtent::Body> bodies(Which which = Which::All) const;
   size_t size() const { return mDraws.size(); }
 
 private:

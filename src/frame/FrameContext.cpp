@@ -163,6 +163,8 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
   }
   for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
+    if (static_cast<size_t>(v) < mKeptViews.size() && mKeptViews[static_cast<size_t>(v)] && maps.drawn(v)) continue;
+    maps.markDrawn(v);
     gl::Framebuffer& fb = maps.framebuffer(v);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
     glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);

@@ -12,6 +12,8 @@
 #include <penumbra/Scene.h>
 
 #include <glm/glm.hpp>
+#include <cstdint>
+#include <span>
 #include <string_view>
 
 namespace penumbra {
@@ -26,7 +28,7 @@ enum class SurfaceSource {
   Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
 };
 
-/// Cached shadow maps across frames (Shadows::setMapCaching): whether renderViews uses them, and
+/// Cached shadow maps across frames (Shadows::setMapUpdates): whether renderViews uses them, and
 /// how many layers it restored and rendered.
 struct MapCacheState {
   bool on = false;
@@ -48,6 +50,9 @@ struct FrameResources {
   const gl::Texture* visibility;  ///< a 2D array: one layer per light
   int visibilityLayer = 0;        ///< this frame's light
   MapCacheState* mapCache = nullptr;  ///< nullptr: no caching
+  /// Per view, 1 where its map is kept as an earlier frame drew it (MapUpdates::Budget; the
+  /// frusta then hold the view it was drawn with); empty: every map is drawn.
+  std::span<const uint8_t> keptViews = {};
 };
 
 class FrameContext {
@@ -55,7 +60,7 @@ public:
   explicit FrameContext(const FrameResources& r)
       : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
-        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache) {}
+        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
   /// gave none. Only techniques that bake the geometry (sdf) need them.
@@ -104,7 +109,8 @@ public:
   /// near plane still cast), no culling (thin and open casters cast from both sides). With cached
   /// maps each layer whose key (its view's matrix and depth plane, the programs, the filter
   /// block, the clear colour, the static casters) is unchanged is restored from its cache and
-  /// only the dynamic casters are drawn over it.
+  /// only the dynamic casters are drawn over it. A layer the frame keeps (FrameResources::
+  /// keptViews) is left as it is, once it has been drawn.
   void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
@@ -144,6 +150,7 @@ private:
   const gl::Texture* mVisibility;
   int mVisibilityLayer;
   MapCacheState* mMapCache;
+  std::span<const uint8_t> mKeptViews;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

@@ -16,6 +16,7 @@ void ShadowMapArray::ensure(const std::string& label, int size, int layers, GLen
   mCacheDepth = {};
   mCacheColor = {};
   mCacheKeys.assign(static_cast<size_t>(layers), 0);
+  mDrawn.assign(static_cast<size_t>(layers), false);
   mDepth = gl::Texture(label + " depth", {GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, size, size, layers, 1});
   mDepth.setSampling(GL_NEAREST, GL_NEAREST);
   if (colorFormat != 0) {

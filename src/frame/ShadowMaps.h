@@ -25,12 +25,17 @@ public:
   bool restoreCached(int layer, uint64_t key);
   /// Copies the layer as it is now into its cache, under `key`.
   void storeCached(int layer, uint64_t key);
+  /// Whether the layer was drawn since its textures were (re)made: a map kept across frames
+  /// (MapUpdates::Budget) needs one.
+  bool drawn(int layer) const { return layer < static_cast<int>(mDrawn.size()) && mDrawn[static_cast<size_t>(layer)]; }
+  void markDrawn(int layer) { mDrawn[static_cast<size_t>(layer)] = true; }
 
 private:
   void copyLayer(const gl::Texture& from, const gl::Texture& to, int layer);
   gl::Texture mDepth, mColor;
   gl::Texture mCacheDepth, mCacheColor;  ///< made on the first storeCached, with the maps' formats
   std::vector<uint64_t> mCacheKeys;      ///< per layer; 0 = nothing cached
+  std::vector<bool> mDrawn;              ///< per layer
   std::vector<gl::Framebuffer> mFbos;
   int mSize = 0, mLayers = 0, mColorLevels = 1;
   GLenum mColorFormat = 0;

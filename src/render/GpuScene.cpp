@@ -118,7 +118,7 @@ std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
     m.baseVertex = d.baseVertex;
     m.worldFromObject = o.worldFromObject;
     m.objectBounds = scene.meshes[o.mesh].bounds();
-    m.dynamic = moving[i];  // animated objects are dynamic casters (cached maps keep the rest)
+    m.dynamic = moving[i] || o.dynamic;  // animated or declared dynamic (cached maps keep the rest)
     if (mat.alphaMask && mat.baseColorTexture >= 0) {
       m.alphaTexture = d.texture;
       m.alphaCutoff = mat.alphaCutoff;

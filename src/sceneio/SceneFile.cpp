@@ -264,6 +264,25 @@ void followNode(Scene& s, const TransformTrack& track, const std::string& name, 
     if (!bound[o]) s.animation.objects.push_back({static_cast<uint32_t>(o), static_cast<uint32_t>(node), modelFromWorld * s.objects[o].worldFromObject});
 }
 
+/// An object's "dynamic" flag, when given.
+std::optional<bool> readDynamic(Reader& r) {
+  if (!r.has("dynamic")) return std::nullopt;
+  return r.boolean("dynamic", false);
+}
+
+/// Applies an object's "dynamic" flag to the objects it made (from `firstObject` on): true marks
+/// them dynamic casters; false is refused when one of them is animated (by its own "animation" or
+/// its model's), since a moving caster cannot stay in a cached map's static layer.
+void applyDynamic(Scene& s, const Reader& r, std::optional<bool> declared, const std::string& name, size_t firstObject) {
+  if (!declared) return;
+  const std::vector<bool> moving = s.animation.movingObjects(s.objects.size());
+  for (size_t o = firstObject; o < s.objects.size(); ++o) {
+    if (!*declared && moving[o])
+      r.fail("dynamic", fmt::format("'{}' is animated, so it cannot be static (drop \"dynamic\": false; animated objects are dynamic)", name));
+    s.objects[o].dynamic = *declared;
+  }
+}
+
 /// nlohmann's parse message without its "[json.exception…] " tag and without the "last read:"
 /// bytes, which echo whatever the file holds (a PNG's binary header).
 std::string jsonProblem(const Json::exception& e) {
@@ -342,6 +361,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
       const bool casts = r.boolean("castsShadow", true);
       const size_t firstObject = s.objects.size(), firstNode = s.animation.nodes.size();
       const std::optional<TransformTrack> track = readAnimation(r);
+      const std::optional<bool> dynamic = readDynamic(r);
       r.finish();
       const std::filesystem::path modelPath = path.parent_path() / model;
       if (!loaders::isModelFile(modelPath)) r.fail("file", fmt::format("'{}' is not a .gltf, .glb or .obj file", model));
@@ -351,6 +371,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
         r.fail("file", e.what());
       }
       if (track) followNode(s, *track, name, m, firstObject, firstNode);
+      applyDynamic(s, r, dynamic, name, firstObject);
       continue;
     }
     Mesh mesh = readShape(r);
@@ -360,10 +381,12 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     const glm::mat4 m = readTransform(r);
     const bool casts = r.boolean("castsShadow", true);
     const std::optional<TransformTrack> track = readAnimation(r);
+    const std::optional<bool> dynamic = readDynamic(r);
     r.finish();
     const size_t object = s.objects.size(), node = s.animation.nodes.size();
     addObject(s, name, std::move(mesh), color, m, casts);
     if (track) followNode(s, *track, name, m, object, node);
+    applyDynamic(s, r, dynamic, name, object);
   }
 
   if (top.has("shadow")) {

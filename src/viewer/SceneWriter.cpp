@@ -57,6 +57,7 @@ Json objectJson(const Scene& scene, const Object& o) {
   j["scale"] = tidyVec(t.scale);
   j["color"] = tidyVec(scene.materials.at(o.material).baseColor);
   j["castsShadow"] = o.castsShadow;
+  if (o.dynamic) j["dynamic"] = true;
   return j;
 }
 

@@ -53,16 +53,44 @@ TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
   EXPECT_NEAR(j["frame_rmse"][0].get<double>(), j["rmse"].get<double>(), 1e-9) << "frame 0 is the compared frame";
 }
 
-// --cache-maps: the sequence's frames are the same images as without it; the boxes' sun sweeps,
-// so every frame's map is drawn anew (the sun's view changes), and --verbose says so.
-TEST(MotionCli, CacheMapsRendersTheSameSequence) {
+// --map-updates: with the boxes' sweeping sun every map is invalid in every frame, so 'invalid'
+// draws each frame's map, and a budget of 1 map a frame with a single map updates it every
+// frame; --verbose says so. A budget below 1 is a usage error.
+TEST(MotionCli, MapUpdatesCountTheMapsAndRefuseABadPolicy) {
   const std::string dir = freshDir("frames-cache");
   const std::string common = "render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 1 --verbose";
-  RunResult r = runPenumbra(common + " --cache-maps --out cached.png", dir);
+  RunResult r = runPenumbra(common + " --map-updates invalid --out cached.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.err.find("cached maps: 0 restored, 3 drawn"), std::string::npos) << r.err;
-  ASSERT_EQ(runPenumbra(common + " --out plain.png", dir).exitCode, 0);
-  int w = 0, h = 0;
-  for (const char* f : {"-0000.png", "-0001.png", "-0002.png"})
-    EXPECT_EQ(readPng(dir + "/cached" + f, w, h), readPng(dir + "/plain" + f, w, h)) << f;
+  EXPECT_NE(r.err.find("cached maps: 0 restored, 3 drawn, 0 kept (--map-updates invalid); staleness max 0"), std::string::npos) << r.err;
+  r = runPenumbra(common + " --map-updates 1 --out budget.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("3 drawn, 0 kept (--map-updates budget 1); staleness max 0"), std::string::npos) << r.err;
+  // A still sun over a rolling ball (tests/data/scenes/rolling-ball.json): the map's static
+  // casters are restored in every frame after the first.
+  r = runPenumbra("render --scene '" PENUMBRA_TEST_DATA "/scenes/rolling-ball.json' --size 48x32 --shadow-map 256 --frames 3 --verbose "
+                  "--map-updates invalid --out ball.png",
+                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cached maps: 2 restored, 1 drawn, 0 kept"), std::string::npos) << r.err;
+  for (const char* bad : {"0", "sometimes", "2x"}) {
+    r = runPenumbra(common + " --map-updates " + bad + " --out bad.png", dir);
+    EXPECT_NE(r.exitCode, 0) << bad;
+    EXPECT_NE(r.err.find("expected every, invalid or a number of maps per frame >= 1"), std::string::npos) << r.err;
+  }
+}
+
+// compare --map-updates N: the JSON names the policy and what it did over every frame rendered
+// (the two still frames, then the sequence): csm's 4 cascades, 2 updated a frame after the first,
+// 2 kept, none older than 1 frame.
+TEST(MotionCli, CompareReportsTheMapBudgetsStaleness) {
+  const std::string dir = freshDir("compare-budget");
+  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 "
+                                  "--map-updates 2 --json --out imgs",
+                                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["map_updates"], "budget 2");
+  EXPECT_EQ(j["maps_kept"], 8);
+  EXPECT_EQ(j["staleness_max"], 1);
+  EXPECT_NEAR(j["staleness_mean"].get<double>(), 8.0 / 20.0, 1e-9);  // 8 kept at 1 frame of 20 map-frames
 }

@@ -126,6 +126,25 @@ TEST(Animation, BadBlocksNameTheField) {
             std::string::npos);
 }
 
+// "dynamic": absent = animated; true marks a still object dynamic; false on an animated object
+// is an error naming the object and the field.
+TEST(Animation, DynamicFlagParsesAndAnimatedObjectsCannotBeStatic) {
+  const std::string keys = R"("animation": {"keys": [{"timeS": 0, "translate": [0, 1, 0]}, {"timeS": 1, "translate": [1, 1, 0]}]})";
+  const Scene still = loadSceneFile(writeScene("still.json", sceneWith("")));
+  EXPECT_FALSE(still.objects[1].dynamic);
+  const Scene declared = loadSceneFile(writeScene("declared.json", sceneWith(R"(, "dynamic": true)")));
+  EXPECT_TRUE(declared.objects[1].dynamic);
+  EXPECT_FALSE(declared.objects[0].dynamic);
+  const Scene animated = loadSceneFile(writeScene("animated.json", sceneWith(", " + keys)));
+  EXPECT_TRUE(animated.animation.movingObjects(animated.objects.size())[1]);
+  const Scene both = loadSceneFile(writeScene("both.json", sceneWith(", \"dynamic\": true, " + keys)));
+  EXPECT_TRUE(both.objects[1].dynamic);
+  const auto load = [](const std::string& json) { return errorOf([&] { loadSceneFile(writeScene("bad.json", json)); }); };
+  EXPECT_NE(load(sceneWith(", \"dynamic\": false, " + keys)).find("objects[1].dynamic: 'ball' is animated, so it cannot be static"),
+            std::string::npos);
+  EXPECT_NE(load(sceneWith(R"(, "dynamic": "yes")")).find("objects[1].dynamic: expected true or false"), std::string::npos);
+}
+
 // A glTF whose node 1 (a child of node 0, which holds the mesh) is keyed: translation LINEAR from
 // (0,0,0) at 1 s to (2,0,0) at 3 s and rotation STEP; node 2 below it moves with it.
 TEST(Animation, GltfAnimationMovesItsNode) {
