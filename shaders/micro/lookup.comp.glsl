@@ -89,7 +89,7 @@ float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
     }
   return lit / float(LOOKUP_SIDE * LOOKUP_SIDE);
 #elif LOOKUP_KIND == PN_LOOKUP_POISSON
-  mat2 turn = pixelRotation(px) * u_lookup.params.y;
+  mat2 turn = pixelRotation(px, 0) * u_lookup.params.y;  // frame 0: what the filter turns by when nothing accumulates
   float lit = 0.0;
   for (int i = 0; i < LOOKUP_SIDE * LOOKUP_SIDE; ++i) lit += fetchCompare(uv + turn * kPoissonDisk[i], biased);
   return lit / float(LOOKUP_SIDE * LOOKUP_SIDE);
