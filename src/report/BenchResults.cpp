@@ -1,5 +1,7 @@
 #include "report/BenchResults.h"
 
+#include "platform/Context.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -96,6 +98,14 @@ double loadAverage() {
   double load = -1.0;
   if (!(in >> load)) return -1.0;
   return load;
+}
+
+MachineInfo describeMachine(const gl::GlInfo& gl) {
+  MachineInfo m = describeMachine();
+  m.glRenderer = gl.renderer;
+  m.glVersion = gl.version;
+  m.glVendor = gl.vendor;
+  return m;
 }
 
 MachineInfo describeMachine() {

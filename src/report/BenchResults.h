@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace penumbra::gl { struct GlInfo; }
+
 namespace penumbra::report {
 
 /// Spread of one pass's time over the timed frames, in milliseconds.
@@ -126,6 +128,8 @@ std::string compareCommand(const BenchResults& results, const BenchRow& row);
 
 /// Fills cpu, os, hardwareThreads, date and loadStart (not the GL fields or the command).
 MachineInfo describeMachine();
+/// The same, with the GL renderer, version and vendor of `gl` (a context's info()).
+MachineInfo describeMachine(const gl::GlInfo& gl);
 /// The 1-minute load average, or -1 where /proc/loadavg cannot be read.
 double loadAverage();
 

@@ -67,10 +67,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   const auto runStart = Clock::now();
   BenchResults results;
   results.settings = set;
-  results.machine = describeMachine();
-  results.machine.glRenderer = context.info().renderer;
-  results.machine.glVersion = context.info().version;
-  results.machine.glVendor = context.info().vendor;
+  results.machine = describeMachine(context.info());
 
   Renderer renderer;
   std::optional<std::string> currentScene, currentLight;

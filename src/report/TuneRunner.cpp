@@ -99,10 +99,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   TuneResults res;
   res.request = request;
-  res.machine = describeMachine();
-  res.machine.glRenderer = context.info().renderer;
-  res.machine.glVersion = context.info().version;
-  res.machine.glVendor = context.info().vendor;
+  res.machine = describeMachine(context.info());
   const TuneCost cost = request.cost;
 
   std::vector<TuneTechnique> techniques;
