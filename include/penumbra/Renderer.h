@@ -29,6 +29,9 @@ struct RenderOptions {
   /// What the lit pass writes to the colour image: PN_VIEW_SHADED (0, the default),
   /// PN_VIEW_VISIBILITY, PN_VIEW_CASCADES or PN_VIEW_TEXEL_DENSITY (shaders/shared/Enums.h).
   int debugView = 0;
+  /// The camera jumped since the last frame (a cut, a teleport, a new view): temporal
+  /// accumulation drops its history (ShadowFrameInputs::cameraCut).
+  bool cameraCut = false;
 };
 
 class Renderer {

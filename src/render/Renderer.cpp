@@ -195,6 +195,7 @@ void Renderer::render(const RenderOptions& options) {
   in.mapSize = options.shadowMapSize;
   in.mapBudgetTexels = options.shadowBudgetTexels;
   in.restore = RestoreState::None;  // this renderer sets what each of its passes needs
+  in.cameraCut = options.cameraCut;
   im.shadows.render(in);
 
   im.timer.beginFrame();

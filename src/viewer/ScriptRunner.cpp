@@ -64,6 +64,7 @@ bool Viewer::execute(const ScriptAction& a) {
   } else if (v == "set") {
     mSession.setParam(arg);
   } else if (v == "camera") {
+    if (arg != "mode") mSession.cutCamera();  // the camera jumps: no history to reuse
     if (arg == "mode") {
       mFly = a.args[1] == "fly";
       mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);

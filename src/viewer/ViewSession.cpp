@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace penumbra::viewer {
 namespace {
@@ -169,16 +170,18 @@ void ViewSession::setCameraFollows(bool follows) {
   if (!follows || !animatesCamera()) return;
   poseScene(mScene, mTimeS);  // the same pose again, with the camera this time
   mRenderer.setPose(mScene);
+  mCameraCut = true;  // the camera jumps back onto its path
   ++mVersion;
 }
 
-void ViewSession::setTime(float timeS) {
+void ViewSession::setTime(float timeS, bool jump) {
   timeS = std::clamp(timeS, 0.0f, duration());
   if (timeS == mTimeS) return;
   mTimeS = timeS;
   const Camera camera = mScene.camera;
   poseScene(mScene, timeS);  // moves only what is animated: the rest keeps its edits
   if (!mCameraFollows) mScene.camera = camera;
+  if (jump && mCameraFollows && animatesCamera()) mCameraCut = true;
   mRenderer.setPose(mScene);
   ++mVersion;
 }
@@ -240,6 +243,7 @@ void ViewSession::render(int width, int height, int litView) {
   options.height = height;
   options.shadowMapSize = mShadowMapSize;
   options.debugView = litView;
+  options.cameraCut = std::exchange(mCameraCut, false);
   mRenderer.render(options);
   mHasFrame = true;
 }

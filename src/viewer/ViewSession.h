@@ -85,7 +85,13 @@ public:
   float duration() const { return mScene.animation.durationS(); }
   /// Poses the scene at `timeS` (clamped to [0, duration()]): animated objects, lights and, when
   /// cameraFollows(), the camera move; an edit to an animated light lasts until the next pose.
-  void setTime(float timeS);
+  /// A `jump` (a scrub, a loop back to the start; not playback's step) that moves the camera is
+  /// a camera cut for the next frame.
+  void setTime(float timeS, bool jump = true);
+  /// The next frame follows a camera jump: temporal accumulation starts afresh
+  /// (RenderOptions::cameraCut).
+  void cutCamera() { mCameraCut = true; }
+  bool cameraCutPending() const { return mCameraCut; }
   /// Whether setTime() moves the camera along the scene's camera animation (if it has one).
   bool cameraFollows() const { return mCameraFollows; }
   /// Following again puts the camera where the animation has it now.
@@ -117,6 +123,7 @@ private:
   size_t mSelected = 0;
   float mTimeS = 0.0f;
   bool mCameraFollows = true;
+  bool mCameraCut = false;
 };
 
 }  // namespace penumbra::viewer

@@ -101,6 +101,7 @@ int Viewer::run() {
 
 void Viewer::resetCamera() {
   const Scene& s = mSession.scene();
+  mSession.cutCamera();
   mOrbit = OrbitCamera::fromCamera(s.camera);
   mFlyCamera = FlyCamera::fromCamera(s.camera);
   mFlySpeedMps = std::max(s.bounds().radius(), 1.0f) * kFlySpeedPerSceneRadius;
@@ -251,19 +252,21 @@ void Viewer::advanceTime(float dt) {
   const float duration = mSession.duration();
   if (!mPlaying || duration <= 0.0f) return;
   float t = mSession.time() + dt * mPlaySpeed;
+  bool wrapped = false;
   if (t >= duration) {
     if (mLoop) {
       t = std::fmod(t, duration);
+      wrapped = true;  // back to the start: the camera jumps
     } else {
       t = duration;
       mPlaying = false;
     }
   }
-  setTime(t);
+  setTime(t, wrapped);
 }
 
-void Viewer::setTime(float timeS) {
-  mSession.setTime(timeS);
+void Viewer::setTime(float timeS, bool jump) {
+  mSession.setTime(timeS, jump);
   if (mSession.animatesCamera() && mSession.cameraFollows()) {
     // Orbit and fly go on from where the animation put the camera.
     mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
@@ -286,7 +289,9 @@ void Viewer::renderFrame() {
   const int w = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.z))));
   const int h = std::max(1, static_cast<int>(std::lround(mRenderScale * static_cast<float>(mViewRect.w))));
   try {
+    const bool cut = mSession.cameraCutPending();
     mSession.render(w, h, litView());
+    if (mSplit && cut) mSplit->cutCamera();
     if (mSplit) renderSplit(w, h);
     mRenderError.clear();
   } catch (const Error& e) {
@@ -297,7 +302,7 @@ void Viewer::renderFrame() {
 
 void Viewer::renderSplit(int width, int height) {
   // The right half sees what the left half sees: the same pose, camera, lights and map size.
-  mSplit->setTime(mSession.time());
+  mSplit->setTime(mSession.time(), false);  // a jump reaches it as the main view's cut
   mSplit->camera() = mSession.scene().camera;
   mSplit->lights() = mSession.scene().lights;
   if (mSplit->shadowMapSize() != mSession.shadowMapSize()) mSplit->setShadowMapSize(mSession.shadowMapSize());

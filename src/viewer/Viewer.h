@@ -101,7 +101,9 @@ private:
   void renderFrame();
   // Time (Panels.cpp draws its controls): play, pause, scrub.
   void advanceTime(float dtSeconds);  ///< when playing: dt × speed, looping or stopping at the end
-  void setTime(float timeS);          ///< poses both halves of the view; the camera follows if asked
+  /// Poses both halves of the view; the camera follows if asked. A jump (not playback's step)
+  /// that moves the camera cuts the temporal history.
+  void setTime(float timeS, bool jump = true);
   void setPlaying(bool playing);      ///< play from the start again when at the end and not looping
   void drawTimeControls();
   void drawViews();

@@ -140,3 +140,27 @@ TEST(Temporal, DisoccludedSurfacesStartAfreshAndTheClampRemovesAVanishedShadow) 
   EXPECT_LE(ghosts[1], shadowLeft / 20) << "the clamp holds it to this frame's neighbourhood, lit";
   EXPECT_EQ(ghosts[2], 0u) << "a change of the whole V range is taken at once";
 }
+
+// RenderOptions::cameraCut reaches the core: a still view accumulated over 12 frames is smooth,
+// and a frame marked as a cut starts afresh, as noisy as one frame of the plain 8 taps (the
+// same view continued without the mark stays smooth).
+TEST(Temporal, ACameraCutThroughTheRendererDropsTheHistory) {
+  const Scene boxes = makeBuiltinScene("boxes");
+  const Params kernel = {{"pcf.kernel", "poisson"}, {"pcf.radiusTexels", "16"}};
+  Params many = kernel, on = kernel;
+  many.push_back({"pcf.samples", "64"});
+  on.push_back({"pcf.samples", "8"});
+  on.push_back({"temporal.accumulate", "on"});
+  const std::vector<float> vMany = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", many), 1);
+  auto continued = makeTestRenderer(boxes, "uniform", "pcf", on), cut = makeTestRenderer(boxes, "uniform", "pcf", on);
+  const std::vector<float> vContinued = renderFrames(*continued, 13);
+  renderFrames(*cut, 12);
+  RenderOptions cutFrame = kRender;
+  cutFrame.cameraCut = true;
+  cut->render(cutFrame);
+  const std::vector<float> vCut = cut->readVisibility();
+  const double rmseContinued = penumbraRmse(vContinued, vMany), rmseCut = penumbraRmse(vCut, vMany);
+  std::printf("  RMSE against 64 taps in its penumbra: 13 accumulated frames %.4f, the 13th marked a cut %.4f\n", rmseContinued,
+              rmseCut);
+  EXPECT_GT(rmseCut, 2.0 * rmseContinued);
+}

@@ -80,3 +80,23 @@ TEST(ViewSession, RendersAndListsDebugImages) {
   s.render(64, 32, PN_VIEW_SHADED);
   EXPECT_EQ(gl::liveObjectCount(), objects);
 }
+
+// City's walking camera: a scrub (a jump) that moves the followed camera marks the next frame a
+// camera cut, playback's step does not, nor a jump with the camera not following; the frame takes
+// the mark and clears it.
+TEST(ViewSession, JumpsOfAFollowedCameraAreCameraCuts) {
+  ViewSession s(test::glContext(), makeBuiltinScene("city"), makeProjection("uniform"), makeFilter("hard"), 256);
+  ASSERT_TRUE(s.animatesCamera());
+  EXPECT_FALSE(s.cameraCutPending());
+  s.setTime(1.0f / 30.0f, false);
+  EXPECT_FALSE(s.cameraCutPending()) << "playback's step";
+  s.setTime(3.0f);
+  EXPECT_TRUE(s.cameraCutPending()) << "a scrub";
+  s.render(32, 18, 0);
+  EXPECT_FALSE(s.cameraCutPending()) << "the frame took it";
+  s.setCameraFollows(false);
+  s.setTime(5.0f);
+  EXPECT_FALSE(s.cameraCutPending()) << "the camera stayed";
+  s.cutCamera();
+  EXPECT_TRUE(s.cameraCutPending());
+}
