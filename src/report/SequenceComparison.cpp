@@ -34,7 +34,8 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
   Scene posed = scene;
   std::unique_ptr<ReferenceTracer> tracer;
   std::vector<glm::mat4> traced;  // the objects' transforms the tracer was built with
-  std::deque<FlickerFrame> earlier;  // the last frames, nearest first: flicker reads the first, lag them all
+  // Per shadow-casting light, its last frames, nearest first: flicker reads the first, lag them all.
+  std::vector<std::deque<FlickerFrame>> earlier;
   for (int f = 0; f < timing.frames; ++f) {
     SequenceFrame frame;
     frame.timeS = timing.timeS(f);
@@ -42,7 +43,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     renderer.setPose(posed);
     renderer.render(render);
     const GBufferData gbuffer = renderer.readGBuffer();
-    std::vector<glm::mat4> placed = transforms(posed);
+    const std::vector<glm::mat4> placed = transforms(posed);
     if (!tracer || placed != traced) {
       tracer = std::make_unique<ReferenceTracer>(posed);
       traced = placed;
@@ -54,26 +55,39 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     }
     const FrameComparison cmp = compareFrame(renderer, gbuffer, refs, false);
     frame.metrics = cmp.metrics;
-    // Flicker on the first light that casts shadows (each light's own V and V_ref).
-    const LightComparison& light = *std::find_if(cmp.lights.begin(), cmp.lights.end(), [](const LightComparison& l) { return l.castsShadow; });
-    FlickerFrame now = makeFlickerFrame(gbuffer, posed.camera, light.visibility, refs[light.index].visibility,
-                                        refs[light.index].litMask, std::move(placed));
-    if (f > 0) {
-      const FlickerFrame& previous = earlier.front();
-      const std::vector<FollowedPoint> points = followPoints(previous, now, flickerOptions);
-      std::vector<SurfaceSample> samples;
-      samples.reserve(points.size());
-      for (const FollowedPoint& p : points) samples.push_back(p.at);
-      const std::vector<float> vAt = samples.empty() ? std::vector<float>() : renderer.visibilityAt(samples, light.index);
-      frame.flicker = countFlicker(previous, now, points, vAt, flickerOptions);
-      out.flicker += frame.flicker;
-      std::vector<const FlickerFrame*> before;
-      for (const FlickerFrame& e : earlier) before.push_back(&e);
-      frame.lag = countLag(now, before, lagOptions);
-      out.lag += frame.lag;
+    // Flicker and lag of each light that casts shadows (its own V and V_ref).
+    size_t shadowed = 0;
+    for (const LightComparison& light : cmp.lights) {
+      if (!light.castsShadow) continue;
+      if (shadowed == out.lights.size()) {
+        out.lights.push_back({light.index, {}, {}});
+        earlier.emplace_back();
+      }
+      LightSequence& sequence = out.lights[shadowed];
+      std::deque<FlickerFrame>& before = earlier[shadowed++];
+      FlickerFrame now = makeFlickerFrame(gbuffer, posed.camera, light.visibility, refs[light.index].visibility,
+                                          refs[light.index].litMask, placed);
+      if (f > 0) {
+        const FlickerFrame& previous = before.front();
+        const std::vector<FollowedPoint> points = followPoints(previous, now, flickerOptions);
+        std::vector<SurfaceSample> samples;
+        samples.reserve(points.size());
+        for (const FollowedPoint& p : points) samples.push_back(p.at);
+        const std::vector<float> vAt = samples.empty() ? std::vector<float>() : renderer.visibilityAt(samples, light.index);
+        const FlickerCounts flicker = countFlicker(previous, now, points, vAt, flickerOptions);
+        std::vector<const FlickerFrame*> frames;
+        for (const FlickerFrame& e : before) frames.push_back(&e);
+        const LagCounts lag = countLag(now, frames, lagOptions);
+        sequence.flicker += flicker;
+        sequence.lag += lag;
+        frame.flicker += flicker;
+        frame.lag += lag;
+      }
+      before.push_front(std::move(now));
+      if (before.size() > static_cast<size_t>(std::max(lagOptions.frames, 1))) before.pop_back();
     }
-    earlier.push_front(std::move(now));
-    if (earlier.size() > static_cast<size_t>(std::max(lagOptions.frames, 1))) earlier.pop_back();
+    out.flicker += frame.flicker;
+    out.lag += frame.lag;
     out.frames.push_back(frame);
     if (progress) progress(f);
   }

@@ -26,8 +26,15 @@ struct SequenceTiming {
 struct SequenceFrame {
   float timeS = 0.0f;
   VisibilityMetrics metrics;  ///< the combined V against the combined V_ref
-  FlickerCounts flicker;      ///< from the frame before into this one (empty for the first)
-  LagCounts lag;              ///< this frame's changing pixels (empty for the first)
+  FlickerCounts flicker;      ///< from the frame before into this one, every shadowed light's (empty for the first)
+  LagCounts lag;              ///< this frame's changing pixels, every shadowed light's (empty for the first)
+};
+
+/// One shadow-casting light's flicker and lag over the sequence (its own V against its own V_ref).
+struct LightSequence {
+  size_t index = 0;  ///< in Scene::lights
+  FlickerCounts flicker;
+  LagCounts lag;
 };
 
 struct SequenceComparison {
@@ -35,8 +42,11 @@ struct SequenceComparison {
   double rmseMean = 0.0;      ///< rmse_mean: the mean of the frames' RMSE
   size_t rmseWorstFrame = 0;  ///< rmse_worst_frame: the index of the frame with the largest RMSE
   double rmseWorst = 0.0;
-  FlickerCounts flicker;      ///< every consecutive pair together: flicker_pct = flicker.pct()
-  LagCounts lag;              ///< every frame's changing pixels: lag_rmse = lag.rmse(), ghost_pct = lag.ghostPct()
+  /// Every consecutive pair and every shadow-casting light together: flicker_pct = flicker.pct()
+  /// (a point followed under two lights counts twice, once per light's V).
+  FlickerCounts flicker;
+  LagCounts lag;              ///< every frame's and light's changing pixels: lag_rmse = lag.rmse(), ghost_pct = lag.ghostPct()
+  std::vector<LightSequence> lights;  ///< each shadow-casting light's own (the sums above add them)
   double referenceSeconds = 0.0;
   bool referenceCached = true;  ///< every frame's reference came from the cache
 };

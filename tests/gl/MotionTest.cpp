@@ -77,3 +77,34 @@ TEST(Motion, CityWalkFlickerOfUnstabilisedCsmExceedsStabilised) {
   // sweep over the ground with the camera, in both).
   EXPECT_GT(pct[0], 1.5 * pct[1]);
 }
+
+// Every shadowed light is followed with its own V and V_ref: boxes' sweeping sun with a second,
+// still sun and a third that casts no shadow. The first sun's flicker and lag are exactly those
+// of the scene with it alone (its V does not depend on the others), the second has its own, the
+// third none, and the sequence's totals add the two.
+TEST(Motion, FlickerAndLagAreMeasuredForEveryShadowedLight) {
+  const Scene boxes = makeBuiltinScene("boxes");
+  Scene three = boxes;
+  Light still = boxes.lights[0];
+  still.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+  three.lights.push_back(still);
+  still.castsShadow = false;
+  three.lights.push_back(still);
+  const RenderOptions render{96, 64, 512};
+  const report::SequenceTiming timing{3, 2.0f, 1.0f};
+  auto alone = makeTestRenderer(boxes, "uniform", "pcf");
+  const report::SequenceComparison one = report::compareSequence(*alone, boxes, render, timing, referenceOptions(4));
+  auto r = makeTestRenderer(three, "uniform", "pcf");
+  const report::SequenceComparison seq = report::compareSequence(*r, three, render, timing, referenceOptions(4));
+  ASSERT_EQ(seq.lights.size(), 2u) << "the light that casts no shadow is not followed";
+  EXPECT_EQ(seq.lights[0].index, 0u);
+  EXPECT_EQ(seq.lights[1].index, 1u);
+  ASSERT_EQ(one.lights.size(), 1u);
+  EXPECT_EQ(seq.lights[0].flicker.followed, one.flicker.followed);
+  EXPECT_EQ(seq.lights[0].flicker.flickering, one.flicker.flickering);
+  EXPECT_EQ(seq.lights[0].lag.pixels, one.lag.pixels);
+  EXPECT_GT(seq.lights[1].flicker.followed, 1000u);
+  EXPECT_EQ(seq.flicker.followed, seq.lights[0].flicker.followed + seq.lights[1].flicker.followed);
+  EXPECT_EQ(seq.lag.pixels, seq.lights[0].lag.pixels + seq.lights[1].lag.pixels);
+  EXPECT_GT(seq.lights[0].lag.pixels, 0u) << "the sweeping sun's shadows move";
+}
