@@ -58,29 +58,22 @@ void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o) {
       ->capture_default_str();
 }
 
-MapUpdates parseMapUpdates(const std::string& text) {
-  if (text == "every") return {};
-  if (text == "invalid") return {MapUpdates::Policy::WhenInvalid};
-  int maps = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), maps);
-  if (ec != std::errc() || end != text.data() + text.size() || maps < 1)
-    throw usageError(fmt::format("--map-updates {}: expected every, invalid or a number of maps per frame >= 1", text));
-  return {MapUpdates::Policy::Budget, maps};
-}
-
-std::string mapUpdatesName(const MapUpdates& u) {
-  switch (u.policy) {
-    case MapUpdates::Policy::EveryFrame: return "every";
-    case MapUpdates::Policy::WhenInvalid: return "invalid";
-    case MapUpdates::Policy::Budget: break;
-  }
-  return fmt::format("budget {}", u.budgetMaps);
+bool mapsCached(const Shadows& shadows) {
+  if (shadows.mapUpdates().cached()) return true;
+  for (const LightShadowReport& r : shadows.lightReports())
+    if (r.updates.cached()) return true;
+  return false;
 }
 
 std::string mapUpdatesSummary(const Shadows& shadows) {
   const Shadows::MapCacheStats c = shadows.mapCacheStats();
-  return fmt::format("cached maps: {} restored, {} drawn, {} kept (--map-updates {}); staleness max {}, mean {:.2f} frames",
-                     c.restored, c.rendered, c.kept, mapUpdatesName(shadows.mapUpdates()), c.maxStaleness, c.meanStaleness);
+  std::string policies = "--map-updates " + mapUpdatesName(shadows.mapUpdates());
+  const std::vector<LightShadowReport>& lights = shadows.lightReports();
+  for (size_t i = 0; i < lights.size(); ++i)  // the lights whose scene file sets their own
+    if (lights[i].views > 0 && lights[i].updates != shadows.mapUpdates())
+      policies += fmt::format(", light {} {}", i, mapUpdatesName(lights[i].updates));
+  return fmt::format("cached maps: {} restored, {} drawn, {} kept ({}); staleness max {}, mean {:.2f} frames", c.restored,
+                     c.rendered, c.kept, policies, c.maxStaleness, c.meanStaleness);
 }
 
 void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const std::string& what) {

@@ -39,10 +39,8 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o);
 void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o);
 /// Adds --map-updates every|invalid|N (render and compare): Shadows::setMapUpdates.
 void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o);
-/// "every", "invalid" or a whole number of maps ≥ 1 as a policy; a usage Error otherwise.
-MapUpdates parseMapUpdates(const std::string& text);
-/// "every", "invalid" or "budget N": the policy as --map-updates names it.
-std::string mapUpdatesName(const MapUpdates& u);
+/// Whether any light's maps are cached (--map-updates, or a light's own shadow.updates).
+bool mapsCached(const Shadows& shadows);
 /// One line of what the map updates did (Shadows::mapCacheStats), for stderr and reports.
 std::string mapUpdatesSummary(const Shadows& shadows);
 

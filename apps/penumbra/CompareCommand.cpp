@@ -227,7 +227,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["sequence_reference_seconds"] = sequence->referenceSeconds;
       }
       j["map_updates"] = mapUpdatesName(renderer.shadows().mapUpdates());
-      if (renderer.shadows().mapUpdates().cached()) {  // over every frame rendered, the two still ones first
+      if (mapsCached(renderer.shadows())) {  // over every frame rendered, the two still ones first
         const Shadows::MapCacheStats c = renderer.shadows().mapCacheStats();
         j["maps_restored"] = c.restored;
         j["maps_drawn"] = c.rendered;
@@ -247,6 +247,18 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         jl["map_size_requested"] = l.map.requestedMapSize;
         jl["map_views"] = l.map.views;
         jl["importance"] = l.map.importance;
+        if (sequence && l.castsShadow)  // its own flicker and lag over the frames
+          for (const report::LightSequence& ls : sequence->lights)
+            if (ls.index == l.index) {
+              jl["flicker_pct"] = ls.flicker.pct();
+              jl["lag_rmse"] = ls.lag.rmse();
+              jl["ghost_pct"] = ls.lag.ghostPct();
+            }
+        if (l.castsShadow) {  // the light's policy, and in the last frame its maps kept and the oldest one's age
+          jl["map_updates"] = mapUpdatesName(l.map.updates);
+          jl["maps_kept"] = l.map.keptMaps;
+          jl["staleness"] = l.map.staleness;
+        }
         j["lights"].push_back(std::move(jl));
       }
       j["timings_ms"] = nlohmann::json::object();
@@ -291,7 +303,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                   "(%zu too dark, %zu too bright)\n",
                   sequence->lag.rmse(), sequence->lag.pixels, LagOptions{}.frames, sequence->lag.ghostPct(), LagOptions{}.ghostV,
                   sequence->lag.tooDark, sequence->lag.tooBright);
-    if (renderer.shadows().mapUpdates().cached()) std::printf("  %s\n", mapUpdatesSummary(renderer.shadows()).c_str());
+    if (sequence && sequence->lights.size() > 1)
+      for (const report::LightSequence& l : sequence->lights)
+        std::printf("    light %zu: flicker %.4f%% of %zu followed points; lag RMSE %.4f on %zu pixels, %.2f%% off\n", l.index,
+                    l.flicker.pct(), l.flicker.followed, l.lag.rmse(), l.lag.pixels, l.lag.ghostPct());
+    if (mapsCached(renderer.shadows())) std::printf("  %s\n", mapUpdatesSummary(renderer.shadows()).c_str());
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);

@@ -63,7 +63,7 @@ void printMedians(const PassTimings& last, const std::vector<PassTimings>& frame
 
 /// With cached maps, what they did (--verbose).
 void printMapUpdates(const Shadows& shadows) {
-  if (shadows.mapUpdates().cached()) std::fprintf(stderr, "penumbra: %s\n", mapUpdatesSummary(shadows).c_str());
+  if (mapsCached(shadows)) std::fprintf(stderr, "penumbra: %s\n", mapUpdatesSummary(shadows).c_str());
 }
 
 /// Renders the sequence; returns the message line of what was written.

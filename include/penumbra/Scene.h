@@ -2,10 +2,12 @@
 // The scene: meshes, materials, object instances, lights and a camera. Pure data, no GL.
 // Conventions (docs/design.md): right-handed world, metres, +Y up.
 #include <penumbra/Animation.h>
+#include <penumbra/MapUpdates.h>
 #include <penumbra/Math.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -76,6 +78,10 @@ struct LightShadowSettings {
   int mapSize = 0;  ///< texels per side of this light's maps; 0 = the technique's (--shadow-map)
   /// "key" → "value" of the technique's parameters, for this light only.
   std::vector<std::pair<std::string, std::string>> params;
+  /// When this light's maps are drawn again; none = Shadows::setMapUpdates' policy. A light's own
+  /// budget updates that many of its own maps a frame; the lights that follow Shadows' budget
+  /// share it.
+  std::optional<MapUpdates> updates;
 };
 
 /// Largest spot cone half angle (rad): a cone near a hemisphere has no useful single frustum

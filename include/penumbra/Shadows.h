@@ -16,6 +16,7 @@
 #include <penumbra/Casters.h>
 #include <penumbra/Filter.h>
 #include <penumbra/Image.h>
+#include <penumbra/MapUpdates.h>
 #include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
 #include <penumbra/Timings.h>
@@ -124,29 +125,10 @@ struct LightShadowReport {
   int mapSize = 0;           ///< what the budget gave it (= requested without a budget)
   int views = 0;             ///< maps: 1, a cascade each, 6 for a point light's cube
   double importance = 0.0;   ///< its share of the screen, in (0, 1] (the budget's weight)
+  MapUpdates updates;        ///< the policy its maps followed (its own, or Shadows')
+  int keptMaps = 0;          ///< MapUpdates::Budget: its maps left as an earlier frame drew them
+  int staleness = 0;         ///< the oldest of its maps (frames since drawn; 0 = all drawn this frame)
   int64_t texels() const { return static_cast<int64_t>(views) * mapSize * mapSize; }
-};
-
-/// When each shadow map (a view: a cascade, a cube face, a spot's or sun's map) is drawn again.
-/// Cached policies keep each map's static casters (CasterMesh::dynamic false) in a copy that is
-/// restored while the map's view, the shadow pass's programs and parameters and the static casters
-/// are unchanged, draw the dynamic casters over it, and fit the light's views to the static
-/// casters and the receivers only (so that a moving caster does not move them; depth clamping
-/// keeps casters in front of the near plane). Prefilters run on the result as before.
-struct MapUpdates {
-  enum class Policy {
-    EveryFrame,   ///< every map drawn anew every frame, every caster in the views' fit (no cache)
-    WhenInvalid,  ///< cached: every map updated every frame, its static casters redrawn only when invalid
-    /// Cached, and only `budgetMaps` maps updated per frame across every light, the least
-    /// recently updated first (round-robin); the others keep what an earlier frame drew (dynamic
-    /// casters included) with the view it was drawn with, which the visibility pass then reads
-    /// (Shadows::frusta gives it). A map never drawn yet (the first frame, a new light, a new map
-    /// size or view count) is drawn outside the budget.
-    Budget,
-  };
-  Policy policy = Policy::EveryFrame;
-  int budgetMaps = 1;  ///< Budget: maps updated per frame, ≥ 1
-  bool cached() const { return policy != Policy::EveryFrame; }
 };
 
 /// Runs one technique (projection × filter) on the caller's context. Not thread-safe; every call
@@ -187,11 +169,13 @@ public:
   /// scene must outlive its use.
   void setCasterGeometry(const Scene* scene);
 
-  /// When the shadow maps are drawn again (MapUpdates; every map every frame by default).
+  /// When the shadow maps are drawn again (MapUpdates; every map every frame by default), for
+  /// every light that does not set its own (LightShadowSettings::updates).
   void setMapUpdates(const MapUpdates& updates);
   const MapUpdates& mapUpdates() const;
-  /// What the map updates did since the last setMapUpdates. A map's staleness in a frame is the
-  /// number of frames since it was last updated (0: updated in that frame).
+  /// What the map updates did since the last setMapUpdates, over every light (lightReports()
+  /// gives each light's in the last frame). A map's staleness in a frame is the number of frames
+  /// since it was last updated (0: updated in that frame).
   struct MapCacheStats {
     size_t restored = 0;  ///< maps whose static casters' depth was restored from their cache
     size_t rendered = 0;  ///< maps whose static casters were drawn (and stored in their cache)

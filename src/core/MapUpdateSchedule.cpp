@@ -1,6 +1,7 @@
 #include "core/MapUpdateSchedule.h"
 
 #include <algorithm>
+#include <map>
 
 namespace penumbra::core {
 
@@ -10,27 +11,45 @@ void MapUpdateSchedule::forgetLight(size_t light) {
   if (light < mLights.size()) mLights[light] = {};
 }
 
-void MapUpdateSchedule::beginFrame(const MapUpdates& updates, const std::vector<bool>& shadowed) {
-  mUpdates = updates;
-  mLights.resize(shadowed.size());
+void MapUpdateSchedule::beginFrame(std::span<const LightPolicy> lights) {
+  mLights.resize(lights.size());
   struct Candidate {
     int staleness;
     size_t light, view;
   };
-  std::vector<Candidate> held;
+  // Budget pools: every light that shares the common budget (key lights.size()), and each light
+  // with a budget of its own (key: its index).
+  std::map<size_t, std::pair<int, std::vector<Candidate>>> pools;
   for (size_t l = 0; l < mLights.size(); ++l) {
-    if (!shadowed[l]) mLights[l] = {};
+    if (!lights[l].shadowed) mLights[l] = {};
+    const bool budget = lights[l].updates.policy == MapUpdates::Policy::Budget;
+    auto& pool = pools[lights[l].ownBudget ? l : lights.size()];
+    if (budget) pool.first = std::max(1, lights[l].updates.budgetMaps);
     for (size_t v = 0; v < mLights[l].maps.size(); ++v) {
       HeldMap& m = mLights[l].maps[v];
-      m.update = updates.policy != MapUpdates::Policy::Budget;
-      held.push_back({m.staleness, l, v});
+      m.update = !budget;
+      if (budget) pool.second.push_back({m.staleness, l, v});
     }
   }
-  if (updates.policy != MapUpdates::Policy::Budget) return;
-  // The least recently updated first; on ties, light then view order.
-  std::stable_sort(held.begin(), held.end(), [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
-  const size_t budget = static_cast<size_t>(std::max(1, updates.budgetMaps));
-  for (size_t i = 0; i < held.size() && i < budget; ++i) mLights[held[i].light].maps[held[i].view].update = true;
+  for (auto& [key, pool] : pools) {
+    auto& [budget, held] = pool;
+    // The least recently updated first; on ties, light then view order.
+    std::stable_sort(held.begin(), held.end(), [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
+    for (size_t i = 0; i < held.size() && i < static_cast<size_t>(budget); ++i) mLights[held[i].light].maps[held[i].view].update = true;
+  }
+}
+
+void MapUpdateSchedule::beginFrame(const MapUpdates& updates, const std::vector<bool>& shadowed) {
+  std::vector<LightPolicy> lights;
+  for (const bool s : shadowed) lights.push_back({s, updates, false});
+  beginFrame(lights);
+}
+
+int MapUpdateSchedule::staleness(size_t light) const {
+  int oldest = 0;
+  if (light < mLights.size())
+    for (const HeldMap& m : mLights[light].maps) oldest = std::max(oldest, m.staleness);
+  return oldest;
 }
 
 std::vector<uint8_t> MapUpdateSchedule::apply(size_t light, LightFrusta& frusta, int mapSize) {

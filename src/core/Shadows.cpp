@@ -102,10 +102,12 @@ struct Shadows::Impl {
   MapCacheState mapCache;
   core::MapUpdateSchedule schedule;
 
+  /// The light's own map updates, or the Shadows' policy.
+  const MapUpdates& updatesOf(const Light& l) const { return l.shadow.updates ? *l.shadow.updates : mapUpdates; }
   /// What the light's views are fitted to: every body, or with cached maps the static casters
   /// and the receivers (a moving dynamic caster then leaves the views, and so the maps' static
   /// layers, where they are), unless no caster is static.
-  const SceneExtent& fitExtent() const { return mapUpdates.cached() && staticCasters ? staticExtent : extent; }
+  const SceneExtent& fitExtent(const Light& l) const { return updatesOf(l).cached() && staticCasters ? staticExtent : extent; }
 
   Projection& projectionOf(size_t i) { return i == 0 ? *projection : *slots[i]->ownProjection; }
   Filter& filterOf(size_t i) { return i == 0 ? *filter : *slots[i]->ownFilter; }
@@ -114,7 +116,7 @@ struct Shadows::Impl {
   FrameContext frameContext(size_t i) {
     LightSlot& s = *slots[i];
     return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
-                         &visibility, static_cast<int>(i), &mapCache, s.keptViews});
+                         &visibility, static_cast<int>(i), updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews});
   }
   void bindBlocks(size_t i) const {
     slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -189,7 +191,7 @@ struct Shadows::Impl {
   /// How many maps light i's projection makes for it (with its own settings).
   int viewCount(size_t i, const Light& light, const ShadowCamera& camera, int mapSize) {
     const auto snapshot = applySettings(i, light);
-    const int views = static_cast<int>(projectionOf(i).computeFrusta(camera.fit, camera.aspect, light, fitExtent(), mapSize).views.size());
+    const int views = static_cast<int>(projectionOf(i).computeFrusta(camera.fit, camera.aspect, light, fitExtent(light), mapSize).views.size());
     restore(i, snapshot);
     return views;
   }
@@ -215,7 +217,7 @@ struct Shadows::Impl {
     const auto snapshot = applySettings(i, slot.light);
     Projection& projectionI = projectionOf(i);
     Filter& filterI = filterOf(i);
-    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, fitExtent(), slot.mapSize);
+    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, fitExtent(slot.light), slot.mapSize);
     slot.keptViews = schedule.apply(i, slot.frusta, slot.mapSize);
     slot.shadowBlock.upload(core::shadowUniforms(slot.frusta, slot.mapSize));
     bindBlocks(i);
@@ -374,13 +376,18 @@ void Shadows::setCasters(std::span<const CasterMesh> casters, std::span<const Aa
 
 void Shadows::setCasterGeometry(const Scene* scene) { mImpl->cpuScene = scene; }
 
-void Shadows::setMapUpdates(const MapUpdates& updates) {
+namespace {
+void checkMapUpdates(const MapUpdates& updates, const std::string& which) {
   if (updates.policy == MapUpdates::Policy::Budget && updates.budgetMaps < 1)
-    throw usageError(fmt::format("MapUpdates::budgetMaps = {}: a budget updates at least 1 map per frame", updates.budgetMaps));
+    throw usageError(fmt::format("{}MapUpdates::budgetMaps = {}: a budget updates at least 1 map per frame", which, updates.budgetMaps));
+}
+}  // namespace
+
+void Shadows::setMapUpdates(const MapUpdates& updates) {
+  checkMapUpdates(updates, "");
   Impl& im = *mImpl;
   im.mapUpdates = updates;
   im.mapCache = {};
-  im.mapCache.on = updates.cached();
   im.schedule.reset();
 }
 
@@ -416,6 +423,7 @@ void Shadows::render(const ShadowFrameInputs& in) {
     const std::string which = several ? fmt::format("light {}", i) : "";
     if (l.castsShadow) im.checkPair(l, which);
     if (l.shadow.mapSize > 0) checkMapSize(l.shadow.mapSize, which.empty() ? "" : which + ": ");
+    if (l.shadow.updates) checkMapUpdates(*l.shadow.updates, fmt::format("light {}: shadow.updates: ", i));
   }
   // An error the caller's own calls left is theirs: say so, rather than blame a pass below.
   gl::throwIfGlError("the caller's GL calls before Shadows::render");
@@ -449,17 +457,20 @@ void Shadows::render(const ShadowFrameInputs& in) {
                                                          .cut = in.cameraCut,
                                                          .clipFromWorld = im.clipFromWorld,
                                                          .pixelFootprintPerM = 2.0f / (in.camera.clipFromView[1][1] * static_cast<float>(s.height))});
-  std::vector<bool> shadowed;
-  for (const Light& l : in.lights) shadowed.push_back(l.castsShadow);
-  im.schedule.beginFrame(im.mapUpdates, shadowed);
+  std::vector<core::MapUpdateSchedule::LightPolicy> policies;
+  for (const Light& l : in.lights) policies.push_back({l.castsShadow, im.updatesOf(l), l.shadow.updates.has_value()});
+  im.schedule.beginFrame(policies);
   im.timer.beginFrame();
   for (size_t i = 0; i < in.lights.size(); ++i) {
     LightSlot& slot = *im.slots[i];
     slot.light = in.lights[i];
     slot.mapSize = sizes[i];
     im.renderLight(i, in);
-    im.reports[i] = {requests[i].requestedMapSize, sizes[i],
-                     slot.light.castsShadow ? static_cast<int>(slot.frusta.views.size()) : 0, requests[i].importance};
+    const bool shadows = slot.light.castsShadow;
+    im.reports[i] = {requests[i].requestedMapSize, sizes[i], shadows ? static_cast<int>(slot.frusta.views.size()) : 0,
+                     requests[i].importance, im.updatesOf(slot.light),
+                     shadows ? static_cast<int>(std::count(slot.keptViews.begin(), slot.keptViews.end(), uint8_t{1})) : 0,
+                     shadows ? im.schedule.staleness(i) : 0};
   }
   if (TemporalAccumulation::enabled(*im.addOns)) {
     ScopedPass pass(im.timer, "temporal");

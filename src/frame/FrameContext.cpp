@@ -143,7 +143,7 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
   // A pass that samples another map (depth peeling) depends on what the dynamic casters drew
   // there: it is never cached.
   const PassReads reads[] = {passReads(programs.opaque->id()), passReads(programs.masked->id())};
-  const bool cached = mMapCache && mMapCache->on && !reads[0].otherTextures && !reads[1].otherTextures;
+  const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures;
   // What every layer's content depends on besides its own view: the shadow pass's programs (and
   // the filter block where they read it), the clear colour, the map size and the static casters.
   Hasher common;

@@ -28,10 +28,9 @@ enum class SurfaceSource {
   Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
 };
 
-/// Cached shadow maps across frames (Shadows::setMapUpdates): whether renderViews uses them, and
-/// how many layers it restored and rendered.
+/// Cached shadow maps across frames (MapUpdates): how many layers renderViews restored and
+/// rendered.
 struct MapCacheState {
-  bool on = false;
   size_t restored = 0, rendered = 0;
 };
 
@@ -49,7 +48,7 @@ struct FrameResources {
   PassTimer& timer;
   const gl::Texture* visibility;  ///< a 2D array: one layer per light
   int visibilityLayer = 0;        ///< this frame's light
-  MapCacheState* mapCache = nullptr;  ///< nullptr: no caching
+  MapCacheState* mapCache = nullptr;  ///< nullptr: this light's maps are not cached
   /// Per view, 1 where its map is kept as an earlier frame drew it (MapUpdates::Budget; the
   /// frusta then hold the view it was drawn with); empty: every map is drawn.
   std::span<const uint8_t> keptViews = {};

@@ -190,6 +190,15 @@ Light readLight(Reader& r) {
     Reader s = r.child("shadow");
     l.shadow.mapSize = s.whole("mapSize", 0, kMinMapSize, kMaxMapSize);
     readParams(s, l.shadow.params);
+    if (s.has("updates")) {  // "every", "invalid" or a number of maps a frame
+      const Json& u = s.raw("updates");
+      if (!u.is_string() && !u.is_number()) s.fail("updates", "expected \"every\", \"invalid\" or a number of maps per frame");
+      try {
+        l.shadow.updates = parseMapUpdates(u.is_string() ? u.get<std::string>() : u.dump());
+      } catch (const Error& e) {
+        s.fail("updates", e.what());
+      }
+    }
     s.finish();
   }
   l.color = r.vec<3>("color", l.color, 0.0f, kMaxRadiance);

@@ -77,10 +77,14 @@ Json lightJson(const Light& l) {
   j["color"] = tidyVec(l.color);
   j["intensity"] = tidy(l.intensity);
   if (!l.castsShadow) j["castsShadow"] = false;
-  if (l.shadow.mapSize > 0 || !l.shadow.params.empty()) {
+  if (l.shadow.mapSize > 0 || !l.shadow.params.empty() || l.shadow.updates) {
     Json s;
     if (l.shadow.mapSize > 0) s["mapSize"] = l.shadow.mapSize;
     for (const auto& [key, value] : l.shadow.params) s["params"][key] = value;
+    if (const auto& u = l.shadow.updates; u) {  // the text a scene file reads back
+      if (u->policy == MapUpdates::Policy::Budget) s["updates"] = u->budgetMaps;
+      else s["updates"] = mapUpdatesText(*u);
+    }
     j["shadow"] = s;
   }
   return j;

@@ -7,6 +7,7 @@
 #include "GlFixture.h"
 
 #include <penumbra/Animation.h>
+#include <penumbra/Error.h>
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
 
@@ -201,4 +202,48 @@ TEST(MapCache, KeptMapIsReadWithTheViewItWasDrawnWith) {
   }
   EXPECT_EQ(budget->shadows().mapCacheStats().kept, 2u);
   EXPECT_EQ(budget->shadows().mapCacheStats().maxStaleness, 1);
+}
+
+// Policies per light: three suns with csm's 4 cascades under boxes' sweeping sun, Shadows' budget
+// of 2 maps a frame. Sun 0 has a budget of its own of 1 map, sun 1 is drawn every frame, sun 2
+// follows the shared budget: after the first frame each light keeps 3, 0 and 2 of its maps, and
+// the oldest reaches 3, 0 and 1 frames; sun 1's maps are neither cached nor counted.
+TEST(MapCache, EachLightFollowsItsOwnPolicy) {
+  Scene boxes = makeBuiltinScene("boxes");
+  boxes.lights.resize(3, boxes.lights[0]);
+  boxes.lights[0].shadow.updates = MapUpdates{MapUpdates::Policy::Budget, 1};
+  boxes.lights[1].shadow.updates = MapUpdates{};
+  auto r = renderer(boxes, "csm", "hard", {MapUpdates::Policy::Budget, 2});
+  const std::vector<int> keptPerFrame = {3, 0, 2}, oldest = {3, 0, 1};
+  for (int f = 0; f < 6; ++f) {
+    Scene posed = boxes;
+    poseScene(posed, 0.5f * static_cast<float>(f));
+    r->setPose(posed);
+    r->render(kRender);
+    const std::vector<LightShadowReport>& reports = r->shadows().lightReports();
+    ASSERT_EQ(reports.size(), 3u);
+    for (size_t l = 0; l < 3; ++l) {
+      ASSERT_EQ(reports[l].views, 4) << "light " << l;
+      EXPECT_EQ(reports[l].keptMaps, f == 0 ? 0 : keptPerFrame[l]) << "light " << l << ", frame " << f;
+      if (f >= 4) {
+        EXPECT_EQ(reports[l].staleness, oldest[l]) << "light " << l << ", frame " << f;
+      }
+    }
+    EXPECT_EQ(reports[0].updates, (MapUpdates{MapUpdates::Policy::Budget, 1}));
+    EXPECT_EQ(reports[1].updates, MapUpdates{});
+    EXPECT_EQ(reports[2].updates, (MapUpdates{MapUpdates::Policy::Budget, 2}));
+  }
+  // Sun 0 updates 1 map a frame after the first, sun 2 two: the cache counts (4 + 4) + 5 · 3.
+  const Shadows::MapCacheStats c = r->shadows().mapCacheStats();
+  EXPECT_EQ(c.restored + c.rendered, 8u + 5u * 3u);
+  EXPECT_EQ(c.kept, 5u * 5u);
+  // A light's own budget below 1 is refused, naming the light.
+  boxes.lights[2].shadow.updates = MapUpdates{MapUpdates::Policy::Budget, 0};
+  r->setPose(boxes);
+  try {
+    r->render(kRender);
+    ADD_FAILURE() << "a budget of 0 maps was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("light 2: shadow.updates"), std::string::npos) << e.what();
+  }
 }

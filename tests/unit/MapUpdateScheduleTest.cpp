@@ -76,3 +76,35 @@ TEST(MapUpdateSchedule, NewMapsAreDrawnOutsideTheBudgetAndOtherPoliciesKeepNothi
     EXPECT_EQ(s.apply(0, f, 1024), std::vector<uint8_t>(2, 0));
   }
 }
+
+// A light with a budget of its own is its own pool: light 0 (own budget 1, 2 maps), light 1
+// (every frame, 1 map) and lights 2 and 3 (the shared budget of 1, 2 maps each). After the first
+// frame, light 0 updates 1 of its 2 maps, light 1 its map, and lights 2 and 3 one map between them.
+TEST(MapUpdateSchedule, LightsWithTheirOwnBudgetAreTheirOwnPool) {
+  using Policy = MapUpdateSchedule::LightPolicy;
+  MapUpdateSchedule s;
+  const MapUpdates shared{MapUpdates::Policy::Budget, 1};
+  const std::vector<Policy> lights = {{true, {MapUpdates::Policy::Budget, 1}, true},
+                                      {true, {}, true},
+                                      {true, shared, false},
+                                      {true, shared, false}};
+  const std::vector<int> views = {2, 1, 2, 2};
+  for (int frame = 0; frame < 5; ++frame) {
+    s.beginFrame(lights);
+    std::vector<int> updated(lights.size(), 0);
+    for (size_t l = 0; l < lights.size(); ++l) {
+      LightFrusta f = frustaOfFrame(frame, views[l]);
+      for (const uint8_t kept : s.apply(l, f, 256)) updated[l] += kept ? 0 : 1;
+    }
+    if (frame == 0) {
+      EXPECT_EQ(updated, views);
+      continue;
+    }
+    EXPECT_EQ(updated[0], 1) << "frame " << frame;
+    EXPECT_EQ(updated[1], 1) << "frame " << frame;
+    EXPECT_EQ(updated[2] + updated[3], 1) << "frame " << frame;
+  }
+  EXPECT_EQ(s.staleness(0), 1);
+  EXPECT_EQ(s.staleness(1), 0);
+  EXPECT_EQ(s.staleness(2), 3) << "4 maps, 1 a frame";
+}

@@ -208,6 +208,10 @@ TEST(SceneFile, BadLightEntriesNameTheField) {
       {R"({"type": "point", "shadow": {"mapSize": 32768}})", "lights[1].shadow.mapSize: 32768 is outside [16, 16384]"},
       {R"({"type": "point", "shadow": {"mapSize": 1000.5}})", "lights[1].shadow.mapSize: 1000.5 is not a whole number"},
       {R"({"type": "point", "shadow": {"filter": "pcf"}})", "lights[1].shadow.filter: unknown key"},
+      {R"({"type": "point", "shadow": {"updates": 0}})", "lights[1].shadow.updates: map updates '0': expected every, invalid or a number"},
+      {R"({"type": "point", "shadow": {"updates": 2.5}})", "lights[1].shadow.updates: map updates '2.5': expected every"},
+      {R"({"type": "point", "shadow": {"updates": "sometimes"}})", "lights[1].shadow.updates: map updates 'sometimes': expected"},
+      {R"({"type": "point", "shadow": {"updates": true}})", "lights[1].shadow.updates: expected \"every\", \"invalid\" or a number"},
       {R"({"type": "point", "shadow": {"params": {"pcf.radiusTexels": [2]}}})",
        "lights[1].shadow.params.pcf.radiusTexels: expected a number or a name"},
       {R"({"type": "point", "shadow": 512})", "lights[1].shadow: expected an object"},
@@ -236,10 +240,10 @@ TEST(SceneFile, TooManyLightsAreRefusedByName) {
 TEST(SceneFile, LightsKeepEveryKey) {
   const Scene s = loadSceneFile(writeTemp("lights.json", R"({"lights": [
       {"type": "point", "position": [1, 2, 3], "size": 0.05, "range": 6, "color": [1, 0.8, 0.6], "intensity": 3,
-       "shadow": {"mapSize": 256, "params": {"pcf.radiusTexels": 2, "pcf.kernel": "poisson"}}},
+       "shadow": {"mapSize": 256, "params": {"pcf.radiusTexels": 2, "pcf.kernel": "poisson"}, "updates": "invalid"}},
       {"type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "innerConeDeg": 20, "outerConeDeg": 35, "size": 0.04,
        "range": 8, "castsShadow": false},
-      {"type": "spot", "position": [0, 3, 0], "direction": [0, -2, 0], "coneAngleDeg": 30},
+      {"type": "spot", "position": [0, 3, 0], "direction": [0, -2, 0], "coneAngleDeg": 30, "shadow": {"updates": 3}},
       {"type": "sun", "direction": [0, -3, 0], "size": 0.01}],
     "objects": [{"shape": "box"}]})"));
   ASSERT_EQ(s.lights.size(), 4u);
@@ -263,6 +267,9 @@ TEST(SceneFile, LightsKeepEveryKey) {
   EXPECT_FLOAT_EQ(spot.rangeM, 8.0f);
   EXPECT_FALSE(spot.castsShadow);
   EXPECT_EQ(spot.shadow.mapSize, 0) << "no override: the scene's size";
+  EXPECT_EQ(point.shadow.updates, MapUpdates{MapUpdates::Policy::WhenInvalid});
+  EXPECT_FALSE(spot.shadow.updates) << "no override: --map-updates";
+  EXPECT_EQ(s.lights[2].shadow.updates, (MapUpdates{MapUpdates::Policy::Budget, 3}));
   // coneAngleDeg, the older name of the outer angle; without innerConeDeg the light fades over
   // the cone's last 5 degrees.
   EXPECT_NEAR(s.lights[2].coneAngleRad, glm::radians(30.0f), 1e-6f);

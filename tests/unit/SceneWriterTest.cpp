@@ -151,6 +151,7 @@ TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
   spot.intensity = 60.0f;
   spot.shadow.mapSize = 512;
   spot.shadow.params = {{"pcf.radiusTexels", "2"}};
+  spot.shadow.updates = MapUpdates{MapUpdates::Policy::Budget, 2};
   Light point;
   point.type = LightType::Point;
   point.position = {-1.5f, 2.0f, 0.5f};
@@ -159,6 +160,7 @@ TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
   point.color = {0.7f, 0.85f, 1.0f};
   point.intensity = 25.0f;
   point.shadow.mapSize = 256;
+  point.shadow.updates = MapUpdates{MapUpdates::Policy::WhenInvalid};
   s.lights = {sun, spot, point};
   auto projection = makeProjection("uniform");
   auto filter = makeFilter("pcf");
@@ -188,5 +190,6 @@ TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
     EXPECT_EQ(b.castsShadow, a.castsShadow) << which;
     EXPECT_EQ(b.shadow.mapSize, a.shadow.mapSize) << which;
     EXPECT_EQ(b.shadow.params, a.shadow.params) << which;
+    EXPECT_EQ(b.shadow.updates, a.shadow.updates) << which;
   }
 }
