@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 using namespace penumbra;
@@ -97,21 +96,12 @@ TEST(MotionCli, CompareReportsTheMapBudgetsStaleness) {
 }
 
 // A light's own map updates from the scene file, and each light's flicker and lag: two suns over
-// a rolling ball with csm's 4 cascades, the first with a budget of its own of 1 map a frame, the
-// second following --map-updates invalid. compare --json says per light which policy it followed,
+// a rolling ball (tests/data/scenes/two-suns.json) with csm's 4 cascades, the first with a
+// budget of its own of 1 map a frame, the second following --map-updates invalid. compare --json says per light which policy it followed,
 // how many of its maps the compared frame kept, and its own flicker and lag over the sequence.
 TEST(MotionCli, EachLightHasItsOwnMapUpdatesAndFlicker) {
   const std::string dir = freshDir("per-light-updates");
-  {
-    std::ofstream f(dir + "/two-suns.json");
-    f << R"({"camera": {"position": [3.5, 4.0, 6.5], "target": [-0.3, 0.3, 0.0]},
- "lights": [{"type": "sun", "direction": [-0.45, -1.0, -0.35], "size": 0.02, "shadow": {"updates": 1}},
-            {"type": "sun", "direction": [0.5, -1.0, 0.2], "size": 0.02}],
- "objects": [{"shape": "plane", "size": [24, 24]}, {"shape": "box", "translate": [-1.5, 0.5, 0]},
-   {"name": "ball", "shape": "sphere", "radius": 0.6, "translate": [0, 0.6, -0.2],
-    "animation": {"keys": [{"timeS": 0, "translate": [0, 0.6, -0.2]}, {"timeS": 4, "translate": [2.5, 0.6, 0.3]}]}}]})";
-  }
-  const RunResult r = runPenumbra("compare --scene two-suns.json --projection csm --size 48x32 --shadow-map 256 --samples 4 --frames 3 "
+  const RunResult r = runPenumbra("compare --scene '" PENUMBRA_TEST_DATA "/scenes/two-suns.json' --projection csm --size 48x32 --shadow-map 256 --samples 4 --frames 3 "
                                   "--fps 1 --map-updates invalid --json --out imgs",
                                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
