@@ -10,6 +10,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 namespace penumbra::viewer {
 namespace {
@@ -72,7 +73,7 @@ bool parseSwitch(std::string_view key, std::string_view text) {
   throw usageError(fmt::format("{}={}: expected on or off", key, text));
 }
 
-enum class Form { Type, Number, Vector, Switch, Texels };
+enum class Form { Type, Number, Vector, Switch, Texels, Updates };
 
 struct Key {
   std::string_view name;
@@ -84,6 +85,7 @@ constexpr Key kKeys[] = {
     {"target", Form::Vector},      {"size", Form::Number},         {"color", Form::Vector},
     {"intensity", Form::Number},   {"outerConeDeg", Form::Number}, {"innerConeDeg", Form::Number},
     {"range", Form::Number},       {"castsShadow", Form::Switch},  {"mapSize", Form::Texels},
+    {"updates", Form::Updates},
 };
 
 const Key& findKey(std::string_view name) {
@@ -92,6 +94,12 @@ const Key& findKey(std::string_view name) {
   std::string known;
   for (const Key& k : kKeys) known += (known.empty() ? "" : ", ") + std::string(k.name);
   throw usageError(fmt::format("unknown light key '{}' (known: {})", name, known));
+}
+
+/// A light's own map updates: "every", "invalid", N maps a frame, or "default" (Shadows' policy).
+std::optional<MapUpdates> parseLightUpdates(std::string_view text) {
+  if (text == "default") return std::nullopt;
+  return parseMapUpdates(text);
 }
 
 int parseTexels(std::string_view key, std::string_view text) {
@@ -118,6 +126,7 @@ std::string checkForm(const Key& k, std::span<const std::string> value) {
     case Form::Vector: parseVector(k.name, text); break;
     case Form::Switch: parseSwitch(k.name, text); break;
     case Form::Texels: parseTexels(k.name, text); break;
+    case Form::Updates: parseLightUpdates(text); break;
   }
   return text;
 }
@@ -266,6 +275,8 @@ Light setLightField(Light l, std::string_view key, std::span<const std::string> 
     l.castsShadow = parseSwitch(key, text);
   } else if (key == "mapSize") {
     l.shadow.mapSize = parseTexels(key, text);
+  } else if (key == "updates") {
+    l.shadow.updates = parseLightUpdates(text);
   }
   if (const std::string problem = lightProblem(l); !problem.empty()) throw usageError(fmt::format("{}: {}", key, problem));
   return l;

@@ -171,6 +171,24 @@ void Viewer::drawLightsPanel() {
     ImGui::EndCombo();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer)");
+  // The light's own map updates (docs/embedding.md#cached-maps); none = the technique's.
+  const std::string policy = l.shadow.updates ? mapUpdatesName(*l.shadow.updates) : "technique's";
+  if (ImGui::BeginCombo("Map updates", policy.c_str())) {
+    if (ImGui::Selectable("technique's", !l.shadow.updates)) {
+      l.shadow.updates.reset();
+      changed = true;
+    }
+    for (const MapUpdates u : {MapUpdates{}, MapUpdates{MapUpdates::Policy::WhenInvalid}, MapUpdates{MapUpdates::Policy::Budget, 1},
+                               MapUpdates{MapUpdates::Policy::Budget, 2}})
+      if (ImGui::Selectable(mapUpdatesName(u).c_str(), l.shadow.updates == u)) {
+        l.shadow.updates = u;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("when this light's maps are drawn again: every frame; when invalid (static casters cached); or N maps a "
+                      "frame round-robin, the others kept as an earlier frame drew them");
   if (changed) {
     try {
       mSession.setLight(selected, l);

@@ -64,6 +64,12 @@ TEST(ViewerLights, SetChangesOneFieldOfTheScenesKeys) {
   EXPECT_EQ(l.shadow.mapSize, 512);
   l = set(l, "mapSize", {"0"});
   EXPECT_EQ(l.shadow.mapSize, 0);
+  l = set(l, "updates", {"2"});
+  EXPECT_EQ(l.shadow.updates, (MapUpdates{MapUpdates::Policy::Budget, 2}));
+  l = set(l, "updates", {"invalid"});
+  EXPECT_EQ(l.shadow.updates, MapUpdates{MapUpdates::Policy::WhenInvalid});
+  l = set(l, "updates", {"default"});
+  EXPECT_FALSE(l.shadow.updates);
   // A narrower outer cone narrows the inner one with it; the inner one alone stays inside.
   l = set(l, "outerConeDeg", {"10"});
   EXPECT_NEAR(glm::degrees(l.coneAngleRad), 10.0f, 1e-4f);
@@ -88,6 +94,7 @@ TEST(ViewerLights, RefusedEditsSayWhy) {
   EXPECT_NE(usageMessage([&] { set(set(s, "size", {"0.5"}), "range", {"0.2"}); }).find("must exceed the light's size"),
             std::string::npos);
   EXPECT_NE(usageMessage([&] { set(s, "mapSize", {"8"}); }).find("map"), std::string::npos);
+  EXPECT_NE(usageMessage([&] { set(s, "updates", {"0"}); }).find("expected every, invalid or a number"), std::string::npos);
   EXPECT_NE(usageMessage([&] { set(s, "castsShadow", {"maybe"}); }).find("on or off"), std::string::npos);
   EXPECT_NE(usageMessage([&] { set(s, "position", {"1", "2"}); }).find("X Y Z or X,Y,Z"), std::string::npos);
   EXPECT_NE(usageMessage([&] { set(s, "type", {"lamp"}); }).find("unknown light type 'lamp'"), std::string::npos);
