@@ -240,6 +240,8 @@ void Renderer::runLitPass() {
   d.compute = {"passes/lit.comp.glsl"};
   // Built per debug view: the shaded image runs none of the debug code.
   d.defines.set("PN_DEBUG_VIEW", im.debugView);
+  if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
+    d.defines.set("PN_ONLY_SUNS");
   const gl::Program& program = shaders().program(d);
   const glm::ivec4 count(static_cast<int>(im.scene.lights.size()), 0, 0, 0);
   const size_t bytes = sizeof(count) + im.scene.lights.size() * sizeof(gpu::LightGpu);
