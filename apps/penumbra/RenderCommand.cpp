@@ -138,6 +138,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
     if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
     if (!o->dump.empty()) checkOutputDir("--dump", o->dump);
     Setup s = makeSetup(o->technique);
+    s.render.triangleIds = false;  // nothing here traces the reference: the frame writes what it shows
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, s.render.width, s.render.height,
                    kRenderHostBytesPerPixel + (o->visibility.empty() ? 0 : kVisibilityHostBytesPerPixel));

@@ -32,6 +32,11 @@ struct RenderOptions {
   /// The camera jumped since the last frame (a cut, a teleport, a new view): temporal
   /// accumulation drops its history (ShadowFrameInputs::cameraCut).
   bool cameraCut = false;
+  /// Record which triangle each pixel shows (GBufferData::triangle: one more G-buffer attachment,
+  /// 8 bytes a pixel written every frame). The reference needs them to skip each receiver's own
+  /// triangle, so every path that traces it keeps the default; a frame only displayed (penumbra
+  /// render) turns them off. Off, readGBuffer() leaves GBufferData::triangle empty.
+  bool triangleIds = true;
 };
 
 class Renderer {
@@ -93,6 +98,7 @@ public:
 
   /// Visibility of light `light` in the last frame, width × height floats, row 0 = bottom.
   std::vector<float> readVisibility(size_t light = 0) const;
+  /// The last frame's G-buffer; `triangle` is empty unless that frame had RenderOptions::triangleIds.
   GBufferData readGBuffer() const;
   ColorImage readColor() const;
   /// The last frame's colour on the GPU (RGBA8 holding sRGB-encoded values, row 0 = bottom),

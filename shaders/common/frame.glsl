@@ -15,8 +15,15 @@ const float kPi = 3.14159265358979;
 int samplingFrame() { return u_frame.screen.w; }
 
 // Any light's kind, direction toward it and falloff (the frame's light below, or one of the lit
-// pass's list).
-bool isPositional(LightGpu l) { return int(l.direction.w) != PN_LIGHT_SUN; }
+// pass's list). With PN_ONLY_SUNS defined (the lit pass of a frame without spot or point lights)
+// the positional code is compiled out: a software rasteriser runs both sides of a branch.
+bool isPositional(LightGpu l) {
+#ifdef PN_ONLY_SUNS
+  return false;
+#else
+  return int(l.direction.w) != PN_LIGHT_SUN;
+#endif
+}
 vec3 toLightOf(LightGpu l, vec3 wsPosition) {
   return isPositional(l) ? normalize(l.position.xyz - wsPosition) : -l.direction.xyz;
 }

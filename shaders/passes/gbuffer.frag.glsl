@@ -1,20 +1,14 @@
 // G-buffer pass: world position, shading and geometric normals (both turned toward the camera,
-// so open meshes shade from either side), base colour, and which triangle the pixel shows: the
-// reference skips that triangle's own hits instead of lifting rays off it (docs/reference.md).
+// so open meshes shade from either side), base colour, and, when the frame records them, which
+// triangle the pixel shows: the reference skips that triangle's own hits instead of lifting rays
+// off it (docs/reference.md). Background pixels are written after, by gbuffer_background.frag.glsl.
 #include "common/frame.glsl"
+#include "common/gbuffer_outputs.glsl"
 #include "common/material.glsl"
 
 in vec3 v_wsPosition;
 in vec3 v_wsNormal;
 in vec2 v_uv;
-
-layout(location = 0) out vec4 o_position;
-layout(location = 1) out vec4 o_normal;
-layout(location = 2) out vec4 o_geoNormal;
-layout(location = 3) out vec4 o_albedo;
-// (object index + 1, triangle index in the object's mesh); 0 = none (cleared background).
-// gl_PrimitiveID counts from 0 in each draw, and GpuScene draws one object's whole mesh per call.
-layout(location = 4) out uvec2 o_triangle;
 
 void main() {
   alphaTest(v_uv);
@@ -28,5 +22,7 @@ void main() {
   o_normal = vec4(n, 0.0);
   o_geoNormal = vec4(g, 0.0);
   o_albedo = vec4(materialBaseColor(v_uv), 1.0);
+#if PN_GBUFFER_TRIANGLES
   o_triangle = uvec2(uint(u_object) + 1u, uint(gl_PrimitiveID));
+#endif
 }

@@ -11,10 +11,9 @@ layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_gbufPosition;
 layout(binding = PN_TEX_GBUF_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = PN_TEX_GBUF_ALBEDO) uniform sampler2D s_gbufAlbedo;
 layout(binding = PN_TEX_VISIBILITY) uniform sampler2DArray s_visibility;
-layout(std430, binding = PN_SSBO_LIGHTS) readonly buffer LightsBlock {
-  ivec4 u_lightCount;  // x: lights
-  LightGpu u_lights[];
-};
+// PN_LIT_LIGHTS (a define): the frame's light count; PN_ONLY_SUNS (defined or not): no spot or
+// point light among them (common/frame.glsl).
+layout(std430, binding = PN_SSBO_LIGHTS) readonly buffer LightsBlock { LightGpu u_lights[]; };
 layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
 // PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes.
 const int kDebugView = PN_DEBUG_VIEW;
@@ -56,7 +55,7 @@ void main() {
     // The visibility view: each light's V weighted by its unshadowed light here (what the
     // metrics call the combined V; a single light's own V).
     float weightedV = 0.0, weights = 0.0;
-    for (int i = 0; i < u_lightCount.x; ++i) {
+    for (int i = 0; i < PN_LIT_LIGHTS; ++i) {
       LightGpu light = u_lights[i];
       float v = texelFetch(s_visibility, ivec3(px, i), 0).r;
       vec3 l = toLightOf(light, pos.xyz);

@@ -13,7 +13,7 @@
 #define PN_SSBO_POINTS 3   // VisibilityPointGpu[]: world points for Renderer::visibilityAt (VisibilityPoints.h)
 #define PN_SSBO_POINT_VISIBILITY 4  // float[]: V at those points
 #define PN_SSBO_SAT 5      // uvec4[]: a summed-area table of depth moments (common/sat.glsl)
-#define PN_SSBO_LIGHTS 6   // the lit pass's lights: ivec4 count, then LightGpu[] (Frame.h)
+#define PN_SSBO_LIGHTS 6   // the lit pass's lights: LightGpu[] (Frame.h), as many as its PN_LIT_LIGHTS
 
 // Texture units (samplers)
 #define PN_TEX_GBUF_POSITION 0  // RGBA32F: world position (m), w = 1 where geometry

@@ -57,13 +57,16 @@ struct Renderer::Impl {
   PassTimer timer{gl::isSoftwareRenderer(gl::glString(GL_RENDERER))};
   PassTimings timings;
   gl::Buffer frameBlock{"renderer frame block", sizeof(gpu::FrameUniforms)};
-  gl::Buffer lightsBlock;  ///< the lit pass's lights (PN_SSBO_LIGHTS): a count, then LightGpu[]
+  gl::Buffer lightsBlock;  ///< the lit pass's lights (PN_SSBO_LIGHTS): LightGpu[PN_LIT_LIGHTS]
   // Screen targets
   glm::ivec2 size{0};
   gl::Texture position, normal, geoNormal, albedo, triangle, depth, color;
   gl::Framebuffer gbuffer;
+  int gbufferColors = 0;      // draw buffers of gbuffer: 5 with the triangle ids, 4 without
+  gl::VertexArray emptyVao{"renderer full-screen vao"};  // the G-buffer background's (no attributes)
   int frameIndex = 0;
   int mapSize = 0;                   // of the last frame
+  bool triangleIds = false;          // of the last frame
   int debugView = PN_VIEW_SHADED;    // of the last frame
 
   void ensureScreen(glm::ivec2 s) {
@@ -85,6 +88,7 @@ struct Renderer::Impl {
       gbuffer.attach(GL_COLOR_ATTACHMENT4, triangle);
       gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
       gbuffer.finish(5);
+      gbufferColors = 5;
     } catch (const Error& e) {
       throw Error(fmt::format("the {}x{} image's targets: {}", s.x, s.y, e.what()));
     }
@@ -162,19 +166,26 @@ void Renderer::render(const RenderOptions& options) {
   {
     ScopedPass pass(im.timer, "gbuffer");
     im.uploadFrameBlock();
+    im.triangleIds = options.triangleIds;
+    const int colors = im.triangleIds ? 5 : 4;  // attachment 4 holds the triangle ids
+    if (colors != im.gbufferColors) {
+      im.gbuffer.finish(colors);
+      im.gbufferColors = colors;
+    }
     ProgramDesc d;
     d.label = "gbuffer";
     d.vertex = {"passes/geometry.vert.glsl"};
     d.fragment = {"passes/gbuffer.frag.glsl"};
+    d.defines.set("PN_GBUFFER_TRIANGLES", im.triangleIds ? 1 : 0);
     const gl::Program& program = shaders().program(d);
     glProgramUniform1i(program.id(), PN_LOC_VIEW, -1);
     glBindFramebuffer(GL_FRAMEBUFFER, im.gbuffer.id());
     glViewport(0, 0, im.size.x, im.size.y);
-    const float zero[4] = {0, 0, 0, 0};
+    // Only the depth is cleared: the colour attachments get their background values from a
+    // full-screen triangle drawn after the surfaces, on the far plane (fullscreen.vert.glsl: stored
+    // depth 0, the value cleared here) with an EQUAL test, so it writes just the pixels no surface
+    // covered instead of clearing all five over the whole screen.
     const float farDepth = 0.0f;  // reversed-Z
-    for (GLint i = 0; i < 4; ++i) glClearNamedFramebufferfv(im.gbuffer.id(), GL_COLOR, i, zero);
-    const GLuint noTriangle[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferuiv(im.gbuffer.id(), GL_COLOR, 4, noTriangle);
     glClearNamedFramebufferfv(im.gbuffer.id(), GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
@@ -182,6 +193,20 @@ void Renderer::render(const RenderOptions& options) {
     glDisable(GL_CULL_FACE);
     program.use();
     im.gpuScene->draw(program.id());
+    ProgramDesc b;
+    b.label = "gbuffer background";
+    b.vertex = {"passes/fullscreen.vert.glsl"};
+    b.fragment = {"passes/gbuffer_background.frag.glsl"};
+    b.defines = d.defines;
+    const gl::Program& background = shaders().program(b);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    background.use();
+    glBindVertexArray(im.emptyVao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   gl::throwIfGlError("the G-buffer pass");
@@ -214,17 +239,19 @@ void Renderer::runLitPass() {
   ProgramDesc d;
   d.label = "lit";
   d.compute = {"passes/lit.comp.glsl"};
-  // Built per debug view: the shaded image runs none of the debug code.
+  // Built per debug view (the shaded image runs none of the debug code), per light count (a
+  // constant loop: about a fifth of the pass on llvmpipe) and without the spot and point code
+  // when every light is a sun (llvmpipe runs both sides of a branch).
   d.defines.set("PN_DEBUG_VIEW", im.debugView);
+  d.defines.set("PN_LIT_LIGHTS", static_cast<int>(im.scene.lights.size()));
+  if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
+    d.defines.set("PN_ONLY_SUNS");
   const gl::Program& program = shaders().program(d);
-  const glm::ivec4 count(static_cast<int>(im.scene.lights.size()), 0, 0, 0);
-  const size_t bytes = sizeof(count) + im.scene.lights.size() * sizeof(gpu::LightGpu);
+  std::vector<gpu::LightGpu> lights;
+  for (const Light& l : im.scene.lights) lights.push_back(core::lightGpu(l));
+  const size_t bytes = lights.size() * sizeof(gpu::LightGpu);
   if (im.lightsBlock.size() < bytes) im.lightsBlock = gl::Buffer("lit pass lights", bytes);
-  im.lightsBlock.upload(&count, sizeof(count));
-  for (size_t i = 0; i < im.scene.lights.size(); ++i) {
-    const gpu::LightGpu l = core::lightGpu(im.scene.lights[i]);
-    im.lightsBlock.upload(&l, sizeof(l), sizeof(count) + i * sizeof(l));
-  }
+  im.lightsBlock.upload(lights.data(), bytes);
   im.lightsBlock.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_LIGHTS);
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
@@ -322,8 +349,10 @@ GBufferData Renderer::readGBuffer() const {
   read(mImpl->geoNormal, g.geoNormal);
   read(mImpl->normal, g.normal);
   read(mImpl->albedo, g.albedo);
-  g.triangle.resize(n);
-  mImpl->triangle.read(GL_RG_INTEGER, GL_UNSIGNED_INT, g.triangle.data(), n * sizeof(glm::uvec2));
+  if (mImpl->triangleIds) {
+    g.triangle.resize(n);
+    mImpl->triangle.read(GL_RG_INTEGER, GL_UNSIGNED_INT, g.triangle.data(), n * sizeof(glm::uvec2));
+  }
   return g;
 }
 

@@ -148,7 +148,7 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   }
   ProgramDesc show;
   show.label = "viewer display";
-  show.vertex = {"passes/viewer_fullscreen.vert.glsl"};
+  show.vertex = {"passes/fullscreen.vert.glsl"};
   show.fragment = {"passes/viewer_display.frag.glsl"};
   show.defines = defines;
   const gl::Program& p = mShaders.program(show);
