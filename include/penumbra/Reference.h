@@ -89,8 +89,9 @@ public:
   ReferenceTracer& operator=(const ReferenceTracer&) = delete;
 
   /// Traces every covered pixel of `gbuffer` (position, geoNormal, albedo and, when present,
-  /// triangle are read) toward `light`. Throws penumbra::Error on inconsistent inputs (a triangle
-  /// id the scene does not have among them), bad options, or an unusable cache dir.
+  /// triangle are read) toward `light`. Throws penumbra::Error on inconsistent inputs (a covered
+  /// pixel's triangle id that the scene does not have among them), bad options, or an unusable
+  /// cache dir.
   ReferenceResult trace(const GBufferData& gbuffer, const Light& light,
                         const ReferenceOptions& options = {}) const;
 

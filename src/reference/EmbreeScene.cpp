@@ -175,20 +175,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
 void EmbreeScene::ReleaseDevice::operator()(RTCDevice device) const { rtcReleaseDevice(device); }
 void EmbreeScene::ReleaseScene::operator()(RTCScene scene) const { rtcReleaseScene(scene); }
 
-void EmbreeScene::Bundle::add(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar) {
-  RTCRay& ray = rays.emplace_back();
-  ray.org_x = origin.x; ray.org_y = origin.y; ray.org_z = origin.z;
-  ray.dir_x = direction.x; ray.dir_y = direction.y; ray.dir_z = direction.z;
-  ray.tnear = tNear;
-  ray.tfar = tFar;
-  ray.time = 0.0f;
-  ray.mask = std::numeric_limits<unsigned int>::max();
-  ray.id = 0;
-  ray.flags = 0;
-}
-
-bool EmbreeScene::Bundle::blocked(size_t i) const { return rays[i].tfar == -std::numeric_limits<float>::infinity(); }
-
 void EmbreeScene::occluded(Bundle& bundle, TriangleId skip) const {
   if (bundle.rays.empty()) return;
   SkipContext c;

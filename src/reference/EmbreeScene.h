@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -56,11 +57,22 @@ public:
   /// one flag per ray out. Reused from pixel to pixel, so tracing allocates nothing per ray.
   struct Bundle {
     std::vector<RTCRay> rays;  // Embree's layout: origin, tnear, direction, time, tfar, mask, id, flags
+    // Inline: add() and blocked() run once per ray, in the tracer's and the benchmark's loops.
     void clear() { rays.clear(); }
-    void add(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar);
+    void add(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar) {
+      RTCRay& ray = rays.emplace_back();
+      ray.org_x = origin.x; ray.org_y = origin.y; ray.org_z = origin.z;
+      ray.dir_x = direction.x; ray.dir_y = direction.y; ray.dir_z = direction.z;
+      ray.tnear = tNear;
+      ray.tfar = tFar;
+      ray.time = 0.0f;
+      ray.mask = std::numeric_limits<unsigned int>::max();
+      ray.id = 0;
+      ray.flags = 0;
+    }
     size_t size() const { return rays.size(); }
-    /// After occluded(bundle): whether ray i was blocked.
-    bool blocked(size_t i) const;
+    /// After occluded(bundle): whether ray i was blocked (Embree sets a blocked ray's tfar to −inf).
+    bool blocked(size_t i) const { return rays[i].tfar == -std::numeric_limits<float>::infinity(); }
   };
   /// occluded() for every ray of `bundle` at once, as one coherent stream (Embree groups the rays
   /// into packets of its SIMD width): the same answer as one occluded() call per ray, faster when

@@ -41,21 +41,19 @@ inline int strataColumns(int n) {
   return columns < 1 ? 1 : columns;
 }
 
-/// Shirley & Chiu's concentric map, unit square → unit disk. Area-preserving and with low
-/// distortion, so square strata stay compact cells on the disk (and on the light).
-inline glm::vec2 concentricDisk(glm::vec2 u) {
+/// Shirley & Chiu's concentric map, unit square → unit disk, in polar form: the disk point is
+/// r·(cos θ, sin θ), r signed. Area-preserving and with low distortion, so square strata stay
+/// compact cells on the disk (and on the light). The sine and cosine are left to the caller, so
+/// that a loop over many samples keeps libm's calls out of its arithmetic.
+struct DiskPolar {
+  float r = 0.0f, theta = 0.0f;
+};
+inline DiskPolar concentricPolar(glm::vec2 u) {
   const glm::vec2 o = 2.0f * u - 1.0f;
-  if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
+  if (o.x == 0.0f && o.y == 0.0f) return {};
   constexpr float kQuarterPi = 0.78539816339744830962f;
-  float r, theta;
-  if (std::abs(o.x) > std::abs(o.y)) {
-    r = o.x;
-    theta = kQuarterPi * (o.y / o.x);
-  } else {
-    r = o.y;
-    theta = 2.0f * kQuarterPi - kQuarterPi * (o.x / o.y);
-  }
-  return {r * std::cos(theta), r * std::sin(theta)};
+  if (std::abs(o.x) > std::abs(o.y)) return {o.x, kQuarterPi * (o.y / o.x)};
+  return {o.y, 2.0f * kQuarterPi - kQuarterPi * (o.x / o.y)};
 }
 
 /// 1 − cos α for a cone of half angle α, without the cancellation of 1 − cos α for the sun's

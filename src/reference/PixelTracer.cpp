@@ -75,25 +75,28 @@ std::vector<std::vector<ReceiverTriangle>> receiverTriangles(const Scene& scene)
   return out;
 }
 
+Receiver receiverOf(const GBufferData& g, size_t i, const std::vector<std::vector<ReceiverTriangle>>& triangles) {
+  Receiver out;
+  const glm::vec3 p = glm::abs(glm::vec3(g.position[i]));
+  float magnitude = std::max({p.x, p.y, p.z});
+  if (!g.triangle.empty() && g.triangle[i].x > 0) {
+    const uint32_t object = g.triangle[i].x - 1, triangle = g.triangle[i].y;
+    PN_CHECK(object < triangles.size() && triangle < triangles[object].size(),
+             fmt::format("reference: G-buffer pixel {} shows triangle {} of object {}, which the scene does not have", i,
+                         triangle, object));
+    const ReceiverTriangle& t = triangles[object][triangle];
+    out.triangle = {object, triangle};
+    out.planeNormal = glm::dot(t.normal, glm::vec3(g.geoNormal[i])) < 0.0f ? -t.normal : t.normal;
+    magnitude = std::max(magnitude, t.magnitude);
+  }
+  out.errorM = kPositionToleranceUlps * floatSpacing(magnitude);
+  return out;
+}
+
 std::vector<Receiver> receiversOf(const GBufferData& g, const std::vector<std::vector<ReceiverTriangle>>& triangles) {
   std::vector<Receiver> out(g.position.size());
-  // Over every core: one pass over the G-buffer before any ray is cast.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size()), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) {
-      const glm::vec3 p = glm::abs(glm::vec3(g.position[i]));
-      float magnitude = std::max({p.x, p.y, p.z});
-      if (!g.triangle.empty() && g.triangle[i].x > 0) {
-        const uint32_t object = g.triangle[i].x - 1, triangle = g.triangle[i].y;
-        PN_CHECK(object < triangles.size() && triangle < triangles[object].size(),
-                 fmt::format("reference: G-buffer pixel {} shows triangle {} of object {}, which the scene does not have",
-                             i, triangle, object));
-        const ReceiverTriangle& t = triangles[object][triangle];
-        out[i].triangle = {object, triangle};
-        out[i].planeNormal = glm::dot(t.normal, glm::vec3(g.geoNormal[i])) < 0.0f ? -t.normal : t.normal;
-        magnitude = std::max(magnitude, t.magnitude);
-      }
-      out[i].errorM = kPositionToleranceUlps * floatSpacing(magnitude);
-    }
+    for (size_t i = range.begin(); i != range.end(); ++i) out[i] = receiverOf(g, i, triangles);
   });
   return out;
 }

@@ -75,9 +75,12 @@ struct Receiver {
   glm::vec3 planeNormal{0.0f};
 };
 
-/// Per pixel of g: the triangle its rays skip, its plane and δ (position tolerance, m), from
-/// receiverTriangles(scene). Throws when the G-buffer names a triangle the scene does not have (a
-/// G-buffer of another scene).
+/// Pixel i of g as a receiver: the triangle its rays skip, its plane and δ (position tolerance, m),
+/// from receiverTriangles(scene). Throws when the G-buffer names a triangle the scene does not have
+/// there (a G-buffer of another scene).
+Receiver receiverOf(const GBufferData& g, size_t i, const std::vector<std::vector<ReceiverTriangle>>& triangles);
+
+/// receiverOf() for every pixel of g, over every core (the cache key hashes them all).
 std::vector<Receiver> receiversOf(const GBufferData& g, const std::vector<std::vector<ReceiverTriangle>>& triangles);
 
 struct PixelOut {
@@ -93,6 +96,12 @@ struct SoftSamples {
   std::vector<float> cosTheta;
   std::vector<int> ray;
   EmbreeScene::Bundle bundle;
+  std::vector<glm::vec2> points;  // softSamples' scratch: every sample's point, square → disk
+};
+
+/// softSamples' default per-sample hook: nothing.
+struct IgnoreSample {
+  void operator()(float /*cosTheta*/) const {}
 };
 
 class PixelTracer {
@@ -113,27 +122,33 @@ public:
     if (!soft(distanceM)) return traceHard(out, origin, n, brdf, receiver);
 
     // The pixel's rays, one coherent stream through Embree (the samples' order is kept: the sums
-    // below add in it, so the result does not depend on how Embree groups the rays).
+    // add in it, so the result does not depend on how Embree groups the rays). Σ cos is summed as
+    // the samples are made, where its additions hide behind the generator's latency.
     thread_local SoftSamples samples;
-    softSamples(pixel, origin, n, receiver, distanceM, samples);
+    float sumCos = 0.0f;
+    softSamples(pixel, origin, n, receiver, distanceM, samples, [&sumCos](float cosTheta) { sumCos += cosTheta; });
     mScene.occluded(samples.bundle, receiver.triangle);
     const size_t above = samples.cosTheta.size();
-    float sumV = 0.0f, sumCos = 0.0f, sumCosV = 0.0f;
-    for (size_t k = 0; k < above; ++k) {
-      const int ray = samples.ray[k];
-      const float v = ray >= 0 && samples.bundle.blocked(static_cast<size_t>(ray)) ? 0.0f : 1.0f;
-      const float cosTheta = samples.cosTheta[k];
-      sumV += v;
-      sumCos += cosTheta;
-      sumCosV += cosTheta * v;
-    }
+    size_t blocked = 0;
+    for (size_t k = 0; k < samples.bundle.size(); ++k) blocked += samples.bundle.blocked(k) ? 1 : 0;
+    // Σ V and Σ cos·V over the samples in order, V = 0 for a blocked ray and 1 otherwise: a count
+    // (exact in float below 2²⁴ samples), and Σ cos of the unblocked samples, since adding
+    // cos·0 = +0 leaves a sum unchanged. Unshadowed or wholly blocked pixels need no second pass.
+    const auto sumV = static_cast<float>(above - blocked);
+    float sumCosV = blocked == 0 ? sumCos : 0.0f;
+    if (blocked > 0 && blocked < above)
+      for (size_t k = 0; k < above; ++k) {
+        const int ray = samples.ray[k];
+        if (ray < 0 || !samples.bundle.blocked(static_cast<size_t>(ray))) sumCosV += samples.cosTheta[k];
+      }
     const float capHeight = this->capHeight(distanceM);
     out.visibility = above > 0 ? sumV / static_cast<float>(above) : 0.0f;
     out.visibilityCos = sumCos > 0.0f ? sumCosV / sumCos : out.visibility;
     // Uniform over the cone: ∫ f dω ≈ (Ω / N) Σ f, with Ω = 2π(1 − cos α).
     const float weight = glm::two_pi<float>() * capHeight / static_cast<float>(mSamples);
-    // The spot cone's and the range's falloff, taken at the receiver (constant over the light).
-    const float falloff = lightFalloff(mLight.light, origin);
+    // The spot cone's and the range's falloff, taken at the receiver (constant over the light;
+    // none for the sun).
+    const float falloff = mLight.directional ? 1.0f : lightFalloff(mLight.light, origin);
     out.exact = brdf * mLight.radiance * (falloff * weight * sumCosV);
     out.split = brdf * mLight.radiance * (falloff * weight * sumCos * out.visibility);
     return out;
@@ -162,31 +177,46 @@ public:
   bool soft(float distanceM) const { return mLight.soft && distanceM > mLight.radiusM; }
 
   /// The soft light's samples of one pixel (distanceM: to a spot light's centre, inf for the sun),
-  /// from the pixel's own random stream: the same rays on every call.
+  /// from the pixel's own random stream: the same rays on every call. onAbove(N·ω) is called for
+  /// each sample above the horizon, in sample order.
+  template <class OnAbove = IgnoreSample>
   void softSamples(size_t pixel, const glm::vec3& origin, const glm::vec3& n, const Receiver& receiver, float distanceM,
-                   SoftSamples& out) const {
+                   SoftSamples& out, OnAbove&& onAbove = {}) const {
     out.cosTheta.clear();
     out.ray.clear();
     out.bundle.clear();
     const glm::vec3 axis = mLight.directional ? mLight.toLight : glm::normalize(mLight.centre - origin);
     const reference::Frame frame = reference::frameAround(axis);
     const float capHeight = this->capHeight(distanceM);
+    // In passes over all of the pixel's samples: each pass's samples are independent, with no
+    // call or store between their arithmetic, so the core overlaps them (a third less time than
+    // one pass that makes, tests and stores each sample in turn; the same operations, so the
+    // same bits).
+    std::vector<glm::vec2>& points = out.points;
+    points.resize(static_cast<size_t>(mSamples));
     reference::Pcg32 rng(Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
-    for (int row = 0; row < mRows; ++row) {
-      for (int column = 0; column < mColumns; ++column) {
-        const glm::vec2 u{(static_cast<float>(column) + rng.uniform()) / static_cast<float>(mColumns),
-                          (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows)};
-        const glm::vec3 dir = frame.toWorld(reference::coneDirection(reference::concentricDisk(u), capHeight));
-        const float cosTheta = glm::dot(n, dir);
-        if (cosTheta <= 0.0f) continue;
-        out.cosTheta.push_back(cosTheta);
-        const float tNear = nearEnd(dir, cosTheta, receiver), tFar = rayLength(origin, dir);
-        if (tNear < tFar) {
-          out.ray.push_back(static_cast<int>(out.bundle.size()));
-          out.bundle.add(origin, dir, tNear, tFar);
-        } else {
-          out.ray.push_back(-1);
-        }
+    size_t k = 0;
+    for (int row = 0; row < mRows; ++row)  // jittered in the unit square: the pixel's one random stream
+      for (int column = 0; column < mColumns; ++column)
+        points[k++] = {(static_cast<float>(column) + rng.uniform()) / static_cast<float>(mColumns),
+                       (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows)};
+    for (glm::vec2& p : points) {  // onto the unit disk, polar (r, θ)
+      const reference::DiskPolar polar = reference::concentricPolar(p);
+      p = {polar.r, polar.theta};
+    }
+    for (glm::vec2& p : points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y)};  // Cartesian
+    for (const glm::vec2& p : points) {
+      const glm::vec3 dir = frame.toWorld(reference::coneDirection(p, capHeight));
+      const float cosTheta = glm::dot(n, dir);
+      if (cosTheta <= 0.0f) continue;
+      onAbove(cosTheta);
+      out.cosTheta.push_back(cosTheta);
+      const float tNear = nearEnd(dir, cosTheta, receiver), tFar = rayLength(origin, dir);
+      if (tNear < tFar) {
+        out.ray.push_back(static_cast<int>(out.bundle.size()));
+        out.bundle.add(origin, dir, tNear, tFar);
+      } else {
+        out.ray.push_back(-1);
       }
     }
   }

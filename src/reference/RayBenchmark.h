@@ -31,8 +31,9 @@ public:
   double tracePlainLoop() const;
 
   /// The plain loop generating the rays as it goes (the tracer's generator, per pixel), casting
-  /// them as tracePlainLoop does and counting the blocked ones: no result, no cache key, no
-  /// per-pixel sums. What the tracer adds to this is its own bookkeeping. Wall seconds.
+  /// them as tracePlainLoop does and counting them (checked against the recorded rays): Embree's
+  /// answers are not read, and there is no result, no cache key, no per-pixel sum. What the tracer
+  /// adds to this is its own bookkeeping. Wall seconds.
   double traceGeneratingLoop() const;
 
 private:

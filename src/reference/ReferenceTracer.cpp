@@ -112,7 +112,6 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   PN_CHECK(options.samples >= 1 && options.samples <= kMaxReferenceSamples,
            fmt::format("reference: samples {} out of range [1, {}]", options.samples, kMaxReferenceSamples));
   const LightSetup setup = setupLight(light);
-  const std::vector<Receiver> receivers = mImpl->receivers(g);
 
   // The key hashes the whole G-buffer on one core (a tenth of a 640x360 trace at 64 samples on
   // two): made only where a cache will read or keep the result.
@@ -123,7 +122,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
     // No directory can be formed only without HOME; the result is the same, just not kept.
     cacheDir = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
     if (!cacheDir.empty()) {
-      key = mImpl->key(g, receivers, light, options);
+      key = mImpl->key(g, mImpl->receivers(g), light, options);
       if (auto cached = reference::loadCachedResult(cacheDir, key);
           cached && cached->width == g.width && cached->height == g.height) {
         cached->seconds = secondsSince(start);
@@ -139,15 +138,19 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   r.height = g.height;
   r.samplesPerPixel = samplesFor(light, options);
   r.cacheKey = key;
+  // Sized here and written once per pixel in the loop, background included: the loop finds each
+  // pixel's receiver too, so nothing but the results is kept per pixel.
   const size_t pixels = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
-  r.litMask.assign(pixels, 0);
-  r.visibility.assign(pixels, 1.0f);
-  r.visibilityCosWeighted.assign(pixels, 1.0f);
-  r.shadingExact.assign(pixels, glm::vec3(0.0f));
-  r.shadingSplit.assign(pixels, glm::vec3(0.0f));
-  r.approximationError.assign(pixels, glm::vec3(0.0f));
+  r.litMask.resize(pixels);
+  r.visibility.resize(pixels);
+  r.visibilityCosWeighted.resize(pixels);
+  r.shadingExact.resize(pixels);
+  r.shadingSplit.resize(pixels);
+  r.approximationError.resize(pixels);
 
   const PixelTracer tracer(mImpl->embree, setup, r.samplesPerPixel, options.seed);
+  PixelOut background;  // nothing to shadow: V = 1
+  background.visibility = background.visibilityCos = 1.0f;
   ProgressBar progress(fmt::format("reference {}x{} @ {} spp", g.width, g.height, r.samplesPerPixel),
                                   pixels, options.progress);
   // Rows, one task each: enough tasks to balance shadowed and empty rows across cores.
@@ -155,9 +158,9 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
     for (int y = rows.begin(); y != rows.end(); ++y) {
       for (int x = 0; x < g.width; ++x) {
         const size_t i = static_cast<size_t>(y) * static_cast<size_t>(g.width) + static_cast<size_t>(x);
-        if (!g.covered(i)) continue;  // background: nothing to shadow, V = 1
-        const PixelOut p =
-            tracer.trace(i, glm::vec3(g.position[i]), glm::vec3(g.geoNormal[i]), glm::vec3(g.albedo[i]), receivers[i]);
+        const PixelOut p = g.covered(i) ? tracer.trace(i, glm::vec3(g.position[i]), glm::vec3(g.geoNormal[i]),
+                                                       glm::vec3(g.albedo[i]), receiverOf(g, i, mImpl->triangles))
+                                        : background;
         r.litMask[i] = p.lit ? 1 : 0;
         r.visibility[i] = p.visibility;
         r.visibilityCosWeighted[i] = p.visibilityCos;

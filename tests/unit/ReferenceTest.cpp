@@ -262,6 +262,12 @@ TEST(Reference, RejectsInconsistentInputs) {
   EXPECT_THROW(tracer.trace(g, negative, quiet(16)), Error);
   g.albedo.clear();
   EXPECT_THROW(tracer.trace(g, sphereLight(), quiet(16)), Error);
+  // A covered pixel that shows a triangle the scene does not have: a G-buffer of another scene.
+  GBufferData foreign = pointsGBuffer({{0, 0, 0}});
+  foreign.triangle.assign(1, glm::uvec2(3, 0));  // object 2; the scene has two
+  EXPECT_THROW(tracer.trace(foreign, sphereLight(), quiet(16)), Error);
+  foreign.triangle.assign(1, glm::uvec2(1, 2));  // the ground's third triangle; it has two
+  EXPECT_THROW(tracer.trace(foreign, sphereLight(), quiet(16)), Error);
 }
 
 // --- cache and timing on a small synthetic scene ------------------------------------------
