@@ -6,7 +6,6 @@
 #include <string_view>
 
 namespace penumbra {
-namespace {
 
 // PENUMBRA_CLOCK=cpu: software rasterisers are timed by the CPU time of the whole process (all
 // of the driver's threads) instead of the wall clock: on a machine shared with other work a
@@ -21,8 +20,6 @@ double processCpuMs() {
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
-
-}  // namespace
 
 PassTimer::PassTimer(bool useCpuClock) : mCpuClock(useCpuClock), mProcessTime(useCpuClock && processCpuClockWanted()) {}
 

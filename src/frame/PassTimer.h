@@ -14,6 +14,11 @@
 
 namespace penumbra {
 
+/// PENUMBRA_CLOCK=cpu: time by the process's CPU time (every thread) rather than the wall clock.
+bool processCpuClockWanted();
+/// The process's CPU time so far, ms (CLOCK_PROCESS_CPUTIME_ID).
+double processCpuMs();
+
 class PassTimer {
 public:
   /// useCpuClock: a software rasteriser (time on the CPU side, see above).

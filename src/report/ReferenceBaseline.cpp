@@ -1,6 +1,7 @@
 #include "report/ReferenceBaseline.h"
 
 #include "report/MicroBenchmarks.h"
+#include "frame/PassTimer.h"
 #include "reference/RayBenchmark.h"
 
 #include <penumbra/Registry.h>
@@ -38,11 +39,18 @@ std::vector<MicroResult> runReferenceBaseline(int width, int height, int rounds)
   };
   const std::string where = fmt::format("boxes at {}x{}, its sun at {} samples a pixel", width, height, kReferenceBaselineSamples);
   constexpr const char* kPlainLoop = "reference: plain Embree loop";
-  // One row: a RayBenchmark run (seconds) timed in milliseconds.
+  // One row: a RayBenchmark run timed in milliseconds, by the process's CPU time with
+  // PENUMBRA_CLOCK=cpu (every thread's: steady on a shared machine), else its wall seconds.
+  const bool cpu = processCpuClockWanted();
   auto row = [&](const char* name, const std::string& what, const char* baseline, double (reference::RayBenchmark::*run)() const) {
-    return MicroItem{name, fmt::format("{} ({}; wall clock)", what, where), baseline, [get, run] {
+    return MicroItem{name, fmt::format("{} ({}; {})", what, where, cpu ? "process CPU time" : "wall clock"), baseline, [get, run, cpu] {
                        auto b = get();
-                       return std::function<double()>([b, run] { return kMsPerSecond * ((*b).*run)(); });
+                       return std::function<double()>([b, run, cpu] {
+                         if (!cpu) return kMsPerSecond * ((*b).*run)();
+                         const double start = processCpuMs();
+                         ((*b).*run)();
+                         return processCpuMs() - start;
+                       });
                      }};
   };
   const std::vector<MicroItem> items = {
