@@ -69,7 +69,7 @@ std::string mapUpdatesSummary(const Shadows& shadows) {
   const Shadows::MapCacheStats c = shadows.mapCacheStats();
   std::string policies = "--map-updates " + mapUpdatesName(shadows.mapUpdates());
   const std::vector<LightShadowReport>& lights = shadows.lightReports();
-  for (size_t i = 0; i < lights.size(); ++i)  // the lights whose scene file sets their own
+  for (size_t i = 0; i < lights.size(); ++i)  // the lights whose own policy differs from --map-updates
     if (lights[i].views > 0 && lights[i].updates != shadows.mapUpdates())
       policies += fmt::format(", light {} {}", i, mapUpdatesName(lights[i].updates));
   return fmt::format("cached maps: {} restored, {} drawn, {} kept ({}); staleness max {}, mean {:.2f} frames", c.restored,

@@ -190,13 +190,20 @@ Light readLight(Reader& r) {
     Reader s = r.child("shadow");
     l.shadow.mapSize = s.whole("mapSize", 0, kMinMapSize, kMaxMapSize);
     readParams(s, l.shadow.params);
-    if (s.has("updates")) {  // "every", "invalid" or a number of maps a frame
+    if (s.has("updates")) {  // "every", "invalid" or a whole number of maps a frame
       const Json& u = s.raw("updates");
-      if (!u.is_string() && !u.is_number()) s.fail("updates", "expected \"every\", \"invalid\" or a number of maps per frame");
-      try {
-        l.shadow.updates = parseMapUpdates(u.is_string() ? u.get<std::string>() : u.dump());
-      } catch (const Error& e) {
-        s.fail("updates", e.what());
+      if (u.is_number()) {
+        // Any budget of at least one map: one above every map the scene has updates them all.
+        constexpr float kMaxBudgetMaps = 1e6f;
+        l.shadow.updates = MapUpdates{MapUpdates::Policy::Budget, s.whole("updates", 1, 1.0f, kMaxBudgetMaps)};
+      } else if (u.is_string()) {
+        try {
+          l.shadow.updates = parseMapUpdates(u.get<std::string>());
+        } catch (const Error& e) {
+          s.fail("updates", e.what());
+        }
+      } else {
+        s.fail("updates", "expected \"every\", \"invalid\" or a number of maps per frame");
       }
     }
     s.finish();
