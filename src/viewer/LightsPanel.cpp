@@ -202,6 +202,8 @@ void Viewer::drawLightsPanel() {
     const LightShadowReport& r = reports[selected];
     ImGui::TextDisabled("maps %d² × %d %s, importance %.2f", r.mapSize, r.views,
                         l.type == LightType::Point ? "cube faces" : r.views > 1 ? "views" : "view", r.importance);
+    if (r.updates.policy == MapUpdates::Policy::Budget)  // what its budget left as it was
+      ImGui::TextDisabled("kept %d maps last frame; oldest %d frames old", r.keptMaps, r.staleness);
   }
   if (ImGui::Button("Show its maps in the inset")) {
     const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(mSession.shownLight());
