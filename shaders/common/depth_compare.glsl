@@ -145,9 +145,11 @@ float storedDepth(sampler2DArray map, TapKernel k, vec2 texel) { return texelFet
 float comparisonTap(sampler2DArray map, TapKernel k, vec2 unit) {
   return compareDepth(tapDepth(k, unit), storedDepth(map, k, tapTexel(k, unit)));
 }
-// … or the hardware's bilinear blend of the four surrounding comparisons.
+// … or the hardware's bilinear blend of the four surrounding comparisons. The maps have one
+// level and filter linearly both ways: zero gradients (magnification) are what any level of
+// detail would read, and give no stage a derivative to take (the pass runs as a fragment shader).
 float comparisonTap(sampler2DArrayShadow map, TapKernel k, vec2 unit) {
-  return texture(map, vec4(tapTexel(k, unit) * k.uvPerTexel, float(k.layer), tapDepth(k, unit)));
+  return textureGrad(map, vec4(tapTexel(k, unit) * k.uvPerTexel, float(k.layer), tapDepth(k, unit)), vec2(0.0), vec2(0.0));
 }
 
 // The receiver's map coordinate moved onto the outermost texel centres, its depth carried along

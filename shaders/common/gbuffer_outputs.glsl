@@ -1,5 +1,5 @@
 #pragma once
-// The G-buffer's attachments (Renderer.cpp's kScreenTargets, GBufferData), written by the
+// The G-buffer's attachments (Renderer.cpp's kScreenTextures, GBufferData), written by the
 // surfaces (passes/gbuffer.frag.glsl) and by the background (passes/gbuffer_background.frag.glsl).
 // PN_GBUFFER_TRIANGLES (0/1, a define): whether the frame records triangle ids
 // (RenderOptions::triangleIds); without them attachment 4 is not a draw buffer.

@@ -2,7 +2,7 @@
 // Inputs of the visibility pass (and of passes that follow it over the same surfaces: contact
 // shadows). A filter's GLSL file includes this and defines
 //   float shadowVisibility(SurfacePoint s);   // 0 = shadowed … 1 = lit
-// and passes/visibility.comp.glsl calls it for every pixel that faces the light.
+// and passes/visibility.glsl calls it for every pixel that faces the light.
 #include "common/shadow.glsl"
 
 layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_gbufPosition;

@@ -1,5 +1,5 @@
 #pragma once
-// The minimal lookup kernels' uniform block and kinds (micro/lookup.comp.glsl,
+// The minimal lookup kernels' uniform block and kinds (micro/lookup.glsl,
 // report/VisibilityBaselines.cpp), declared once for C++ and GLSL.
 #include "shared/Cpp.h"
 

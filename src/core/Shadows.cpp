@@ -67,6 +67,7 @@ struct LightSlot {
   gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
   gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
   gl::Texture visibilityView;  ///< its layer of the visibility array, as a 2D texture
+  ScreenTarget visibilityTarget;  ///< its layer of the visibility array, as the visibility pass's target
   int mapSize = 0;
   std::vector<uint8_t> keptViews;  ///< per view: kept from an earlier frame (MapUpdates::Budget)
 };
@@ -116,7 +117,8 @@ struct Shadows::Impl {
   FrameContext frameContext(size_t i) {
     LightSlot& s = *slots[i];
     return FrameContext({s.light, cpuScene, s.frusta, s.mapSize, screen, surface, shaders, casters, filterBlock, timer,
-                         &visibility, static_cast<int>(i), updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews});
+                         &visibility, static_cast<int>(i), updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews,
+                         &s.visibilityTarget});
   }
   void bindBlocks(size_t i) const {
     slots[i]->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -154,7 +156,10 @@ struct Shadows::Impl {
   /// ensureSlots (a new technique, more lights) get their views here even when the array stays.
   void ensureVisibility(glm::ivec2 size, int layers) {
     if (!visibility || visibility.width() != size.x || visibility.height() != size.y || visibility.layers() != layers) {
-      for (auto& s : slots) s->visibilityView = gl::Texture();
+      for (auto& s : slots) {
+        s->visibilityView = gl::Texture();
+        s->visibilityTarget = ScreenTarget();
+      }
       visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, layers, 1});
       visibility.setSampling(GL_NEAREST, GL_NEAREST);
     }
@@ -162,6 +167,7 @@ struct Shadows::Impl {
       if (slots[i]->visibilityView) continue;
       slots[i]->visibilityView = gl::Texture::layerView(fmt::format("visibility of light {}", i), visibility, static_cast<int>(i));
       slots[i]->visibilityView.setSampling(GL_NEAREST, GL_NEAREST);
+      slots[i]->visibilityTarget = ScreenTarget(fmt::format("visibility pass of light {}", i), visibility, static_cast<int>(i));
     }
   }
 

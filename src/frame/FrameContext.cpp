@@ -59,15 +59,16 @@ ShaderDefines FrameContext::frameDefines() const {
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "visibility " + std::string(filterFile);
-  d.compute = {std::string(filterFile), "passes/visibility.comp.glsl"};
+  d.compute = {std::string(filterFile), "passes/visibility.glsl"};
   d.defines = frameDefines();
   d.defines.merge(defines);
   if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
     d.label += " (points)";
     d.defines.set("PN_VISIBILITY_POINTS");
+    return mShaders.program(d);
   }
-  return mShaders.program(d);
+  return mShaders.program(screenFragmentProgram(d));
 }
 
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const Parameterized& params,
@@ -210,6 +211,11 @@ void FrameContext::dispatchScreen(const gl::Program& program, bool readVisibilit
     mPoints->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINTS);
     mPointVisibility->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINT_VISIBILITY);
     dispatch2D(program, PN_POINTS_GRID_WIDTH, (mPointCount + PN_POINTS_GRID_WIDTH - 1) / PN_POINTS_GRID_WIDTH, PN_SCREEN_GROUP);
+    return;
+  }
+  if (!program.isCompute()) {
+    PN_CHECK(!readVisibility && mVisibilityTarget != nullptr, "a fragment pass only writes the visibility");
+    mVisibilityTarget->draw(program, mScreen);
     return;
   }
   PN_ASSERT(mVisibility != nullptr);

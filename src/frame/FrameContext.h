@@ -5,6 +5,7 @@
 #include "frame/CasterSet.h"
 #include "gl/Objects.h"
 #include "frame/PassTimer.h"
+#include "frame/ScreenTarget.h"
 #include "frame/ShadowMaps.h"
 #include "shader/ShaderLibrary.h"
 
@@ -52,6 +53,8 @@ struct FrameResources {
   /// Per view, 1 where its map is kept as an earlier frame drew it (MapUpdates::Budget; the
   /// frusta then hold the view it was drawn with); empty: every map is drawn.
   std::span<const uint8_t> keptViews = {};
+  /// The visibility pass's target: this frame's light's layer of `visibility` (ScreenTarget).
+  const ScreenTarget* visibilityTarget = nullptr;
 };
 
 class FrameContext {
@@ -59,7 +62,8 @@ public:
   explicit FrameContext(const FrameResources& r)
       : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
-        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews) {}
+        mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
+        mVisibilityTarget(r.visibilityTarget) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
   /// gave none. Only techniques that bake the geometry (sdf) need them.
@@ -91,7 +95,9 @@ public:
   static constexpr std::string_view kDepthOnlyFragment = "passes/shadow_depth.frag.glsl";
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
   /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
-  /// mode, then the filter's own `defines`. Each variant is compiled once (the library's cache).
+  /// mode, then the filter's own `defines`. Over the screen it is a fragment program
+  /// (screenFragmentProgram: the full-screen triangle drawn into the light's visibility layer);
+  /// in points mode a compute program. Each variant is compiled once (the library's cache).
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
   /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
   const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
@@ -116,9 +122,11 @@ public:
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
   void setFilterBlockBytes(const void* data, size_t bytes);
 
-  /// Binds the visibility image (write-only, or read-write for a pass that changes what the
-  /// visibility pass wrote), then runs `program` once per pixel (the surfaces are bound).
-  /// In points mode (setPoints), runs it once per point instead (see visibilityProgram).
+  /// Runs `program` once per pixel (the surfaces are bound): a fragment program (the visibility
+  /// pass) draws into the light's visibility layer; a compute program (screenProgram) gets the
+  /// visibility image bound, write-only or, with readVisibility, read-write for a pass that
+  /// changes what the visibility pass wrote. In points mode (setPoints), runs it once per point
+  /// instead (see visibilityProgram).
   void dispatchScreen(const gl::Program& program, bool readVisibility = false) const;
 
   /// Points mode, used by Renderer::visibilityAt: visibilityProgram() compiles the pass with
@@ -150,6 +158,7 @@ private:
   int mVisibilityLayer;
   MapCacheState* mMapCache;
   std::span<const uint8_t> mKeptViews;
+  const ScreenTarget* mVisibilityTarget;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

@@ -202,7 +202,7 @@ VertexArray::VertexArray(std::string_view name) {
 }
 void VertexArray::destroy() { glDeleteVertexArrays(1, &mId); --gLiveObjects; }
 
-Program::Program(std::string_view name, GLuint linkedProgram) {
+Program::Program(std::string_view name, GLuint linkedProgram, bool compute) : mCompute(compute) {
   adopt(linkedProgram);
   label(GL_PROGRAM, linkedProgram, name);
 }

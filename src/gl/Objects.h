@@ -211,15 +211,18 @@ private:
 class Program final : public Handle {
 public:
   Program() = default;
-  /// Takes ownership of a linked program id.
-  Program(std::string_view label, GLuint linkedProgram);
+  /// Takes ownership of a linked program id; `compute`: whether it is a compute shader (run by
+  /// glDispatchCompute) rather than a vertex and fragment pair (run by a draw).
+  Program(std::string_view label, GLuint linkedProgram, bool compute = false);
   ~Program() { reset(); }
   Program(Program&&) = default;
   Program& operator=(Program&&) = default;
   void use() const { glUseProgram(mId); }
+  bool isCompute() const { return mCompute; }
 
 private:
   void destroy() override;
+  bool mCompute = false;
 };
 
 class Query final : public Handle {

@@ -6,6 +6,7 @@
 #include "core/FrameBlocks.h"
 #include "frame/FrameContext.h"
 #include "frame/PassTimer.h"
+#include "frame/ScreenTarget.h"
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "render/GpuScene.h"
@@ -29,14 +30,14 @@ namespace penumbra {
 namespace {
 constexpr int kMaxScreenSide = 16384;
 
-/// The screen targets the renderer allocates per frame size, with their texel sizes (for
+/// The screen textures the renderer allocates per frame size, with their texel sizes (for
 /// Renderer::screenBytes).
-struct ScreenTarget {
+struct ScreenTexture {
   const char* label;
   GLenum format;
   uint64_t bytesPerTexel;
 };
-constexpr ScreenTarget kScreenTargets[] = {
+constexpr ScreenTexture kScreenTextures[] = {
     {"gbuffer position", GL_RGBA32F, 16}, {"gbuffer normal", GL_RGBA16F, 8}, {"gbuffer geometric normal", GL_RGBA16F, 8},
     {"gbuffer albedo", GL_RGBA8, 4},      {"gbuffer triangle", GL_RG32UI, 8},
     {"gbuffer depth", GL_DEPTH_COMPONENT32F, 4}, {"color", GL_RGBA8, 4}};
@@ -46,7 +47,7 @@ constexpr uint64_t kCoreBytesPerPixel = 4;
 
 uint64_t Renderer::screenBytes(int width, int height) {
   uint64_t perPixel = kCoreBytesPerPixel;
-  for (const ScreenTarget& t : kScreenTargets) perPixel += t.bytesPerTexel;
+  for (const ScreenTexture& t : kScreenTextures) perPixel += t.bytesPerTexel;
   return perPixel * static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
 }
 
@@ -62,6 +63,7 @@ struct Renderer::Impl {
   glm::ivec2 size{0};
   gl::Texture position, normal, geoNormal, albedo, triangle, depth, color;
   gl::Framebuffer gbuffer;
+  ScreenTarget litTarget;     // the lit pass draws into `color`
   int gbufferColors = 0;      // draw buffers of gbuffer: 5 with the triangle ids, 4 without
   gl::VertexArray emptyVao{"renderer full-screen vao"};  // the G-buffer background's (no attributes)
   int frameIndex = 0;
@@ -73,11 +75,11 @@ struct Renderer::Impl {
     if (s == size) return;
     PN_CHECK(s.x > 0 && s.y > 0 && s.x <= kMaxScreenSide && s.y <= kMaxScreenSide,
              fmt::format("image size {}x{} is outside 1..{}", s.x, s.y, kMaxScreenSide));
-    gl::Texture* targets[] = {&position, &normal, &geoNormal, &albedo, &triangle, &depth, &color};  // kScreenTargets' order
-    static_assert(std::size(kScreenTargets) == std::size(targets));
+    gl::Texture* targets[] = {&position, &normal, &geoNormal, &albedo, &triangle, &depth, &color};  // kScreenTextures' order
+    static_assert(std::size(kScreenTextures) == std::size(targets));
     try {
-      for (size_t i = 0; i < std::size(kScreenTargets); ++i) {
-        *targets[i] = gl::Texture(kScreenTargets[i].label, {GL_TEXTURE_2D, kScreenTargets[i].format, s.x, s.y, 1, 1});
+      for (size_t i = 0; i < std::size(kScreenTextures); ++i) {
+        *targets[i] = gl::Texture(kScreenTextures[i].label, {GL_TEXTURE_2D, kScreenTextures[i].format, s.x, s.y, 1, 1});
         targets[i]->setSampling(GL_NEAREST, GL_NEAREST);
       }
       gbuffer = gl::Framebuffer("gbuffer");
@@ -89,6 +91,7 @@ struct Renderer::Impl {
       gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
       gbuffer.finish(5);
       gbufferColors = 5;
+      litTarget = ScreenTarget("lit pass", color);
     } catch (const Error& e) {
       throw Error(fmt::format("the {}x{} image's targets: {}", s.x, s.y, e.what()));
     }
@@ -238,7 +241,7 @@ void Renderer::runLitPass() {
   Impl& im = *mImpl;
   ProgramDesc d;
   d.label = "lit";
-  d.compute = {"passes/lit.comp.glsl"};
+  d.compute = {"passes/lit.glsl"};
   // Built per debug view (the shaded image runs none of the debug code), per light count (a
   // constant loop: about a fifth of the pass on llvmpipe) and without the spot and point code
   // when every light is a sun (llvmpipe runs both sides of a branch).
@@ -246,7 +249,7 @@ void Renderer::runLitPass() {
   d.defines.set("PN_LIT_LIGHTS", static_cast<int>(im.scene.lights.size()));
   if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
     d.defines.set("PN_ONLY_SUNS");
-  const gl::Program& program = shaders().program(d);
+  const gl::Program& program = shaders().program(screenFragmentProgram(d));
   std::vector<gpu::LightGpu> lights;
   for (const Light& l : im.scene.lights) lights.push_back(core::lightGpu(l));
   const size_t bytes = lights.size() * sizeof(gpu::LightGpu);
@@ -257,10 +260,10 @@ void Renderer::runLitPass() {
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
   glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityArrayTexture());
-  im.color.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   im.shadows.bindFrameBlocks();  // the shadow views: cascade and texel-density debug views
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
-  FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
+  glDisable(GL_DITHER);  // the colour is written as computed, as an image store would
+  im.litTarget.draw(program, im.size);
   gl::throwIfGlError("the lit pass");
 }
 

@@ -1,7 +1,7 @@
 #include "report/VisibilityBaselines.h"
 
-#include "frame/FrameContext.h"
 #include "frame/SatBuilder.h"
+#include "frame/ScreenTarget.h"
 #include "gl/Objects.h"
 #include "micro/lookup.shared.h"
 #include "report/MicroBenchmarks.h"
@@ -154,6 +154,7 @@ struct PassFixture {
   Renderer renderer;
   RenderOptions options;
   gl::Texture position, geoNormal, visibility;
+  ScreenTarget visibilityTarget;  // the kernels draw into `visibility`, as the pass into its layer
 
   PassFixture(const VisibilityBaselineSettings& s, const Pairing& p)
       : options{.width = s.width, .height = s.height, .shadowMapSize = s.mapSize, .debugView = 0} {
@@ -168,6 +169,7 @@ struct PassFixture {
     position = gBufferTexture("lookup kernel positions", s, g.position);
     geoNormal = gBufferTexture("lookup kernel geometric normals", s, g.geoNormal);
     visibility = gl::Texture("lookup kernel visibility", {GL_TEXTURE_2D, GL_R32F, s.width, s.height, 1, 1});
+    visibilityTarget = ScreenTarget("lookup kernel", visibility);
   }
 
   static gl::Texture gBufferTexture(const char* label, const VisibilityBaselineSettings& s, const std::vector<glm::vec4>& texels) {
@@ -244,12 +246,12 @@ struct Kernel {
     const Filter& filter = fixture->renderer.filter();
     ProgramDesc d;
     d.label = k.name;
-    d.compute = {"micro/lookup.comp.glsl"};
+    d.compute = {"micro/lookup.glsl"};
     d.defines.set("LOOKUP_KIND", k.kind);
     if (k.kind == PN_LOOKUP_BOX || k.kind == PN_LOOKUP_POISSON) d.defines.set("LOOKUP_SIDE", boxSide(filter));
     if (k.footprint) d.defines.set("LOOKUP_FOOTPRINT");
     if (p.hardwareCompare) d.defines.set("PN_HARDWARE_COMPARE");
-    program = &shaders.program(d);
+    program = &shaders.program(screenFragmentProgram(d));  // the stage the visibility pass runs in
     map = &fixture->map(p.mapImage);
     if (k.kind == PN_LOOKUP_SAT) sat.build(shaders, *map, 2);
     if (p.hardwareCompare) {
@@ -275,14 +277,13 @@ struct Kernel {
     block.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
     fixture->position.bindUnit(PN_TEX_GBUF_POSITION);
     if (footprint) fixture->geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
-    fixture->visibility.bindImage(PN_IMG_VISIBILITY, GL_WRITE_ONLY);
     if (kind == PN_LOOKUP_SAT) {
       sat.bindTable();
     } else {
       map->bindUnit(PN_TEX_FILTER0);
       if (sampler) sampler.bindUnit(PN_TEX_FILTER0);
     }
-    FrameContext::dispatch2D(*program, fixture->position.width(), fixture->position.height(), PN_SCREEN_GROUP);
+    fixture->visibilityTarget.draw(*program, {fixture->position.width(), fixture->position.height()});
     glBindSampler(PN_TEX_FILTER0, 0);  // the renderer's passes use this unit with their own state
   }
 };
@@ -300,7 +301,7 @@ std::vector<MicroResult> runVisibilityBaselines(const VisibilityBaselineSettings
   for (const Pairing& p : pairings()) {
     const SharedFixture shared = std::make_shared<std::shared_ptr<PassFixture>>();
     auto kernelItem = [&](const KernelDesc& k) {
-      return MicroItem{k.name, fmt::format("{} ({}; micro/lookup.comp.glsl)", k.text, where), "", [shared, s, &p, &k] {
+      return MicroItem{k.name, fmt::format("{} ({}; micro/lookup.glsl)", k.text, where), "", [shared, s, &p, &k] {
                          auto kernel = std::make_shared<Kernel>(fixtureOf(shared, s, p), p, k, s.mapSize);
                          // It must compute what its pass computes before it stands for the pass's arithmetic.
                          kernel->run();

@@ -1,6 +1,6 @@
 #pragma once
 // The visibility pass of hard, pcf, vsm, vssm and msm, each timed next to its minimal lookup
-// kernel (micro/lookup.comp.glsl: read the G-buffer position, apply one matrix, do the filter's
+// kernel (micro/lookup.glsl: read the G-buffer position, apply one matrix, do the filter's
 // taps and closing arithmetic) on the same G-buffer and the same map, interleaved round by round.
 // The pass's time over its kernel's is its overhead over its own arithmetic: what view
 // selection, cascade blending, bias geometry and per-view loads cost where the configuration

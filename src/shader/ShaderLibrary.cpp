@@ -197,7 +197,7 @@ gl::Program ShaderLibrary::build(const ProgramDesc& desc) const {
     glDeleteProgram(program);
     throw Error(fmt::format("program '{}' failed to link:\n{}", desc.label, log.c_str()));
   }
-  return gl::Program(desc.label, program);
+  return gl::Program(desc.label, program, !desc.compute.empty());
 }
 
 const gl::Program& ShaderLibrary::program(const ProgramDesc& desc) {

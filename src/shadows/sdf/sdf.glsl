@@ -48,7 +48,7 @@ float sdfDistance(vec3 ws) {
     // way there (1-Lipschitz), tight near the grid, and the distance to the casters' box.
     vec3 lo = u_sdf.gridLo.xyz, hi = lo + u_sdf.gridSize.xyz;
     vec3 q = clamp(ws, lo, hi);
-    d = texture(s_sdf, (q - lo) / u_sdf.gridSize.xyz).r;
+    d = textureLod(s_sdf, (q - lo) / u_sdf.gridSize.xyz, 0.0).r;  // one level
     if (q != ws) d = max(d - distance(q, ws), boxDistance(ws, u_sdf.gridCasterLo.xyz, u_sdf.gridCasterHi.xyz));
   }
   for (int i = 0; i < u_sdf.sheetInfo.x; ++i)

@@ -1,13 +1,14 @@
-// The visibility pass: one thread per pixel; V = shadowVisibility(...) of the active filter
+// The visibility pass: one invocation per pixel; V = shadowVisibility(...) of the active filter
 // for pixels that face the light, 0 for pixels that face away (no direct light reaches them),
 // 1 where there is no geometry. Inside a cascade blend band V mixes two cascades (the filter is
-// run once per cascade with selectShadowView forced). With PN_VISIBILITY_POINTS defined the same
-// is done for a list of world points (Shadows::visibilityAt) instead of the surfaces. With
-// PN_SURFACE_FROM_DEPTH the surface positions come from the camera's depth texture.
+// run once per cascade with selectShadowView forced). On the screen it runs as a fragment shader
+// into the visibility layer (PN_SCREEN_FRAGMENT, common/screen_pass.glsl). With
+// PN_VISIBILITY_POINTS defined the same is done, as a compute shader, for a list of world points
+// (Shadows::visibilityAt) instead of the surfaces. With PN_SURFACE_FROM_DEPTH the surface
+// positions come from the camera's depth texture.
 #include "common/visibility.glsl"
+#include "common/screen_pass.glsl"
 #include "shared/VisibilityPoints.h"
-
-layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 
 float blendedVisibility(SurfacePoint s) {
   ShadowViewBlend b = shadowViewBlend(s.ws);
@@ -49,15 +50,17 @@ void main() {
 
 #else
 
+#ifndef PN_SCREEN_FRAGMENT
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
+#endif
 
 void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
+  ivec2 px;
+  if (!screenPixel(px, u_frame.screen.xy)) return;
   vec4 pos = surfacePosition(px);
   float v = 1.0;
   if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, texelFetch(s_gbufGeoNormal, px, 0).xyz, px);
-  imageStore(i_visibility, px, vec4(v));
+  screenStore(i_visibility, px, vec4(v));
 }
 
 #endif

@@ -9,9 +9,10 @@
 #include "shared/Bindings.h"
 #include "micro/lookup.shared.h"
 
-layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std140, binding = PN_UBO_FILTER) uniform LookupBlock { LookupUniforms u_lookup; };
+#ifndef PN_SCREEN_FRAGMENT
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
+#endif
 
 // Functions only, besides the G-buffer's samplers (common/visibility.glsl, through footprint.glsl:
 // the kernel reads s_gbufPosition, and s_gbufGeoNormal for the footprint) and sat.glsl's read-only
@@ -19,6 +20,7 @@ layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility
 // Included whatever the kind: the include expander honours #pragma once, not #if.
 #include "common/footprint.glsl"
 #include "common/moments.glsl"
+#include "common/screen_pass.glsl"
 #include "common/sampling.glsl"
 #include "common/sat.glsl"
 
@@ -82,7 +84,7 @@ float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
     for (int i = 0; i < LOOKUP_SIDE; ++i) {
       vec2 tap = uv + (vec2(i, j) - 0.5 * float(LOOKUP_SIDE - 1)) * u_lookup.params.y;
 #ifdef PN_HARDWARE_COMPARE
-      lit += texture(s_map, vec4(tap, 0.0, biased));
+      lit += textureGrad(s_map, vec4(tap, 0.0, biased), vec2(0.0), vec2(0.0));  // no mips: the magnified 2x2
 #else
       lit += fetchCompare(tap, biased);
 #endif
@@ -109,14 +111,13 @@ float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
 }
 
 void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 screen = textureSize(s_gbufPosition, 0);
-  if (any(greaterThanEqual(px, screen))) return;
+  ivec2 px;
+  if (!screenPixel(px, textureSize(s_gbufPosition, 0))) return;
   vec4 ws = texelFetch(s_gbufPosition, px, 0);
   float v = 1.0;
   if (ws.w > 0.5) {
     vec4 c = u_lookup.mapFromWorld * vec4(ws.xyz, 1.0);
     v = lookup(c.xy / c.w, c.z, px, ws.xyz);
   }
-  imageStore(i_visibility, px, vec4(v));
+  screenStore(i_visibility, px, vec4(v));
 }

@@ -1,0 +1,44 @@
+#pragma once
+// Full-screen passes that compute one value per pixel (the visibility pass, the renderer's lit
+// pass, the micro-benchmarks' lookup kernels) are written once, in GLSL that runs either as a
+// compute shader (one thread per pixel) or as the fragment shader of one full-screen triangle
+// (common/screen_pass.glsl). The fragment stage is how they run on the screen: rasterised,
+// they cost about a third less wall time than dispatched on llvmpipe (docs/bench.md), and GPUs
+// write a render target at least as fast as an image. The compute stage stays for passes that
+// read back what they write (contact shadows, temporal accumulation) and for lists of points.
+#include "gl/Objects.h"
+#include "shader/ShaderLibrary.h"
+
+#include <glm/glm.hpp>
+
+#include <string_view>
+
+namespace penumbra {
+
+/// Where a full-screen fragment pass draws: a framebuffer over one texture (or one layer of a 2D
+/// array) as its colour attachment 0, and the empty vertex array the full-screen triangle is
+/// drawn from (passes/fullscreen.vert.glsl makes its vertices from gl_VertexID).
+class ScreenTarget {
+public:
+  ScreenTarget() = default;
+  /// `layer` >= 0: that layer of a 2D array texture; otherwise the whole (2D) texture.
+  ScreenTarget(std::string_view label, const gl::Texture& texture, int layer = -1);
+  explicit operator bool() const { return static_cast<bool>(mFramebuffer); }
+
+  /// Runs `program` (a screenFragmentProgram) once per pixel of the size × size region at the
+  /// target's origin: binds the framebuffer and the viewport, turns the depth test, culling and
+  /// blending off, draws, and leaves framebuffer 0 and vertex array 0 bound. Followed by a memory
+  /// barrier, as a dispatch is, for what the pass wrote through images (debug outputs).
+  void draw(const gl::Program& program, glm::ivec2 size) const;
+
+private:
+  gl::Framebuffer mFramebuffer;
+  gl::VertexArray mVertexArray;
+};
+
+/// The fragment-stage program of a full-screen pass described as a compute program (`pass`'s
+/// compute sources, its defines): the full-screen triangle's vertex shader, the same sources as
+/// the fragment shader, and PN_SCREEN_FRAGMENT defined (common/screen_pass.glsl).
+ProgramDesc screenFragmentProgram(ProgramDesc pass);
+
+}  // namespace penumbra
