@@ -162,37 +162,6 @@ TEST(Aliasing, AerialCameraStartsAtTheNearestReceiver) {
   EXPECT_LE(s["uniform"].median, 0.2) << "the view is small enough for one map";
 }
 
-// visibilityAt evaluated at the G-buffer's own points gives the visibility image back: the
-// points mode is the same pass.
-TEST(Aliasing, VisibilityAtPointsMatchesTheVisibilityImage) {
-  const Scene scene = makeBuiltinScene("boxes");
-  for (const char* projection : {"uniform", "csm"}) {
-    auto r = makeRenderer(scene, {projection, 1024, {}});
-    r->render({96, 64, 1024});
-    const GBufferData g = r->readGBuffer();
-    const std::vector<float> image = r->readVisibility();
-    std::vector<SurfaceSample> points;
-    std::vector<float> expected;
-    for (int y = 0; y < g.height; ++y)
-      for (int x = 0; x < g.width; ++x) {
-        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(g.width) + static_cast<size_t>(x);
-        if (!g.covered(i)) continue;
-        points.push_back({glm::vec3(g.position[i]), glm::vec3(g.geoNormal[i]), {x, y}});
-        expected.push_back(image[i]);
-      }
-    ASSERT_GT(points.size(), 1000u);
-    const std::vector<float> v = r->visibilityAt(points);
-    ASSERT_EQ(v.size(), points.size());
-    size_t differ = 0, shadowed = 0;
-    for (size_t i = 0; i < v.size(); ++i) {
-      differ += std::abs(v[i] - expected[i]) > 1e-4f ? 1 : 0;
-      shadowed += v[i] < 0.5f ? 1 : 0;
-    }
-    EXPECT_EQ(differ, 0u) << projection;
-    EXPECT_GT(shadowed, 50u) << projection;
-  }
-}
-
 // Stabilisation: over 50 small camera moves (sub-texel and a few texels, translation and turns)
 // fixed world points near shadow edges keep their visibility with csm's snapping, and flicker
 // without it.
