@@ -3,8 +3,8 @@
 // pass, the micro-benchmarks' lookup kernels) are written once, in GLSL that runs either as a
 // compute shader (one thread per pixel) or as the fragment shader of one full-screen triangle
 // (common/screen_pass.glsl). The fragment stage is how they run on the screen: rasterised,
-// they cost about a third less wall time than dispatched on llvmpipe (docs/bench.md), and GPUs
-// write a render target at least as fast as an image. The compute stage stays for passes that
+// they cost about a fifth less than dispatched on llvmpipe (docs/bench.md, "Full-screen passes
+// drawn, not dispatched"). The compute stage stays for passes that
 // read back what they write (contact shadows, temporal accumulation) and for lists of points.
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
