@@ -10,9 +10,7 @@
 #include "micro/lookup.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform LookupBlock { LookupUniforms u_lookup; };
-#ifndef PN_SCREEN_FRAGMENT
-layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
-#endif
+layout(location = 0) out float o_visibility;  // drawn, as the visibility pass is (frame/ScreenTarget.h)
 
 // Functions only, besides the G-buffer's samplers (common/visibility.glsl, through footprint.glsl:
 // the kernel reads s_gbufPosition, and s_gbufGeoNormal for the footprint) and sat.glsl's read-only
@@ -20,7 +18,6 @@ layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility
 // Included whatever the kind: the include expander honours #pragma once, not #if.
 #include "common/footprint.glsl"
 #include "common/moments.glsl"
-#include "common/screen_pass.glsl"
 #include "common/sampling.glsl"
 #include "common/sat.glsl"
 
@@ -111,13 +108,12 @@ float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
 }
 
 void main() {
-  ivec2 px;
-  if (!screenPixel(px, textureSize(s_gbufPosition, 0))) return;
+  ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 ws = texelFetch(s_gbufPosition, px, 0);
   float v = 1.0;
   if (ws.w > 0.5) {
     vec4 c = u_lookup.mapFromWorld * vec4(ws.xyz, 1.0);
     v = lookup(c.xy / c.w, c.z, px, ws.xyz);
   }
-  screenStore(i_visibility, px, vec4(v));
+  o_visibility = v;
 }

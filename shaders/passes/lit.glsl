@@ -1,9 +1,8 @@
 // Lit pass, identical for every technique: ambient + Σ over the lights of V_i · direct_i (Lambert
 // + Blinn-Phong), an ACES-style tone map and sRGB encoding. The subject of Penumbra is V, so
-// shading stays simple. V_i is layer i of the visibility array. The renderer runs it as a
-// fragment shader into the colour target (PN_SCREEN_FRAGMENT, common/screen_pass.glsl).
+// shading stays simple. V_i is layer i of the visibility array. The fragment shader of a
+// full-screen triangle drawn into the colour target (frame/ScreenTarget.h).
 #include "common/frame.glsl"
-#include "common/screen_pass.glsl"
 #include "common/texel_density.glsl"
 #include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"
@@ -15,9 +14,7 @@ layout(binding = PN_TEX_VISIBILITY) uniform sampler2DArray s_visibility;
 // PN_LIT_LIGHTS (a define): the frame's light count; PN_ONLY_SUNS (defined or not): no spot or
 // point light among them (common/frame.glsl).
 layout(std430, binding = PN_SSBO_LIGHTS) readonly buffer LightsBlock { LightGpu u_lights[]; };
-#ifndef PN_SCREEN_FRAGMENT
-layout(binding = PN_IMG_OUTPUT, rgba8) uniform writeonly image2D i_color;
-#endif
+layout(location = 0) out vec4 o_color;
 // PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes.
 const int kDebugView = PN_DEBUG_VIEW;
 
@@ -43,8 +40,7 @@ vec3 debugTint(ivec2 px, vec3 ws, vec3 shaded) {
 }
 
 void main() {
-  ivec2 px;
-  if (!screenPixel(px, u_frame.screen.xy)) return;
+  ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 pos = texelFetch(s_gbufPosition, px, 0);
   vec3 color;
   if (pos.w < 0.5) {
@@ -80,5 +76,5 @@ void main() {
   }
   if (pos.w > 0.5 && (kDebugView == PN_VIEW_CASCADES || kDebugView == PN_VIEW_TEXEL_DENSITY))
     color = debugTint(px, pos.xyz, color);
-  screenStore(i_color, px, vec4(color, 1.0));
+  o_color = vec4(color, 1.0);
 }

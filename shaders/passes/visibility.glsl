@@ -1,13 +1,12 @@
 // The visibility pass: one invocation per pixel; V = shadowVisibility(...) of the active filter
 // for pixels that face the light, 0 for pixels that face away (no direct light reaches them),
 // 1 where there is no geometry. Inside a cascade blend band V mixes two cascades (the filter is
-// run once per cascade with selectShadowView forced). On the screen it runs as a fragment shader
-// into the visibility layer (PN_SCREEN_FRAGMENT, common/screen_pass.glsl). With
+// run once per cascade with selectShadowView forced). Over the screen it is the fragment shader
+// of a full-screen triangle drawn into the light's visibility layer (frame/ScreenTarget.h). With
 // PN_VISIBILITY_POINTS defined the same is done, as a compute shader, for a list of world points
 // (Shadows::visibilityAt) instead of the surfaces. With PN_SURFACE_FROM_DEPTH the surface
 // positions come from the camera's depth texture.
 #include "common/visibility.glsl"
-#include "common/screen_pass.glsl"
 #include "shared/VisibilityPoints.h"
 
 float blendedVisibility(SurfacePoint s) {
@@ -34,6 +33,7 @@ float surfaceVisibility(vec3 ws, vec3 geoNormal, ivec2 px) {
 
 #ifdef PN_VISIBILITY_POINTS
 
+layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std430, binding = PN_SSBO_POINTS) readonly buffer PointBlock {
   ivec4 u_pointInfo;  // x: count, y: grid width
   VisibilityPointGpu u_points[];
@@ -50,17 +50,14 @@ void main() {
 
 #else
 
-#ifndef PN_SCREEN_FRAGMENT
-layout(binding = PN_IMG_VISIBILITY, r32f) uniform writeonly image2D i_visibility;
-#endif
+layout(location = 0) out float o_visibility;
 
 void main() {
-  ivec2 px;
-  if (!screenPixel(px, u_frame.screen.xy)) return;
+  ivec2 px = ivec2(gl_FragCoord.xy);  // the pixel's centre is at +0.5: its integer part is the pixel
   vec4 pos = surfacePosition(px);
   float v = 1.0;
   if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, texelFetch(s_gbufGeoNormal, px, 0).xyz, px);
-  screenStore(i_visibility, px, vec4(v));
+  o_visibility = v;
 }
 
 #endif

@@ -59,16 +59,18 @@ ShaderDefines FrameContext::frameDefines() const {
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "visibility " + std::string(filterFile);
-  d.compute = {std::string(filterFile), "passes/visibility.glsl"};
+  const std::vector<std::string> sources = {std::string(filterFile), "passes/visibility.glsl"};
   d.defines = frameDefines();
   d.defines.merge(defines);
   if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
     d.label += " (points)";
     d.defines.set("PN_VISIBILITY_POINTS");
+    d.compute = sources;
     return mShaders.program(d);
   }
-  return mShaders.program(screenFragmentProgram(d));
+  d.fragment = sources;
+  return mShaders.program(fullScreenProgram(d));
 }
 
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const Parameterized& params,

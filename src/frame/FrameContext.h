@@ -96,7 +96,7 @@ public:
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
   /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
   /// mode, then the filter's own `defines`. Over the screen it is a fragment program
-  /// (screenFragmentProgram: the full-screen triangle drawn into the light's visibility layer);
+  /// (fullScreenProgram: the full-screen triangle drawn into the light's visibility layer);
   /// in points mode a compute program. Each variant is compiled once (the library's cache).
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
   /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.

@@ -27,14 +27,10 @@ void ScreenTarget::draw(const gl::Program& program, glm::ivec2 size) const {
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
-ProgramDesc screenFragmentProgram(ProgramDesc pass) {
-  PN_CHECK(!pass.compute.empty() && pass.vertex.empty() && pass.fragment.empty(),
-           "screenFragmentProgram: the pass is described by its compute sources");
-  pass.fragment = std::move(pass.compute);
-  pass.compute.clear();
+ProgramDesc fullScreenProgram(ProgramDesc pass) {
+  PN_CHECK(pass.compute.empty() && pass.vertex.empty() && !pass.fragment.empty(),
+           "fullScreenProgram: a full-screen pass is its fragment sources");
   pass.vertex = {"passes/fullscreen.vert.glsl"};
-  pass.defines.set("PN_SCREEN_FRAGMENT");
-  pass.label += " (fragment)";
   return pass;
 }
 

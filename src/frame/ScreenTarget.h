@@ -1,10 +1,8 @@
 #pragma once
 // Full-screen passes that compute one value per pixel (the visibility pass, the renderer's lit
-// pass, the micro-benchmarks' lookup kernels) are written once, in GLSL that runs either as a
-// compute shader (one thread per pixel) or as the fragment shader of one full-screen triangle
-// (common/screen_pass.glsl). The fragment stage is how they run on the screen: rasterised,
-// they cost about a fifth less than dispatched on llvmpipe (docs/bench.md, "Full-screen passes
-// drawn, not dispatched"). The compute stage stays for passes that
+// pass, the micro-benchmarks' lookup kernels) are the fragment shader of one full-screen
+// triangle: rasterised, they cost about a fifth less than dispatched as compute on llvmpipe
+// (docs/bench.md, "Full-screen passes drawn, not dispatched"). Compute stays for passes that
 // read back what they write (contact shadows, temporal accumulation) and for lists of points.
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
@@ -25,7 +23,7 @@ public:
   ScreenTarget(std::string_view label, const gl::Texture& texture, int layer = -1);
   explicit operator bool() const { return static_cast<bool>(mFramebuffer); }
 
-  /// Runs `program` (a screenFragmentProgram) once per pixel of the size × size region at the
+  /// Runs `program` (a fullScreenProgram) once per pixel of the size × size region at the
   /// target's origin: binds the framebuffer and the viewport, turns the depth test, culling and
   /// blending off, draws, and leaves framebuffer 0 and vertex array 0 bound. Followed by a memory
   /// barrier, as a dispatch is, for what the pass wrote through images (debug outputs).
@@ -36,9 +34,8 @@ private:
   gl::VertexArray mVertexArray;
 };
 
-/// The fragment-stage program of a full-screen pass described as a compute program (`pass`'s
-/// compute sources, its defines): the full-screen triangle's vertex shader, the same sources as
-/// the fragment shader, and PN_SCREEN_FRAGMENT defined (common/screen_pass.glsl).
-ProgramDesc screenFragmentProgram(ProgramDesc pass);
+/// The program of a full-screen pass: `pass` (its fragment sources and defines) with the
+/// full-screen triangle's vertex shader.
+ProgramDesc fullScreenProgram(ProgramDesc pass);
 
 }  // namespace penumbra

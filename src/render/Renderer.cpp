@@ -241,7 +241,7 @@ void Renderer::runLitPass() {
   Impl& im = *mImpl;
   ProgramDesc d;
   d.label = "lit";
-  d.compute = {"passes/lit.glsl"};
+  d.fragment = {"passes/lit.glsl"};
   // Built per debug view (the shaded image runs none of the debug code), per light count (a
   // constant loop: about a fifth of the pass on llvmpipe) and without the spot and point code
   // when every light is a sun (llvmpipe runs both sides of a branch).
@@ -249,7 +249,7 @@ void Renderer::runLitPass() {
   d.defines.set("PN_LIT_LIGHTS", static_cast<int>(im.scene.lights.size()));
   if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
     d.defines.set("PN_ONLY_SUNS");
-  const gl::Program& program = shaders().program(screenFragmentProgram(d));
+  const gl::Program& program = shaders().program(fullScreenProgram(d));
   std::vector<gpu::LightGpu> lights;
   for (const Light& l : im.scene.lights) lights.push_back(core::lightGpu(l));
   const size_t bytes = lights.size() * sizeof(gpu::LightGpu);

@@ -246,12 +246,12 @@ struct Kernel {
     const Filter& filter = fixture->renderer.filter();
     ProgramDesc d;
     d.label = k.name;
-    d.compute = {"micro/lookup.glsl"};
+    d.fragment = {"micro/lookup.glsl"};
     d.defines.set("LOOKUP_KIND", k.kind);
     if (k.kind == PN_LOOKUP_BOX || k.kind == PN_LOOKUP_POISSON) d.defines.set("LOOKUP_SIDE", boxSide(filter));
     if (k.footprint) d.defines.set("LOOKUP_FOOTPRINT");
     if (p.hardwareCompare) d.defines.set("PN_HARDWARE_COMPARE");
-    program = &shaders.program(screenFragmentProgram(d));  // the stage the visibility pass runs in
+    program = &shaders.program(fullScreenProgram(d));  // drawn, as the visibility pass is
     map = &fixture->map(p.mapImage);
     if (k.kind == PN_LOOKUP_SAT) sat.build(shaders, *map, 2);
     if (p.hardwareCompare) {
