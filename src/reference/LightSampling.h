@@ -44,16 +44,20 @@ inline int strataColumns(int n) {
 /// Shirley & Chiu's concentric map, unit square → unit disk, in polar form: the disk point is
 /// r·(cos θ, sin θ), r signed. Area-preserving and with low distortion, so square strata stay
 /// compact cells on the disk (and on the light). The sine and cosine are left to the caller, so
-/// that a loop over many samples keeps libm's calls out of its arithmetic.
+/// that a loop over many samples keeps libm's calls out of its arithmetic. Without a branch (both
+/// quotients are made, one is kept), so that such a loop runs several samples per instruction.
 struct DiskPolar {
   float r = 0.0f, theta = 0.0f;
 };
-inline DiskPolar concentricPolar(glm::vec2 u) {
-  const glm::vec2 o = 2.0f * u - 1.0f;
-  if (o.x == 0.0f && o.y == 0.0f) return {};
+inline DiskPolar concentricPolar(float u, float v) {
+  const float ox = 2.0f * u - 1.0f, oy = 2.0f * v - 1.0f;
   constexpr float kQuarterPi = 0.78539816339744830962f;
-  if (std::abs(o.x) > std::abs(o.y)) return {o.x, kQuarterPi * (o.y / o.x)};
-  return {o.y, 2.0f * kQuarterPi - kQuarterPi * (o.x / o.y)};
+  const float nearX = kQuarterPi * (oy / ox);                       // |ox| > |oy|: the wedges about ±x
+  const float nearY = 2.0f * kQuarterPi - kQuarterPi * (ox / oy);  // otherwise: about ±y
+  const bool wide = std::abs(ox) > std::abs(oy);
+  const bool centre = (ox == 0.0f) & (oy == 0.0f);
+  const float r = wide ? ox : oy, theta = wide ? nearX : nearY;
+  return {centre ? 0.0f : r, centre ? 0.0f : theta};
 }
 
 /// 1 − cos α for a cone of half angle α, without the cancellation of 1 − cos α for the sun's
@@ -69,16 +73,18 @@ inline float sphereOneMinusCos(float radiusM, float distanceM) {
   return s2 / (1.0f + std::sqrt(1.0f - s2));
 }
 
-/// A disk point → a direction in the cone about +Z with 1 − cos α = `capHeight`. The disk's area
-/// maps linearly onto the cap's solid angle (r² ∝ 1 − cos θ), so uniform in → uniform out.
-inline glm::vec3 coneDirection(glm::vec2 disk, float capHeight) {
-  const float r2 = glm::dot(disk, disk);
+/// A disk point (x, y) → a direction in the cone about +Z with 1 − cos α = `capHeight`. The disk's
+/// area maps linearly onto the cap's solid angle (r² ∝ 1 − cos θ), so uniform in → uniform out.
+/// Without a branch, as concentricPolar.
+inline glm::vec3 coneDirection(float x, float y, float capHeight) {
+  const float r2 = x * x + y * y;
   const float h = r2 * capHeight;  // 1 − cos θ
   const float cosTheta = 1.0f - h;
-  if (r2 <= 0.0f) return {0.0f, 0.0f, 1.0f};
   const float sinTheta = std::sqrt(std::max(0.0f, h * (2.0f - h)));
-  const float scale = sinTheta / std::sqrt(r2);
-  return {disk.x * scale, disk.y * scale, cosTheta};
+  const float scale = sinTheta / std::sqrt(r2);  // 0/0 at the centre, which is not kept
+  const float dx = x * scale, dy = y * scale;
+  const bool centre = r2 <= 0.0f;
+  return {centre ? 0.0f : dx, centre ? 0.0f : dy, centre ? 1.0f : cosTheta};
 }
 
 /// An orthonormal frame with `n` as its third axis (Duff et al. 2017, branchless).

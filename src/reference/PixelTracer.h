@@ -96,7 +96,10 @@ struct SoftSamples {
   std::vector<float> cosTheta;
   std::vector<int> ray;
   EmbreeScene::Bundle bundle;
-  std::vector<glm::vec2> points;  // softSamples' scratch: every sample's point, square → disk
+  // softSamples' scratch, one entry per sample, a structure of arrays so that its passes run
+  // several samples per instruction: the point (square → disk), the world direction, N·ω and the
+  // ray's segment.
+  std::vector<float> x, y, dirX, dirY, dirZ, cos, tNear, tFar;
 };
 
 /// softSamples' default per-sample hook: nothing.
@@ -182,39 +185,66 @@ public:
   template <class OnAbove = IgnoreSample>
   void softSamples(size_t pixel, const glm::vec3& origin, const glm::vec3& n, const Receiver& receiver, float distanceM,
                    SoftSamples& out, OnAbove&& onAbove = {}) const {
+    const reference::Frame frame = reference::frameAround(
+        mLight.directional ? mLight.toLight : glm::normalize(mLight.centre - origin));
+    const float capHeight = this->capHeight(distanceM);
+    // In passes over all of the pixel's samples, each a loop whose samples are independent with
+    // no call, branch or store between their arithmetic but to their own arrays, so the compiler
+    // runs them several to an instruction (the generator's cost, not Embree's, was most of the
+    // reference's time). The same operations in the same order as one sample at a time: the same
+    // bits.
+    const auto count = static_cast<size_t>(mSamples);
+    for (std::vector<float>* a : {&out.x, &out.y, &out.dirX, &out.dirY, &out.dirZ, &out.cos, &out.tNear, &out.tFar})
+      a->resize(count);
+    float* __restrict const x = out.x.data();
+    float* __restrict const y = out.y.data();
+    {  // jittered in the unit square: the pixel's one random stream, x before y
+      reference::Pcg32 rng(Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
+      size_t k = 0;
+      for (int row = 0; row < mRows; ++row)
+        for (int column = 0; column < mColumns; ++column, ++k) {
+          x[k] = (static_cast<float>(column) + rng.uniform()) / static_cast<float>(mColumns);
+          y[k] = (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows);
+        }
+    }
+    for (size_t k = 0; k < count; ++k) {  // onto the unit disk, polar: (r, θ) in (x, y)
+      const reference::DiskPolar polar = reference::concentricPolar(x[k], y[k]);
+      x[k] = polar.r;
+      y[k] = polar.theta;
+    }
+    for (size_t k = 0; k < count; ++k) {  // Cartesian: libm's sine and cosine, one sample a call
+      const float r = x[k], theta = y[k];
+      x[k] = r * std::cos(theta);
+      y[k] = r * std::sin(theta);
+    }
+    float* const dirX = out.dirX.data();
+    float* const dirY = out.dirY.data();
+    float* const dirZ = out.dirZ.data();
+    float* const tNear = out.tNear.data();
+    float* const tFar = out.tFar.data();
+    // Where the receiver's plane is not known the pixel's normal stands in for it (nearEnd): the
+    // same dot product as N·ω, so the same bits.
+    directions(count, x, y, frame, capHeight, n, receiver.planeNormal != glm::vec3(0.0f) ? receiver.planeNormal : n,
+               receiver.errorM, dirX, dirY, dirZ, out.cos.data(), tNear);
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    if (mLight.directional) {
+      std::fill(tFar, tFar + count, kInf);
+    } else {
+      for (size_t k = 0; k < count; ++k) tFar[k] = rayLength(origin, {dirX[k], dirY[k], dirZ[k]});
+    }
+    // The samples above the horizon, in order; a ray for each whose segment is not empty.
     out.cosTheta.clear();
     out.ray.clear();
     out.bundle.clear();
-    const glm::vec3 axis = mLight.directional ? mLight.toLight : glm::normalize(mLight.centre - origin);
-    const reference::Frame frame = reference::frameAround(axis);
-    const float capHeight = this->capHeight(distanceM);
-    // In passes over all of the pixel's samples: each pass's samples are independent, with no
-    // call or store between their arithmetic, so the core overlaps them (a third less time than
-    // one pass that makes, tests and stores each sample in turn; the same operations, so the
-    // same bits).
-    std::vector<glm::vec2>& points = out.points;
-    points.resize(static_cast<size_t>(mSamples));
-    reference::Pcg32 rng(Hasher::finalise(pixel ^ (static_cast<uint64_t>(mSeed) << 32)), pixel);
-    size_t k = 0;
-    for (int row = 0; row < mRows; ++row)  // jittered in the unit square: the pixel's one random stream
-      for (int column = 0; column < mColumns; ++column)
-        points[k++] = {(static_cast<float>(column) + rng.uniform()) / static_cast<float>(mColumns),
-                       (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows)};
-    for (glm::vec2& p : points) {  // onto the unit disk, polar (r, θ)
-      const reference::DiskPolar polar = reference::concentricPolar(p);
-      p = {polar.r, polar.theta};
-    }
-    for (glm::vec2& p : points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y)};  // Cartesian
-    for (const glm::vec2& p : points) {
-      const glm::vec3 dir = frame.toWorld(reference::coneDirection(p, capHeight));
-      const float cosTheta = glm::dot(n, dir);
+    const float* const cosN = out.cos.data();
+    for (size_t k = 0; k < count; ++k) {
+      const float cosTheta = cosN[k];
       if (cosTheta <= 0.0f) continue;
       onAbove(cosTheta);
       out.cosTheta.push_back(cosTheta);
-      const float tNear = nearEnd(dir, cosTheta, receiver), tFar = rayLength(origin, dir);
-      if (tNear < tFar) {
+      if (tNear[k] < tFar[k]) {
         out.ray.push_back(static_cast<int>(out.bundle.size()));
-        out.bundle.add(origin, dir, tNear, tFar);
+        out.bundle.add(origin, {dirX[k], dirY[k], dirZ[k]}, tNear[k], tFar[k]);
       } else {
         out.ray.push_back(-1);
       }
@@ -222,6 +252,23 @@ public:
   }
 
 private:
+  /// softSamples' directions pass: the disk points (x, y) → world directions in the cone about
+  /// frame.n, N·ω (cosN) and where each ray starts (nearEnd against `plane`), for `count` samples.
+  /// By value and restrict-qualified, so that nothing the loop stores can change what it reads.
+  static void directions(size_t count, const float* __restrict x, const float* __restrict y, reference::Frame frame,
+                         float capHeight, glm::vec3 normal, glm::vec3 plane, float errorM, float* __restrict dirX,
+                         float* __restrict dirY, float* __restrict dirZ, float* __restrict cosN,
+                         float* __restrict tNear) {
+    for (size_t k = 0; k < count; ++k) {
+      const glm::vec3 dir = frame.toWorld(reference::coneDirection(x[k], y[k], capHeight));
+      dirX[k] = dir.x;
+      dirY[k] = dir.y;
+      dirZ[k] = dir.z;
+      cosN[k] = glm::dot(normal, dir);
+      tNear[k] = nearEnd(glm::dot(plane, dir), errorM);
+    }
+  }
+
   float capHeight(float distanceM) const {
     return mLight.directional ? mLight.sunCapHeight : reference::sphereOneMinusCos(mLight.radiusM, distanceM);
   }
@@ -254,8 +301,13 @@ private:
   /// meets is distinguishable from the receiver's surface.
   static float nearEnd(const glm::vec3& dir, float cosTheta, const Receiver& receiver) {
     const bool knowsPlane = receiver.planeNormal != glm::vec3(0.0f);
-    const float cosPlane = knowsPlane ? glm::dot(receiver.planeNormal, dir) : cosTheta;
-    return cosPlane > 0.0f ? receiver.errorM / cosPlane : std::numeric_limits<float>::infinity();
+    return nearEnd(knowsPlane ? glm::dot(receiver.planeNormal, dir) : cosTheta, receiver.errorM);
+  }
+  /// The same from the cosine to the receiver's plane (cosPlane) and δ, without a branch: the
+  /// quotient is made whatever the sign, and dropped where the ray does not rise.
+  static float nearEnd(float cosPlane, float errorM) {
+    const float t = errorM / cosPlane;
+    return cosPlane > 0.0f ? t : std::numeric_limits<float>::infinity();
   }
 
   /// Whether a caster blocks the ray from the receiver along dir before tFar, other than the
