@@ -1,9 +1,11 @@
 #pragma once
-// A screen pixel's footprint in a shadow map, for prefiltered lookups (mip chains). The
-// visibility pass is a compute shader, so there are no implicit derivatives: instead the camera
-// rays through the neighbouring pixels are intersected with the surface's tangent plane (ray
-// differentials) and the offsets are projected into the map. Exact for planar receivers; assumes
-// the camera's symmetric perspective projection (Camera::clipFromView).
+// A screen pixel's footprint in a shadow map, for prefiltered lookups (mip chains). The same
+// filter code runs as a fragment shader over the screen and as a compute shader over a list of
+// points (passes/visibility.glsl), where there are no neighbouring invocations to take derivatives
+// from (and over the screen, a neighbour across a silhouette is another surface): instead the
+// camera rays through the neighbouring pixels are intersected with the surface's tangent plane
+// (ray differentials) and the offsets are projected into the map. Exact for planar receivers;
+// assumes the camera's symmetric perspective projection (Camera::clipFromView).
 #include "common/visibility.glsl"
 
 // A pixel's footprint is never allowed to exceed this many texels: at grazing angles the ray

@@ -12,12 +12,18 @@ class ShaderLibrary;
 class MinDepthPyramid {
 public:
   /// Rebuilds the pyramid of every layer of `map` (a 2D array; linear depth in channel r).
-  void build(ShaderLibrary& shaders, const gl::Texture& map);
+  /// Where the context has GL_ARB_texture_filter_minmax (or the EXT) and `minFilter` is on, each
+  /// texel over exactly 2x2 texels is one read through a minimum-reducing bilinear filter instead
+  /// of four texel fetches: the same pyramid, in about two thirds of the time on llvmpipe.
+  void build(ShaderLibrary& shaders, const gl::Texture& map, bool minFilter = true);
+  /// Whether build() can take the minimum in the filter here (needs a current context).
+  static bool hasMinFilter();
   /// R32F 2D array, ceil(size/2)² at level 0 down to 1×1, one layer per map layer.
   const gl::Texture& pyramid() const { return mPyramid; }
 
 private:
   gl::Texture mPyramid;
+  gl::Sampler mMinSampler;  // bilinear, reduction GL_MIN; made on first use where supported
 };
 
 }  // namespace penumbra

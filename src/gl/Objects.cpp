@@ -160,6 +160,8 @@ Sampler::Sampler(std::string_view name, const SamplerDesc& desc) {
     glSamplerParameteri(id, wrap, static_cast<GLint>(desc.wrap));
   glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, desc.compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
   glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  if (desc.reduction != GL_WEIGHTED_AVERAGE_ARB)  // not set otherwise: contexts without the extension
+    glSamplerParameteri(id, GL_TEXTURE_REDUCTION_MODE_ARB, static_cast<GLint>(desc.reduction));
 }
 void Sampler::destroy() { glDeleteSamplers(1, &mId); --gLiveObjects; }
 

@@ -163,6 +163,9 @@ struct SamplerDesc {
   GLenum magFilter = GL_LINEAR;    ///< GL_TEXTURE_MAG_FILTER
   GLenum wrap = GL_CLAMP_TO_EDGE;  ///< S, T and R
   bool compare = false;            ///< hardware depth comparison (sampler*Shadow): lit when ref <= stored
+  /// GL_TEXTURE_REDUCTION_MODE_ARB: GL_WEIGHTED_AVERAGE_ARB (GL's own filter), or GL_MIN / GL_MAX
+  /// of the texels the filter reads (GL_ARB_texture_filter_minmax: the caller checks for it).
+  GLenum reduction = GL_WEIGHTED_AVERAGE_ARB;
 };
 
 class Sampler final : public Handle {

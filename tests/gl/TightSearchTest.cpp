@@ -115,6 +115,64 @@ TEST(TightSearch, PyramidMinimumIsExactForItsCellsAndConservativeForTheBox) {
   EXPECT_EQ(conservative, kBoxes);
 }
 
+// Every texel of every level and layer is the minimum of the map texels under it (a CPU pyramid
+// built the same way), with the minimum taken by the filter where the context can
+// (GL_ARB_texture_filter_minmax: one filtered read of 2x2 texels) and by four texel fetches:
+// the two builds are the same pyramid, on odd sides (left-over rows and columns) and even ones.
+TEST(TightSearch, PyramidLevelsAreTheMinimaUnderThemWithAndWithoutTheMinFilter) {
+  glContext();
+  std::printf("GL_ARB_texture_filter_minmax: %s\n", MinDepthPyramid::hasMinFilter() ? "yes" : "no (fetches only)");
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  ShaderLibrary shaders;
+  for (const glm::ivec2 size : {glm::ivec2(kW, kH), glm::ivec2(256, 128), glm::ivec2(6, 10)}) {
+    constexpr int kLayers = 2;
+    std::vector<float> z(static_cast<size_t>(size.x) * size.y * kLayers);
+    for (float& v : z) v = unit(rng);
+    gl::Texture map("pyramid levels depths", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, kLayers, 1});
+    map.setSampling(GL_NEAREST, GL_NEAREST);
+    glTextureSubImage3D(map.id(), 0, 0, 0, 0, size.x, size.y, kLayers, GL_RED, GL_FLOAT, z.data());
+    // The CPU pyramid: level k's texel is the minimum over the texels of level k - 1 (the map for
+    // k = 0) under it, the last row and column also over the left-over ones.
+    std::vector<std::vector<float>> cpu;
+    glm::ivec2 below = size;
+    const std::vector<float>* source = &z;
+    for (glm::ivec2 out = (size + 1) / 2;; out = glm::max(out / 2, 1)) {
+      std::vector<float> level(static_cast<size_t>(out.x) * out.y * kLayers, 1.0f);
+      for (int l = 0; l < kLayers; ++l)
+        for (int y = 0; y < out.y; ++y)
+          for (int x = 0; x < out.x; ++x) {
+            const int x1 = std::min(x == out.x - 1 ? below.x - 1 : 2 * x + 1, below.x - 1);
+            const int y1 = std::min(y == out.y - 1 ? below.y - 1 : 2 * y + 1, below.y - 1);
+            float& m = level[(static_cast<size_t>(l) * out.y + y) * out.x + x];
+            for (int sy = 2 * y; sy <= y1; ++sy)
+              for (int sx = 2 * x; sx <= x1; ++sx)
+                m = std::min(m, (*source)[(static_cast<size_t>(l) * below.y + sy) * below.x + sx]);
+          }
+      cpu.push_back(std::move(level));
+      source = &cpu.back();
+      below = out;
+      if (out == glm::ivec2(1)) break;
+    }
+    for (bool minFilter : {true, false}) {
+      MinDepthPyramid pyramid;
+      pyramid.build(shaders, map, minFilter);
+      ASSERT_EQ(pyramid.pyramid().levels(), static_cast<int>(cpu.size()));
+      int wrong = 0;
+      for (size_t k = 0; k < cpu.size(); ++k) {
+        std::vector<float> got(cpu[k].size());
+        glGetTextureImage(pyramid.pyramid().id(), static_cast<GLint>(k), GL_RED, GL_FLOAT,
+                          static_cast<GLsizei>(got.size() * sizeof(float)), got.data());
+        for (size_t i = 0; i < got.size(); ++i)
+          if (got[i] != cpu[k][i] && ++wrong <= 5)
+            ADD_FAILURE() << size.x << "x" << size.y << (minFilter ? " min filter" : " fetches") << ", level " << k
+                          << ", texel " << i << ": " << got[i] << ", expected " << cpu[k][i];
+      }
+      EXPECT_EQ(wrong, 0) << size.x << "x" << size.y << (minFilter ? " with the min filter" : " with fetches");
+    }
+  }
+}
+
 // `city`: a low sun (0.005 rad) over tall buildings puts every cascade's near plane far toward
 // the sun, so the near-plane search region of a receiver on the ground is metres wide and a low
 // bench covers under 1 % of it: vssm's Chebyshev unoccluded fraction is then > 0.99 and the
