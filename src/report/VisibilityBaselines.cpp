@@ -56,6 +56,9 @@ struct Pairing {
   bool hardwareCompare;
   std::string_view mapImage;  // the Filter::debugImages() entry that holds the map the kernel reads
   std::vector<KernelDesc> kernels;
+  // No kernels of its own: the pass (the filter with other parameters) is measured against this
+  // kernel of an earlier pairing, timed in the same rounds.
+  const char* sharedKernel = nullptr;
 };
 constexpr const char* kSameTapsSuffix = ", against the kernel of its own taps";
 
@@ -143,6 +146,13 @@ const std::vector<Pairing>& pairings() {
          "msm's own taps: the pixel's footprint read as vsm's (up to msm.anisotropy trilinear taps), the moment bias, "
          "the Hamburger 4MSM bound",
          PN_LOOKUP_MOMENTS4, msmParams, true}}},
+      // The moment filters without the footprint read one trilinear tap of the filter's width: the
+      // one-tap kernel's own work, so their ratio is the filters' overhead beyond their arithmetic
+      // (the defaults' extra is the footprint's anisotropic taps, up to {vsm,msm}.anisotropy).
+      {"vsm", {{"vsm.footprint", "off"}}, "visibility: vsm, footprint=off", false, kMomentsImage, {},
+       "lookup: one trilinear (z, z²) tap + Chebyshev"},
+      {"msm", {{"msm.footprint", "off"}}, "visibility: msm, footprint=off", false, kMomentsImage, {},
+       "lookup: one trilinear 4-moment tap + Hamburger 4MSM"},
   };
   return list;
 }
@@ -319,8 +329,8 @@ std::vector<MicroResult> runVisibilityBaselines(const VisibilityBaselineSettings
     for (const auto& [k, v] : p.params) params += fmt::format(", {}={}", k, v);
     const std::string passText =
         fmt::format("the visibility pass of {} (its defaults{}) in a frame of penumbra::Renderer ({})", p.filter, params, where);
-    items.push_back(kernelItem(p.kernels.front()));
-    items.push_back({p.passName, passText, p.kernels.front().name, [shared, s, &p] {
+    if (!p.sharedKernel) items.push_back(kernelItem(p.kernels.front()));
+    items.push_back({p.passName, passText, p.sharedKernel ? p.sharedKernel : p.kernels.front().name, [shared, s, &p] {
                        auto f = fixtureOf(shared, s, p);
                        return std::function<double()>([f] {
                          f->renderer.render(f->options);

@@ -288,7 +288,8 @@ TEST(BenchCli, QuickRecommendationNamesPicksOnTheWholeCostParetoFront) {
 // bench --micro-only: the micro table alone, in micro.csv and results.json alike. Every block runs
 // (each lookup kernel passed its check against its pass), and each visibility pass has its
 // ratio to its kernel: the table the visibility shaders are measured with (docs/bench.md). A pass
-// measured again against the kernel of its own taps repeats the pass's times exactly.
+// measured again against the kernel of its own taps repeats the pass's times exactly; vsm and msm
+// without their footprint are measured against the one-tap kernels of their default rows.
 TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
   const std::string dir = freshDir("bench-micro");
   const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --out out", dir);
@@ -329,7 +330,9 @@ TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
       }
     }
   }
-  EXPECT_EQ(passes, 6u) << "hard, pcf, pcf with hardware compare, vsm, vssm, msm";
+  EXPECT_EQ(passes, 8u) << "hard, pcf, pcf with hardware compare, vsm, vssm, msm, vsm and msm with footprint=off";
+  for (const char* pass : {"visibility: vsm, footprint=off", "visibility: msm, footprint=off"})
+    EXPECT_TRUE(passMs.contains(pass)) << pass;
   EXPECT_EQ(ownTaps, 3u) << "pcf's Poisson disk, vsm's and msm's footprints";
   EXPECT_NE(json["machine"]["clock"], "");
 }
