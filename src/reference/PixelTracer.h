@@ -73,6 +73,8 @@ struct Receiver {
   // Its triangle's plane, turned to the G-buffer normal's side; zero = unknown (then the G-buffer
   // normal stands in, which the rasteriser derived from rounded positions and stored in 16 bits).
   glm::vec3 planeNormal{0.0f};
+  /// The plane its rays must rise above: its triangle's, else the pixel's unit normal n.
+  glm::vec3 plane(const glm::vec3& n) const { return planeNormal != glm::vec3(0.0f) ? planeNormal : n; }
 };
 
 /// Pixel i of g as a receiver: the triangle its rays skip, its plane and δ (position tolerance, m),
@@ -222,10 +224,8 @@ public:
     float* const dirZ = out.dirZ.data();
     float* const tNear = out.tNear.data();
     float* const tFar = out.tFar.data();
-    // Where the receiver's plane is not known the pixel's normal stands in for it (nearEnd): the
-    // same dot product as N·ω, so the same bits.
-    directions(count, x, y, frame, capHeight, n, receiver.planeNormal != glm::vec3(0.0f) ? receiver.planeNormal : n,
-               receiver.errorM, dirX, dirY, dirZ, out.cos.data(), tNear);
+    directions(count, x, y, frame, capHeight, n, receiver.plane(n), receiver.errorM, dirX, dirY, dirZ, out.cos.data(),
+               tNear);
     constexpr float kInf = std::numeric_limits<float>::infinity();
     if (mLight.directional) {
       std::fill(tFar, tFar + count, kInf);
@@ -289,22 +289,18 @@ private:
       if (mLight.soft) length = 0.0f;
     }
     const float cosTheta = std::max(0.0f, glm::dot(n, dir));
-    const float v = length > 0.0f && occluded(origin, dir, cosTheta, length, receiver) ? 0.0f : 1.0f;
+    const float v = length > 0.0f && occluded(origin, dir, n, length, receiver) ? 0.0f : 1.0f;
     out.visibility = out.visibilityCos = v;
     out.exact = out.split = brdf * irradiance * (cosTheta * v);
     return out;
   }
 
-  /// Where a ray from the receiver along dir (cosTheta = N·dir > 0) starts: past anything within
-  /// its error of its plane. The ray's height above that plane is t·cos; a ray that never rises
-  /// above δ (its true cos ≤ 0, beside a G-buffer normal a hair off) starts at inf: nothing it
-  /// meets is distinguishable from the receiver's surface.
-  static float nearEnd(const glm::vec3& dir, float cosTheta, const Receiver& receiver) {
-    const bool knowsPlane = receiver.planeNormal != glm::vec3(0.0f);
-    return nearEnd(knowsPlane ? glm::dot(receiver.planeNormal, dir) : cosTheta, receiver.errorM);
-  }
-  /// The same from the cosine to the receiver's plane (cosPlane) and δ, without a branch: the
-  /// quotient is made whatever the sign, and dropped where the ray does not rise.
+  /// Where a ray from the receiver starts, from the cosine between the ray and the receiver's
+  /// plane (cosPlane = Receiver::plane(n)·dir) and δ: past anything within its error of its plane.
+  /// The ray's height above that plane is t·cosPlane; a ray that never rises above δ (its true cos
+  /// ≤ 0, beside a G-buffer normal a hair off) starts at inf: nothing it meets is distinguishable
+  /// from the receiver's surface. Without a branch: the quotient is made whatever the sign, and
+  /// dropped where the ray does not rise.
   static float nearEnd(float cosPlane, float errorM) {
     const float t = errorM / cosPlane;
     return cosPlane > 0.0f ? t : std::numeric_limits<float>::infinity();
@@ -312,9 +308,9 @@ private:
 
   /// Whether a caster blocks the ray from the receiver along dir before tFar, other than the
   /// receiver's own triangle and anything within its error of its plane.
-  bool occluded(const glm::vec3& origin, const glm::vec3& dir, float cosTheta, float tFar,
+  bool occluded(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& n, float tFar,
                 const Receiver& receiver) const {
-    const float tNear = nearEnd(dir, cosTheta, receiver);
+    const float tNear = nearEnd(glm::dot(receiver.plane(n), dir), receiver.errorM);
     return tNear < tFar && mScene.occluded(origin, dir, tNear, tFar, receiver.triangle);
   }
 
