@@ -20,7 +20,7 @@ namespace penumbra {
 
 /// Version of the reference's maths; part of every cache key. Bump it whenever a change to the
 /// code changes the numbers it produces, so that stale cache files are never read.
-inline constexpr uint32_t kReferenceCodeVersion = 3;
+inline constexpr uint32_t kReferenceCodeVersion = 4;
 
 /// How far a G-buffer position may lie off its triangle's plane, in float32 spacings of the
 /// largest magnitude it was computed from (its coordinates, its triangle's world vertices and the

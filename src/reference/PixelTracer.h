@@ -209,15 +209,10 @@ public:
           y[k] = (static_cast<float>(row) + rng.uniform()) / static_cast<float>(mRows);
         }
     }
-    for (size_t k = 0; k < count; ++k) {  // onto the unit disk, polar: (r, θ) in (x, y)
-      const reference::DiskPolar polar = reference::concentricPolar(x[k], y[k]);
-      x[k] = polar.r;
-      y[k] = polar.theta;
-    }
-    for (size_t k = 0; k < count; ++k) {  // Cartesian: libm's sine and cosine, one sample a call
-      const float r = x[k], theta = y[k];
-      x[k] = r * std::cos(theta);
-      y[k] = r * std::sin(theta);
+    for (size_t k = 0; k < count; ++k) {  // onto the unit disk
+      const glm::vec2 disk = reference::concentricDisk(x[k], y[k]);
+      x[k] = disk.x;
+      y[k] = disk.y;
     }
     float* const dirX = out.dirX.data();
     float* const dirY = out.dirY.data();
