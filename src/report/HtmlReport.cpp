@@ -186,20 +186,20 @@ std::string microTable(const BenchResults& r) {
   h += "<p class=\"note\">Each row next to its baseline, interleaved round by round; the ratio is taken within a round "
        "(median, p10–p90 over the rounds). Prefilters against a plain copy of the same texture; each filter's visibility "
        "pass against its minimal lookup kernel: the pass's overhead over its own arithmetic (docs/bench.md).</p>\n";
-  h += "<table><tr><th class=\"l\">what</th><th class=\"l\">timed</th><th>median ms <small>p10–p90</small></th>"
-       "<th>× its baseline <small>p10–p90</small></th></tr>\n";
+  h += "<table><tr><th class=\"l\">what</th><th class=\"l\">its baseline</th><th class=\"l\">timed</th>"
+       "<th>median ms <small>p10–p90</small></th><th>× its baseline <small>p10–p90</small></th></tr>\n";
   for (const MicroResult& m : r.micro) {
+    const std::string baseline = m.baseline.empty() ? "—" : esc(m.baseline);
     if (!m.error.empty()) {
-      h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td colspan=\"2\" class=\"l wrap\">failed: {}</td></tr>\n",
-                       esc(m.name), esc(m.description), esc(m.error));
+      h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td class=\"l wrap\">{}</td>"
+                       "<td colspan=\"2\" class=\"l wrap\">failed: {}</td></tr>\n",
+                       esc(m.name), baseline, esc(m.description), esc(m.error));
       continue;
     }
     const std::string ratio =
-        m.ratio ? fmt::format("<span title=\"{}\">{:.2f} ×</span> <small>{:.2f}–{:.2f}</small>", esc(m.baseline), m.ratio->median,
-                              m.ratio->p10, m.ratio->p90)
-                : "—";
-    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td>{}</td><td>{}</td></tr>\n", esc(m.name),
-                     esc(m.description), ms(m.ms), ratio);
+        m.ratio ? fmt::format("{:.2f} × <small>{:.2f}–{:.2f}</small>", m.ratio->median, m.ratio->p10, m.ratio->p90) : "—";
+    h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l wrap\">{}</td><td class=\"l wrap\">{}</td><td>{}</td><td>{}</td></tr>\n",
+                     esc(m.name), baseline, esc(m.description), ms(m.ms), ratio);
   }
   return h + "</table>\n";
 }

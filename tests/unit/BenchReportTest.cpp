@@ -168,7 +168,7 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
 }
 
 // A micro-benchmark that failed is kept with its error: in the JSON and in the page's table,
-// with no ratio drawn against it.
+// with no ratio drawn against it. The page names each row's baseline.
 TEST(BenchResultsIO, FailedMicroBenchmarkIsReportedNotLost) {
   BenchResults r;
   r.micro.push_back({"copy SAT table, 2 moments", "a copy", "", TimeStats{}, 0, "GL_INVALID_VALUE in glDispatchCompute", {}});
@@ -178,7 +178,10 @@ TEST(BenchResultsIO, FailedMicroBenchmarkIsReportedNotLost) {
   EXPECT_EQ(j["micro"][1]["error"].get<std::string>(), "");
   const std::string html = htmlReport(r);
   EXPECT_NE(html.find("failed: GL_INVALID_VALUE in glDispatchCompute"), std::string::npos);
-  EXPECT_EQ(html.find(" ×</span>"), std::string::npos) << "a ratio against a failed baseline";
+  EXPECT_EQ(html.find(" × <small>"), std::string::npos) << "a ratio against a failed baseline";
+  EXPECT_NE(html.find("<td class=\"l\">SAT build, 2 moments</td><td class=\"l wrap\">copy SAT table, 2 moments</td>"),
+            std::string::npos)
+      << "the build's row names its baseline";
 }
 
 TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
