@@ -52,8 +52,14 @@ RunResult runViewer(const std::string& args, const std::string& dir) {
   // -a takes the first free display from -n on; starting from a number that depends on the
   // process keeps tests that CTest runs in parallel from racing for the same one.
   const int firstDisplay = 100 + static_cast<int>(getpid() % 800);
+  // The X authority file lives in the test's own folder (-f), so xvfb-run makes no temporary
+  // folder of its own: removing that folder at exit once failed during a parallel test run, and
+  // xvfb-run then exits 5 whatever the viewer returned.
+  static int runs = 0;
+  const std::string auth = dir + "/.Xauthority-" + std::to_string(runs++);
+  { std::ofstream touch(auth); }  // xauth adds to an existing file without a warning
   return runPenumbra("view " + args, dir,
-                     "xvfb-run -a -n " + std::to_string(firstDisplay) + " -s '-screen 0 1280x1024x24'");
+                     "xvfb-run -a -n " + std::to_string(firstDisplay) + " -f '" + auth + "' -s '-screen 0 1280x1024x24'");
 }
 
 void writeScript(const std::string& path, const std::string& text) {
