@@ -7,13 +7,32 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <memory>
 
 namespace penumbra::app {
+
+namespace {
+
+/// A CLI11 check from a parser: its Error's message, or "" when the text parses.
+std::function<std::string(const std::string&)> parseCheck(std::function<void(const std::string&)> parse) {
+  return [parse = std::move(parse)](const std::string& text) {
+    try {
+      parse(text);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+}
+
+}  // namespace
 
 std::string defaultSizeText() { return fmt::format("{}x{}", RenderOptions{}.width, RenderOptions{}.height); }
 
@@ -29,6 +48,25 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
                  "camera position and target in metres, and optionally the vertical field of view in degrees: "
                  "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera; given, it stays put in an animated scene)");
   app.add_flag("--verbose", o.verbose, "print GL_RENDERER and GL_VERSION and per-pass details");
+  app.add_option("--max-memory", o.maxMemory,
+                 "most memory a model file may take once loaded (its meshes, the renderer's buffers where they live in host "
+                 "memory, the reference's BVH), estimated before anything is built: MiB, or with a unit (512M, 8G); a larger "
+                 "model is refused with the estimate (default: the memory this machine has available)")
+      ->check(parseCheck([](const std::string& text) { parseMemorySize(text); }));
+}
+
+uint64_t parseMemorySize(const std::string& text) {
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  std::string unit(end, text.data() + text.size());
+  for (const char* suffix : {"iB", "B"})
+    if (unit.size() > std::string(suffix).size() && unit.ends_with(suffix)) unit.resize(unit.size() - std::string(suffix).size());
+  const std::string units = "KMGT";
+  const size_t power = unit.empty() ? 2 : unit.size() == 1 ? units.find(static_cast<char>(std::toupper(static_cast<unsigned char>(unit[0])))) + 1 : 0;
+  const double bytes = value * std::pow(1024.0, static_cast<double>(power));
+  if (text.empty() || ec != std::errc() || power == 0 || power > units.size() || !(value > 0.0) || !(bytes < 1e18))
+    throw usageError(fmt::format("--max-memory {}: expected a size in MiB, or with a unit K, M, G or T (e.g. 512M, 8G)", text));
+  return static_cast<uint64_t>(bytes);
 }
 
 void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o) {
@@ -47,14 +85,7 @@ void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o) {
                  "as 'invalid', but only N maps per frame across every light are updated (the least recently "
                  "updated first), the others keep an earlier frame's map and view (docs/embedding.md#cached-maps); "
                  "--verbose counts the maps restored, drawn and kept and their staleness in frames")
-      ->check([](const std::string& text) {
-        try {
-          parseMapUpdates(text);
-        } catch (const Error& e) {
-          return std::string(e.what());
-        }
-        return std::string();
-      })
+      ->check(parseCheck([](const std::string& text) { parseMapUpdates(text); }))
       ->capture_default_str();
 }
 
@@ -120,7 +151,7 @@ void checkOutputDir(const char* option, const std::string& path) {
 
 std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, Setup& s) {
   auto renderer = std::make_unique<Renderer>();
-  renderer->setScene(s.scene);
+  renderer->setScene(std::move(s.scene));  // held once, by the renderer: renderer->scene()
   renderer->setTechnique(std::move(s.projection), std::move(s.filter));
   renderer->shadows().addOns() = *s.addOns;
   renderer->shadows().setMapUpdates(s.mapUpdates);
@@ -188,7 +219,12 @@ auto sceneChoice(const Scene& scene, const std::string& field, F&& f) {
 Setup makeSetup(const TechniqueOptions& o) {
   Setup s;
   auto announcer = std::make_shared<LoadAnnouncer>();
-  s.scene = loadScene(o.scene, {.progress = [announcer](const std::filesystem::path& f, double x) { (*announcer)(f, x); }});
+  // The estimate counts the renderer's buffers in host memory (as llvmpipe keeps them; on a GPU
+  // that is the larger guess) and, for a command that traces the reference, the BVH.
+  s.scene = loadScene(o.scene, {.progress = [announcer](const std::filesystem::path& f, double x) { (*announcer)(f, x); },
+                                .maxMemoryBytes = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory),
+                                .glBuffersInHostMemory = true,
+                                .referenceBvh = o.referenceBvh});
   s.projection = o.projection ? makeProjection(*o.projection)
                               : sceneChoice(s.scene, "shadow.projection", [&] { return makeProjection(s.scene.shadow.projection); });
   s.filter = o.filter ? makeFilter(*o.filter) : sceneChoice(s.scene, "shadow.filter", [&] { return makeFilter(s.scene.shadow.filter); });
@@ -229,6 +265,7 @@ report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera)
   return [camera](const report::BenchConfig& c) {
     TechniqueOptions t;
     t.camera = camera;
+    t.referenceBvh = true;
     t.scene = c.scene;
     t.filter = c.filter;
     t.projection = c.projection;

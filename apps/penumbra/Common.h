@@ -31,9 +31,13 @@ struct TechniqueOptions {
   std::string mapUpdates = "every";  ///< --map-updates: every | invalid | N
   std::optional<std::string> camera;  ///< "X,Y,Z:TX,TY,TZ[:FOV]"; unset = the scene's camera
   bool verbose = false;
+  std::string maxMemory;  ///< --max-memory: "" = the memory available (LoadOptions::maxMemoryBytes)
+  /// The command builds the reference's BVH over the scene (compare): the load's estimate counts it.
+  bool referenceBvh = false;
 };
 
-/// Adds --scene --filter --projection --set --size --shadow-map --camera --verbose to a subcommand.
+/// Adds --scene --filter --projection --set --size --shadow-map --camera --verbose --max-memory to a
+/// subcommand.
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o);
 /// Adds --shadow-budget (render and compare; the viewer sizes maps without a budget).
 void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o);
@@ -61,7 +65,8 @@ Setup makeSetup(const TechniqueOptions& o);
 /// technique and params (as --set), with `camera` (--camera) when given.
 report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera);
 
-/// A renderer with the setup's scene and technique (which it takes over from `s`).
+/// A renderer with the setup's scene and technique, which it takes over from `s` (s.scene is
+/// left empty: use the renderer's scene()).
 std::unique_ptr<Renderer> makeRenderer(gl::Context& context, Setup& s);
 
 /// Adds --cache-max-mb N: the cache folder's cap in MiB for this run (unset: PENUMBRA_CACHE_MAX_MB,
@@ -94,6 +99,10 @@ void checkImageFits(const gl::Context& context, int width, int height, uint64_t 
 /// The command line as typed (/proc/self/cmdline), the program's path shortened to its name and
 /// words with spaces quoted: what bench and tune record of their run.
 std::string commandLine();
+
+/// --max-memory's text ("1500" MiB, or with a unit: "512M", "8G", "1.5GiB") in bytes; throws a
+/// usage error otherwise.
+uint64_t parseMemorySize(const std::string& text);
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

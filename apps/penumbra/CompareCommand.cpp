@@ -78,6 +78,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     float fps = 30.0f, timeS = 0.0f;
   };
   auto o = std::make_shared<Options>();
+  o->technique.referenceBvh = true;
   CLI::App* sub = app.add_subcommand("compare", "render a technique and the ray-traced reference; print the error metrics and pass times");
   addTechniqueOptions(*sub, o->technique);
   addShadowBudgetOption(*sub, o->technique);
@@ -107,20 +108,21 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
+    const Scene& scene = renderer.scene();  // the setup's, held once
     renderer.render(s.render);  // warm-up: the first frame includes shader compilation
     renderer.render(s.render);
     const GBufferData gbuffer = renderer.readGBuffer();
     // Aliasing: screen pixels covered by one shadow-map texel, per pixel.
     const std::vector<float> density = computeTexelDensity(renderer);
-    const TexelDensityStats densityStats = texelDensityStats(density, gbuffer, s.scene.camera.position);
+    const TexelDensityStats densityStats = texelDensityStats(density, gbuffer, scene.camera.position);
 
     ReferenceOptions ro;
     ro.samples = o->samples;
     ro.useCache = !o->noCache;
     ro.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     ro.progress = !o->json;
-    const ReferenceTracer tracer(s.scene);
-    const std::vector<ReferenceResult> refs = report::traceLights(tracer, gbuffer, s.scene.lights, ro);
+    const ReferenceTracer tracer(scene, MeshStorage::Borrowed);  // the renderer keeps the scene alive
+    const std::vector<ReferenceResult> refs = report::traceLights(tracer, gbuffer, scene.lights, ro);
     const report::FrameComparison cmp = report::compareFrame(renderer, gbuffer, refs, true);
     const VisibilityMetrics& m = cmp.metrics;
     const CombinedVisibility& combined = cmp.combined;
@@ -142,18 +144,18 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
       referenceCached = referenceCached && (r.fromCache || r.width == 0);
     }
-    const std::string lightText = s.scene.lights.size() > 1 ? fmt::format("{} lights", s.scene.lights.size())
-                                                            : fmt::format("light size {:g}", s.scene.light().size);
+    const std::string lightText = scene.lights.size() > 1 ? fmt::format("{} lights", scene.lights.size())
+                                                            : fmt::format("light size {:g}", scene.light().size);
     const ColorImage all = report::compareSheet(
         {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = combined.v, .vRef = combined.vRef,
          .mask = combined.mask, .heatmapFullScaleDeltaV = report::kLabHeatmap.fullScaleDeltaV,
-         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), s.scene.name),
+         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), scene.name),
          .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", referenceSamples),
          .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
                                  "{:.2f}%) · over-dark {:.2f}% over {} lit pixels",
                                  m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
                      fmt::format("{}×{} pixels, shadow map {}², {} · --camera {}", width, height,
-                                 s.render.shadowMapSize, lightText, cameraArgument(s.scene.camera))}});
+                                 s.render.shadowMapSize, lightText, cameraArgument(scene.camera))}});
     const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
                                     {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
@@ -183,21 +185,21 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ReferenceOptions sro = ro;
       sro.progress = false;
       const report::SequenceTiming timing{*o->frames, o->fps, o->timeS};
-      sequence = report::compareSequence(renderer, s.scene, s.render, timing, sro, {}, [&](int f) {
+      sequence = report::compareSequence(renderer, Scene(scene), s.render, timing, sro, {}, [&](int f) {
         if (!o->json) std::fprintf(stderr, "penumbra: frame %d/%d (t = %.3f s) compared\n", f + 1, timing.frames, timing.timeS(f));
       });
     }
     const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
     if (o->json) {
       nlohmann::json j;
-      j["scene"] = s.scene.name;
+      j["scene"] = scene.name;
       j["filter"] = filter;
       j["projection"] = projection;
-      j["camera"] = cameraArgument(s.scene.camera);  // what --camera takes: the run repeats from it
+      j["camera"] = cameraArgument(scene.camera);  // what --camera takes: the run repeats from it
       j["width"] = gbuffer.width;
       j["height"] = gbuffer.height;
       j["shadow_map"] = s.render.shadowMapSize;
-      j["light_size"] = s.scene.light().size;
+      j["light_size"] = scene.light().size;
       putMetrics(j, m);
       j["approximation_rmse"] = approximationRmse;
       j["texel_density_median"] = densityStats.median;
@@ -272,8 +274,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       return 0;
     }
     std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n  --camera %s\n",
-                s.scene.name.c_str(), projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height,
-                s.render.shadowMapSize, s.scene.light().size, cameraArgument(s.scene.camera).c_str());
+                scene.name.c_str(), projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height,
+                s.render.shadowMapSize, scene.light().size, cameraArgument(scene.camera).c_str());
     std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f  (inside the reference's umbra: %.3f)\n"
                 "  over-dark %%     %8.3f\n"
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"

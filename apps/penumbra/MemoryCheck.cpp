@@ -2,6 +2,7 @@
 // (Common.h: checkImageFits).
 #include "Common.h"
 
+#include "base/HostMemory.h"
 #include "platform/Context.h"
 
 #include <penumbra/Error.h>
@@ -12,11 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <string>
-
-#include <sys/resource.h>
 
 namespace penumbra::app {
 namespace {
@@ -26,36 +24,6 @@ constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 // GL_NVX_gpu_memory_info and GL_ATI_meminfo enums (not in every GL header).
 constexpr GLenum kGpuMemoryAvailableNvx = 0x9049;  // GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, KiB
 constexpr GLenum kTextureFreeMemoryAti = 0x87FC;   // TEXTURE_FREE_MEMORY_ATI: {total free KiB, ...}
-
-/// A "Key:   123 kB" line of a /proc file, in bytes.
-std::optional<uint64_t> procKib(const char* file, const std::string& key) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key + ":", 0) == 0) return std::stoull(line.substr(key.size() + 1)) * kKiB;
-  return std::nullopt;
-}
-
-std::optional<uint64_t> readNumber(const char* file) {
-  std::ifstream in(file);
-  uint64_t v = 0;
-  if (in >> v) return v;
-  return std::nullopt;  // absent, or "max"
-}
-
-/// Host memory this process may still take: what the kernel calls available, bounded by an
-/// address-space limit (ulimit -v) and a cgroup v2 memory limit when there are ones.
-uint64_t availableHostBytes() {
-  uint64_t available = procKib("/proc/meminfo", "MemAvailable").value_or(UINT64_MAX);
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
-    const uint64_t used = procKib("/proc/self/status", "VmSize").value_or(0);
-    available = std::min<uint64_t>(available, limit.rlim_cur > used ? limit.rlim_cur - used : 0);
-  }
-  const std::optional<uint64_t> max = readNumber("/sys/fs/cgroup/memory.max"), current = readNumber("/sys/fs/cgroup/memory.current");
-  if (max && current) available = std::min(available, *max > *current ? *max - *current : 0);
-  return available;
-}
 
 /// Free GPU memory where the driver tells it.
 std::optional<uint64_t> availableGpuBytes() {

@@ -70,7 +70,7 @@ void printMapUpdates(const Shadows& shadows) {
 std::string renderSequence(Renderer& renderer, const Setup& s, const std::string& out, int frames, float fps, float startS,
                            bool verbose, const std::string& gpu) {
   const std::filesystem::path first = framePath(out, 0);
-  Scene posed = s.scene;
+  Scene posed = renderer.scene();
   std::vector<PassTimings> warm;  // the frames after the first
   for (int f = 0; f < frames; ++f) {
     poseScene(posed, startS + static_cast<float>(f) / fps);
@@ -85,7 +85,7 @@ std::string renderSequence(Renderer& renderer, const Setup& s, const std::string
     printMapUpdates(renderer.shadows());
   }
   std::string written = fmt::format("wrote {} frames {}..{} at {} fps from {} s", frames, first.string(), framePath(out, frames - 1).string(), fps, startS);
-  if (s.scene.animation.empty()) written += " (the scene has no animation: every frame is the same)";
+  if (renderer.scene().animation.empty()) written += " (the scene has no animation: every frame is the same)";
   const std::filesystem::path video = std::filesystem::path(out).replace_extension(".mp4");
   const std::optional<std::filesystem::path> ffmpeg = findFfmpeg();
   if (!ffmpeg) return written + fmt::format("; no {} (ffmpeg is not on the PATH: install it for an MP4)", video.string());
@@ -151,7 +151,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       return 0;
     }
     if (o->timeS != 0.0f) {
-      Scene posed = s.scene;
+      Scene posed = renderer.scene();
       poseScene(posed, o->timeS);
       renderer.setPose(posed);
     }
@@ -173,7 +173,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       printMapUpdates(renderer.shadows());
     }
     std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
-                s.scene.name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
+                renderer.scene().name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
     return 0;
   }});
 }

@@ -37,6 +37,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     bool json = false, noCache = false;
   };
   auto o = std::make_shared<Options>();
+  o->technique.referenceBvh = true;  // tune traces the reference
   CLI::App* sub = app.add_subcommand(
       "tune", "search a technique's parameters and maps for the most accurate configuration within a cost budget "
               "on one or several views; write tune.json and tune.html");

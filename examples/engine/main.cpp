@@ -140,7 +140,7 @@ void main() {
   vec3 toCamera = u_cameraPosition - v_ws;
   vec3 g = normalize(cross(dFdx(v_ws), dFdy(v_ws)));
   if (dot(g, toCamera) < 0.0) g = -g;
-  vec3 n = normalize(v_normal);
+  vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : g;  // a mesh without normals: flat
   if (dot(n, g) < 0.0) n = -n;
   bool positional = u_lightDirection.w > 0.5, spot = abs(u_lightDirection.w - 1.0) < 0.5;
   vec3 l = positional ? normalize(u_lightPosition.xyz - v_ws) : -u_lightDirection.xyz;
@@ -232,7 +232,8 @@ int run(const Options& o) {
   std::vector<std::pair<GLuint, GLint>> meshStart;  // first index, base vertex
   for (const penumbra::Mesh& m : scene.meshes) {
     meshStart.emplace_back(static_cast<GLuint>(indices.size()), static_cast<GLint>(vertices.size()));
-    for (const penumbra::Vertex& v : m.vertices) vertices.push_back({v.position, v.normal});
+    for (size_t i = 0; i < m.positions.size(); ++i)  // a mesh without normals is shaded flat (a zero normal)
+      vertices.push_back({m.positions[i], m.normals.empty() ? glm::vec3(0.0f) : m.normals[i]});
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
   std::vector<EngineObject> objects;

@@ -77,13 +77,21 @@ struct ReferenceResult {
   uint64_t cacheKey = 0;       ///< the key it is cached under; 0 where no cache was used (useCache off, no folder)
 };
 
+/// How the reference holds the casters' triangles.
+enum class MeshStorage {
+  Copied,    ///< copies of the meshes' arrays: the scene may change or go away once the tracer is built
+  /// The scene's own index arrays (and the positions of meshes placed at the identity) read in
+  /// place, no copy: for scenes of millions of triangles. The scene must outlive the tracer, unchanged.
+  Borrowed,
+};
+
 /// An Embree BVH of the scene's shadow casters (objects with castsShadow), in world space, and
 /// the tracer that computes reference results from G-buffers. Thread-safe for concurrent trace()
 /// calls. Materials with alphaMask cut holes: an occlusion filter reads their texture's alpha.
 class ReferenceTracer {
 public:
   /// Builds the BVH. Throws penumbra::Error if Embree cannot be initialised or the scene is invalid.
-  explicit ReferenceTracer(const Scene& scene);
+  explicit ReferenceTracer(const Scene& scene, MeshStorage storage = MeshStorage::Copied);
   ~ReferenceTracer();
   ReferenceTracer(const ReferenceTracer&) = delete;
   ReferenceTracer& operator=(const ReferenceTracer&) = delete;
@@ -100,6 +108,12 @@ public:
   /// samples, seed and kReferenceCodeVersion.
   uint64_t cacheKey(const GBufferData& gbuffer, const Light& light,
                     const ReferenceOptions& options) const;
+
+  /// Bytes Embree holds for the BVH (with its copies of triangles, if any) after the build, and
+  /// the most it held while building; the build's wall-clock seconds.
+  uint64_t bvhBytes() const;
+  uint64_t bvhPeakBytes() const;
+  double bvhBuildSeconds() const;
 
 private:
   struct Impl;

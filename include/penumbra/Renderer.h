@@ -51,8 +51,10 @@ public:
   /// core's visibility), for a check before rendering. Shadow maps and filter tables come on top.
   static uint64_t screenBytes(int width, int height);
 
-  /// Uploads the scene's geometry (once per scene, not per frame).
-  void setScene(const Scene& scene);
+  /// Uploads the scene's geometry (once per scene, not per frame) and keeps the scene (scene()):
+  /// give it with std::move where the caller needs no copy of its own (a large model's meshes are
+  /// then held once).
+  void setScene(Scene scene);
   /// Throws a usage Error if the pair cannot work for the scene's light.
   void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter);
   /// Renders one frame. Throws Error on GL failures or an oversized shadow map.

@@ -14,19 +14,27 @@
 
 namespace penumbra {
 
-struct Vertex {
-  glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f, 1.0f, 0.0f};
-  glm::vec2 uv{0.0f};
-};
-
-/// An indexed triangle list in object space.
+/// An indexed triangle list in object space. Vertices are shared: each attribute array holds one
+/// entry per unique vertex (a grid point is one vertex for the six triangles around it), and
+/// `indices` names three of them per triangle. A mesh carries only the attributes it uses: the
+/// renderer uploads what is present, nothing else.
 struct Mesh {
   std::string name;
-  std::vector<Vertex> vertices;
+  std::vector<glm::vec3> positions;
+  /// Unit shading normals, one per position; empty = flat: every triangle is shaded by its own
+  /// plane (a model without normals, as OBJ and glTF define it), with no vertex split for it.
+  std::vector<glm::vec3> normals;
+  /// Texture coordinates, one per position (uv (0,0) = an image's first stored row); empty = none
+  /// (a mesh whose materials have no texture needs none).
+  std::vector<glm::vec2> uvs;
   std::vector<uint32_t> indices;  ///< three per triangle
-  Aabb bounds() const;
+  size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
+  /// Appends one vertex with every attribute (procedural shapes).
+  uint32_t addVertex(const glm::vec3& position, const glm::vec3& normal, const glm::vec2& uv);
+  /// Bytes its arrays hold (the name aside).
+  size_t byteSize() const;
+  Aabb bounds() const;
   /// True when at least one triangle has a non-zero area (a mesh of degenerate triangles, whose
   /// corners lie on one line, draws no pixel and casts no shadow).
   bool hasArea() const;

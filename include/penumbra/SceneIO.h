@@ -21,6 +21,17 @@ struct LoadOptions {
   /// Called on the loading thread for each model file: with 0 when it starts, with increasing
   /// fractions while it is parsed and converted, with 1 when it is loaded. Empty: no reports.
   std::function<void(const std::filesystem::path& file, double fraction)> progress;
+  /// Most memory (bytes) a model file may take once loaded and used as below; 0 = what this
+  /// machine has available (MemAvailable, ulimit -v, the cgroup's limit). A model whose estimate
+  /// is larger is refused, naming the estimate and the memory, before anything is built
+  /// (docs/scenes.md#limits).
+  uint64_t maxMemoryBytes = 0;
+  /// What the caller makes of the scene besides its CPU copy, for the estimate: the renderer's
+  /// vertex and index buffers in this process's memory (a software renderer such as llvmpipe
+  /// keeps them there), …
+  bool glBuffersInHostMemory = true;
+  /// … and the reference's BVH (compare, bench, tune).
+  bool referenceBvh = false;
 };
 
 /// Loads a scene JSON file. Throws Error("file: field: problem") on any bad input.

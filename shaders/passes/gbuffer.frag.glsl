@@ -1,5 +1,5 @@
 // G-buffer pass: world position, shading and geometric normals (both turned toward the camera,
-// so open meshes shade from either side), base colour, and, when the frame records them, which
+// so open meshes shade from either side; a mesh without normals shades with the geometric one), base colour, and, when the frame records them, which
 // triangle the pixel shows: the reference skips that triangle's own hits instead of lifting rays
 // off it (docs/reference.md). Background pixels are written after, by gbuffer_background.frag.glsl.
 #include "common/frame.glsl"
@@ -16,7 +16,8 @@ void main() {
   // The triangle's own plane, from screen-space derivatives of the interpolated position.
   vec3 g = normalize(cross(dFdx(v_wsPosition), dFdy(v_wsPosition)));
   if (dot(g, toCamera) < 0.0) g = -g;
-  vec3 n = normalize(v_wsNormal);
+  // A mesh without normals (GpuScene: the attribute reads 0) is shaded flat, by that plane.
+  vec3 n = dot(v_wsNormal, v_wsNormal) > 0.0 ? normalize(v_wsNormal) : g;
   if (dot(n, g) < 0.0) n = -n;
   o_position = vec4(v_wsPosition, 1.0);
   o_normal = vec4(n, 0.0);

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -25,6 +26,15 @@ void onEmbreeError(void* user, RTCError code, const char* message) {
   auto* log = static_cast<EmbreeErrorLog*>(user);
   const std::lock_guard lock(log->mutex);
   log->last = fmt::format("Embree error {}: {}", static_cast<int>(code), message ? message : "");
+}
+
+/// Embree's allocations, counted as they happen (from any of its threads).
+bool onEmbreeMemory(void* user, ssize_t bytes, bool /*post*/) {
+  auto* m = static_cast<EmbreeMemory*>(user);
+  const int64_t now = m->current.fetch_add(bytes) + bytes;
+  int64_t peak = m->peak.load();
+  while (now > peak && !m->peak.compare_exchange_weak(peak, now)) {}
+  return true;  // never refuse: the scene's size was checked before loading (--max-memory)
 }
 
 void checkDevice(RTCDevice device, EmbreeErrorLog& log, const std::string& what) {
@@ -85,11 +95,13 @@ void checkCasters(const Scene& scene) {
     if (!object.castsShadow) continue;
     const Mesh& mesh = scene.meshes[object.mesh];
     PN_CHECK(mesh.indices.size() % 3 == 0 &&
-                 std::all_of(mesh.indices.begin(), mesh.indices.end(), [&](uint32_t i) { return i < mesh.vertices.size(); }),
+                 std::all_of(mesh.indices.begin(), mesh.indices.end(), [&](uint32_t i) { return i < mesh.vertexCount(); }),
              fmt::format("reference: mesh '{}': indices are not triangles within its {} vertices", mesh.name,
-                         mesh.vertices.size()));
-    for (const Vertex& v : mesh.vertices)
-      PN_CHECK(std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z),
+                         mesh.vertexCount()));
+    PN_CHECK(mesh.uvs.empty() || mesh.uvs.size() == mesh.vertexCount(),
+             fmt::format("reference: mesh '{}': {} texture coordinates for {} vertices", mesh.name, mesh.uvs.size(), mesh.vertexCount()));
+    for (const glm::vec3& p : mesh.positions)
+      PN_CHECK(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z),
                 fmt::format("reference: mesh '{}': a vertex is not finite", mesh.name));
   }
   for (const Material& m : scene.materials)
@@ -99,7 +111,8 @@ void checkCasters(const Scene& scene) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) {
+EmbreeScene::EmbreeScene(const Scene& scene, MeshStorage storage) {
+  const auto start = std::chrono::steady_clock::now();
   checkCasters(scene);
   mImages = scene.images;
 
@@ -109,6 +122,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
                                                ? "this CPU is not supported" : "unknown error"));
   RTCDevice device = mDevice.get();
   rtcSetDeviceErrorFunction(device, onEmbreeError, &mErrors);
+  rtcSetDeviceMemoryMonitorFunction(device, onEmbreeMemory, &mMemory);
   mScene.reset(rtcNewScene(device));
   checkDevice(device, mErrors, "creating a scene");
   RTCScene rtcScene = mScene.get();
@@ -132,25 +146,44 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     checkDevice(device, mErrors, fmt::format("creating the geometry of '{}'", object.name));
     rtcAttachGeometryByID(rtcScene, geometry, objectIndex);
     rtcReleaseGeometry(geometry);
-    auto* vertices = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertices.size()));
-    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
+    // Borrowed: Embree reads the mesh's indices in place, and its positions too where the object
+    // sits at the identity and the array's storage reaches past its last element (Embree loads
+    // 16 bytes a vertex). Elsewhere it gets world-space copies.
+    const bool borrowed = storage == MeshStorage::Borrowed;
+    const bool sharePositions = borrowed && object.worldFromObject == glm::mat4(1.0f) &&
+                                mesh.positions.capacity() > mesh.positions.size();
+    if (sharePositions)
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                                 sizeof(glm::vec3), mesh.vertexCount());
+    glm::vec3* vertices = sharePositions ? nullptr
+                                         : static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                                          sizeof(glm::vec3), mesh.vertexCount()));
+    uint32_t* indices = nullptr;
+    if (borrowed)
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0, 3 * sizeof(uint32_t),
+                                 triangles);
+    else
+      indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(uint32_t), triangles));
     checkDevice(device, mErrors, fmt::format("allocating the geometry of '{}'", object.name));
-    for (size_t i = 0; i < mesh.vertices.size(); ++i)
-      vertices[i] = glm::vec3(object.worldFromObject * glm::vec4(mesh.vertices[i].position, 1.0f));
-    std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+    const glm::mat4& m = object.worldFromObject;
+    if (vertices)
+      for (size_t i = 0; i < mesh.vertexCount(); ++i) vertices[i] = glm::vec3(m * glm::vec4(mesh.positions[i], 1.0f));
+    if (indices) std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
     // The key sees world-space triangles, not (mesh, matrix) pairs: the same geometry placed by
     // a different route hashes the same, and any change of a transform changes it.
-    for (uint32_t index : mesh.indices) hash.value(vertices[index]);
+    if (vertices)
+      for (uint32_t index : mesh.indices) hash.value(vertices[index]);
+    else
+      for (uint32_t index : mesh.indices) hash.value(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
 
     const Material& material = scene.materials[object.material];
-    if (material.alphaMask && material.baseColorTexture >= 0) {
+    if (material.alphaMask && material.baseColorTexture >= 0 && !mesh.uvs.empty()) {
       auto mask = std::make_unique<AlphaMaskGeometry>();
       mask->image = &mImages[static_cast<size_t>(material.baseColorTexture)];
       mask->alphaCutoff = material.alphaCutoff;
       mask->uvs.reserve(mesh.indices.size());
-      for (uint32_t index : mesh.indices) mask->uvs.push_back(mesh.vertices[index].uv);
+      for (uint32_t index : mesh.indices) mask->uvs.push_back(mesh.uvs[index]);
       PN_CHECK(mask->image->width > 0 && mask->image->height > 0 &&
                    mask->image->rgba.size() == 4 * static_cast<size_t>(mask->image->width) *
                                                    static_cast<size_t>(mask->image->height),
@@ -168,6 +201,9 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   }
   rtcCommitScene(rtcScene);
   checkDevice(device, mErrors, "building the BVH");
+  mMemoryAfterBuild = {static_cast<uint64_t>(std::max<int64_t>(0, mMemory.current.load())),
+                       static_cast<uint64_t>(std::max<int64_t>(0, mMemory.peak.load()))};
+  mBuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   hash.value(mCasterTriangles);
   mGeometryHash = hash.digest();
 }

@@ -4,10 +4,12 @@
 // ID is its index in Scene::objects and its primitive IDs are its mesh's triangle indices, the
 // numbering the G-buffer records (GBufferData::triangle), so a ray can skip its receiver's own
 // triangle.
+#include <penumbra/Reference.h>
 #include <penumbra/Scene.h>
 
 #include <glm/glm.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -35,6 +37,12 @@ struct EmbreeErrorLog {
   std::string last;
 };
 
+/// What Embree allocates (its memory-monitor callback): bytes held now and the most held at once.
+struct EmbreeMemory {
+  std::atomic<int64_t> current{0};
+  std::atomic<int64_t> peak{0};
+};
+
 /// A triangle: object index in Scene::objects, triangle index in its mesh.
 struct TriangleId {
   static constexpr uint32_t kNoObject = ~0u;  ///< no triangle
@@ -43,8 +51,10 @@ struct TriangleId {
 
 class EmbreeScene {
 public:
-  /// Throws penumbra::Error if Embree fails (the message is Embree's).
-  explicit EmbreeScene(const Scene& scene);
+  /// Throws penumbra::Error if Embree fails (the message is Embree's). With MeshStorage::Borrowed
+  /// Embree reads `scene`'s index arrays (and the positions of objects placed at the identity) in
+  /// place: `scene` must outlive this, unchanged.
+  explicit EmbreeScene(const Scene& scene, MeshStorage storage = MeshStorage::Copied);
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
@@ -82,9 +92,17 @@ public:
   /// Hash of the world-space caster triangles and alpha masks (part of the cache key).
   uint64_t geometryHash() const { return mGeometryHash; }
   size_t casterTriangles() const { return mCasterTriangles; }
+  struct Memory {
+    uint64_t bytes = 0, peakBytes = 0;
+  };
+  /// Embree's own allocations once built (BVH, and the triangles it copied), and their peak
+  /// during the build.
+  Memory memory() const { return mMemoryAfterBuild; }
+  double buildSeconds() const { return mBuildSeconds; }
 
 private:
-  EmbreeErrorLog mErrors;  // declared first: the device's callback writes here until it is gone
+  EmbreeErrorLog mErrors;  // declared first: the device's callbacks write here and below until it is gone
+  EmbreeMemory mMemory;
   struct ReleaseDevice { void operator()(RTCDevice device) const; };
   struct ReleaseScene { void operator()(RTCScene scene) const; };
   std::unique_ptr<RTCDeviceTy, ReleaseDevice> mDevice;
@@ -93,6 +111,8 @@ private:
   std::vector<std::unique_ptr<AlphaMaskGeometry>> mAlphaMasks;  // stable addresses for Embree
   uint64_t mGeometryHash = 0;
   size_t mCasterTriangles = 0;
+  Memory mMemoryAfterBuild;
+  double mBuildSeconds = 0.0;
 };
 
 }  // namespace penumbra::reference

@@ -56,11 +56,11 @@ std::vector<std::vector<ReceiverTriangle>> receiverTriangles(const Scene& scene)
     const Mesh& mesh = scene.meshes[object.mesh];
     glm::mat4 absolute;
     for (int c = 0; c < 4; ++c) absolute[c] = glm::abs(object.worldFromObject[c]);
-    std::vector<glm::vec3> world(mesh.vertices.size());
-    std::vector<float> magnitude(mesh.vertices.size());
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-      world[i] = glm::vec3(object.worldFromObject * glm::vec4(mesh.vertices[i].position, 1.0f));
-      const glm::vec4 terms = absolute * glm::vec4(glm::abs(mesh.vertices[i].position), 1.0f);
+    std::vector<glm::vec3> world(mesh.vertexCount());
+    std::vector<float> magnitude(mesh.vertexCount());
+    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+      world[i] = glm::vec3(object.worldFromObject * glm::vec4(mesh.positions[i], 1.0f));
+      const glm::vec4 terms = absolute * glm::vec4(glm::abs(mesh.positions[i]), 1.0f);
       magnitude[i] = std::max({terms.x, terms.y, terms.z});
     }
     out[o].resize(mesh.triangleCount());

@@ -50,7 +50,7 @@ int samplesFor(const Light& light, const ReferenceOptions& options) {
 }  // namespace
 
 struct ReferenceTracer::Impl {
-  explicit Impl(const Scene& scene) : embree(scene), triangles(receiverTriangles(scene)) {}
+  Impl(const Scene& scene, MeshStorage storage) : embree(scene, storage), triangles(receiverTriangles(scene)) {}
 
   std::vector<Receiver> receivers(const GBufferData& g) const { return receiversOf(g, triangles); }
 
@@ -61,8 +61,11 @@ struct ReferenceTracer::Impl {
   std::vector<std::vector<ReceiverTriangle>> triangles;  // receiverTriangles(scene)
 };
 
-ReferenceTracer::ReferenceTracer(const Scene& scene) : mImpl(std::make_unique<Impl>(scene)) {}
+ReferenceTracer::ReferenceTracer(const Scene& scene, MeshStorage storage) : mImpl(std::make_unique<Impl>(scene, storage)) {}
 ReferenceTracer::~ReferenceTracer() = default;
+uint64_t ReferenceTracer::bvhBytes() const { return mImpl->embree.memory().bytes; }
+uint64_t ReferenceTracer::bvhPeakBytes() const { return mImpl->embree.memory().peakBytes; }
+double ReferenceTracer::bvhBuildSeconds() const { return mImpl->embree.buildSeconds(); }
 
 uint64_t ReferenceTracer::cacheKey(const GBufferData& g, const Light& light, const ReferenceOptions& options) const {
   checkGBuffer(g);

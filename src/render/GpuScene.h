@@ -1,8 +1,11 @@
 #pragma once
-// Penumbra's own renderer's scene on the GPU: one vertex buffer, one index buffer, one object
-// table (ObjectGpu[] in a storage buffer), and one texture per material image (sRGB RGBA8), bound
-// at PN_TEX_BASECOLOR for each draw (bindless-free: images of any size, no array layers to share).
-// Uploaded once per scene. The G-buffer pass draws it; the shadow passes get the same buffers as
+// Penumbra's own renderer's scene on the GPU: the meshes' shared vertices in one interleaved
+// buffer per vertex layout (position; + normal; + uv; + both: a mesh uploads only the attributes
+// it has and its materials read, so a flat, untextured mesh costs 12 bytes a vertex), one index
+// buffer, one object table (ObjectGpu[] in a storage buffer), and one texture per material image
+// (sRGB RGBA8), bound at PN_TEX_BASECOLOR for each draw (bindless-free: images of any size, no
+// array layers to share). Uploaded once per scene, mesh by mesh (no CPU copy of the whole scene
+// is made on the way). The G-buffer pass draws it; the shadow passes get the same buffers as
 // CasterMesh records (casterMeshes), as an engine would give its own.
 #include "gl/Objects.h"
 #include "shared/Frame.h"
@@ -27,18 +30,28 @@ public:
   std::vector<CasterMesh> casterMeshes(const Scene& scene) const;
 
 private:
+  /// One vertex layout: its attributes, interleaved in one buffer, position first.
+  struct Layout {
+    bool normal = false, uv = false;
+    uint32_t stride() const { return 12u + (normal ? 12u : 0u) + (uv ? 8u : 0u); }
+    uint32_t uvOffset() const { return 12u + (normal ? 12u : 0u); }
+    gl::Buffer vertices;
+    gl::VertexArray vao;
+  };
+  static constexpr size_t kLayouts = 4;  ///< index = (normal ? 1 : 0) + (uv ? 2 : 0)
   struct Draw {
     GLsizei indexCount;
     size_t firstIndex;
-    GLint baseVertex;
+    GLint baseVertex;  ///< in its layout's buffer
+    size_t layout;
     bool castsShadow;
     GLuint texture;  ///< the material's base-colour texture, or mWhite
   };
-  gl::Buffer mVertices, mIndices, mObjects;
+  Layout mLayouts[kLayouts];
+  gl::Buffer mIndices, mObjects;
   std::vector<gpu::ObjectGpu> mObjectData;  ///< what mObjects holds
   std::vector<gl::Texture> mTextures;  ///< by Scene::images index; empty where no material uses it
   gl::Texture mWhite;                  ///< 1×1 opaque white for untextured objects
-  gl::VertexArray mVao;
   std::vector<Draw> mDraws;
 };
 

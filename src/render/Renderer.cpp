@@ -131,9 +131,9 @@ const PassTimings& Renderer::timings() const { return mImpl->timings; }
 ShaderLibrary& Renderer::shaders() { return mImpl->shadows.shaders(); }
 Shadows& Renderer::shadows() { return mImpl->shadows; }
 
-void Renderer::setScene(const Scene& scene) {
+void Renderer::setScene(Scene scene) {
   scene.validate();
-  mImpl->scene = scene;
+  mImpl->scene = std::move(scene);
   mImpl->gpuScene = std::make_unique<GpuScene>(mImpl->scene);
   mImpl->sendCasters();
   mImpl->shadows.setCasterGeometry(&mImpl->scene);

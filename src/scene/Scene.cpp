@@ -119,9 +119,12 @@ void Scene::validate() const {
   for (const Mesh& m : meshes) {
     PN_CHECK(m.indices.size() % 3 == 0, fmt::format("{}: mesh '{}': index count {} is not a multiple of 3", where, m.name, m.indices.size()));
     for (uint32_t i : m.indices)
-      PN_CHECK(i < m.vertices.size(), fmt::format("{}: mesh '{}': index {} out of range ({} vertices)", where, m.name, i, m.vertices.size()));
-    for (const Vertex& v : m.vertices)
-      PN_CHECK(std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z),
+      PN_CHECK(i < m.positions.size(), fmt::format("{}: mesh '{}': index {} out of range ({} vertices)", where, m.name, i, m.positions.size()));
+    PN_CHECK((m.normals.empty() || m.normals.size() == m.positions.size()) && (m.uvs.empty() || m.uvs.size() == m.positions.size()),
+             fmt::format("{}: mesh '{}': {} normals and {} texture coordinates for {} positions (each none or one per position)",
+                         where, m.name, m.normals.size(), m.uvs.size(), m.positions.size()));
+    for (const glm::vec3& p : m.positions)
+      PN_CHECK(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z),
                fmt::format("{}: mesh '{}': a vertex position is not finite", where, m.name));
   }
   for (const Object& o : objects) {

@@ -11,17 +11,16 @@ namespace {
 
 void addQuad(Mesh& m, glm::vec3 origin, glm::vec3 du, glm::vec3 dv, glm::vec2 uvScale = {1, 1}) {
   const glm::vec3 n = glm::normalize(glm::cross(du, dv));
-  const auto base = static_cast<uint32_t>(m.vertices.size());
-  m.vertices.push_back({origin, n, {0, 0}});
-  m.vertices.push_back({origin + du, n, {uvScale.x, 0}});
-  m.vertices.push_back({origin + du + dv, n, uvScale});
-  m.vertices.push_back({origin + dv, n, {0, uvScale.y}});
+  const uint32_t base = m.addVertex(origin, n, {0, 0});
+  m.addVertex(origin + du, n, {uvScale.x, 0});
+  m.addVertex(origin + du + dv, n, uvScale);
+  m.addVertex(origin + dv, n, {0, uvScale.y});
   for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
 }
 
 // A surface of revolution around +Y from a profile of (radius, y, normal r, normal y) rings.
 void addLathe(Mesh& m, const std::vector<glm::vec4>& ringsPos, const std::vector<glm::vec2>& ringsNormal, int slices) {
-  const auto base = static_cast<uint32_t>(m.vertices.size());
+  const auto base = static_cast<uint32_t>(m.vertexCount());
   const int rings = static_cast<int>(ringsPos.size());
   for (int r = 0; r < rings; ++r) {
     for (int s = 0; s <= slices; ++s) {
@@ -29,7 +28,7 @@ void addLathe(Mesh& m, const std::vector<glm::vec4>& ringsPos, const std::vector
       const glm::vec2 dir{std::cos(a), -std::sin(a)};
       const glm::vec3 p{ringsPos[r].x * dir.x, ringsPos[r].y, ringsPos[r].x * dir.y};
       glm::vec3 n{ringsNormal[r].x * dir.x, ringsNormal[r].y, ringsNormal[r].x * dir.y};
-      m.vertices.push_back({p, glm::normalize(n), {static_cast<float>(s) / static_cast<float>(slices), ringsPos[r].z}});
+      m.addVertex(p, glm::normalize(n), {static_cast<float>(s) / static_cast<float>(slices), ringsPos[r].z});
     }
   }
   const auto stride = static_cast<uint32_t>(slices + 1);
@@ -45,12 +44,11 @@ void addLathe(Mesh& m, const std::vector<glm::vec4>& ringsPos, const std::vector
 
 // A flat disk at height y facing up (+1) or down (-1).
 void addDisk(Mesh& m, float radius, float y, float facing, int slices) {
-  const auto centre = static_cast<uint32_t>(m.vertices.size());
   const glm::vec3 n{0, facing, 0};
-  m.vertices.push_back({{0, y, 0}, n, {0.5f, 0.5f}});
+  const uint32_t centre = m.addVertex({0, y, 0}, n, {0.5f, 0.5f});
   for (int s = 0; s <= slices; ++s) {
     const float a = glm::two_pi<float>() * static_cast<float>(s) / static_cast<float>(slices);
-    m.vertices.push_back({{radius * std::cos(a), y, -radius * std::sin(a)}, n, {0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a)}});
+    m.addVertex({radius * std::cos(a), y, -radius * std::sin(a)}, n, {0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a)});
   }
   for (uint32_t s = 0; s < static_cast<uint32_t>(slices); ++s) {
     const uint32_t a = centre + 1 + s, b = a + 1;
@@ -61,16 +59,29 @@ void addDisk(Mesh& m, float radius, float y, float facing, int slices) {
 
 }  // namespace
 
+uint32_t Mesh::addVertex(const glm::vec3& position, const glm::vec3& normal, const glm::vec2& uv) {
+  positions.push_back(position);
+  normals.push_back(normal);
+  uvs.push_back(uv);
+  return static_cast<uint32_t>(positions.size() - 1);
+}
+
+size_t Mesh::byteSize() const {
+  return positions.size() * sizeof(glm::vec3) + normals.size() * sizeof(glm::vec3) + uvs.size() * sizeof(glm::vec2) +
+         indices.size() * sizeof(uint32_t);
+}
+
 Aabb Mesh::bounds() const {
   Aabb b;
-  for (const Vertex& v : vertices) b.extend(v.position);
+  for (const glm::vec3& p : positions) b.extend(p);
   return b;
 }
 
 bool Mesh::hasArea() const {
+  const size_t n = positions.size();
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    if (indices[t] >= vertices.size() || indices[t + 1] >= vertices.size() || indices[t + 2] >= vertices.size()) continue;
-    const glm::vec3 a = vertices[indices[t]].position, b = vertices[indices[t + 1]].position, c = vertices[indices[t + 2]].position;
+    if (indices[t] >= n || indices[t + 1] >= n || indices[t + 2] >= n) continue;
+    const glm::vec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
     if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
   }
   return false;
@@ -92,7 +103,7 @@ Mesh makeGrid(float sizeX, float sizeZ, int cells) {
   for (int j = 0; j <= cells; ++j)
     for (int i = 0; i <= cells; ++i) {
       const glm::vec2 uv{static_cast<float>(i) / n, static_cast<float>(j) / n};
-      m.vertices.push_back({{(uv.x - 0.5f) * sizeX, 0.0f, (0.5f - uv.y) * sizeZ}, {0, 1, 0}, uv});
+      m.addVertex({(uv.x - 0.5f) * sizeX, 0.0f, (0.5f - uv.y) * sizeZ}, {0, 1, 0}, uv);
     }
   const auto at = [cells](int i, int j) { return static_cast<uint32_t>(j * (cells + 1) + i); };
   for (int j = 0; j < cells; ++j)

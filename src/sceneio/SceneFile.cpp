@@ -222,17 +222,17 @@ std::pair<uint64_t, uint64_t> shapeSize(const std::string& kind) {
     for (const auto& [name, mesh] : {std::pair{"plane", makePlane(1, 1)}, {"box", makeBox(glm::vec3(1))},
                                      {"sphere", makeSphere(1, kSphereSlices, kSphereStacks)}, {"cylinder", makeCylinder(1, 1)},
                                      {"cone", makeCone(1, 1)}})
-      sizes[name] = {mesh.vertices.size(), mesh.triangleCount()};
+      sizes[name] = {mesh.vertexCount(), mesh.triangleCount()};
     return sizes;
   }();
   const auto it = kSizes.find(kind);
   return it == kSizes.end() ? std::pair<uint64_t, uint64_t>{0, 0} : it->second;  // an unknown shape fails later, by name
 }
 
-// Fail fast (docs/scenes.md): the object count and the shapes' vertex and triangle totals are
-// checked before any shape is built (a file of 30 000 spheres once grew to 2.26 GB first).
-// Model files are checked as each one is placed (loaders::appendModel).
-void checkShapeTotals(const Json& objects, const Reader& top) {
+// Fail fast (docs/scenes.md): the object count and the memory the shapes will take are checked
+// before any shape is built (a file of 30 000 spheres once grew to 2.26 GB first). Model files
+// are checked as each one is loaded.
+void checkShapeTotals(const Json& objects, const Reader& top, const LoadOptions& options) {
   if (objects.size() > loaders::kMaxObjects)
     top.fail("objects", fmt::format("{} objects, more than the limit of {}", objects.size(), loaders::kMaxObjects));
   uint64_t vertices = 0, triangles = 0;
@@ -242,10 +242,12 @@ void checkShapeTotals(const Json& objects, const Reader& top) {
     vertices += v;
     triangles += t;
   }
-  if (vertices > loaders::kMaxVertices)
-    top.fail("objects", fmt::format("the shapes have {} vertices, more than the limit of {}", vertices, loaders::kMaxVertices));
-  if (triangles > loaders::kMaxTriangles)
-    top.fail("objects", fmt::format("the shapes have {} triangles, more than the limit of {}", triangles, loaders::kMaxTriangles));
+  try {
+    loaders::checkSceneMemory({.vertices = vertices, .triangles = triangles, .normals = vertices, .uvs = vertices, .loaderBytes = 0},
+                              "the shapes", options);
+  } catch (const Error& e) {
+    top.fail("objects", e.what());
+  }
 }
 
 /// An object's "animation", over its own translate/rotateDeg/scale; none without the key.
@@ -364,7 +366,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
   if (!top.has("objects")) top.fail("objects", "missing");
   const Json& objects = top.raw("objects");
   if (!objects.is_array() || objects.empty()) top.fail("objects", "expected a non-empty array");
-  checkShapeTotals(objects, top);
+  checkShapeTotals(objects, top, options);
   for (size_t i = 0; i < objects.size(); ++i) {
     Reader r(objects[i], file, fmt::format("objects[{}]", i));
     const std::string name = r.string("name", fmt::format("object {}", i));

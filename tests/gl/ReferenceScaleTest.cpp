@@ -49,7 +49,7 @@ PositionError positionError(const Scene& scene, const GBufferData& g) {
     glm::dvec3 v[3];
     float magnitude = 0.0f;
     for (int k = 0; k < 3; ++k) {
-      const glm::vec3 local = mesh.vertices[mesh.indices[3 * g.triangle[i].y + static_cast<uint32_t>(k)]].position;
+      const glm::vec3 local = mesh.positions[mesh.indices[3 * g.triangle[i].y + static_cast<uint32_t>(k)]];
       v[k] = glm::dvec3(worldFromObject * glm::dvec4(glm::dvec3(local), 1.0));
       glm::mat4 absolute;
       for (int c = 0; c < 4; ++c) absolute[c] = glm::abs(object.worldFromObject[c]);

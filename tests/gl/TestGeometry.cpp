@@ -11,7 +11,7 @@ CasterTriangles::CasterTriangles(const Scene& scene) {
   for (const Object& o : scene.objects) {
     if (!o.castsShadow) continue;
     const Mesh& m = scene.meshes[o.mesh];
-    for (uint32_t i : m.indices) mV.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.vertices[i].position, 1.0f)));
+    for (uint32_t i : m.indices) mV.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.positions[i], 1.0f)));
   }
 }
 

@@ -113,9 +113,10 @@ TEST(ModelLoader, AlphaQuadGltf) {
       EXPECT_EQ(im.rgba[static_cast<size_t>(4 * (4 * y + x) + 3)], kMask[y][x] == 'X' ? 255 : 0) << x << "," << y;
   // uv (0,0) sits at (-1, 1, -1): the image's top-left texel is over the quad's -x, -z corner.
   const Mesh& mesh = s.meshes[quad.mesh];
-  for (const Vertex& v : mesh.vertices) {
-    EXPECT_NEAR(v.uv.x, (v.position.x + 1.0f) / 2.0f, 1e-6f);
-    EXPECT_NEAR(v.uv.y, (v.position.z + 1.0f) / 2.0f, 1e-6f);
+  ASSERT_EQ(mesh.uvs.size(), mesh.vertexCount());
+  for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+    EXPECT_NEAR(mesh.uvs[i].x, (mesh.positions[i].x + 1.0f) / 2.0f, 1e-6f);
+    EXPECT_NEAR(mesh.uvs[i].y, (mesh.positions[i].z + 1.0f) / 2.0f, 1e-6f);
   }
   EXPECT_FALSE(s.materials[s.objects[0].material].alphaMask);
 }
@@ -131,8 +132,10 @@ TEST(ModelLoader, ObjWithMtlColours) {
   const Aabb b = m.scene.bounds();
   EXPECT_NEAR(b.lo.y, 0.0f, 1e-6f);
   EXPECT_NEAR(b.hi.y, 1.0f, 1e-6f);
-  // Faces without vn get the flat normal, pointing out of the cube.
-  for (const Vertex& v : m.scene.meshes[0].vertices) EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+  // Faces without vn: no normals (each triangle is shaded by its own plane), so the cube's corners
+  // are shared by its faces: 8 vertices, not 24 or 36.
+  EXPECT_TRUE(m.scene.meshes[0].normals.empty());
+  EXPECT_EQ(m.scene.meshes[0].vertexCount(), 8u);
   EXPECT_FALSE(m.hasCamera);
   EXPECT_TRUE(m.scene.lights.empty());
 }
@@ -178,18 +181,66 @@ TEST(ModelLoader, SceneFilePlacesObjAndGltfSideBySide) {
 
 TEST(ModelLoader, StripsAndFansBecomeTriangleLists) {
   // Strip (0 1 2 3) → (0 1 2) (1 3 2); fan (0 1 3 2) → (1 3 0) (3 2 0) (glTF 2.0 §3.7.2.1).
-  // Without NORMAL every triangle gets its own vertices, so the positions show the order.
+  // The positions each index names show the order.
   const loaders::Model strip = loadText(meshGltf(kSquare, {0, 1, 2, 3}, R"(, "mode": 5)"));
   const loaders::Model fan = loadText(meshGltf(kSquare, {0, 1, 3, 2}, R"(, "mode": 6)"));
   const int stripOrder[6] = {0, 1, 2, 1, 3, 2}, fanOrder[6] = {1, 3, 0, 3, 2, 0};
   for (const auto& [model, order] : {std::pair{&strip, stripOrder}, std::pair{&fan, fanOrder}}) {
     const Mesh& m = model->scene.meshes.at(0);
     ASSERT_EQ(m.triangleCount(), 2u);
-    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(m.vertices[m.indices[i]].position, kSquare[static_cast<size_t>(order[i])]) << i;
-    for (const Vertex& v : m.vertices) EXPECT_NEAR(v.normal.z, 1.0f, 1e-6f);  // one winding: every face toward +Z
+    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(m.positions[m.indices[i]], kSquare[static_cast<size_t>(order[i])]) << i;
+    EXPECT_TRUE(m.normals.empty()) << "no NORMAL: flat, no normals kept";
+    for (size_t t = 0; t < 6; t += 3) {  // one winding: every face toward +Z
+      const glm::vec3 &a = m.positions[m.indices[t]], &b = m.positions[m.indices[t + 1]], &c = m.positions[m.indices[t + 2]];
+      EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << t / 3;
+    }
   }
   // Lines and points draw nothing: a file with only those has zero triangles.
   EXPECT_NE(gltfError(meshGltf(kSquare, {0, 1, 2, 3}, R"(, "mode": 1)")).find("no triangles"), std::string::npos);
+}
+
+// Corners share vertices: a grid of n × n quads keeps one vertex per grid point, (n + 1)², from OBJ
+// (`f` lines over `v`, with and without `vn`) and from glTF (indexed, as the file shares them, and
+// as a plain list of corners, which meshoptimizer's remap folds together).
+TEST(ModelLoader, GridVerticesAreSharedOncePerPoint) {
+  constexpr int n = 6;
+  constexpr size_t kPoints = (n + 1) * (n + 1), kTriangles = 2 * n * n;
+  std::vector<glm::vec3> points;
+  std::string v;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      points.emplace_back(static_cast<float>(i), 0.1f * static_cast<float>(i * j % 3), static_cast<float>(j));
+      v += fmt::format("v {} {} {}\n", points.back().x, points.back().y, points.back().z);
+    }
+  std::vector<uint16_t> indices;
+  std::string faces, facesWithNormal;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      for (int k : {a, c, b, b, c, d}) indices.push_back(static_cast<uint16_t>(k));
+      faces += fmt::format("f {} {} {}\nf {} {} {}\n", a + 1, c + 1, b + 1, b + 1, c + 1, d + 1);
+      facesWithNormal += fmt::format("f {0}//1 {1}//1 {2}//1\nf {2}//1 {1}//1 {3}//1\n", a + 1, c + 1, b + 1, d + 1);
+    }
+  const loaders::Model flat = loaders::loadObjFromMemory(v + faces, "grid.obj", "");
+  const loaders::Model shaded = loaders::loadObjFromMemory(v + "vn 0 1 0\n" + facesWithNormal, "grid.obj", "");
+  std::vector<glm::vec3> corners;  // the same triangles, every corner written out
+  for (uint16_t i : indices) corners.push_back(points[i]);
+  std::string listed = meshGltf(corners, {0, 1, 2}, "");
+  const std::string indexedText = R"("indices": 1 )";
+  ASSERT_NE(listed.find(indexedText), std::string::npos);
+  listed.replace(listed.find(indexedText) - 2, indexedText.size() + 2, "");  // ", \"indices\": 1 ": no index buffer
+  const loaders::Model indexed = loadText(meshGltf(points, indices, ""));
+  const loaders::Model remapped = loadText(listed);
+  for (const auto& [name, model] : {std::pair{"OBJ", &flat}, {"OBJ with vn", &shaded}, {"glTF", &indexed}, {"glTF without indices", &remapped}}) {
+    ASSERT_EQ(model->scene.meshes.size(), 1u) << name;
+    const Mesh& m = model->scene.meshes[0];
+    EXPECT_EQ(m.triangleCount(), kTriangles) << name;
+    EXPECT_EQ(m.vertexCount(), kPoints) << name << ": one vertex per grid point";
+    for (size_t t = 0; t < m.indices.size(); ++t)  // every corner still at its point
+      EXPECT_EQ(m.positions[m.indices[t]], points[indices[t]]) << name << " corner " << t;
+  }
+  EXPECT_TRUE(flat.scene.meshes[0].normals.empty());
+  EXPECT_EQ(shaded.scene.meshes[0].normals, std::vector<glm::vec3>(kPoints, glm::vec3(0, 1, 0)));
 }
 
 TEST(ModelLoader, NodeTransformsCompose) {
@@ -375,10 +426,13 @@ TEST(ModelLoader, JpegTextureTransformAndUnusedImages) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(jpeg.rgba[texel + static_cast<size_t>(c)], want[c], kJpegTolerance) << bx << "," << by;
     }
   // uv (0,0) at (-3, 0, -3) across the 6 m ground; the transform: scale 2, a quarter turn.
-  for (const Vertex& v : s.meshes[ground.mesh].vertices) {
-    const glm::vec2 uv((v.position.x + 3.0f) / 6.0f, (v.position.z + 3.0f) / 6.0f);
-    EXPECT_NEAR(v.uv.x, 2.0f * uv.y, 1e-5f) << v.position.x << "," << v.position.z;
-    EXPECT_NEAR(v.uv.y, -2.0f * uv.x, 1e-5f) << v.position.x << "," << v.position.z;
+  const Mesh& groundMesh = s.meshes[ground.mesh];
+  ASSERT_EQ(groundMesh.uvs.size(), groundMesh.vertexCount());
+  for (size_t i = 0; i < groundMesh.vertexCount(); ++i) {
+    const glm::vec3& p = groundMesh.positions[i];
+    const glm::vec2 uv((p.x + 3.0f) / 6.0f, (p.z + 3.0f) / 6.0f);
+    EXPECT_NEAR(groundMesh.uvs[i].x, 2.0f * uv.y, 1e-5f) << p.x << "," << p.z;
+    EXPECT_NEAR(groundMesh.uvs[i].y, -2.0f * uv.x, 1e-5f) << p.x << "," << p.z;
   }
   const fs::path bad = kData / "bad";
   auto err = [&](const char* name) { return errorOf([&] { loadScene((bad / name).string()); }); };
@@ -418,15 +472,18 @@ TEST(ModelLoader, QuantizedMeshesReadBackTheirValues) {
   EXPECT_NEAR(b.hi.y, 1.0f, 1e-4f);
   EXPECT_NEAR(b.lo.x, -0.5f, 1e-4f);
   const Mesh& m = s.meshes[s.objects[0].mesh];
-  ASSERT_EQ(m.vertices.size(), 24u);
+  ASSERT_EQ(m.vertexCount(), 24u);
+  ASSERT_EQ(m.normals.size(), 24u);
+  ASSERT_EQ(m.uvs.size(), 24u);
   constexpr float kByteNormalStep = 1.0f / 127.0f;
-  for (const Vertex& v : m.vertices) {
+  for (size_t i = 0; i < m.vertexCount(); ++i) {
+    const glm::vec3 &n = m.normals[i], &p = m.positions[i];
     // Each face's normal is its position's one coordinate at ±1 (before the node's scale).
-    const glm::vec3 face = glm::round(v.normal);
-    EXPECT_NEAR(glm::length(v.normal), 1.0f, kByteNormalStep);
-    EXPECT_NEAR(glm::dot(face, v.position), 1.0f, 1e-4f) << "normal (" << v.normal.x << "," << v.normal.y << "," << v.normal.z << ")";
+    const glm::vec3 face = glm::round(n);
+    EXPECT_NEAR(glm::length(n), 1.0f, kByteNormalStep);
+    EXPECT_NEAR(glm::dot(face, p), 1.0f, 1e-4f) << "normal (" << n.x << "," << n.y << "," << n.z << ")";
     // USHORT 0 or 65535 → 0 or 1, scaled by 2 by the texture transform.
-    for (float c : {v.uv.x, v.uv.y}) EXPECT_TRUE(std::abs(c) < 1e-6f || std::abs(c - 2.0f) < 1e-6f) << c;
+    for (float c : {m.uvs[i].x, m.uvs[i].y}) EXPECT_TRUE(std::abs(c) < 1e-6f || std::abs(c - 2.0f) < 1e-6f) << c;
   }
   // An integer NORMAL must be normalised (the extension allows only normalised BYTE and SHORT).
   std::ifstream in(kData / "models/quantized_box.gltf");
@@ -461,12 +518,12 @@ TEST(ModelLoader, MeshoptDecodesToTheOriginalGeometry) {
   const loaders::Model m = loadGlb(test::meshoptBoxGlb());
   ASSERT_EQ(m.scene.meshes.size(), 2u);
   for (const auto& [mesh, part] : {std::pair{&m.scene.meshes[0], &g.box}, std::pair{&m.scene.meshes[1], &g.ground}}) {
-    ASSERT_EQ(mesh->vertices.size(), part->positions.size() / 3);
+    ASSERT_EQ(mesh->vertexCount(), part->positions.size() / 3);
+    ASSERT_EQ(mesh->normals.size(), mesh->vertexCount());
     EXPECT_EQ(mesh->indices, part->indices);
-    for (size_t i = 0; i < mesh->vertices.size(); ++i) {
-      const Vertex& v = mesh->vertices[i];
-      EXPECT_EQ(v.position, glm::make_vec3(&part->positions[3 * i])) << i;
-      EXPECT_NEAR(glm::distance(v.normal, glm::make_vec3(&part->normals[3 * i])), 0.0f, 2.0f / 127.0f) << i;
+    for (size_t i = 0; i < mesh->vertexCount(); ++i) {
+      EXPECT_EQ(mesh->positions[i], glm::make_vec3(&part->positions[3 * i])) << i;
+      EXPECT_NEAR(glm::distance(mesh->normals[i], glm::make_vec3(&part->normals[3 * i])), 0.0f, 2.0f / 127.0f) << i;
     }
   }
   EXPECT_EQ(readBytes(kData / "models/meshopt_box.glb"), test::meshoptBoxGlb()) << "rerun penumbra_make_compressed_models tests/data";
@@ -489,9 +546,9 @@ TEST(ModelLoader, DracoDecodesToTheOriginalGeometry) {
           bool same = true;
           for (size_t c = 0; c < 3 && same; ++c) {
             const uint32_t original = part->indices[t + c];
-            const Vertex& v = mesh->vertices[mesh->indices[u + (c + static_cast<size_t>(rotation)) % 3]];
-            same = glm::distance(v.position, glm::make_vec3(&part->positions[3 * original])) < kPositionToleranceM &&
-                   glm::distance(v.normal, glm::make_vec3(&part->normals[3 * original])) < kNormalTolerance;
+            const uint32_t v = mesh->indices[u + (c + static_cast<size_t>(rotation)) % 3];
+            same = glm::distance(mesh->positions[v], glm::make_vec3(&part->positions[3 * original])) < kPositionToleranceM &&
+                   glm::distance(mesh->normals[v], glm::make_vec3(&part->normals[3 * original])) < kNormalTolerance;
           }
           found = same;
         }

@@ -325,9 +325,9 @@ std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint
   for (const Object& o : scene.objects) {
     const Mesh& m = scene.meshes[o.mesh];
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-      Tri t{glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i]].position, 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i + 1]].position, 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.vertices[m.indices[i + 2]].position, 1.0f))};
+      Tri t{glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i]], 1.0f)),
+            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 1]], 1.0f)),
+            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 2]], 1.0f))};
       total += 0.5f * glm::length(glm::cross(t.b - t.a, t.c - t.a));
       tris.push_back(t);
       cumulative.push_back(total);
@@ -357,7 +357,7 @@ std::vector<glm::vec3> casterTriangles(const Scene& scene) {
   for (const Object& o : scene.objects) {
     if (!o.castsShadow) continue;
     const Mesh& m = scene.meshes[o.mesh];
-    for (uint32_t i : m.indices) tri.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.vertices[i].position, 1.0f)));
+    for (uint32_t i : m.indices) tri.push_back(glm::vec3(o.worldFromObject * glm::vec4(m.positions[i], 1.0f)));
   }
   return tri;
 }

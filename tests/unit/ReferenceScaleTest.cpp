@@ -90,7 +90,7 @@ TEST(ReferenceScale, NoAcneOnAGrazingPlaneTenKilometresOut) {
   const Object& plane = scene.objects.front();
   const Mesh& mesh = scene.meshes[plane.mesh];
   std::vector<glm::vec3> world;
-  for (const Vertex& v : mesh.vertices) world.push_back(glm::vec3(plane.worldFromObject * glm::vec4(v.position, 1.0f)));
+  for (const glm::vec3& p : mesh.positions) world.push_back(glm::vec3(plane.worldFromObject * glm::vec4(p, 1.0f)));
   const glm::vec3 up = glm::mat3(plane.worldFromObject) * glm::vec3(0, 1, 0);  // the lit side
 
   // Barycentric weights: inside, and 1e-3 … 1e-6 of the way from each edge.

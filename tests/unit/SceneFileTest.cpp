@@ -27,10 +27,10 @@ std::filesystem::path writeTemp(const std::string& name, const std::string& text
   return path;
 }
 
-std::string loadError(const std::string& json) {
+std::string loadError(const std::string& json, const LoadOptions& options = {}) {
   const auto path = writeTemp("t.json", json);
   try {
-    loadSceneFile(path);
+    loadSceneFile(path, options);
   } catch (const Error& e) {
     return e.what();
   }
@@ -129,8 +129,9 @@ TEST(SceneFile, LightColourAndAmbientAreBounded) {
   EXPECT_EQ(loadError(R"({"ambient": [0, 0, 0], "lights": [{"type": "sun", "color": [1000, 0, 0]}], )" + box + "}"), "");
 }
 
-// A file of 30 000 spheres reached 2.26 GB before the limit error: the shapes' totals are now
-// checked before any shape is built, so the process barely grows.
+// A file of 30 000 spheres reached 2.26 GB before the limit error: the memory the shapes will take
+// is now estimated before any shape is built, so the process barely grows (the limit here is
+// 256 MiB, as --max-memory 256M would set it: 36.75 M vertices need about 2.3 GiB).
 TEST(SceneFile, ShapeTotalsFailBeforeAnyShapeIsBuilt) {
   constexpr int kSpheres = 30000;
   constexpr long kMaxGrowthKiB = 200 * 1024;  // the JSON document; one built sphere is 66 KiB, all 30 000 2.2 GiB
@@ -139,9 +140,12 @@ TEST(SceneFile, ShapeTotalsFailBeforeAnyShapeIsBuilt) {
   json += "]}";
   rusage before{}, after{};
   getrusage(RUSAGE_SELF, &before);
-  const std::string e = loadError(json);
+  LoadOptions limit;
+  limit.maxMemoryBytes = uint64_t(256) << 20;
+  const std::string e = loadError(json, limit);
   getrusage(RUSAGE_SELF, &after);
-  EXPECT_NE(e.find("objects: the shapes have 36750000 vertices, more than the limit of 16777216"), std::string::npos) << e;
+  EXPECT_NE(e.find("triangles and about 36750000 vertices need about"), std::string::npos) << e;
+  EXPECT_NE(e.find("more than the --max-memory limit of 0.25 GiB"), std::string::npos) << e;
   EXPECT_LT(after.ru_maxrss - before.ru_maxrss, kMaxGrowthKiB) << "KiB of peak memory growth";
   const std::string many = loadError(R"({"lights": [{"type": "sun"}], "objects": [)" +
                                      [] { std::string s; for (int i = 0; i < 65537; ++i) s += i ? ",{}" : "{}"; return s; }() + "]}");

@@ -49,39 +49,40 @@ std::string str(const glm::vec3& v) {
 template <class Outward>
 ShapeReport checkShape(const Mesh& m, const glm::vec3& centre, float minFaceVertexCos, Outward outward) {
   ShapeReport r;
-  for (size_t i = 0; i < m.vertices.size(); ++i) {
-    const Vertex& v = m.vertices[i];
-    if (std::abs(glm::length(v.normal) - 1.0f) > kUnitTol)
-      r.note(r.nonUnit, "vertex " + std::to_string(i) + " normal length " + std::to_string(glm::length(v.normal)));
-    if (!outward(v.position, v.normal))
-      r.note(r.inward, "vertex " + std::to_string(i) + " at " + str(v.position) + " has normal " + str(v.normal));
+  if (m.normals.size() != m.positions.size() || m.uvs.size() != m.positions.size())
+    r.note(r.badIndex, "a shape has one normal and one uv per position");
+  for (size_t i = 0; i < m.normals.size(); ++i) {
+    const glm::vec3 &p = m.positions[i], &n = m.normals[i];
+    if (std::abs(glm::length(n) - 1.0f) > kUnitTol)
+      r.note(r.nonUnit, "vertex " + std::to_string(i) + " normal length " + std::to_string(glm::length(n)));
+    if (!outward(p, n)) r.note(r.inward, "vertex " + std::to_string(i) + " at " + str(p) + " has normal " + str(n));
   }
   for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
     ++r.triangles;
     const uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
-    if (std::max({ia, ib, ic}) >= m.vertices.size()) {
+    if (std::max({ia, ib, ic}) >= m.normals.size()) {
       r.note(r.badIndex, "triangle " + std::to_string(t / 3) + " indexes past the vertices");
       continue;
     }
-    const Vertex &a = m.vertices[ia], &b = m.vertices[ib], &c = m.vertices[ic];
-    const glm::vec3 cross = glm::cross(b.position - a.position, c.position - a.position);
+    const glm::vec3 &a = m.positions[ia], &b = m.positions[ib], &c = m.positions[ic];
+    const glm::vec3 cross = glm::cross(b - a, c - a);
     if (0.5f * glm::length(cross) < kDegenerateArea) {
       ++r.degenerate;
       continue;
     }
     const glm::vec3 face = glm::normalize(cross);
-    const glm::vec3 centroid = (a.position + b.position + c.position) / 3.0f;
+    const glm::vec3 centroid = (a + b + c) / 3.0f;
     if (glm::dot(face, centroid - centre) <= 0.0f)
       r.note(r.clockwise, "triangle " + std::to_string(t / 3) + " winds clockwise from outside, face normal " + str(face));
-    for (const Vertex* v : {&a, &b, &c})
-      if (glm::dot(face, v->normal) <= minFaceVertexCos)
-        r.note(r.disagreeing, "triangle " + std::to_string(t / 3) + " face normal " + str(face) + " vs vertex normal " + str(v->normal));
+    for (uint32_t v : {ia, ib, ic})
+      if (glm::dot(face, m.normals[v]) <= minFaceVertexCos)
+        r.note(r.disagreeing, "triangle " + std::to_string(t / 3) + " face normal " + str(face) + " vs vertex normal " + str(m.normals[v]));
   }
   return r;
 }
 
 void expectClean(const Mesh& m, const ShapeReport& r) {
-  EXPECT_FALSE(m.vertices.empty()) << m.name;
+  EXPECT_FALSE(m.positions.empty()) << m.name;
   EXPECT_EQ(m.indices.size() % 3, 0u) << m.name;
   EXPECT_GT(r.triangles, r.degenerate) << m.name;
   EXPECT_EQ(r.defects(), 0u) << m.name << ": " << r.nonUnit << " non-unit, " << r.inward << " inward normals, "
@@ -108,7 +109,7 @@ TEST(Shapes, PlaneFacesUpAndWindsCounterClockwise) {
 TEST(Shapes, GridIsThePlaneCutIntoCellsThatShareTheirEdges) {
   const Mesh m = makeGrid(4.0f, 2.0f, 3);
   ASSERT_EQ(m.triangleCount(), 2u * 3u * 3u);
-  EXPECT_EQ(m.vertices.size(), 4u * 4u) << "one vertex per grid point: neighbours share edges exactly";
+  EXPECT_EQ(m.vertexCount(), 4u * 4u) << "one vertex per grid point: neighbours share edges exactly";
   expectClean(m, checkShape(m, {0, -1, 0}, 1.0f - kFlatCosTol, [](const glm::vec3& p, const glm::vec3& n) {
     return near(p.y, 0.0f) && near(n.y, 1.0f);
   }));
@@ -117,8 +118,8 @@ TEST(Shapes, GridIsThePlaneCutIntoCellsThatShareTheirEdges) {
   EXPECT_NEAR(b.size().z, 2.0f, 1e-6f);
   // The uv of makePlane: (0, 0) at (−x, +z).
   const Mesh plane = makePlane(4.0f, 2.0f);
-  EXPECT_EQ(m.vertices.front().position, plane.vertices.front().position);
-  EXPECT_EQ(m.vertices.front().uv, plane.vertices.front().uv);
+  EXPECT_EQ(m.positions.front(), plane.positions.front());
+  EXPECT_EQ(m.uvs.front(), plane.uvs.front());
   EXPECT_THROW(makeGrid(1.0f, 1.0f, 0), Error);
 }
 
@@ -137,9 +138,9 @@ TEST(Shapes, BoxNormalsAreItsFaceAxesPointingOut) {
   expectClean(m, r);
   // Every face axis appears: 4 vertices each of ±X, ±Y, ±Z.
   int perAxis[6] = {};
-  for (const Vertex& v : m.vertices)
+  for (const glm::vec3& n : m.normals)
     for (int k = 0; k < 3; ++k)
-      if (near(std::abs(v.normal[k]), 1.0f)) ++perAxis[2 * k + (v.normal[k] > 0.0f ? 0 : 1)];
+      if (near(std::abs(n[k]), 1.0f)) ++perAxis[2 * k + (n[k] > 0.0f ? 0 : 1)];
   for (int count : perAxis) EXPECT_EQ(count, 4);
 }
 
@@ -214,9 +215,9 @@ TEST(Shapes, ChecksCatchReversedWindingAndInwardNormals) {
   EXPECT_EQ(f.disagreeing, 36u);
   EXPECT_EQ(f.inward, 0u);
   Mesh inward = makeSphere(1.0f, 8, 4);
-  for (Vertex& v : inward.vertices) v.normal = -v.normal;
+  for (glm::vec3& n : inward.normals) n = -n;
   const ShapeReport i = checkShape(inward, {0, 0, 0}, smoothMinCos(8, 4), outward);
-  EXPECT_EQ(i.inward, inward.vertices.size());
+  EXPECT_EQ(i.inward, inward.vertexCount());
   EXPECT_EQ(i.clockwise, 0u);
   EXPECT_GT(i.disagreeing, 0u);
 }

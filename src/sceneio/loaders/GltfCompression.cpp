@@ -237,8 +237,8 @@ void decodeDraco(tinygltf::Model& model, const DracoPrimitive& d, const std::str
     fail(file, field, "the Draco data asks for more memory than there is");
   }
   const size_t points = mesh->num_points(), faces = mesh->num_faces();
-  if (points > kMaxVertices || faces > kMaxTriangles)
-    fail(file, field, fmt::format("{} points and {} triangles: more than the limits of {} and {}", points, faces, kMaxVertices, kMaxTriangles));
+  if (points > UINT32_MAX || 3 * faces > UINT32_MAX)
+    fail(file, field, fmt::format("{} points and {} triangles: more than 32-bit indices can number", points, faces));
   total += faces * 12 + points * 4 * 8;  // at most: the indices and 8 floats of attributes per point
   if (total > kMaxDecompressedBytes) fail(file, field, fmt::format("decompressed data would take more than {} bytes", kMaxDecompressedBytes));
 

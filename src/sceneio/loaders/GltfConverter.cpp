@@ -12,6 +12,7 @@
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
+#include <meshoptimizer.h>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -63,6 +64,28 @@ struct AccessorData {
   }
 };
 
+/// A primitive without indices lists its triangles' corners: equal corners (every attribute the
+/// same) become one vertex, by meshoptimizer's remap.
+void shareCorners(Mesh& mesh) {
+  std::vector<meshopt_Stream> streams = {{mesh.positions.data(), sizeof(glm::vec3), sizeof(glm::vec3)}};
+  if (!mesh.normals.empty()) streams.push_back({mesh.normals.data(), sizeof(glm::vec3), sizeof(glm::vec3)});
+  if (!mesh.uvs.empty()) streams.push_back({mesh.uvs.data(), sizeof(glm::vec2), sizeof(glm::vec2)});
+  std::vector<unsigned int> remap(mesh.vertexCount());
+  const size_t unique = meshopt_generateVertexRemapMulti(remap.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertexCount(),
+                                                         streams.data(), streams.size());
+  if (unique == mesh.vertexCount()) return;
+  meshopt_remapIndexBuffer(mesh.indices.data(), mesh.indices.data(), mesh.indices.size(), remap.data());
+  auto shrink = [&](auto& values) {
+    if (values.empty()) return;
+    meshopt_remapVertexBuffer(values.data(), values.data(), values.size(), sizeof(values[0]), remap.data());
+    values.resize(unique);
+    values.shrink_to_fit();
+  };
+  shrink(mesh.positions);
+  shrink(mesh.normals);
+  shrink(mesh.uvs);
+}
+
 class Converter {
 public:
   Converter(const tinygltf::Model& model, std::string file, ProgressReport* progress)
@@ -84,7 +107,8 @@ private:
   /// `animNode`: the animation node the light or camera hangs in (it moves with it), or -1.
   void addLight(const tinygltf::Node& node, const glm::mat4& world, int animNode, const std::string& field);
   void addCamera(const tinygltf::Camera& c, const glm::mat4& world, int animNode, const std::string& field);
-  void reserve(uint64_t vertices, uint64_t triangles, const std::string& field);
+  /// The memory check (checkSceneMemory) from the accessors' counts, before any mesh is built.
+  void checkMemory() const;
 
   const tinygltf::Model& g;
   std::string mFile;
@@ -98,7 +122,6 @@ private:
   std::map<int, UvTransform> mUvTransforms;  // glTF material → its base-colour texture's transform
   std::vector<uint8_t> mOnPath, mVisited;
   std::map<int, TransformTrack> mTracks;  // keyed channels by glTF node
-  uint64_t mVertices = 0, mTriangles = 0;
 };
 
 AccessorData Converter::accessor(int index, const std::string& use, int type, std::initializer_list<int> types) const {
@@ -112,7 +135,7 @@ AccessorData Converter::accessor(int index, const std::string& use, int type, st
   const int components = type == TINYGLTF_TYPE_SCALAR ? 1 : type;  // VEC2..VEC4 are 2..4
   if (a.type != type) error(field, fmt::format("type {} is not the {} that {} needs", a.type, type, use));
   if (a.count < 1) error(field + ".count", "must be at least 1");
-  if (a.count > kMaxVertices * 3) error(field + ".count", fmt::format("{} is more than the limit of {}", a.count, kMaxVertices * 3));
+  if (a.count > UINT32_MAX) error(field + ".count", fmt::format("{} is more than 32-bit indices can number", a.count));
   AccessorData d;
   d.count = a.count;
   d.componentType = a.componentType;
@@ -162,11 +185,26 @@ std::vector<uint32_t> Converter::readIndices(const tinygltf::Primitive& p, size_
   return indices;
 }
 
-void Converter::reserve(uint64_t vertices, uint64_t triangles, const std::string& field) {
-  mVertices += vertices;
-  mTriangles += triangles;
-  if (mVertices > kMaxVertices) error(field, fmt::format("more than the limit of {} vertices in the file", kMaxVertices));
-  if (mTriangles > kMaxTriangles) error(field, fmt::format("more than the limit of {} triangles in the file", kMaxTriangles));
+void Converter::checkMemory() const {
+  if (!mProgress) return;
+  SceneCounts c;
+  for (const tinygltf::Mesh& m : g.meshes)
+    for (const tinygltf::Primitive& p : m.primitives) {
+      const auto count = [&](int accessor) -> uint64_t {
+        return accessor >= 0 && static_cast<size_t>(accessor) < g.accessors.size() ? g.accessors[static_cast<size_t>(accessor)].count : 0;
+      };
+      const auto position = p.attributes.find("POSITION");
+      if (position == p.attributes.end()) continue;
+      const uint64_t vertices = count(position->second), corners = p.indices >= 0 ? count(p.indices) : vertices;
+      const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+      if (mode < TINYGLTF_MODE_TRIANGLES) continue;
+      c.vertices += vertices;
+      c.triangles += mode == TINYGLTF_MODE_TRIANGLES ? corners / 3 : (corners < 3 ? 0 : corners - 2);
+      if (p.attributes.count("NORMAL")) c.normals += vertices;
+      if (p.attributes.count("TEXCOORD_0") || p.attributes.count("TEXCOORD_1")) c.uvs += vertices;
+    }
+  for (const tinygltf::Buffer& b : g.buffers) c.loaderBytes += b.data.size();  // held while the meshes are built
+  checkSceneMemory(c, mFile, mProgress->options());
 }
 
 int Converter::imageFor(int gi, const std::string& field) {
@@ -255,8 +293,6 @@ int Converter::meshFor(int mi, int pi) {
   const size_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? n / 3 : (n < 3 ? 0 : n - 2);
   if (triangles == 0) return result;
   const auto normal = p.attributes.find("NORMAL");
-  // Budget before allocating: the vertices as stored, and the flat-shaded copy when there are no normals.
-  reserve(pos.count + (normal == p.attributes.end() ? 3 * triangles : 0), triangles, field);
   // Strips and fans become triangle lists (glTF 2.0 §3.7.2.1 gives the vertex order).
   std::vector<uint32_t> indices;
   if (mode == TINYGLTF_MODE_TRIANGLES) {
@@ -270,10 +306,10 @@ int Converter::meshFor(int mi, int pi) {
   }
   Mesh mesh;
   mesh.name = g.meshes[static_cast<size_t>(mi)].name.empty() ? field : g.meshes[static_cast<size_t>(mi)].name;
-  mesh.vertices.resize(pos.count);
+  mesh.positions.resize(pos.count);
   for (size_t i = 0; i < pos.count; ++i) {
-    for (int c = 0; c < 3; ++c) mesh.vertices[i].position[c] = static_cast<float>(pos.component(i, c));
-    const glm::vec3& x = mesh.vertices[i].position;
+    for (int c = 0; c < 3; ++c) mesh.positions[i][c] = static_cast<float>(pos.component(i, c));
+    const glm::vec3& x = mesh.positions[i];
     if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
       error(fmt::format("accessors[{}]", position->second), fmt::format("position {} is not finite", i));
   }
@@ -284,14 +320,15 @@ int Converter::meshFor(int mi, int pi) {
     if (nrm.count != pos.count) error(field + ".attributes.NORMAL", fmt::format("{} elements, POSITION has {}", nrm.count, pos.count));
     if (nrm.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
       error(fmt::format("accessors[{}]", normal->second), "a BYTE or SHORT NORMAL must be normalized (KHR_mesh_quantization)");
+    mesh.normals.resize(nrm.count);
     for (size_t i = 0; i < nrm.count; ++i) {
-      glm::vec3& v = mesh.vertices[i].normal;
+      glm::vec3& v = mesh.normals[i];
       for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(nrm.component(i, c));
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         error(fmt::format("accessors[{}]", normal->second), fmt::format("normal {} is not finite", i));
       if (glm::dot(v, v) == 0.0f) flat = true;  // unusable for shading: use face normals instead
     }
-    if (flat) reserve(3 * triangles, 0, field);
+    if (flat) mesh.normals = {};  // shaded by each triangle's plane (the G-buffer's geometric normal)
   }
   const Material& mat = mOut.scene.materials[static_cast<size_t>(material)];
   if (mat.baseColorTexture >= 0) {
@@ -304,14 +341,15 @@ int Converter::meshFor(int mi, int pi) {
         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
          TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT});
     if (t.count != pos.count) error(field + ".attributes." + name, fmt::format("{} elements, POSITION has {}", t.count, pos.count));
+    mesh.uvs.resize(t.count);
     for (size_t i = 0; i < t.count; ++i) {
-      glm::vec2& v = mesh.vertices[i].uv;
+      glm::vec2& v = mesh.uvs[i];
       v = transform.apply(glm::vec2(static_cast<float>(t.component(i, 0)), static_cast<float>(t.component(i, 1))));
       if (!std::isfinite(v.x) || !std::isfinite(v.y)) error(fmt::format("accessors[{}]", uv->second), fmt::format("texture coordinate {} is not finite", i));
     }
   }
   mesh.indices = std::move(indices);
-  if (flat) makeFlatNormals(mesh);
+  if (p.indices < 0) shareCorners(mesh);
   mOut.scene.meshes.push_back(std::move(mesh));
   result = static_cast<int>(mOut.scene.meshes.size() - 1);
   return result;
@@ -505,6 +543,7 @@ Model Converter::run() {
       for (int c = 0; c < a.components; ++c) out.push_back(static_cast<float>(a.component(i, c)));
     return out;
   });
+  checkMemory();
   for (int r : roots) visit(r, glm::mat4(1.0f), 0, -1);
   if (mOut.scene.objects.empty() || mOut.scene.triangleCount() == 0)
     error("", "the scene places no triangles (no mesh node with triangle primitives)");

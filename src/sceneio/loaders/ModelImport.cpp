@@ -2,6 +2,8 @@
 // inside a scene file. The format parsers live in GltfLoader.cpp and ObjLoader.cpp.
 #include "sceneio/loaders/ModelImport.h"
 
+#include "base/HostMemory.h"
+
 #include "sceneio/loaders/GltfLoader.h"
 #include "sceneio/loaders/ObjLoader.h"
 
@@ -169,13 +171,6 @@ void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromMod
 }
 
 void checkSceneLimits(const Scene& scene, const std::string& file) {
-  uint64_t vertices = 0, triangles = 0;
-  for (const Mesh& m : scene.meshes) {
-    vertices += m.vertices.size();
-    triangles += m.triangleCount();
-  }
-  if (vertices > kMaxVertices) fail(file, "", fmt::format("{} vertices, more than the limit of {}", vertices, kMaxVertices));
-  if (triangles > kMaxTriangles) fail(file, "", fmt::format("{} triangles, more than the limit of {}", triangles, kMaxTriangles));
   if (scene.objects.size() > kMaxObjects)
     fail(file, "", fmt::format("{} placed meshes, more than the limit of {}", scene.objects.size(), kMaxObjects));
   if (scene.images.size() > kMaxImages)
@@ -201,23 +196,36 @@ void checkSceneLimits(const Scene& scene, const std::string& file) {
   }
 }
 
-void makeFlatNormals(Mesh& mesh) {
-  std::vector<Vertex> flat;
-  flat.reserve(mesh.indices.size());
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    Vertex v[3] = {mesh.vertices[mesh.indices[t]], mesh.vertices[mesh.indices[t + 1]], mesh.vertices[mesh.indices[t + 2]]};
-    const glm::vec3 n = glm::cross(v[1].position - v[0].position, v[2].position - v[0].position);
-    const float len = glm::length(n);
-    // A degenerate triangle covers no pixel; any unit normal will do.
-    const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
-    for (Vertex& x : v) {
-      x.normal = unit;
-      flat.push_back(x);
-    }
-  }
-  mesh.vertices = std::move(flat);
-  mesh.indices.resize(mesh.vertices.size());
-  for (size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = static_cast<uint32_t>(i);
+uint64_t MemoryEstimate::peakBytes() const { return std::max(loaderBytes + meshBytes, meshBytes + glBytes + bvhBytes); }
+
+MemoryEstimate estimateSceneMemory(const SceneCounts& c, const LoadOptions& options) {
+  MemoryEstimate e;
+  e.meshBytes = c.vertices * sizeof(glm::vec3) + c.normals * sizeof(glm::vec3) + c.uvs * sizeof(glm::vec2) + c.triangles * 3 * sizeof(uint32_t);
+  if (options.glBuffersInHostMemory) e.glBytes = e.meshBytes;  // the same attributes, interleaved (GpuScene)
+  // The BVH, and the world-space positions and per-triangle receiver planes the reference keeps.
+  if (options.referenceBvh) e.bvhBytes = c.triangles * kBvhBytesPerTriangle + c.vertices * sizeof(glm::vec3) + c.triangles * 16;
+  e.loaderBytes = c.loaderBytes;
+  return e;
+}
+
+void checkSceneMemory(const SceneCounts& c, const std::string& file, const LoadOptions& options) {
+  const MemoryEstimate e = estimateSceneMemory(c, options);
+  const uint64_t available = availableHostBytes(), limit = options.maxMemoryBytes ? options.maxMemoryBytes : available;
+  if (e.peakBytes() <= limit) return;
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  std::string parts = fmt::format("meshes {:.2f}", e.meshBytes / kGiB);
+  if (e.glBytes) parts += fmt::format(", GL buffers in host memory {:.2f}", e.glBytes / kGiB);
+  if (e.bvhBytes) parts += fmt::format(", reference BVH {:.2f}", e.bvhBytes / kGiB);
+  if (e.loaderBytes) parts += fmt::format(", loading {:.2f}", e.loaderBytes / kGiB);
+  const uint64_t total = totalHostBytes();
+  const std::string machine = total ? fmt::format("this machine has {:.1f} GiB available of {:.1f} GiB", available / kGiB, total / kGiB)
+                                    : fmt::format("this machine has {:.1f} GiB available", available / kGiB);
+  const std::string against = options.maxMemoryBytes
+                                  ? fmt::format("more than the --max-memory limit of {:.2f} GiB ({})", limit / kGiB, machine)
+                                  : fmt::format("more than the {:.2f} GiB available ({:.1f} GiB of RAM; --max-memory sets another limit)",
+                                                limit / kGiB, total / kGiB);
+  fail(file, "", fmt::format("{} triangles and about {} vertices need about {:.2f} GiB at the peak ({} GiB), {}", c.triangles,
+                             c.vertices, e.peakBytes() / kGiB, parts, against));
 }
 
 }  // namespace penumbra::loaders

@@ -17,10 +17,8 @@ namespace penumbra::loaders {
 /// Largest file read (model, .bin buffer, .mtl, image): keeps a typo'd path (a disk image, a
 /// device) from being slurped into memory.
 inline constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;
-/// Vertices and triangles of one scene after loading (sum over every mesh): 16 Mi each keeps the
-/// CPU copies under ~1 GiB and every index inside uint32.
-inline constexpr uint64_t kMaxVertices = uint64_t(1) << 24;
-inline constexpr uint64_t kMaxTriangles = uint64_t(1) << 24;
+/// How many vertices and triangles a scene may have is set by memory, not by a count: see
+/// SceneCounts and checkSceneMemory below.
 /// Placed meshes (one draw call each).
 inline constexpr uint64_t kMaxObjects = uint64_t(1) << 16;
 /// glTF node hierarchy depth; real files stay below 30, a recursion guard needs some bound.
@@ -63,6 +61,7 @@ public:
   void stage(double from, double to) { mFrom = from; mTo = to; }
   void update(uint64_t done, uint64_t total);
   void finish() { report(1.0); }
+  const LoadOptions& options() const { return mOptions; }
 
 private:
   void report(double fraction);
@@ -90,12 +89,34 @@ void appendModel(Scene& scene, const Scene& model, const glm::mat4& worldFromMod
 std::vector<uint8_t> readFileLimited(const std::filesystem::path& path, const std::string& what,
                                      uint64_t maxBytes = kMaxFileBytes);
 
-/// Checks the limits that only the whole scene shows: vertex, triangle, object, image totals,
+/// What a scene's meshes will hold, counted before they are built.
+struct SceneCounts {
+  uint64_t vertices = 0, triangles = 0;
+  uint64_t normals = 0, uvs = 0;  ///< vertices that keep a normal, a texture coordinate
+  uint64_t loaderBytes = 0;       ///< what the loader holds besides the meshes while it builds them
+};
+
+/// The bytes a scene of `counts` takes, by part, as `options` will use it. Each part is the
+/// measured cost per vertex and per triangle (docs/scenes.md#limits): the meshes (12 bytes a
+/// position, 12 a normal, 8 a texture coordinate, 12 a triangle), the renderer's GL buffers (the
+/// same, where they live in this process), the reference's BVH (its build's peak), and what the
+/// loader holds on the way.
+struct MemoryEstimate {
+  uint64_t meshBytes = 0, glBytes = 0, bvhBytes = 0, loaderBytes = 0;
+  /// The peak: while loading (the loader's own and the meshes), or once used (meshes, GL
+  /// buffers, BVH), whichever is larger.
+  uint64_t peakBytes() const;
+};
+MemoryEstimate estimateSceneMemory(const SceneCounts& counts, const LoadOptions& options);
+/// BVH bytes per triangle (with the build's own peak) of the reference's Embree scene, measured.
+inline constexpr uint64_t kBvhBytesPerTriangle = 100;
+
+/// Throws Error("file: N triangles, about M vertices: about X GiB (…), more than the Y GiB …")
+/// when the estimate's peak exceeds options.maxMemoryBytes (0: the memory available).
+void checkSceneMemory(const SceneCounts& counts, const std::string& file, const LoadOptions& options);
+
+/// Checks the limits that only the whole scene shows: object, image totals,
 /// finite world transforms and coordinates within kMaxCoordinateM. `file` names the error.
 void checkSceneLimits(const Scene& scene, const std::string& file);
-
-/// Normals of a triangle list with no normals of its own: each triangle gets its own three
-/// vertices with the face normal (glTF asks for flat normals when NORMAL is absent).
-void makeFlatNormals(Mesh& mesh);
 
 }  // namespace penumbra::loaders

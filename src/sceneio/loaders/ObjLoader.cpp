@@ -1,9 +1,13 @@
-// Wavefront OBJ → Scene. tinyobjloader tokenises the file; every index it returns is checked
-// here (it passes out-of-range ones through). It reads a number it cannot parse ("nan", "inf",
-// "1e999", letters) as 0 and an index that overflows as anything, so every number of the
-// statements Penumbra uses (v, vn, vt, f; Kd and Ns in .mtl files) is checked first, by line.
-// Faces are unshared (three vertices per triangle) so that faces without `vn` get their own flat
-// normal.
+// Wavefront OBJ → Scene, streamed: the file is read a block at a time, each line checked and
+// handed to tinyobjloader's callback parser (LoadObjWithCallback), which calls back per statement.
+// Neither the text nor tinyobjloader's face arrays are ever held whole: only the positions and
+// normals that faces index, and the meshes being built. tinyobjloader reads a number it cannot
+// parse ("nan", "inf", "1e999", letters) as 0 and an index that overflows as anything, so every
+// number of the statements Penumbra uses (v, vn, vt, f; Kd and Ns in .mtl files) is checked
+// first, by line, and every index it returns is checked here. Corners share vertices: each
+// distinct (v, vn) pair of a mesh is one vertex (OBJ materials carry no texture here, so `vt` is
+// checked but not kept). A mesh whose faces have no `vn` gets no normals: each triangle is shaded
+// by its own plane.
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
@@ -14,8 +18,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <deque>
+#include <exception>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <span>
@@ -89,46 +97,80 @@ std::string checkCorner(std::string_view corner) {
   return fmt::format("'{}' has more than three parts", corner);
 }
 
-/// Checks the numbers of every statement that `rules` (and, for an OBJ, `f`) name, and returns
-/// the text as tinyobjloader may see it: every statement whose keyword is not in `keep` becomes a
-/// comment (line numbers stay). Penumbra reads none of those, and tinyobjloader parses some of
-/// them with unchecked conversions (`vw` joint ids become an int however large; texture options,
-/// tags, exponents near 2^31). Lines end at "\n", "\r\n" or a lone "\r", as tinyobjloader splits
-/// them. Throws Error("name: line N: keyword: problem").
-std::string checkStatements(const std::string& text, const std::string& name, std::span<const NumberRule> rules, bool faces,
-                            std::span<const std::string_view> keep) {
-  std::vector<size_t> ignored;  // offsets of the keywords to turn into comments
-  size_t lineNumber = 0;
-  for (size_t start = 0; start < text.size();) {
-    const size_t end = std::min(text.find_first_of("\r\n", start), text.size());
-    const std::string_view line(text.data() + start, end - start);
-    const size_t lineStart = start;
-    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
-    ++lineNumber;
-    const std::vector<std::string_view> w = words(line);
-    if (w.empty()) continue;
-    if (std::find(keep.begin(), keep.end(), w[0]) == keep.end()) {
-      ignored.push_back(lineStart + static_cast<size_t>(w[0].data() - line.data()));
-      continue;
-    }
-    const std::string where = fmt::format("line {}", lineNumber);
-    if (faces && w[0] == "f") {
-      for (size_t i = 1; i < w.size(); ++i)
-        if (const std::string problem = checkCorner(w[i]); !problem.empty()) fail(name, where, "f: " + problem);
-      continue;
-    }
-    for (const NumberRule& rule : rules) {
-      if (w[0] != rule.keyword) continue;
-      const size_t count = w.size() - 1;
-      if (count < rule.minCount || count > rule.maxCount)
-        fail(name, where, fmt::format("{}: {} numbers; expected {}", rule.keyword, count, rule.what));
-      float unused = 0.0f;
-      for (size_t i = 1; i < w.size(); ++i)
-        if (!parseFinite(w[i], unused)) fail(name, where, fmt::format("{}: '{}' is not a finite number", rule.keyword, w[i]));
+/// One line's check (what checkText does for each): false when its keyword is not in `keep` (the
+/// line is dropped), true when it is kept; throws Error("name: line N: keyword: problem").
+bool checkLine(const std::vector<std::string_view>& w, size_t lineNumber, const std::string& name, std::span<const NumberRule> rules,
+               bool faces, std::span<const std::string_view> keep) {
+  if (std::find(keep.begin(), keep.end(), w[0]) == keep.end()) return false;
+  const std::string where = fmt::format("line {}", lineNumber);
+  if (faces && w[0] == "f") {
+    for (size_t i = 1; i < w.size(); ++i)
+      if (const std::string problem = checkCorner(w[i]); !problem.empty()) fail(name, where, "f: " + problem);
+    return true;
+  }
+  for (const NumberRule& rule : rules) {
+    if (w[0] != rule.keyword) continue;
+    const size_t count = w.size() - 1;
+    if (count < rule.minCount || count > rule.maxCount)
+      fail(name, where, fmt::format("{}: {} numbers; expected {}", rule.keyword, count, rule.what));
+    float unused = 0.0f;
+    for (size_t i = 1; i < w.size(); ++i)
+      if (!parseFinite(w[i], unused)) fail(name, where, fmt::format("{}: '{}' is not a finite number", rule.keyword, w[i]));
+  }
+  return true;
+}
+
+/// Splits text into lines as tinyobjloader does ("\n", "\r\n" or a lone "\r"), a block at a
+/// time: a line may straddle two blocks, and so may a "\r\n".
+class LineSplitter {
+public:
+  /// Calls `line(text)` for each complete line of `block`; the rest waits for the next block.
+  template <class F>
+  void feed(std::string_view block, F&& line) {
+    for (char c : block) {
+      if (mAfterCr && c == '\n') {
+        mAfterCr = false;
+        continue;
+      }
+      mAfterCr = c == '\r';
+      if (c == '\n' || c == '\r') {
+        line(std::string_view(mLine));
+        mLine.clear();
+      } else {
+        mLine.push_back(c);
+      }
     }
   }
-  std::string out = text;
-  for (size_t at : ignored) out[at] = '#';
+  /// The last line when the text does not end in a line break.
+  template <class F>
+  void finish(F&& line) {
+    if (!mLine.empty()) line(std::string_view(mLine));
+    mLine.clear();
+  }
+
+private:
+  std::string mLine;
+  bool mAfterCr = false;
+};
+
+/// The text as tinyobjloader may see it: every statement whose keyword is not in `keep` dropped
+/// (Penumbra reads none of those, and tinyobjloader parses some of them with unchecked
+/// conversions: `vw` joint ids become an int however large; texture options, tags, exponents near
+/// 2^31), each kept line checked (checkLine) and rewritten as its words joined by one space (no
+/// comment, no stray whitespace for a name to pick up).
+std::string checkText(const std::string& text, const std::string& name, std::span<const NumberRule> rules, bool faces,
+                      std::span<const std::string_view> keep) {
+  std::string out;
+  LineSplitter lines;
+  size_t lineNumber = 0;
+  auto take = [&](std::string_view line) {
+    ++lineNumber;
+    const std::vector<std::string_view> w = words(line);
+    if (!w.empty() && checkLine(w, lineNumber, name, rules, faces, keep))
+      for (size_t i = 0; i < w.size(); ++i) out.append(w[i]).push_back(i + 1 < w.size() ? ' ' : '\n');
+  };
+  lines.feed(text, take);
+  lines.finish(take);
   return out;
 }
 
@@ -141,8 +183,8 @@ public:
                   std::string* warn, std::string* err) override {
     try {
       const std::vector<uint8_t> bytes = readFileLimited(mDir / id, fmt::format("mtllib '{}'", id));
-      const std::string text = checkStatements(std::string(bytes.begin(), bytes.end()), fmt::format("mtllib '{}'", id), kMtlRules,
-                                               false, kMtlStatements);
+      const std::string text = checkText(std::string(bytes.begin(), bytes.end()), fmt::format("mtllib '{}'", id), kMtlRules,
+                                         false, kMtlStatements);
       std::istringstream in(text);
       tinyobj::LoadMtl(names, materials, &in, warn, err);
       return true;
@@ -157,36 +199,7 @@ private:
   std::filesystem::path mDir;
 };
 
-// Share of an OBJ load spent in tinyobjloader's parse (the rest: the triangle lists); measured
-// on a 2 M-triangle file.
-constexpr double kObjParseShare = 0.5;
-// tinyobjloader pulls the text through this many bytes at a time, each step a progress report.
-constexpr size_t kObjChunkBytes = size_t(1) << 20;
-
-/// The text as a stream that reports how much of it tinyobjloader has read.
-class ProgressStreamBuf final : public std::streambuf {
-public:
-  ProgressStreamBuf(const std::string& text, ProgressReport* progress) : mText(text), mProgress(progress) {}
-
-protected:
-  int_type underflow() override {
-    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-    if (mNext >= mText.size()) return traits_type::eof();
-    char* begin = const_cast<char*>(mText.data()) + mNext;  // read only: std::streambuf wants char*
-    const size_t n = std::min(kObjChunkBytes, mText.size() - mNext);
-    setg(begin, begin, begin + n);
-    mNext += n;
-    if (mProgress) mProgress->update(mNext, mText.size());
-    return traits_type::to_int_type(*gptr());
-  }
-
-private:
-  const std::string& mText;
-  ProgressReport* mProgress;
-  size_t mNext = 0;
-};
-
-// Kd and Ns were checked (checkStatements): finite.
+// Kd and Ns were checked (checkLine): finite.
 Material convertMaterial(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
@@ -197,115 +210,383 @@ Material convertMaterial(const tinyobj::material_t& m) {
   return out;
 }
 
-}  // namespace
+// Share of an OBJ load spent counting its statements (the memory estimate) before the parse.
+constexpr double kObjCountShare = 0.1;
+// The file is read this many bytes at a time.
+constexpr size_t kObjBlockBytes = size_t(1) << 20;
+constexpr uint32_t kNone = ~0u;
 
-Model loadObjFromMemory(const std::string& text, const std::string& name, const std::filesystem::path& baseDir,
-                        ProgressReport* progress) {
+/// What the faces and vertices of an OBJ text add up to, read before anything is built.
+struct ObjCounts {
+  uint64_t positions = 0, normals = 0, texcoords = 0, triangles = 0;
+};
+
+ObjCounts countStatements(std::istream& in) {
+  ObjCounts c;
+  LineSplitter lines;
+  auto take = [&](std::string_view line) {
+    size_t i = line.find_first_not_of(" \t");
+    if (i == std::string_view::npos || i + 1 >= line.size()) return;
+    const char a = line[i], b = line[i + 1];
+    if (a == 'v' && (b == ' ' || b == '\t')) ++c.positions;
+    else if (a == 'v' && b == 'n') ++c.normals;
+    else if (a == 'v' && b == 't') ++c.texcoords;
+    else if (a == 'f' && (b == ' ' || b == '\t')) {
+      uint64_t corners = 0;
+      for (size_t k = i + 1; k < line.size() && line[k] != '#'; ++k)
+        if (line[k] != ' ' && line[k] != '\t' && (line[k - 1] == ' ' || line[k - 1] == '\t')) ++corners;
+      if (corners >= 3) c.triangles += corners - 2;
+    }
+  };
+  std::string block(kObjBlockBytes, '\0');
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    lines.feed(std::string_view(block.data(), static_cast<size_t>(in.gcount())), take);
+  }
+  lines.finish(take);
+  return c;
+}
+
+/// An OBJ source, checked line by line (checkLine) as tinyobjloader pulls it: the text it sees
+/// (checkText's), a block at a time. A check's error is kept and the text ends there; rethrow()
+/// raises it after the parse. Records the source line of every face it passes on (faceLines), so
+/// that a face's errors name it.
+class CheckedObjStream final : public std::streambuf {
+public:
+  CheckedObjStream(std::istream& source, uint64_t totalBytes, std::string name, ProgressReport* progress)
+      : mSource(source), mTotal(totalBytes), mName(std::move(name)), mProgress(progress), mBlock(kObjBlockBytes, '\0') {}
+  std::deque<size_t> faceLines;
+  void rethrow() const {
+    if (mError) std::rethrow_exception(mError);
+  }
+
+protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    mOut.clear();
+    while (mOut.empty() && !mDone) fill();
+    if (mOut.empty()) return traits_type::eof();
+    setg(mOut.data(), mOut.data(), mOut.data() + mOut.size());
+    return traits_type::to_int_type(*gptr());
+  }
+
+private:
+  void fill() {
+    auto take = [this](std::string_view line) {
+      ++mLine;
+      const std::vector<std::string_view> w = words(line);
+      if (w.empty() || !checkLine(w, mLine, mName, kObjRules, true, kObjStatements)) return;
+      if (w[0] == "f") {
+        if (w.size() == 1) return;  // no corners: defines nothing (tinyobjloader would not call back)
+        faceLines.push_back(mLine);
+      }
+      for (size_t i = 0; i < w.size(); ++i) mOut.append(w[i]).push_back(i + 1 < w.size() ? ' ' : '\n');
+    };
+    try {
+      mSource.read(mBlock.data(), static_cast<std::streamsize>(mBlock.size()));
+      const auto n = static_cast<size_t>(mSource.gcount());
+      mRead += n;
+      if (n == 0) {
+        mLines.finish(take);
+        mDone = true;
+        return;
+      }
+      mLines.feed(std::string_view(mBlock.data(), n), take);
+      if (mProgress) mProgress->update(mRead, mTotal);
+    } catch (...) {
+      mError = std::current_exception();
+      mOut.clear();
+      mDone = true;
+    }
+  }
+
+  std::istream& mSource;
+  uint64_t mTotal, mRead = 0;
+  std::string mName;
+  ProgressReport* mProgress;
+  std::string mBlock, mOut;
+  LineSplitter mLines;
+  size_t mLine = 0;
+  bool mDone = false;
+  std::exception_ptr mError;
+};
+
+/// A polygon of more than four corners as triangles (corner numbers), by tinyobjloader's own
+/// ear clipping: the triangles it made of such faces before the parse was streamed.
+std::vector<std::array<int, 3>> clipEars(std::span<const glm::vec3> corners) {
+  std::string text;
+  for (const glm::vec3& p : corners) text += fmt::format("v {} {} {}\n", p.x, p.y, p.z);
+  text += "f";
+  for (size_t i = 0; i < corners.size(); ++i) text += fmt::format(" {}", i + 1);
+  text += "\n";
+  std::istringstream in(text);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  const std::string checked = checkStatements(text, name, kObjRules, true, kObjStatements);
-  if (progress) progress->stage(0.0, kObjParseShare);
-  ProgressStreamBuf buffer(checked, progress);
-  std::istream in(&buffer);
+  std::vector<std::array<int, 3>> out;
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, nullptr, true, false) || shapes.empty()) return out;
+  const std::vector<tinyobj::index_t>& idx = shapes.front().mesh.indices;
+  for (size_t t = 0; t + 2 < idx.size(); t += 3) out.push_back({idx[t].vertex_index, idx[t + 1].vertex_index, idx[t + 2].vertex_index});
+  return out;
+}
+
+/// Builds the meshes from tinyobjloader's callbacks: one mesh per (shape, material), a shape
+/// being the faces between two `g` or `o` statements, as tinyobjloader's LoadObj groups them.
+class ObjBuilder {
+public:
+  ObjBuilder(std::string name, CheckedObjStream& stream) : mName(std::move(name)), mStream(stream) { mShapes.emplace_back(); }
+
+  void position(float x, float y, float z) { mPositions.push_back({x, y, z}); }
+  void normal(float x, float y, float z) { mNormals.push_back({x, y, z}); }
+  void texcoord() { ++mTexcoords; }  // OBJ materials have no textures here: only the count is checked
+  void useMaterial(int id) { mMaterial = id; }
+  void setMaterials(const tinyobj::material_t* m, int n) { mMaterials.assign(m, m + n); }
+  void startShape(std::string name) {
+    if (!mShapes.back().builders.empty()) mShapes.emplace_back();
+    mShapes.back().name = std::move(name);
+  }
+  void face(const tinyobj::index_t* corners, int n);
+  Model finish();
+
+private:
+  struct Corner {
+    uint32_t v = kNone, vn = kNone;
+  };
+  struct MeshBuilder {
+    Mesh mesh;
+    bool flat = false, shaded = false;  // some vertices without a usable normal / some with one
+  };
+  struct Shape {
+    std::string name;
+    std::map<int, size_t> builders;  // material → mBuilders index, in material order
+  };
+  // Corner lookup: every vertex made from position v is an entry in v's list (its builder and
+  // normal index), so a repeated (v, vn) pair in a mesh finds its vertex again.
+  struct Entry {
+    uint32_t builder, vn, vertex, next;
+  };
+  uint32_t vertexOf(uint32_t builder, const Corner& c);
+  Corner resolve(const tinyobj::index_t& idx, size_t line) const;
+  static void makeFlatCornersOwnVertices(Mesh& mesh);
+
+  std::string mName;
+  CheckedObjStream& mStream;
+  std::vector<glm::vec3> mPositions, mNormals;
+  size_t mTexcoords = 0;
+  std::vector<tinyobj::material_t> mMaterials;
+  int mMaterial = -1;
+  std::vector<Shape> mShapes;
+  std::vector<MeshBuilder> mBuilders;
+  std::vector<uint32_t> mHead;  // by position: its first Entry, or kNone
+  std::vector<Entry> mEntries;
+};
+
+ObjBuilder::Corner ObjBuilder::resolve(const tinyobj::index_t& idx, size_t line) const {
+  // tinyobjloader's callback passes the indices as written: from 1, negative from the end of
+  // what was defined so far, 0 = absent (checkCorner refused a written 0).
+  auto index = [&](int raw, size_t count, const char* what, const char* plural) {
+    const int64_t at = raw > 0 ? int64_t{raw} - 1 : static_cast<int64_t>(count) + raw;
+    if (at < 0 || at >= static_cast<int64_t>(count))
+      fail(mName, fmt::format("line {}", line),
+           fmt::format("f: {} index {} is out of range ({} {})", what, raw > 0 ? int64_t{raw} : at + 1, count, plural));
+    return static_cast<uint32_t>(at);
+  };
+  Corner c;
+  c.v = index(idx.vertex_index, mPositions.size(), "vertex", "vertices");
+  if (idx.normal_index != 0) c.vn = index(idx.normal_index, mNormals.size(), "normal", "normals");
+  if (idx.texcoord_index != 0) index(idx.texcoord_index, mTexcoords, "texture coordinate", "coordinates");
+  return c;
+}
+
+uint32_t ObjBuilder::vertexOf(uint32_t builder, const Corner& c) {
+  if (mHead.size() <= c.v) mHead.resize(mPositions.size(), kNone);
+  for (uint32_t e = mHead[c.v]; e != kNone; e = mEntries[e].next)
+    if (mEntries[e].builder == builder && mEntries[e].vn == c.vn) return mEntries[e].vertex;
+  MeshBuilder& b = mBuilders[builder];
+  const auto vertex = static_cast<uint32_t>(b.mesh.positions.size());
+  if (vertex == kNone) fail(mName, "", fmt::format("mesh '{}' has more than {} vertices", b.mesh.name, kNone - 1));
+  b.mesh.positions.push_back(mPositions[c.v]);
+  const glm::vec3 n = c.vn == kNone ? glm::vec3(0.0f) : mNormals[c.vn];
+  b.mesh.normals.push_back(n);
+  (glm::dot(n, n) == 0.0f ? b.flat : b.shaded) = true;  // a zero normal is no normal: the face's plane shades it
+  mEntries.push_back({builder, c.vn, vertex, mHead[c.v]});
+  mHead[c.v] = static_cast<uint32_t>(mEntries.size() - 1);
+  return vertex;
+}
+
+void ObjBuilder::face(const tinyobj::index_t* idx, int n) {
+  const size_t line = mStream.faceLines.empty() ? 0 : mStream.faceLines.front();
+  if (!mStream.faceLines.empty()) mStream.faceLines.pop_front();
+  if (n < 3) return;  // a point or a line: no surface (tinyobjloader dropped these too)
+  std::vector<Corner> c(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) c[static_cast<size_t>(i)] = resolve(idx[i], line);
+  Shape& shape = mShapes.back();
+  const int material = mMaterial >= 0 && static_cast<size_t>(mMaterial) < mMaterials.size() ? mMaterial : -1;
+  auto [it, added] = shape.builders.try_emplace(material, mBuilders.size());
+  if (added) mBuilders.emplace_back();
+  const auto builder = static_cast<uint32_t>(it->second);
+  auto triangle = [&](int a, int b, int d) {
+    for (int k : {a, b, d}) {
+      const uint32_t vertex = vertexOf(builder, c[static_cast<size_t>(k)]);
+      mBuilders[builder].mesh.indices.push_back(vertex);
+    }
+  };
+  if (n == 3) {
+    triangle(0, 1, 2);
+  } else if (n == 4) {
+    // tinyobjloader's split of a quad: along the shorter diagonal, in its float arithmetic.
+    const glm::vec3 &p0 = mPositions[c[0].v], &p1 = mPositions[c[1].v], &p2 = mPositions[c[2].v], &p3 = mPositions[c[3].v];
+    const float e02x = p2.x - p0.x, e02y = p2.y - p0.y, e02z = p2.z - p0.z;
+    const float e13x = p3.x - p1.x, e13y = p3.y - p1.y, e13z = p3.z - p1.z;
+    const float sqr02 = e02x * e02x + e02y * e02y + e02z * e02z, sqr13 = e13x * e13x + e13y * e13y + e13z * e13z;
+    if (sqr02 < sqr13) {
+      triangle(0, 1, 2);
+      triangle(0, 2, 3);
+    } else {
+      triangle(0, 1, 3);
+      triangle(1, 2, 3);
+    }
+  } else {
+    std::vector<glm::vec3> points;
+    for (const Corner& k : c) points.push_back(mPositions[k.v]);
+    for (const auto& t : clipEars(points)) triangle(t[0], t[1], t[2]);
+  }
+}
+
+/// Where a mesh mixes vertices with and without normals, each corner of a vertex without one
+/// gets a vertex of its own with its triangle's normal (the flat faces of a shaded mesh).
+void ObjBuilder::makeFlatCornersOwnVertices(Mesh& mesh) {
+  const size_t shared = mesh.positions.size();
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 &a = mesh.positions[mesh.indices[t]], &b = mesh.positions[mesh.indices[t + 1]], &d = mesh.positions[mesh.indices[t + 2]];
+    const glm::vec3 face = glm::cross(b - a, d - a);
+    const float len = glm::length(face);
+    const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? face / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    for (size_t k = t; k < t + 3; ++k) {
+      const uint32_t v = mesh.indices[k];
+      if (v >= shared || glm::dot(mesh.normals[v], mesh.normals[v]) != 0.0f) continue;
+      mesh.positions.push_back(mesh.positions[v]);
+      mesh.normals.push_back(unit);
+      mesh.indices[k] = static_cast<uint32_t>(mesh.positions.size() - 1);
+    }
+  }
+}
+
+Model ObjBuilder::finish() {
+  mHead = {};
+  mEntries = {};
+  mNormals = {};
+  Model model;
+  Scene& scene = model.scene;
+  scene.name = mName;
+  for (const tinyobj::material_t& m : mMaterials) scene.materials.push_back(convertMaterial(m));
+  const auto defaultMaterial = static_cast<uint32_t>(scene.materials.size());
+  scene.materials.push_back(Material{.name = "default", .baseColor = kDefaultColor});
+  size_t shapeNumber = 0;
+  for (const Shape& s : mShapes) {
+    if (s.builders.empty()) continue;
+    const std::string shape = s.name.empty() ? fmt::format("shape {}", shapeNumber) : s.name;
+    ++shapeNumber;
+    for (const auto& [material, index] : s.builders) {
+      MeshBuilder& b = mBuilders[index];
+      const uint32_t m = material >= 0 ? static_cast<uint32_t>(material) : defaultMaterial;
+      if (!b.shaded) b.mesh.normals = {};  // flat: no normals at all
+      else if (b.flat) makeFlatCornersOwnVertices(b.mesh);
+      b.mesh.name = s.builders.size() > 1 ? fmt::format("{}/{}", shape, scene.materials[m].name) : shape;
+      scene.meshes.push_back(std::move(b.mesh));
+      Object o;
+      o.name = scene.meshes.back().name;
+      o.mesh = static_cast<uint32_t>(scene.meshes.size() - 1);
+      o.material = m;
+      scene.objects.push_back(std::move(o));
+      if (scene.objects.size() > kMaxObjects) fail(mName, "", fmt::format("more than {} shape/material pairs", kMaxObjects));
+    }
+  }
+  if (scene.meshes.empty()) fail(mName, "", "no faces with three or more vertices (zero triangles)");
+  return model;
+}
+
+/// The parse itself, from `source` (`totalBytes` long).
+Model parseObj(std::istream& source, uint64_t totalBytes, const std::string& name, const std::filesystem::path& baseDir,
+               ProgressReport* progress) {
+  CheckedObjStream stream(source, totalBytes, name, progress);
+  ObjBuilder builder(name, stream);
+  tinyobj::callback_t cb;
+  cb.vertex_cb = [](void* b, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
+    static_cast<ObjBuilder*>(b)->position(x, y, z);
+  };
+  cb.normal_cb = [](void* b, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) { static_cast<ObjBuilder*>(b)->normal(x, y, z); };
+  cb.texcoord_cb = [](void* b, tinyobj::real_t, tinyobj::real_t, tinyobj::real_t) { static_cast<ObjBuilder*>(b)->texcoord(); };
+  cb.index_cb = [](void* b, tinyobj::index_t* corners, int n) { static_cast<ObjBuilder*>(b)->face(corners, n); };
+  cb.usemtl_cb = [](void* b, const char*, int id) { static_cast<ObjBuilder*>(b)->useMaterial(id); };
+  cb.mtllib_cb = [](void* b, const tinyobj::material_t* m, int n) { static_cast<ObjBuilder*>(b)->setMaterials(m, n); };
+  // tinyobjloader's LoadObj named a shape by its group names joined with spaces, or by its object.
+  cb.group_cb = [](void* b, const char** names, int n) {
+    std::string joined;
+    for (int i = 0; i < n; ++i) joined += (i ? " " : "") + std::string(names[i]);
+    static_cast<ObjBuilder*>(b)->startShape(joined);
+  };
+  cb.object_cb = [](void* b, const char* n) { static_cast<ObjBuilder*>(b)->startShape(n); };
+  std::istream in(&stream);
   MtlReader mtl(baseDir);
-  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, true, false);
+  std::string warn, err;
+  const bool ok = tinyobj::LoadObjWithCallback(in, cb, &builder, &mtl, &warn, &err);
+  stream.rethrow();
   if (!mtl.error.empty()) fail(name, "", mtl.error);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     std::replace(err.begin(), err.end(), '\n', ' ');
     fail(name, "", err.empty() ? "tinyobjloader could not parse it" : err);
   }
+  return builder.finish();
+}
 
-  const size_t positions = attrib.vertices.size() / 3, normals = attrib.normals.size() / 3, uvs = attrib.texcoords.size() / 2;
+/// The memory check (ModelImport.h: checkSceneMemory) from the statement counts: each distinct
+/// (v, vn) pair of a mesh is one vertex, about as many as the larger of the two lists.
+void checkObjMemory(const ObjCounts& c, const std::string& name, ProgressReport* progress) {
+  if (!progress) return;
+  SceneCounts s;
+  s.vertices = std::max(c.positions, c.normals);
+  s.normals = c.normals > 0 ? s.vertices : 0;
+  s.triangles = c.triangles;
+  // While it builds: the lists the faces index, and a 16-byte lookup entry per vertex and 4 bytes
+  // per position to find them again.
+  s.loaderBytes = c.positions * (sizeof(glm::vec3) + sizeof(uint32_t)) + c.normals * sizeof(glm::vec3) + s.vertices * 16;
+  checkSceneMemory(s, name, progress->options());
+}
 
-  // Budget first: every polygon of n corners becomes n - 2 triangles of three unshared vertices.
-  uint64_t triangles = 0;
-  for (const tinyobj::shape_t& s : shapes)
-    for (unsigned char n : s.mesh.num_face_vertices) triangles += n >= 3 ? n - 2u : 0u;
-  if (triangles > kMaxTriangles) fail(name, "", fmt::format("{} triangles, more than the limit of {}", triangles, kMaxTriangles));
-  if (3 * triangles > kMaxVertices) fail(name, "", fmt::format("{} vertices, more than the limit of {}", 3 * triangles, kMaxVertices));
-  if (triangles == 0) fail(name, "", "no faces with three or more vertices (zero triangles)");
+}  // namespace
 
-  Model model;
-  Scene& scene = model.scene;
-  scene.name = name;
-  for (const tinyobj::material_t& m : materials) scene.materials.push_back(convertMaterial(m));
-  const auto defaultMaterial = static_cast<int>(scene.materials.size());
-  scene.materials.push_back(Material{.name = "default", .baseColor = kDefaultColor});
-
-  auto corner = [&](const tinyobj::index_t& idx, size_t face, const std::string& shape) {
-    const std::string field = fmt::format("{} face {}", shape, face + 1);
-    if (idx.vertex_index < 0 || static_cast<size_t>(idx.vertex_index) >= positions)
-      fail(name, field, fmt::format("vertex index {} is out of range ({} vertices)", idx.vertex_index + 1, positions));
-    if (idx.normal_index >= 0 && static_cast<size_t>(idx.normal_index) >= normals)
-      fail(name, field, fmt::format("normal index {} is out of range ({} normals)", idx.normal_index + 1, normals));
-    if (idx.texcoord_index >= 0 && static_cast<size_t>(idx.texcoord_index) >= uvs)
-      fail(name, field, fmt::format("texture coordinate index {} is out of range ({} coordinates)", idx.texcoord_index + 1, uvs));
-    if (idx.normal_index < -1 || idx.texcoord_index < -1) fail(name, field, "a negative index points before the first element");
-    Vertex v;
-    const auto p = static_cast<size_t>(idx.vertex_index);
-    v.position = {attrib.vertices[3 * p], attrib.vertices[3 * p + 1], attrib.vertices[3 * p + 2]};
-    v.normal = glm::vec3(0.0f);
-    if (idx.normal_index >= 0) {
-      const auto n = static_cast<size_t>(idx.normal_index);
-      v.normal = {attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]};
-    }
-    if (idx.texcoord_index >= 0) {  // OBJ's v runs up from the bottom row; Penumbra's uv (0,0) is the top
-      const auto t = static_cast<size_t>(idx.texcoord_index);
-      v.uv = {attrib.texcoords[2 * t], 1.0f - attrib.texcoords[2 * t + 1]};
-    }
-    return v;
-  };
-
-  if (progress) progress->stage(kObjParseShare, 1.0);
-  size_t facesDone = 0, facesTotal = 0;
-  for (const tinyobj::shape_t& s : shapes) facesTotal += s.mesh.num_face_vertices.size();
-  for (size_t si = 0; si < shapes.size(); ++si) {
-    const tinyobj::mesh_t& m = shapes[si].mesh;
-    const std::string shape = shapes[si].name.empty() ? fmt::format("shape {}", si) : shapes[si].name;
-    if (m.material_ids.size() != m.num_face_vertices.size()) fail(name, shape, "tinyobjloader returned inconsistent face lists");
-    std::map<int, Mesh> byMaterial;
-    size_t offset = 0;
-    for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-      if (progress) progress->update(++facesDone, facesTotal);
-      const size_t n = m.num_face_vertices[f];
-      if (offset + n > m.indices.size()) fail(name, shape, "tinyobjloader returned inconsistent face lists");
-      const int id = m.material_ids[f];
-      const int material = id >= 0 && static_cast<size_t>(id) < materials.size() ? id : defaultMaterial;
-      Mesh& mesh = byMaterial[material];
-      for (size_t k = 1; k + 1 < n; ++k) {  // fan over the polygon
-        Vertex v[3] = {corner(m.indices[offset], f, shape), corner(m.indices[offset + k], f, shape),
-                       corner(m.indices[offset + k + 1], f, shape)};
-        const glm::vec3 face = glm::cross(v[1].position - v[0].position, v[2].position - v[0].position);
-        const float len = glm::length(face);
-        for (Vertex& x : v) {
-          if (glm::dot(x.normal, x.normal) == 0.0f) x.normal = len > 0.0f && std::isfinite(len) ? face / len : glm::vec3(0, 1, 0);
-          mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size()));
-          mesh.vertices.push_back(x);
-        }
-      }
-      offset += n;
-    }
-    for (auto& [material, mesh] : byMaterial) {
-      if (mesh.indices.empty()) continue;
-      mesh.name = byMaterial.size() > 1 ? fmt::format("{}/{}", shape, scene.materials[static_cast<size_t>(material)].name) : shape;
-      scene.meshes.push_back(std::move(mesh));
-      Object o;
-      o.name = scene.meshes.back().name;
-      o.mesh = static_cast<uint32_t>(scene.meshes.size() - 1);
-      o.material = static_cast<uint32_t>(material);
-      scene.objects.push_back(std::move(o));
-      if (scene.objects.size() > kMaxObjects) fail(name, "", fmt::format("more than {} shape/material pairs", kMaxObjects));
-    }
-  }
-  return model;
+Model loadObjFromMemory(const std::string& text, const std::string& name, const std::filesystem::path& baseDir,
+                        ProgressReport* progress) {
+  std::istringstream counting(text);
+  checkObjMemory(countStatements(counting), name, progress);
+  std::istringstream in(text);
+  return parseObj(in, text.size(), name, baseDir, progress);
 }
 
 Model loadObj(const std::filesystem::path& path, ProgressReport& progress) {
-  const std::vector<uint8_t> bytes = readFileLimited(path, path.string());
-  return loadObjFromMemory(std::string(bytes.begin(), bytes.end()), path.string(), path.parent_path(), &progress);
+  // readFileLimited's checks, but no size limit: the file is streamed, never held whole (the
+  // memory estimate decides what fits).
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  const std::string name = path.string();
+  if (ec || !std::filesystem::exists(status)) fail(name, "", fmt::format("cannot open {} (no such file)", name));
+  if (std::filesystem::is_directory(status)) fail(name, "", fmt::format("{} is a folder, not a file", name));
+  if (!std::filesystem::is_regular_file(status)) fail(name, "", fmt::format("{} is not a regular file", name));
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) fail(name, "", fmt::format("cannot read the size of {}", name));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(name, "", fmt::format("cannot open {} (not readable)", name));
+  progress.stage(0.0, kObjCountShare);
+  checkObjMemory(countStatements(in), name, &progress);
+  in.clear();
+  in.seekg(0);
+  progress.stage(kObjCountShare, 1.0);
+  Model model = parseObj(in, size, name, path.parent_path(), &progress);
+  if (in.bad()) fail(name, "", fmt::format("cannot read {} (read error)", name));
+  return model;
 }
 
 }  // namespace penumbra::loaders

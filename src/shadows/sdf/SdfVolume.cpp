@@ -116,7 +116,7 @@ CasterTriangles casterTriangles(const Scene& scene) {
     if (!o.castsShadow) continue;
     const Mesh& mesh = scene.meshes[o.mesh];
     object.clear();
-    for (uint32_t index : mesh.indices) object.push_back(glm::vec3(o.worldFromObject * glm::vec4(mesh.vertices[index].position, 1.0f)));
+    for (uint32_t index : mesh.indices) object.push_back(glm::vec3(o.worldFromObject * glm::vec4(mesh.positions[index], 1.0f)));
     const bool sheet = !object.empty() && out.sheets.size() + object.size() <= 3 * static_cast<size_t>(kMaxSheetTriangles) && isFlat(object);
     std::vector<glm::vec3>& into = sheet ? out.sheets : out.volume;
     into.insert(into.end(), object.begin(), object.end());
