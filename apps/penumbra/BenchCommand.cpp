@@ -8,6 +8,7 @@
 #include "report/ChoosingPage.h"
 #include "report/HtmlReport.h"
 #include "report/ResultsIO.h"
+#include "report/ScaleBench.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>
@@ -30,7 +31,8 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
     std::string choosing;  ///< "" = <out>/choosing.md
-    bool quick = false, noCache = false, verbose = false, microOnly = false;
+    bool quick = false, noCache = false, verbose = false, microOnly = false, scaleOnly = false;
+    std::vector<double> scale;  ///< --scale; empty = the default run's plan (kDefaultScalePlan), none elsewhere
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -67,13 +69,21 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--micro-only", o->microOnly,
                 "only the micro-benchmarks (prefilters against a copy, each filter's visibility pass against its minimal "
                 "kernel) at --size and --shadow-map: no configurations, no references");
+  sub->add_option("--scale", o->scale,
+                  "the triangle-count plan: millions of triangles of a generated height-field grid, comma-separated, each loaded "
+                  "from OBJ, rendered (G-buffer and shadow pass times per triangle) and given to the reference (BVH build time "
+                  "and memory); 0 = none (default: 0.5,2,8 in the default run, none in --quick and custom runs)")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 100.0));
+  sub->add_flag("--scale-only", o->scaleOnly, "only the triangle-count plan (--scale, default 0.5,2,8): no configurations, no micro-benchmarks");
   sub->add_option("--micro-rounds", o->microRounds, "timed rounds of the micro-benchmarks (default 9; --quick 3)")
       ->check(CLI::Range(1, 1000));
   sub->add_flag("--verbose", o->verbose, "one line per configuration on stderr instead of the progress bar");
   commands.push_back({sub, [o] {
     report::BenchSettings settings;
     std::vector<report::BenchPlan> plans = report::defaultPlans(o->quick, settings);
-    if (!o->scenes.empty() || !o->filters.empty() || !o->projections.empty() || !o->sweeps.empty()) {
+    const bool custom = !o->scenes.empty() || !o->filters.empty() || !o->projections.empty() || !o->sweeps.empty();
+    if (custom) {
       report::BenchPlan custom{.name = "custom", .scenes = plans.front().scenes,
                                .projections = plans.front().projections, .filters = plans.front().filters, .sweeps = {}};
       if (!o->scenes.empty()) custom.scenes = o->scenes;
@@ -92,7 +102,11 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     settings.useCache = !o->noCache;
     settings.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
-    if (o->microOnly) configs.clear();
+    if (o->microOnly || o->scaleOnly) configs.clear();
+    if (o->microOnly && o->scaleOnly) throw usageError("--micro-only and --scale-only: give one");
+    const bool defaultRun = !o->quick && !custom;
+    std::vector<double> scalePlan = !o->scale.empty() ? o->scale : (defaultRun || o->scaleOnly) ? report::kDefaultScalePlan : std::vector<double>{};
+    std::erase(scalePlan, 0.0);
     if (o->camera) {
       // A viewpoint belongs to one scene: the same coordinates would look at nothing in another.
       std::vector<std::string> scenes;
@@ -110,8 +124,10 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
     const report::SetupFactory factory = benchSetupFactory(o->camera);
     const std::filesystem::path dir(o->out);
-    report::BenchResults results =
-        report::runBench(context, configs, factory, {.settings = settings, .outDir = dir, .progress = true, .verbose = o->verbose});
+    report::BenchResults results = report::runBench(context, configs, factory,
+                                                    {.settings = settings, .outDir = dir, .progress = true, .verbose = o->verbose,
+                                                     .microBenchmarks = !o->scaleOnly});
+    if (!scalePlan.empty()) results.scale = report::runScalePlan(context, scalePlan, settings, dir, true);
     results.machine.command = commandLine();
     report::writeResults(dir, results);
     report::writeHtmlReport(dir, results);
@@ -123,6 +139,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
         ++failed;
         std::fprintf(stderr, "penumbra bench: %s --projection %s --filter %s %s failed: %s\n", k.config.scene.c_str(),
                      k.config.projection.c_str(), k.config.filter.c_str(), k.config.paramsText().c_str(), k.reason.c_str());
+      }
+    for (const report::ScaleRow& r : results.scale)
+      if (!r.error.empty()) {
+        ++failed;
+        std::fprintf(stderr, "penumbra bench: triangle-count plan, %.2f M triangles, failed: %s\n", static_cast<double>(r.triangles) / 1e6,
+                     r.error.c_str());
       }
     size_t microFailed = 0;
     for (const report::MicroResult& m : results.micro)

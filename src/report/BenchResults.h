@@ -8,6 +8,7 @@
 #include <penumbra/Metrics.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -98,6 +99,23 @@ struct MicroResult {
   std::optional<TimeStats> ratio;
 };
 
+/// One count of the triangle-count plan (report/ScaleBench.h): a generated grid's load, passes and
+/// reference BVH.
+struct ScaleRow {
+  uint64_t triangles = 0, vertices = 0;  ///< as loaded, the box included
+  uint64_t fileBytes = 0;                ///< the OBJ's size
+  double loadSeconds = 0.0;              ///< loadScene, wall clock
+  int frames = 0;                        ///< timed frames
+  TimeStats gbufferMs, shadowMs;         ///< medians and spread over the timed frames
+  double bvhSeconds = 0.0;               ///< the reference's BVH build, wall clock
+  uint64_t bvhBytes = 0, bvhPeakBytes = 0;  ///< Embree's allocations once built, and their peak
+  std::string error;                     ///< non-empty: this count failed (the others still ran)
+
+  double loadSecondsPerMiB() const { return loadSeconds / (static_cast<double>(fileBytes) / kBytesPerMiB); }
+  double gbufferNsPerTriangle() const { return gbufferMs.median * 1e6 / static_cast<double>(triangles); }
+  double shadowNsPerTriangle() const { return shadowMs.median * 1e6 / static_cast<double>(triangles); }
+};
+
 struct MachineInfo {
   std::string glRenderer, glVersion, glVendor, clock;  ///< clock: PassTimings::clock
   std::string cpu, os;
@@ -115,6 +133,7 @@ struct BenchResults {
   std::vector<BenchRow> rows;
   std::vector<SkippedConfig> skipped;
   std::vector<MicroResult> micro;
+  std::vector<ScaleRow> scale;  ///< the triangle-count plan (report/ScaleBench.h); empty when not run
   double seconds = 0.0;  ///< wall-clock time of the whole run
 
   /// Names of every pass that occurs in some row, in first-seen order, kTotalPass last.

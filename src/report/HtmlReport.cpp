@@ -1,5 +1,7 @@
 #include "report/HtmlReport.h"
 
+#include "report/ScaleBench.h"
+
 #include "report/ChoosingPage.h"
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
@@ -318,7 +320,8 @@ std::string htmlReport(const BenchResults& r) {
   h += kStyle;
   h += "</style></head><body>\n";
   h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + lightCountSection(r) + gridSection(r);
-  h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + ratioTable(r) + resultsTables(r) + skippedTable(r) + machineTable(r);
+  h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + scaleSectionHtml(r.scale, r.machine) + ratioTable(r) + resultsTables(r) +
+       skippedTable(r) + machineTable(r);
   return h + "</body></html>\n";
 }
 

@@ -175,6 +175,12 @@ nlohmann::json resultsJson(const BenchResults& results) {
     for (const Budget b : kBudgets) s[budgetKey(b)] = p.pick(b) ? nlohmann::json(*p.pick(b)) : nlohmann::json(nullptr);
     j["recommendations"].push_back(std::move(s));
   }
+  j["scale"] = nlohmann::json::array();  // the triangle-count plan (report/ScaleBench.h)
+  for (const ScaleRow& r : results.scale)
+    j["scale"].push_back({{"triangles", r.triangles}, {"vertices", r.vertices}, {"file_bytes", r.fileBytes},
+                          {"load_s", r.loadSeconds}, {"frames", r.frames}, {"gbuffer_ms", statsJson(r.gbufferMs)},
+                          {"shadow_ms", statsJson(r.shadowMs)}, {"bvh_build_s", r.bvhSeconds}, {"bvh_bytes", r.bvhBytes},
+                          {"bvh_peak_bytes", r.bvhPeakBytes}, {"error", r.error}});
   j["micro"] = nlohmann::json::array();
   for (const MicroResult& mr : results.micro)
     j["micro"].push_back({{"name", mr.name}, {"description", mr.description}, {"baseline", mr.baseline}, {"ms", statsJson(mr.ms)},
