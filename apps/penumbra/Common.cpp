@@ -65,7 +65,7 @@ uint64_t parseMemorySize(const std::string& text) {
   const size_t power = unit.empty() ? 2 : unit.size() == 1 ? units.find(static_cast<char>(std::toupper(static_cast<unsigned char>(unit[0])))) + 1 : 0;
   const double bytes = value * std::pow(1024.0, static_cast<double>(power));
   if (text.empty() || ec != std::errc() || power == 0 || power > units.size() || !(value > 0.0) || !(bytes < 1e18))
-    throw usageError(fmt::format("--max-memory {}: expected a size in MiB, or with a unit K, M, G or T (e.g. 512M, 8G)", text));
+    throw usageError(fmt::format("'{}' is not a size: expected MiB, or a number with a unit K, M, G or T (e.g. 512M, 8G)", text));
   return static_cast<uint64_t>(bytes);
 }
 

@@ -53,6 +53,34 @@ TEST(RenderCli, ObjWithNanExits1NamingTheLine) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
 }
 
+// A model's memory is estimated from its counts before anything is built: one that would take
+// more than --max-memory (or the memory available) is refused, exit 1, with the estimate; the
+// same model loads under a limit it fits. A size that does not parse is a usage error.
+TEST(RenderCli, MaxMemoryRefusesAModelThatWouldNotFit) {
+  const std::string dir = freshDir("max-memory");
+  {
+    std::ofstream obj(dir + "/grid.obj");
+    constexpr int kGrid = 100;  // 20 000 triangles: about 0.7 MiB of meshes and GL buffers
+    for (int i = 0; i <= kGrid; ++i)
+      for (int j = 0; j <= kGrid; ++j) obj << "v " << i << " " << (i * j) % 3 << " " << j << "\n";
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const int a = i * (kGrid + 1) + j + 1;
+        obj << "f " << a << " " << a + kGrid + 1 << " " << a + kGrid + 2 << " " << a + 1 << "\n";
+      }
+  }
+  const RunResult refused = runPenumbra("render --scene grid.obj --size 16x16 --max-memory 256K", dir);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_NE(refused.err.find("penumbra: grid.obj: 20000 triangles and about 10201 vertices need about"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("more than the --max-memory limit of 256 KiB (this machine has "), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
+  EXPECT_EQ(runPenumbra("render --scene grid.obj --size 16x16 --shadow-map 256 --max-memory 2M", dir).exitCode, 0);
+  const RunResult bad = runPenumbra("render --scene grid.obj --max-memory lots", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--max-memory: 'lots' is not a size"), std::string::npos) << bad.err;
+}
+
 // A scene file's shadow.filter or shadow.params that the registry refuses is bad input in that
 // file (exit 1 naming file and field, as docs/scenes.md says), not a bad command line (exit 2).
 TEST(RenderCli, SceneFileTechniqueErrorsExit1NamingFileAndField) {

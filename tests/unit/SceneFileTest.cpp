@@ -145,7 +145,7 @@ TEST(SceneFile, ShapeTotalsFailBeforeAnyShapeIsBuilt) {
   const std::string e = loadError(json, limit);
   getrusage(RUSAGE_SELF, &after);
   EXPECT_NE(e.find("triangles and about 36750000 vertices need about"), std::string::npos) << e;
-  EXPECT_NE(e.find("more than the --max-memory limit of 0.25 GiB"), std::string::npos) << e;
+  EXPECT_NE(e.find("more than the --max-memory limit of 256 MiB"), std::string::npos) << e;
   EXPECT_LT(after.ru_maxrss - before.ru_maxrss, kMaxGrowthKiB) << "KiB of peak memory growth";
   const std::string many = loadError(R"({"lights": [{"type": "sun"}], "objects": [)" +
                                      [] { std::string s; for (int i = 0; i < 65537; ++i) s += i ? ",{}" : "{}"; return s; }() + "]}");

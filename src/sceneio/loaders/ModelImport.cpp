@@ -208,24 +208,32 @@ MemoryEstimate estimateSceneMemory(const SceneCounts& c, const LoadOptions& opti
   return e;
 }
 
+namespace {
+
+/// "256 KiB", "820 MiB", "1.37 GiB".
+std::string memoryText(uint64_t bytes) {
+  constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB, kGiB = 1024.0 * kMiB;
+  if (bytes < (uint64_t(1) << 20)) return fmt::format("{:.0f} KiB", bytes / kKiB);
+  return bytes < (uint64_t(1) << 30) ? fmt::format("{:.0f} MiB", bytes / kMiB) : fmt::format("{:.2f} GiB", bytes / kGiB);
+}
+
+}  // namespace
+
 void checkSceneMemory(const SceneCounts& c, const std::string& file, const LoadOptions& options) {
   const MemoryEstimate e = estimateSceneMemory(c, options);
   const uint64_t available = availableHostBytes(), limit = options.maxMemoryBytes ? options.maxMemoryBytes : available;
   if (e.peakBytes() <= limit) return;
-  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
-  std::string parts = fmt::format("meshes {:.2f}", e.meshBytes / kGiB);
-  if (e.glBytes) parts += fmt::format(", GL buffers in host memory {:.2f}", e.glBytes / kGiB);
-  if (e.bvhBytes) parts += fmt::format(", reference BVH {:.2f}", e.bvhBytes / kGiB);
-  if (e.loaderBytes) parts += fmt::format(", loading {:.2f}", e.loaderBytes / kGiB);
+  std::string parts = "meshes " + memoryText(e.meshBytes);
+  if (e.glBytes) parts += ", GL buffers in host memory " + memoryText(e.glBytes);
+  if (e.bvhBytes) parts += ", reference BVH " + memoryText(e.bvhBytes);
+  if (e.loaderBytes) parts += ", loading " + memoryText(e.loaderBytes);
   const uint64_t total = totalHostBytes();
-  const std::string machine = total ? fmt::format("this machine has {:.1f} GiB available of {:.1f} GiB", available / kGiB, total / kGiB)
-                                    : fmt::format("this machine has {:.1f} GiB available", available / kGiB);
-  const std::string against = options.maxMemoryBytes
-                                  ? fmt::format("more than the --max-memory limit of {:.2f} GiB ({})", limit / kGiB, machine)
-                                  : fmt::format("more than the {:.2f} GiB available ({:.1f} GiB of RAM; --max-memory sets another limit)",
-                                                limit / kGiB, total / kGiB);
-  fail(file, "", fmt::format("{} triangles and about {} vertices need about {:.2f} GiB at the peak ({} GiB), {}", c.triangles,
-                             c.vertices, e.peakBytes() / kGiB, parts, against));
+  const std::string machine = fmt::format("this machine has {} available of {} RAM", memoryText(available), memoryText(total));
+  const std::string against = options.maxMemoryBytes ? fmt::format("more than the --max-memory limit of {} ({})", memoryText(limit), machine)
+                                                     : fmt::format("more than the {} available ({}; --max-memory sets another limit)",
+                                                                   memoryText(limit), machine);
+  fail(file, "", fmt::format("{} triangles and about {} vertices need about {} at the peak ({}), {}", c.triangles, c.vertices,
+                             memoryText(e.peakBytes()), parts, against));
 }
 
 }  // namespace penumbra::loaders

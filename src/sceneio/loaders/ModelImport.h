@@ -108,7 +108,8 @@ struct MemoryEstimate {
   uint64_t peakBytes() const;
 };
 MemoryEstimate estimateSceneMemory(const SceneCounts& counts, const LoadOptions& options);
-/// BVH bytes per triangle (with the build's own peak) of the reference's Embree scene, measured.
+/// BVH bytes per triangle of the reference's Embree scene at its build's peak: 94–102 measured on grids of
+/// 0.5–8 M triangles (docs/bench.md#scale).
 inline constexpr uint64_t kBvhBytesPerTriangle = 100;
 
 /// Throws Error("file: N triangles, about M vertices: about X GiB (…), more than the Y GiB …")

@@ -212,8 +212,8 @@ Material convertMaterial(const tinyobj::material_t& m) {
 
 // Share of an OBJ load spent counting its statements (the memory estimate) before the parse.
 constexpr double kObjCountShare = 0.1;
-// The file is read this many bytes at a time.
-constexpr size_t kObjBlockBytes = size_t(1) << 20;
+// The file is read this many bytes at a time, each block a progress report.
+constexpr size_t kObjBlockBytes = size_t(1) << 16;
 constexpr uint32_t kNone = ~0u;
 
 /// What the faces and vertices of an OBJ text add up to, read before anything is built.
