@@ -27,6 +27,17 @@ const vec2 kPoissonDisk[kPoissonDiskSize] = vec2[](
     vec2(-0.7055, 0.1774), vec2(0.4241, 0.8162), vec2(-0.5249, -0.7588), vec2(-0.7690, -0.4940),
     vec2(0.3550, 0.4737), vec2(-0.3862, 0.0482), vec2(-0.1639, -0.7027), vec2(-0.2602, -0.1510));
 
+// Point i of an n-point sunflower spiral in the unit disk (Vogel 1979): radius √((i + ½) / n),
+// each point a golden angle (π(3 − √5) rad) on from the last. Every point stands for an equal
+// share of the disk's area, for any n, so n points sample a uniformly bright disk without the
+// Poisson prefix's pull toward the centre (mean r² exactly ½); turned per pixel like the disk.
+vec2 sunflowerDiskTap(int i, int n) {
+  const float kGoldenAngleRad = 2.39996322973;
+  float r = sqrt((float(i) + 0.5) / float(n));
+  float a = float(i) * kGoldenAngleRad;
+  return r * vec2(cos(a), sin(a));
+}
+
 // Interleaved gradient noise (Jimenez 2014): a per-pixel value in [0,1) whose neighbours differ
 // a lot, so per-pixel rotations decorrelate across a few pixels instead of forming bands.
 float interleavedGradientNoise(vec2 pixel) {

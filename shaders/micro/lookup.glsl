@@ -5,7 +5,8 @@
 // each next to the real visibility pass of its filter on the same G-buffer and map; their ratio
 // is the pass's overhead over its own arithmetic (docs/bench.md). LOOKUP_KIND: a PN_LOOKUP_*
 // (micro/lookup.shared.h); LOOKUP_SIDE: the box's taps per side (the Poisson disk's: its square
-// root); LOOKUP_FOOTPRINT: the moments' tap is the pixel's footprint.
+// root); LOOKUP_FOOTPRINT: the moments' tap is the pixel's footprint; LOOKUP_RAYS and LOOKUP_STEPS:
+// the march's rays and steps per ray.
 #include "shared/Bindings.h"
 #include "micro/lookup.shared.h"
 
@@ -28,7 +29,8 @@ layout(binding = PN_TEX_FILTER0) uniform sampler2DArrayShadow s_map;
 layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_map;
 #endif
 
-#if LOOKUP_KIND == PN_LOOKUP_COMPARE || LOOKUP_KIND == PN_LOOKUP_POISSON || (LOOKUP_KIND == PN_LOOKUP_BOX && !defined(PN_HARDWARE_COMPARE))
+#if LOOKUP_KIND == PN_LOOKUP_COMPARE || LOOKUP_KIND == PN_LOOKUP_POISSON || LOOKUP_KIND == PN_LOOKUP_MARCH || \
+    (LOOKUP_KIND == PN_LOOKUP_BOX && !defined(PN_HARDWARE_COMPARE))
 float fetchCompare(vec2 uv, float depth) {
   ivec2 size = textureSize(s_map, 0).xy;
   ivec2 texel = clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1);
@@ -71,6 +73,35 @@ vec4 filteredMoments(vec2 uv, ivec2 px, vec3 ws) {
 }
 #endif
 
+#if LOOKUP_KIND == PN_LOOKUP_MARCH
+// smrt's taps, every pixel: LOOKUP_RAYS rays toward the sun's disk (smrt's sunflower, turned per
+// pixel as smrt turns it), each LOOKUP_STEPS fetch-and-compares spaced by smrt's smoothstep from
+// the receiver to the near plane (depth 0); a ray is blocked at its first step behind the map's
+// surface by more than the bias. No probe, no pyramid, no thickness or crossing test.
+float marchedShare(ivec2 px, vec3 ws) {
+  vec3 l = u_lookup.light.xyz;
+  vec3 t1 = normalize(cross(l, abs(l.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 t2 = cross(l, t1);
+  mat2 turn = pixelRotation(px, 0);
+  mat4 m = u_lookup.mapFromWorld;
+  vec3 depthPerM = vec3(m[0][2], m[1][2], m[2][2]);
+  float depth = dot(depthPerM, ws) + m[3][2];
+  int open = 0;
+  for (int r = 0; r < LOOKUP_RAYS; ++r) {
+    vec2 unit = turn * sunflowerDiskTap(r, LOOKUP_RAYS);
+    vec3 dir = l + u_lookup.light.w * (unit.x * t1 + unit.y * t2);
+    float tEnd = depth / max(-dot(depthPerM, dir), 1e-6);
+    bool blocked = false;
+    for (int i = 1; i <= LOOKUP_STEPS && !blocked; ++i) {
+      vec4 c = m * vec4(ws + dir * (smoothstep(0.0, 1.0, float(i) / float(LOOKUP_STEPS)) * tEnd), 1.0);
+      blocked = fetchCompare(c.xy / c.w, c.z - u_lookup.params.x) == 0.0;
+    }
+    open += blocked ? 0 : 1;
+  }
+  return float(open) / float(LOOKUP_RAYS);
+}
+#endif
+
 float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
   float biased = depth - u_lookup.params.x;
 #if LOOKUP_KIND == PN_LOOKUP_COMPARE
@@ -92,6 +123,8 @@ float lookup(vec2 uv, float depth, ivec2 px, vec3 ws) {
   float lit = 0.0;
   for (int i = 0; i < LOOKUP_SIDE * LOOKUP_SIDE; ++i) lit += fetchCompare(uv + turn * kPoissonDisk[i], biased);
   return lit / float(LOOKUP_SIDE * LOOKUP_SIDE);
+#elif LOOKUP_KIND == PN_LOOKUP_MARCH
+  return marchedShare(px, ws);
 #elif LOOKUP_KIND == PN_LOOKUP_MOMENTS2
   vec2 mv = meanVariance(filteredMoments(uv, px, ws).rg, u_lookup.params.w);
   return chebyshevUpperBound(mv.x, mv.y, depth);

@@ -10,6 +10,7 @@
 #define PN_LOOKUP_MOMENTS4 3  // msm: one trilinear tap of the four-moment chain + Hamburger 4MSM
 #define PN_LOOKUP_SAT 4       // vssm: one exact box mean of the (z, z²) summed-area table + Chebyshev
 #define PN_LOOKUP_POISSON 5   // pcf: LOOKUP_SIDE² fetch-and-compares on the Poisson disk, turned per pixel as pcf's
+#define PN_LOOKUP_MARCH 6     // smrt: LOOKUP_RAYS rays toward the sun's disk, LOOKUP_STEPS fetch-and-compares each
 // LOOKUP_FOOTPRINT (with MOMENTS2 or MOMENTS4): the tap is the pixel's footprint (ray differentials
 // against the tangent plane, anisotropic trilinear taps: common/footprint.glsl) instead of one
 // trilinear tap at the filter's width.
@@ -32,10 +33,11 @@ struct LookupUniforms {
   vec4 cameraForward;
   vec4 rayStepX;
   vec4 rayStepY;
+  vec4 light;  // the march: xyz, the unit vector toward the sun; w, the tangent of its angular radius
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::LookupUniforms) == 160, "std140 size of LookupUniforms");
+static_assert(sizeof(penumbra::gpu::LookupUniforms) == 176, "std140 size of LookupUniforms");
 #endif

@@ -13,9 +13,10 @@
 namespace penumbra::report {
 
 /// Pairs of filters whose cost ratio the report tabulates (numerator, denominator): more moments
-/// against fewer, a warp against the plain moments, and a soft variant against its base.
+/// against fewer, a warp against the plain moments, a soft variant against its base, and rays
+/// traced through the map against pcss's one blocker estimate.
 inline constexpr std::pair<const char*, const char*> kCostRatioPairs[] = {
-    {"msm", "vsm"}, {"msm-soft", "vssm"}, {"pcss", "pcf"}, {"esm", "vsm"}, {"evsm", "vsm"}, {"evsm-soft", "vssm"}};
+    {"msm", "vsm"}, {"msm-soft", "vssm"}, {"pcss", "pcf"}, {"esm", "vsm"}, {"evsm", "vsm"}, {"evsm-soft", "vssm"}, {"smrt", "pcss"}};
 
 /// The page as text.
 std::string htmlReport(const BenchResults& results);

@@ -138,6 +138,12 @@ const std::vector<Pairing>& pairings() {
            return glm::vec4(0.0f, 0.0f, in.filter.param("vssm.minRadiusTexels"),
                             texelsSquaredToDepth(in, in.filter.param("vssm.minVariance")));
          }}}},
+      {"smrt", {}, "visibility: smrt", false, kShadowMapImage,
+       {{"lookup: rays marched through the map",
+         "smrt's taps on every pixel: as many rays toward the sun's disk as smrt's smrt.rays (its sunflower, turned per "
+         "pixel), each smrt.steps fetch-and-compares from the receiver to the near plane, with one constant bias; no "
+         "probe, no nearest-caster search, no thickness or crossing test",
+         PN_LOOKUP_MARCH, [](const KernelInputs& in) { return glm::vec4(kernelBias(in, "smrt"), 0.0f, 0.0f, 0.0f); }}}},
       {"msm", {}, "visibility: msm", false, kMomentsImage,
        {{"lookup: one trilinear 4-moment tap + Hamburger 4MSM",
          "one trilinear textureLod of the four moments' mip chain at msm's filter width, the moment bias, the Hamburger 4MSM bound",
@@ -260,6 +266,10 @@ struct Kernel {
     d.defines.set("LOOKUP_KIND", k.kind);
     if (k.kind == PN_LOOKUP_BOX || k.kind == PN_LOOKUP_POISSON) d.defines.set("LOOKUP_SIDE", boxSide(filter));
     if (k.footprint) d.defines.set("LOOKUP_FOOTPRINT");
+    if (k.kind == PN_LOOKUP_MARCH) {
+      d.defines.set("LOOKUP_RAYS", filter.paramInt("smrt.rays"));
+      d.defines.set("LOOKUP_STEPS", filter.paramInt("smrt.steps"));
+    }
     if (p.hardwareCompare) d.defines.set("PN_HARDWARE_COMPARE");
     program = &shaders.program(fullScreenProgram(d));  // drawn, as the visibility pass is
     map = &fixture->map(p.mapImage);
@@ -280,6 +290,11 @@ struct Kernel {
     const int maxTaps = k.footprint ? filter.paramInt(fmt::format("{}.anisotropy", p.filter)) : 0;
     u.mapSize = glm::ivec4(map->width(), map->height(), maxTaps, 0);
     setCamera(u, fixture->renderer.scene().camera, fixture->position.width(), fixture->position.height());
+    if (k.kind == PN_LOOKUP_MARCH) {
+      const Light& sun = fixture->renderer.scene().light();
+      PN_CHECK(sun.type == LightType::Directional, fmt::format("{}: the march kernel follows a sun", k.name));
+      u.light = glm::vec4(-sun.direction, std::tan(sun.size));
+    }
     block.upload(u);
   }
 

@@ -9,6 +9,7 @@
 #include "shadows/filters/PcfFilter.h"
 #include "shadows/filters/PcssFilter.h"
 #include "shadows/filters/SecondDepthFilter.h"
+#include "shadows/filters/SmrtFilter.h"
 #include "shadows/filters/MsmFilter.h"
 #include "shadows/filters/MsmSoftFilter.h"
 #include "shadows/filters/VsmFilter.h"
@@ -49,6 +50,7 @@ const std::vector<Entry<Filter>>& filters() {
       {"hard", [] { return std::make_unique<HardFilter>(); }},
       {"pcf", [] { return std::make_unique<PcfFilter>(); }},
       {"pcss", [] { return std::make_unique<PcssFilter>(); }},
+      {"smrt", [] { return std::make_unique<SmrtFilter>(); }},
       {"second-depth", [] { return std::make_unique<SecondDepthFilter>(); }},
       {"sdf", [] { return std::make_unique<SdfFilter>(); }},
       {"vsm", [] { return std::make_unique<VsmFilter>(); }},

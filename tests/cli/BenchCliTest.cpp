@@ -330,7 +330,7 @@ TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
       }
     }
   }
-  EXPECT_EQ(passes, 8u) << "hard, pcf, pcf with hardware compare, vsm, vssm, msm, vsm and msm with footprint=off";
+  EXPECT_EQ(passes, 9u) << "hard, pcf, pcf with hardware compare, vsm, vssm, smrt, msm, vsm and msm with footprint=off";
   for (const char* pass : {"visibility: vsm, footprint=off", "visibility: msm, footprint=off"})
     EXPECT_TRUE(passMs.contains(pass)) << pass;
   EXPECT_EQ(ownTaps, 3u) << "pcf's Poisson disk, vsm's and msm's footprints";

@@ -16,7 +16,7 @@ static_assert(PN_TEMPORAL_CLAMP_OFF == 0 && PN_TEMPORAL_CLAMP_MINMAX == 1 && PN_
 constexpr ParamDesc kParams[] = {
     {"temporal.accumulate", "Accumulate",
      "on: V is averaged over frames by reprojection into the previous frame (history dropped where that frame saw another "
-     "surface, held to this frame's 3x3 range of V); pcf's and pcss's Poisson disks and the contact march turn every frame",
+     "surface, held to this frame's 3x3 range of V); pcf's and pcss's Poisson disks, smrt's rays and the contact march turn every frame",
      "", 0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
     {"temporal.alpha", "New-frame weight",
      "weight of this frame's V in the blend with the history: about 1/alpha frames are averaged; smaller is smoother and lags more",
