@@ -54,7 +54,8 @@ void addCacheCommand(CLI::App& app, std::vector<Command>& commands) {
       fmt::format("show the cache folder (ray-traced references, sdf bakes): where it is, its cap, its size and its "
                   "entries, least recently used first (the next to be evicted); or empty or trim it. The folder is "
                   "$PENUMBRA_CACHE, else $XDG_CACHE_HOME/penumbra, else ~/.cache/penumbra; its cap is ${} MiB, else "
-                  "{} MiB. Entries are files named <kind>-<key>.bin; nothing else there is touched",
+                  "{} MiB. Entries are files named <kind>-<key>.bin, and the temporary files of writes whose "
+                  "process is gone (interrupted: listed and removed first); nothing else there is touched",
                   kCacheMaxEnv, kDefaultCacheMaxMiB));
   CLI::Option* clear = sub->add_flag("--clear", o->clear, "remove every entry");
   addCacheCapOption(*sub, o->cacheMaxMb, "now");
@@ -64,9 +65,15 @@ void addCacheCommand(CLI::App& app, std::vector<Command>& commands) {
     const std::filesystem::path dir = defaultCacheDir();
     if (dir.empty()) throw Error("no cache folder: set PENUMBRA_CACHE (or HOME) to say where it is");
     const std::uintmax_t cap = defaultCacheMaxBytes();  // a malformed variable is a usage error even here
+    checkCacheFolder(dir);
     std::vector<CacheEntry> removed;
-    if (o->clear) removed = trimCache(dir, 0);
-    else if (o->cacheMaxMb) removed = trimCache(dir, *cacheCapBytes(o->cacheMaxMb));
+    std::vector<std::string> failures;
+    if (o->clear) removed = trimCache(dir, 0, &failures);
+    else if (o->cacheMaxMb) removed = trimCache(dir, *cacheCapBytes(o->cacheMaxMb), &failures);
+    // What could not be removed stays: the run fails, saying what is left and why.
+    if (!failures.empty())
+      throw Error(fmt::format("{}: removed {} entries, but {} cannot be removed (the first: {})", dir.string(), removed.size(),
+                              failures.size(), failures.front()));
     const std::vector<CacheEntry> entries = listCacheEntries(dir);
 
     if (o->json) {
@@ -79,7 +86,8 @@ void addCacheCommand(CLI::App& app, std::vector<Command>& commands) {
         j["entries"].push_back({{"name", e.path.filename().string()},
                                 {"bytes", e.bytes},
                                 {"last_use_unix_s", std::chrono::duration_cast<std::chrono::seconds>(
-                                                        toSystem(e.lastUse).time_since_epoch()).count()}});
+                                                        toSystem(e.lastUse).time_since_epoch()).count()},
+                                {"interrupted", e.interrupted}});
       j["removed"] = nlohmann::json::array();
       for (const CacheEntry& e : removed) j["removed"].push_back(e.path.filename().string());
       std::printf("%s\n", j.dump(2).c_str());
@@ -92,8 +100,8 @@ void addCacheCommand(CLI::App& app, std::vector<Command>& commands) {
                 entries.size());
     if (!entries.empty()) std::printf("entries, least recently used first:\n");
     for (const CacheEntry& e : entries)
-      std::printf("  %-28s %10.2f MiB  last used %s\n", e.path.filename().string().c_str(),
-                  static_cast<double>(e.bytes) / kBytesPerMiB, localTime(e.lastUse).c_str());
+      std::printf("  %-28s %10.2f MiB  %s %s\n", e.path.filename().string().c_str(), static_cast<double>(e.bytes) / kBytesPerMiB,
+                  e.interrupted ? "an interrupted write, from" : "last used", localTime(e.lastUse).c_str());
     return 0;
   }});
 }

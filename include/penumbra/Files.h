@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -34,10 +36,13 @@ void checkOutputFolder(const std::filesystem::path& path);
 std::filesystem::path defaultCacheDir();
 
 // --- a bounded cache folder -------------------------------------------------------------
-// A cache folder holds entries named <kind>-<16 hex digits>.bin (reference-…, sdf-…); anything
-// else in it is not an entry and is never counted, moved or removed. Its size is capped: after
-// each write the least recently used entries go until the rest fit. "Used" is the entry's
-// modification time, set when it is written and again whenever it is read (touchCacheEntry).
+// A cache folder holds entries named <kind>-<16 hex digits>.bin (reference-…, sdf-…), and while
+// one is written its temporary file (the name + ".tmp.<pid>.<n>"); anything else in it is not an
+// entry and is never counted, moved or removed. A temporary whose process is gone (killed during
+// the write) is an entry too, an interrupted one: counted, listed and removed first. Its size is
+// capped: after each write the least recently used entries go until the rest fit. "Used" is the
+// entry's modification time, set when it is written and again whenever it is read
+// (touchCacheEntry).
 
 /// Cap of the cache folder when nothing else says: 4 GiB, a few hundred references at 1280×720
 /// (33 bytes a pixel) or thousands at the bench's 256×144.
@@ -53,14 +58,24 @@ struct CacheEntry {
   std::filesystem::path path;
   std::uintmax_t bytes = 0;
   std::filesystem::file_time_type lastUse;  ///< its modification time
+  bool interrupted = false;  ///< the temporary file of a write whose process is gone
 };
 
-/// The folder's entries, least recently used first (an empty list when the folder is missing).
+/// Throws penumbra::Error naming `dir` when it cannot be a cache folder: it is a file, or a
+/// symbolic link to nothing. A folder not made yet is fine (the first write makes it).
+void checkCacheFolder(const std::filesystem::path& dir);
+/// The folder's entries, interrupted writes first, then least recently used first (an empty list
+/// when the folder is missing).
 std::vector<CacheEntry> listCacheEntries(const std::filesystem::path& dir);
+/// An entry's bytes; nothing when it is missing, not a regular file (a folder in its place) or
+/// cannot be read. Never throws: a cache that cannot be read is a miss.
+std::optional<std::vector<char>> readCacheEntry(const std::filesystem::path& entry);
 /// Marks an entry as just used. A failure (a read-only folder) is ignored: reading still works.
 void touchCacheEntry(const std::filesystem::path& entry);
-/// Removes least recently used entries until the rest total at most maxBytes; returns those
-/// removed. An entry that another process removed first is skipped.
-std::vector<CacheEntry> trimCache(const std::filesystem::path& dir, std::uintmax_t maxBytes);
+/// Removes entries in listCacheEntries' order until the rest total at most maxBytes; returns
+/// those removed. An entry that another process removed first is skipped; one that cannot be
+/// removed (a read-only folder) stays, and `failures`, when given, gets "name: why" for it.
+std::vector<CacheEntry> trimCache(const std::filesystem::path& dir, std::uintmax_t maxBytes,
+                                  std::vector<std::string>* failures = nullptr);
 
 }  // namespace penumbra

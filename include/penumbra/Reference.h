@@ -75,6 +75,10 @@ struct ReferenceResult {
   double traceSeconds = 0.0;  ///< wall-clock seconds of the trace that produced the data
   bool fromCache = false;
   uint64_t cacheKey = 0;       ///< the key it is cached under; 0 where no cache was used (useCache off, no folder)
+  /// Why the result was traced but not kept in the cache folder (it cannot be created or written:
+  /// read-only, full, a file in its place), naming the folder or file and the reason; empty when
+  /// it was kept or not meant to be. The result itself is whole either way.
+  std::string cacheWarning;
 };
 
 /// How the reference holds the casters' triangles.

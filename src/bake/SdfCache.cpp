@@ -1,6 +1,6 @@
 // The on-disk cache of baked SDFs: one file per key, "<dir>/sdf-<key>.bin", written to a unique
 // temporary name and renamed, so a reader never sees half a file. A file that fails any check
-// (size, magic, version, key, dimensions, payload hash) is ignored and baked over.
+// (size, magic, version, key, dimensions, the hash of every other byte) is ignored and baked over.
 #include "bake/SdfBake.h"
 
 #include "base/Hash.h"
@@ -12,9 +12,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <span>
 #include <system_error>
@@ -38,7 +37,7 @@ struct Header {
   float voxelM;
   uint64_t triangles;
   double bakeSeconds;
-  uint64_t payloadHash;
+  uint64_t hash;  ///< of the header (this field 0) and the payload: no byte of the file goes unchecked
   uint32_t sheetTriangles;
   uint32_t reserved;  // 0; keeps the size a multiple of 8 without compiler padding
 };
@@ -49,9 +48,9 @@ size_t voxelCount(const int32_t dims[3]) {
 }
 
 std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  const std::vector<char> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::optional<std::vector<char>> read = readCacheEntry(path);
+  if (!read) return std::nullopt;
+  const std::vector<char>& file = *read;
   if (file.size() < sizeof(Header)) return std::nullopt;
   Header header;
   std::memcpy(&header, file.data(), sizeof(Header));
@@ -65,9 +64,8 @@ std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
   const size_t sheetVertices = 3 * static_cast<size_t>(header.sheetTriangles);
   const size_t payload = voxels * sizeof(float) + sheetVertices * sizeof(glm::vec3);
   if (file.size() != sizeof(Header) + payload) return std::nullopt;
-  Hasher hash;
-  hash.bytes(file.data() + sizeof(Header), payload);
-  if (hash.digest() != header.payloadHash || !(header.voxelM > 0.0f)) return std::nullopt;
+  if (cacheEntryHash(header, &Header::hash, file.data() + sizeof(Header), payload) != header.hash || !(header.voxelM > 0.0f))
+    return std::nullopt;
 
   SdfVolume v;
   v.dims = {header.dims[0], header.dims[1], header.dims[2]};
@@ -98,12 +96,10 @@ void store(const fs::path& path, const SdfVolume& v) {
   header.triangles = v.stats.triangles;
   header.bakeSeconds = v.stats.bakeSeconds;
   header.sheetTriangles = static_cast<uint32_t>(v.sheets.size() / 3);
-  Hasher hash;
   std::vector<char> payload(v.distances.size() * sizeof(float) + v.sheets.size() * sizeof(glm::vec3));
   std::memcpy(payload.data(), v.distances.data(), v.distances.size() * sizeof(float));
   std::memcpy(payload.data() + v.distances.size() * sizeof(float), v.sheets.data(), v.sheets.size() * sizeof(glm::vec3));
-  hash.bytes(payload.data(), payload.size());
-  header.payloadHash = hash.digest();
+  header.hash = cacheEntryHash(header, &Header::hash, payload.data(), payload.size());
 
   writeBinaryFile(path, {std::span<const char>(reinterpret_cast<const char*>(&header), sizeof(header)),
                          std::span<const char>(payload.data(), payload.size())});
@@ -124,17 +120,22 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
     cached->stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(*cached);
   }
-  std::error_code error;
-  fs::create_directories(dir, error);
-  PN_CHECK(!error && fs::is_directory(dir),
-           fmt::format("sdf cache: cannot create directory '{}' ({}); set PENUMBRA_CACHE to a writable directory",
-                       dir.string(), error ? error.message() : "not a directory"));
   const std::uintmax_t maxBytes = defaultCacheMaxBytes();  // a bad variable stops us before the bake
   SdfVolume v = bake(scene, options);
   v.stats.cacheKey = key;
-  if (!v.empty()) {  // a scene without casters costs nothing to "bake"
+  if (v.empty()) return v;  // a scene without casters costs nothing to "bake"
+  // A folder that cannot hold the field costs the cache, not the field: said, and the bake used.
+  try {
+    checkCacheFolder(dir);
+    std::error_code error;
+    fs::create_directories(dir, error);
+    if (error || !fs::is_directory(dir))
+      throw Error(fmt::format("cannot create the folder {} ({})", dir.string(), error ? error.message() : "a file is in its place"));
     store(path, v);
     trimCache(dir, maxBytes);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "penumbra: warning: sdf cache: %s; the field is baked but not kept (set PENUMBRA_CACHE to a writable "
+                         "folder)\n", e.what());
   }
   return v;
 }

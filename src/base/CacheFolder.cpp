@@ -7,10 +7,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string_view>
 #include <system_error>
+
+#include <signal.h>
+#include <sys/types.h>
 
 namespace penumbra {
 namespace {
@@ -34,7 +40,35 @@ bool isEntryName(std::string_view name) {
          std::all_of(stem.begin() + static_cast<std::ptrdiff_t>(dash) + 1, stem.end(), hex);
 }
 
+/// An entry's temporary (AtomicFile: "<entry>.tmp.<pid>.<n>") whose writing process is gone.
+bool isInterruptedWrite(std::string_view name) {
+  constexpr std::string_view kTmp = ".tmp.";
+  const size_t tmp = name.find(kTmp);
+  if (tmp == std::string_view::npos || !isEntryName(name.substr(0, tmp))) return false;
+  const std::string_view rest = name.substr(tmp + kTmp.size());
+  const size_t dot = rest.find('.');
+  pid_t pid = 0;
+  unsigned n = 0;
+  const auto [pidEnd, pidError] = std::from_chars(rest.data(), rest.data() + std::min(dot, rest.size()), pid);
+  if (dot == std::string_view::npos || pidError != std::errc() || pidEnd != rest.data() + dot || pid <= 0) return false;
+  const auto [end, error] = std::from_chars(rest.data() + dot + 1, rest.data() + rest.size(), n);
+  if (error != std::errc() || end != rest.data() + rest.size()) return false;
+  return kill(pid, 0) != 0 && errno == ESRCH;  // EPERM: it runs, as another user
+}
+
 }  // namespace
+
+void checkCacheFolder(const fs::path& dir) {
+  std::error_code ec;
+  const fs::file_status link = fs::symlink_status(dir, ec);
+  if (!fs::exists(link)) return;
+  const fs::file_status target = fs::status(dir, ec);
+  if (fs::is_symlink(link) && !fs::exists(target)) {
+    const fs::path to = fs::read_symlink(dir, ec);
+    throw Error(fmt::format("the cache folder {} is a symbolic link to {}, which does not exist", dir.string(), to.string()));
+  }
+  if (!fs::is_directory(target)) throw Error(fmt::format("the cache folder {} is a file, not a folder", dir.string()));
+}
 
 std::uintmax_t defaultCacheMaxBytes() {
   const char* text = std::getenv(kCacheMaxEnv);
@@ -53,14 +87,32 @@ std::vector<CacheEntry> listCacheEntries(const fs::path& dir) {
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::directory_entry& e = *it;
     std::error_code fileError;
-    if (!e.is_regular_file(fileError) || !isEntryName(e.path().filename().string())) continue;
-    CacheEntry entry{e.path(), e.file_size(fileError), e.last_write_time(fileError)};
+    const std::string name = e.path().filename().string();
+    if (!e.is_regular_file(fileError)) continue;
+    const bool interrupted = !isEntryName(name) && isInterruptedWrite(name);
+    if (!isEntryName(name) && !interrupted) continue;
+    CacheEntry entry{e.path(), e.file_size(fileError), e.last_write_time(fileError), interrupted};
     if (!fileError) entries.push_back(std::move(entry));  // gone meanwhile: another process trimmed it
   }
   std::sort(entries.begin(), entries.end(), [](const CacheEntry& a, const CacheEntry& b) {
+    if (a.interrupted != b.interrupted) return a.interrupted;
     return a.lastUse != b.lastUse ? a.lastUse < b.lastUse : a.path < b.path;
   });
   return entries;
+}
+
+std::optional<std::vector<char>> readCacheEntry(const fs::path& entry) {
+  std::error_code ec;
+  if (!fs::is_regular_file(entry, ec)) return std::nullopt;
+  try {
+    std::ifstream in(entry, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (!in.good() && !in.eof()) return std::nullopt;
+    return bytes;
+  } catch (const std::exception&) {  // libstdc++ throws from a read that fails (EISDIR, EIO)
+    return std::nullopt;
+  }
 }
 
 void touchCacheEntry(const fs::path& entry) {
@@ -68,7 +120,7 @@ void touchCacheEntry(const fs::path& entry) {
   fs::last_write_time(entry, fs::file_time_type::clock::now(), ignored);
 }
 
-std::vector<CacheEntry> trimCache(const fs::path& dir, std::uintmax_t maxBytes) {
+std::vector<CacheEntry> trimCache(const fs::path& dir, std::uintmax_t maxBytes, std::vector<std::string>* failures) {
   std::vector<CacheEntry> entries = listCacheEntries(dir), removed;
   std::uintmax_t total = 0;
   for (const CacheEntry& e : entries) total += e.bytes;
@@ -76,6 +128,10 @@ std::vector<CacheEntry> trimCache(const fs::path& dir, std::uintmax_t maxBytes) 
     if (total <= maxBytes) break;
     std::error_code ec;
     if (fs::remove(e.path, ec)) removed.push_back(e);
+    if (ec) {
+      if (failures) failures->push_back(fmt::format("{}: {}", e.path.filename().string(), ec.message()));
+      continue;  // still here
+    }
     total -= e.bytes;  // removed now, or by someone else before us: either way no longer here
   }
   return removed;

@@ -57,4 +57,15 @@ private:
   uint64_t mLength = 0;
 };
 
+/// The hash that checks a cache file, every byte of it: its fixed-size header with its own hash
+/// field (`hashField`) zeroed, then the payload.
+template <class Header>
+uint64_t cacheEntryHash(Header header, uint64_t Header::*hashField, const void* payload, size_t bytes) {
+  header.*hashField = 0;
+  Hasher hash;
+  hash.value(header);
+  hash.bytes(payload, bytes);
+  return hash.digest();
+}
+
 }  // namespace penumbra

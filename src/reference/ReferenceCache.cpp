@@ -9,8 +9,6 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <span>
 #include <system_error>
 #include <vector>
@@ -32,7 +30,7 @@ struct Header {
   uint64_t key;
   int32_t width, height;
   double traceSeconds;
-  uint64_t payloadHash;
+  uint64_t hash;  ///< of the header (this field 0) and the payload: no byte of the file goes unchecked
 };
 
 static_assert(sizeof(Header) == 48, "the header has no padding: every byte is written");
@@ -61,19 +59,22 @@ fs::path cacheFilePath(const fs::path& dir, uint64_t key) {
 }
 
 void prepareCacheDir(const fs::path& dir) {
+  try {
+    checkCacheFolder(dir);
+  } catch (const Error& e) {
+    throw Error(fmt::format("reference cache: {}", e.what()));
+  }
   std::error_code error;
   fs::create_directories(dir, error);
-  PN_CHECK(!error && fs::is_directory(dir),
-           fmt::format("reference cache: cannot create directory '{}' ({}); set PENUMBRA_CACHE to a "
-                       "writable directory or turn the cache off",
-                       dir.string(), error ? error.message() : "not a directory"));
+  if (error || !fs::is_directory(dir))
+    throw Error(fmt::format("reference cache: cannot create the folder {} ({})", dir.string(),
+                            error ? error.message() : "a file is in its place"));
 }
 
 std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t key) {
-  std::ifstream in(cacheFilePath(dir, key), std::ios::binary);
-  if (!in) return std::nullopt;
-  const std::vector<char> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.good() && !in.eof()) return std::nullopt;
+  const std::optional<std::vector<char>> read = readCacheEntry(cacheFilePath(dir, key));
+  if (!read) return std::nullopt;
+  const std::vector<char>& file = *read;
   Header header;
   if (file.size() < sizeof(Header)) return std::nullopt;
   std::memcpy(&header, file.data(), sizeof(Header));
@@ -82,9 +83,7 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
     return std::nullopt;
   const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
   if (file.size() != sizeof(Header) + payloadBytes(pixels)) return std::nullopt;
-  Hasher hash;
-  hash.bytes(file.data() + sizeof(Header), payloadBytes(pixels));
-  if (hash.digest() != header.payloadHash) return std::nullopt;
+  if (cacheEntryHash(header, &Header::hash, file.data() + sizeof(Header), payloadBytes(pixels)) != header.hash) return std::nullopt;
 
   ReferenceResult r;
   r.width = header.width;
@@ -125,9 +124,7 @@ void storeCachedResult(const fs::path& dir, const ReferenceResult& result) {
   header.width = result.width;
   header.height = result.height;
   header.traceSeconds = result.traceSeconds;
-  Hasher hash;
-  hash.bytes(payload.data(), payload.size());
-  header.payloadHash = hash.digest();
+  header.hash = cacheEntryHash(header, &Header::hash, payload.data(), payload.size());
 
   const fs::path path = cacheFilePath(dir, result.cacheKey);
   writeBinaryFile(path, {std::span<const char>(reinterpret_cast<const char*>(&header), sizeof(header)),

@@ -1,7 +1,7 @@
 #pragma once
 // The on-disk cache of reference results: one file per key, "<dir>/reference-<key>.bin".
 // Files are written to a unique temporary name and renamed, so a reader never sees half a file;
-// a file that fails any check (size, magic, version, key, payload hash) is ignored.
+// a file that fails any check (size, magic, version, key, the hash of every other byte) is ignored.
 #include <penumbra/Reference.h>
 
 #include <cstdint>
@@ -12,8 +12,8 @@ namespace penumbra::reference {
 
 std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);
 
-/// Creates `dir` if needed. Throws penumbra::Error naming it when it cannot be created — before
-/// the trace, so a bad cache directory costs nothing.
+/// Creates `dir` if needed. Throws penumbra::Error naming it and why when it cannot be created
+/// (the trace then goes on without the cache: ReferenceResult::cacheWarning).
 void prepareCacheDir(const std::filesystem::path& dir);
 
 /// The result stored under `key`, or nothing when there is none or it is unreadable or corrupt.

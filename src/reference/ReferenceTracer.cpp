@@ -131,8 +131,17 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
         cached->seconds = secondsSince(start);
         return std::move(*cached);
       }
-      reference::prepareCacheDir(cacheDir);
       cacheMaxBytes = options.cacheMaxBytes.value_or(defaultCacheMaxBytes());  // a bad variable stops us now
+    }
+  }
+  // A folder that cannot hold the result costs the cache, not the result (ReferenceResult::cacheWarning).
+  std::string cacheWarning;
+  if (!cacheDir.empty()) {
+    try {
+      reference::prepareCacheDir(cacheDir);
+    } catch (const Error& e) {
+      cacheWarning = e.what();
+      cacheDir.clear();
     }
   }
 
@@ -177,9 +186,14 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   r.traceSeconds = secondsSince(start);
   r.seconds = r.traceSeconds;
   if (!cacheDir.empty()) {
-    reference::storeCachedResult(cacheDir, r);
+    try {
+      reference::storeCachedResult(cacheDir, r);
+    } catch (const Error& e) {
+      cacheWarning = fmt::format("reference cache: {}", e.what());
+    }
     trimCache(cacheDir, cacheMaxBytes);
   }
+  r.cacheWarning = std::move(cacheWarning);
   return r;
 }
 

@@ -4,12 +4,22 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
+#include <cstdio>
+
 namespace penumbra::report {
 
 std::vector<ReferenceResult> traceLights(const ReferenceTracer& tracer, const GBufferData& gbuffer,
                                          std::span<const Light> lights, const ReferenceOptions& options) {
   std::vector<ReferenceResult> refs;
   for (const Light& l : lights) refs.push_back(l.castsShadow ? tracer.trace(gbuffer, l, options) : ReferenceResult{});
+  // A cache folder that cannot be written costs the cache, not the run: said once a process
+  // (every later reference has the same folder).
+  static std::atomic<bool> warned{false};
+  for (const ReferenceResult& r : refs)
+    if (!r.cacheWarning.empty() && !warned.exchange(true))
+      std::fprintf(stderr, "penumbra: warning: %s; references are traced but not kept (set PENUMBRA_CACHE to a writable "
+                           "folder, or --no-cache)\n", r.cacheWarning.c_str());
   return refs;
 }
 

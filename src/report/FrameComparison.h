@@ -38,7 +38,8 @@ struct FrameComparison {
 };
 
 /// Traces every light of the renderer's scene on `gbuffer` (the renderer's last G-buffer); a
-/// light that casts no shadow gets no trace (an empty result).
+/// light that casts no shadow gets no trace (an empty result). A reference that could not be
+/// kept in the cache folder (ReferenceResult::cacheWarning) is said once a process on stderr.
 std::vector<ReferenceResult> traceLights(const ReferenceTracer& tracer, const GBufferData& gbuffer,
                                          std::span<const Light> lights, const ReferenceOptions& options);
 

@@ -370,8 +370,53 @@ TEST(ReferenceCache, SecondCallReadsIdenticalDataFastAndInputsChangeTheKey) {
   const ReferenceResult repaired = tracer.trace(g, benchLight(), options);
   EXPECT_FALSE(repaired.fromCache);
   expectSameData(first, repaired);
+  // The header's fields are checked too: a flipped byte in the sample count (offset 12) or the
+  // trace time (offset 32) reported 191 samples or 3286 s once.
+  for (const std::streamoff offset : {12, 32}) {
+    {
+      std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+      f.seekp(offset + 1);
+      f.put('\x5a');
+    }
+    const ReferenceResult again = tracer.trace(g, benchLight(), options);
+    EXPECT_FALSE(again.fromCache) << "a flipped byte at " << offset;
+    EXPECT_EQ(again.samplesPerPixel, first.samplesPerPixel);
+  }
   std::filesystem::resize_file(file, std::filesystem::file_size(file) - 7);
   EXPECT_FALSE(tracer.trace(g, benchLight(), options).fromCache);
+  EXPECT_TRUE(tracer.trace(g, benchLight(), options).fromCache);
+  std::filesystem::remove_all(dir);
+}
+
+// A cache that cannot be written costs the cache, not the result: a file in the folder's place,
+// and a folder in the entry's place (it can be neither read nor replaced). The result is whole
+// and the same as without a cache; cacheWarning says where and why.
+TEST(ReferenceCache, AnUnwritableCacheGivesTheResultAndAWarning) {
+  const std::filesystem::path dir = freshTempDir("penumbra-reference-cache-unwritable");
+  std::filesystem::create_directories(dir);
+  const ReferenceTracer tracer(boxesAndSpheres());
+  const GBufferData g = groundGrid(32, 5.0f);
+  const ReferenceResult plain = tracer.trace(g, benchLight(), quiet(16));
+  ReferenceOptions options = quiet(16);
+  options.useCache = true;
+
+  options.cacheDir = dir / "file";
+  std::ofstream(options.cacheDir) << "a file";
+  const ReferenceResult noFolder = tracer.trace(g, benchLight(), options);
+  expectSameData(plain, noFolder);
+  EXPECT_EQ(noFolder.cacheWarning, "reference cache: the cache folder " + options.cacheDir.string() + " is a file, not a folder");
+
+  options.cacheDir = dir / "folder";
+  const std::filesystem::path entry = options.cacheDir / fmt::format("reference-{:016x}.bin", tracer.cacheKey(g, benchLight(), options));
+  std::filesystem::create_directories(entry / "inside");
+  const ReferenceResult noEntry = tracer.trace(g, benchLight(), options);
+  expectSameData(plain, noEntry);
+  EXPECT_EQ(noEntry.cacheWarning, "reference cache: " + entry.string() + ": is a folder, not a file");
+  EXPECT_EQ(filesIn(options.cacheDir), 1u) << "no temporary file is left";
+
+  std::filesystem::remove_all(entry);
+  const ReferenceResult stored = tracer.trace(g, benchLight(), options);
+  EXPECT_TRUE(stored.cacheWarning.empty()) << stored.cacheWarning;
   EXPECT_TRUE(tracer.trace(g, benchLight(), options).fromCache);
   std::filesystem::remove_all(dir);
 }
