@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
@@ -29,6 +30,23 @@ constexpr size_t kCopyBlockBytes = size_t(1) << 16;
 
 std::string errnoText() { return std::strerror(errno); }
 
+/// The longest file name (bytes) the file system at `folder` takes: 255 on Linux's own.
+size_t maxNameBytes(const std::filesystem::path& folder) {
+  constexpr size_t kPosixNameMax = 255;
+  const long max = pathconf(folder.empty() ? "." : folder.c_str(), _PC_NAME_MAX);
+  return max > 0 ? static_cast<size_t>(max) : kPosixNameMax;
+}
+
+/// The nearest existing folder at or above `folder` (where the name limit is known).
+std::filesystem::path existingFolder(std::filesystem::path folder) {
+  std::error_code ec;
+  while (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
+    if (folder == folder.parent_path()) break;
+    folder = folder.parent_path();
+  }
+  return folder;
+}
+
 /// What a target path leads to once symbolic links are followed.
 struct Destination {
   std::filesystem::path path;
@@ -41,6 +59,10 @@ Destination resolve(const std::filesystem::path& target) {
     throw Error(fmt::format("{}: names a folder (it ends in '/'); give a file name", target.string()));
   std::filesystem::path p = target;
   for (int hop = 0;; ++hop) {
+    // Its name must fit the file system (a new file, or a link's target).
+    if (const size_t bytes = p.filename().string().size(), max = maxNameBytes(existingFolder(p.parent_path())); bytes > max)
+      throw Error(fmt::format("{}: the file name is {} bytes, more than the {} the file system takes; give a shorter name",
+                              target.string(), bytes, max));
     struct stat st {};
     if (lstat(p.c_str(), &st) != 0) {
       if (errno == ENOENT) return {p, false};  // a new file (its folders are created when written)
@@ -97,15 +119,29 @@ void writeAll(int fd, const char* data, size_t size, const std::filesystem::path
   }
 }
 
-/// Creates and removes a file in `folder`: the one sure test that files can be made there.
+/// Creates and removes a file in `folder`: the one sure test that files can be made there. The
+/// folders it had to create go again, so that a check leaves nothing behind (a run that fails on
+/// a later check writes nothing); the writers create them when they write.
 void probeFolder(const std::filesystem::path& folder, const std::filesystem::path& target) {
   const std::filesystem::path dir = folder.empty() ? std::filesystem::path(".") : folder;
+  std::vector<std::filesystem::path> created;  // deepest first
+  std::error_code ec;
+  for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !ec && !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    created.push_back(p);
+    if (p == p.parent_path()) break;
+  }
   createFolder(dir, target);
   const std::filesystem::path probe = dir / fmt::format(".penumbra-probe.{}.{}", getpid(), gTemporaryCounter.fetch_add(1));
   const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  const int openErrno = errno;
+  if (fd >= 0) {
+    close(fd);
+    unlink(probe.c_str());
+  }
+  for (const std::filesystem::path& p : created) std::filesystem::remove(p, ec);  // only if still empty
+  errno = openErrno;
   if (fd < 0) throw Error(fmt::format("{}: cannot create files in {} ({})", target.string(), dir.string(), errnoText()));
-  close(fd);
-  unlink(probe.c_str());
 }
 
 }  // namespace
@@ -121,8 +157,10 @@ AtomicFile::AtomicFile(std::filesystem::path target) : mTarget(std::move(target)
   } else {
     createFolder(mDestination.parent_path(), mTarget);
     // Unique per process and call: two runs (or threads) writing the same file never share one.
-    mTemporary = mDestination;
-    mTemporary += unique;
+    // Within the name limit: the target's name is cut short where it leaves no room.
+    const std::string name = mDestination.filename().string();
+    const size_t max = maxNameBytes(mDestination.parent_path());
+    mTemporary = mDestination.parent_path() / (name.substr(0, std::min(name.size(), max - std::min(max, unique.size()))) + unique);
   }
 }
 
@@ -181,10 +219,14 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text) {
 void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks) {
   AtomicFile file(path);
   {
+    errno = 0;
     std::ofstream out(file.temporary(), std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw Error(fmt::format("{}: cannot create its temporary file in {} ({})", path.string(),
+                              file.temporary().parent_path().string(), errno != 0 ? errnoText() : "open failed"));
     for (std::span<const char> b : blocks) out.write(b.data(), static_cast<std::streamsize>(b.size()));
     out.close();
-    if (!out) throw Error(fmt::format("{}: cannot write", path.string()));
+    if (!out) throw Error(fmt::format("{}: cannot write ({})", path.string(), errno != 0 ? errnoText() : "write failed"));
   }
   file.commit();
 }

@@ -8,6 +8,9 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
+
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_IMPLEMENTATION
 #pragma GCC diagnostic push
@@ -23,8 +26,9 @@ void writePng(const std::filesystem::path& path, int width, int height, std::spa
   PN_CHECK(rgba.size() == static_cast<size_t>(width) * static_cast<size_t>(height) * 4,
            fmt::format("{}: pixel count does not match {}x{}", path.string(), width, height));
   AtomicFile file(path);
+  errno = 0;
   if (!stbi_write_png(file.temporary().c_str(), width, height, 4, rgba.data(), width * 4))
-    throw Error(fmt::format("{}: cannot write the PNG", path.string()));
+    throw Error(fmt::format("{}: cannot write the PNG ({})", path.string(), errno != 0 ? std::strerror(errno) : "write failed"));
   file.commit();
 }
 

@@ -187,3 +187,30 @@ TEST(OutputPathCli, StdoutWriteErrorsExitNonZero) {
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("standard output"), std::string::npos) << r.err;
 }
+
+// A file name of 244-255 bytes is a legal name, but its temporary name (".tmp.<pid>.<n>"
+// appended) was not: the run failed after the render with no reason. The temporary name is cut
+// to fit; a name past the file system's limit is refused before the render, with its length.
+TEST(OutputPathCli, LongFileNamesAreWrittenOrRefusedBeforeTheRender) {
+  const std::string dir = freshDir("long-names");
+  const long max = pathconf(dir.c_str(), _PC_NAME_MAX);
+  ASSERT_GT(max, 16) << "the file system's name limit";
+  const std::string fits = std::string(static_cast<size_t>(max) - 4, 'a') + ".png";  // exactly the limit
+  RunResult r = runPenumbra("render --size 16x16 --shadow-map 16 --out " + fits, dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/" + fits));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << "a temporary file is left: " << e.path();
+
+  const std::string tooLong = std::string(static_cast<size_t>(max) - 3, 'b') + ".png";
+  for (const std::string& args : {"render --size 16x16 --out " + tooLong, "render --size 16x16 --visibility " + tooLong,
+                                  "render --size 16x16 --frames 2 --out " + std::string(static_cast<size_t>(max) - 6, 'c') + ".png"}) {
+    r = runPenumbra(args, dir);
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_NE(r.err.find("bytes, more than the " + std::to_string(max) + " the file system takes; give a shorter name"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(countLines(r.err), 1u) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/penumbra.png")) << "refused before the render";
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3) << "the image, .stdout and .stderr only";
+}
