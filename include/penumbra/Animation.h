@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,8 @@ struct SceneAnimation {
   bool empty() const { return objects.empty() && lights.empty() && suns.empty() && camera.empty(); }
   /// The last key time of every channel (s); 0 for a still scene.
   float durationS() const;
+  /// Every channel's key times (s), in order, each once; empty for a still scene.
+  std::vector<float> keyTimes() const;
   /// Whether object `object` moves (it follows an animated node or one below an animated node).
   std::vector<bool> movingObjects(size_t objectCount) const;
   /// Light `index` was removed from the scene: its animation and sun path go, later lights'
@@ -125,5 +128,13 @@ struct SceneAnimation {
 /// and target. Anything not animated is left as it is, so posing twice at one time is the same
 /// as posing once. A still scene is unchanged.
 void poseScene(Scene& scene, float timeS);
+
+/// "" when `scene` posed at each of `timesS` keeps what its still pose must (Scene::validate,
+/// scene files' bounds): every animated object's world bounds and every animated spot and point
+/// light within ±kMaxCoordinateM, a camera within them that defines a view. Otherwise the first
+/// problem, with its time and what it is, in the still checks' words ("at 2 s: camera: the view
+/// is along the up vector (0, 1, 0): …"). Scene::validate checks the key times (beyond 4096 of
+/// them, as many evenly chosen); a sequence checks its frames' times before its first frame.
+std::string poseProblem(const Scene& scene, std::span<const float> timesS);
 
 }  // namespace penumbra

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace penumbra {
 namespace {
@@ -137,20 +138,113 @@ std::string SceneAnimation::problem(size_t objectCount, size_t lightCount) const
   return "";
 }
 
-void poseScene(Scene& scene, float timeS) {
-  const SceneAnimation& a = scene.animation;
-  if (a.empty()) return;
+namespace {
+
+/// Every node's world transform at `timeS` (parents come before their children).
+std::vector<glm::mat4> nodeWorlds(const SceneAnimation& a, float timeS) {
   std::vector<glm::mat4> world(a.nodes.size());
   for (size_t i = 0; i < a.nodes.size(); ++i) {
     const AnimatedNode& n = a.nodes[i];
     const glm::mat4 parent = n.parent >= 0 ? world[static_cast<size_t>(n.parent)] : glm::mat4(1.0f);
     world[i] = parent * n.offset * n.track.matrixAt(timeS);
   }
+  return world;
+}
+
+/// An animated light's transform at `timeS`: its node's, or its track about its pivot.
+glm::mat4 lightTransform(const LightAnimation& la, const std::vector<glm::mat4>& world, float timeS) {
+  return la.node >= 0 ? world[static_cast<size_t>(la.node)]
+                      : glm::translate(glm::mat4(1.0f), la.pivot) * la.track.matrixAt(timeS) * glm::translate(glm::mat4(1.0f), -la.pivot);
+}
+
+/// Poses `camera` (position, target, up in a node) at `timeS`.
+void poseCamera(Camera& camera, const CameraAnimation& c, const std::vector<glm::mat4>& world, float timeS) {
+  if (c.node >= 0) {
+    const glm::mat4& m = world[static_cast<size_t>(c.node)];
+    const glm::vec3 forward = glm::mat3(m) * glm::vec3(0.0f, 0.0f, -1.0f), up = glm::mat3(m) * glm::vec3(0.0f, 1.0f, 0.0f);
+    if (glm::length(forward) > 0.0f && glm::length(up) > 0.0f) {  // a node scaled to 0 leaves the camera be
+      camera.position = glm::vec3(m[3]);
+      camera.target = camera.position + glm::normalize(forward);
+      camera.up = glm::normalize(up);
+    }
+  }
+  if (!c.position.empty()) camera.position = c.position.at(timeS);
+  if (!c.target.empty()) camera.target = c.target.at(timeS);
+}
+
+bool withinWorld(const glm::vec3& p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxCoordinateM))); }
+
+// Most times poseProblem checks: a scene's key times beyond it are sampled evenly (first and last
+// kept), so that a glTF of many keys and objects is checked in a fraction of a second.
+constexpr size_t kMaxCheckedTimes = 4096;
+
+}  // namespace
+
+std::vector<float> SceneAnimation::keyTimes() const {
+  std::vector<float> t;
+  const auto add = [&](const auto& keys) { t.insert(t.end(), keys.timesS.begin(), keys.timesS.end()); };
+  const auto addTrack = [&](const TransformTrack& track) {
+    add(track.translationKeys);
+    add(track.rotationKeys);
+    add(track.scaleKeys);
+  };
+  for (const AnimatedNode& n : nodes) addTrack(n.track);
+  for (const LightAnimation& l : lights) addTrack(l.track);
+  for (const SunPath& s : suns) add(s.azimuthDeg);
+  add(camera.position);
+  add(camera.target);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+std::string poseProblem(const Scene& scene, std::span<const float> timesS) {
+  const SceneAnimation& a = scene.animation;
+  if (a.empty() || timesS.empty()) return "";
+  std::vector<float> times(timesS.begin(), timesS.end());
+  if (times.size() > kMaxCheckedTimes) {
+    std::vector<float> sampled;
+    for (size_t i = 0; i < kMaxCheckedTimes; ++i) sampled.push_back(times[i * (times.size() - 1) / (kMaxCheckedTimes - 1)]);
+    times = std::move(sampled);
+  }
+  std::vector<std::optional<Aabb>> meshBounds(scene.meshes.size());  // of the meshes animated objects use
+  for (const ObjectAnimation& o : a.objects) {
+    const uint32_t mesh = scene.objects[o.object].mesh;
+    if (!meshBounds[mesh]) meshBounds[mesh] = scene.meshes[mesh].bounds();
+  }
+  for (const float t : times) {
+    const std::vector<glm::mat4> world = nodeWorlds(a, t);
+    for (const ObjectAnimation& o : a.objects) {
+      const Object& object = scene.objects[o.object];
+      const Aabb b = meshBounds[object.mesh]->transformed(world[o.node] * o.nodeFromObject);
+      if (b.empty()) continue;
+      for (const glm::vec3& c : {b.lo, b.hi})
+        for (int i = 0; i < 3; ++i)
+          if (!(std::abs(c[i]) <= kMaxCoordinateM))
+            return fmt::format("at {} s: {}: world-space coordinate {} is not finite or beyond ±{} m", t, object.name, c[i], kMaxCoordinateM);
+    }
+    for (const LightAnimation& la : a.lights) {
+      const glm::vec3 p = glm::vec3(lightTransform(la, world, t) * glm::vec4(la.restPosition, 1.0f));
+      if (isPositional(scene.lights[la.light]) && !withinWorld(p))
+        return fmt::format("at {} s: lights[{}]: its position ({}, {}, {}) is not finite or beyond ±{} m", t, la.light, p.x, p.y, p.z,
+                           kMaxCoordinateM);
+    }
+    Camera camera = scene.camera;
+    poseCamera(camera, a.camera, world, t);
+    if (!withinWorld(camera.position) || !withinWorld(camera.target))
+      return fmt::format("at {} s: camera: its position or target is beyond ±{} m", t, kMaxCoordinateM);
+    if (const std::string problem = camera.viewProblem(); !problem.empty()) return fmt::format("at {} s: camera: {}", t, problem);
+  }
+  return "";
+}
+
+void poseScene(Scene& scene, float timeS) {
+  const SceneAnimation& a = scene.animation;
+  if (a.empty()) return;
+  const std::vector<glm::mat4> world = nodeWorlds(a, timeS);
   for (const ObjectAnimation& o : a.objects) scene.objects[o.object].worldFromObject = world[o.node] * o.nodeFromObject;
   for (const LightAnimation& la : a.lights) {
-    const glm::mat4 m = la.node >= 0 ? world[static_cast<size_t>(la.node)]
-                                     : glm::translate(glm::mat4(1.0f), la.pivot) * la.track.matrixAt(timeS) *
-                                           glm::translate(glm::mat4(1.0f), -la.pivot);
+    const glm::mat4 m = lightTransform(la, world, timeS);
     Light& l = scene.lights[la.light];
     l.position = glm::vec3(m * glm::vec4(la.restPosition, 1.0f));
     const glm::vec3 d = glm::mat3(m) * la.restDirection;
@@ -158,17 +252,7 @@ void poseScene(Scene& scene, float timeS) {
   }
   for (const SunPath& s : a.suns)
     scene.lights[s.light].direction = sunDirection(s.azimuthDeg.at(timeS), s.elevationDeg.at(timeS));
-  if (a.camera.node >= 0) {
-    const glm::mat4& m = world[static_cast<size_t>(a.camera.node)];
-    const glm::vec3 forward = glm::mat3(m) * glm::vec3(0.0f, 0.0f, -1.0f), up = glm::mat3(m) * glm::vec3(0.0f, 1.0f, 0.0f);
-    if (glm::length(forward) > 0.0f && glm::length(up) > 0.0f) {  // a node scaled to 0 leaves the camera be
-      scene.camera.position = glm::vec3(m[3]);
-      scene.camera.target = scene.camera.position + glm::normalize(forward);
-      scene.camera.up = glm::normalize(up);
-    }
-  }
-  if (!a.camera.position.empty()) scene.camera.position = a.camera.position.at(timeS);
-  if (!a.camera.target.empty()) scene.camera.target = a.camera.target.at(timeS);
+  poseCamera(scene.camera, a.camera, world, timeS);
 }
 
 }  // namespace penumbra

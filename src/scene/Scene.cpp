@@ -154,6 +154,8 @@ void Scene::validate() const {
   if (const std::string problem = camera.viewProblem(); !problem.empty()) throw Error(fmt::format("{}: camera: {}", where, problem));
   if (const std::string problem = animation.problem(objects.size(), lights.size()); !problem.empty())
     throw Error(fmt::format("{}: {}", where, problem));
+  if (const std::string problem = poseProblem(*this, animation.keyTimes()); !problem.empty())
+    throw Error(fmt::format("{}: {}", where, problem));
 }
 
 }  // namespace penumbra

@@ -92,11 +92,14 @@ void push(Keys<T>& k, float t, const T& v, Interpolation interpolation) {
   k.interpolation = interpolation;
 }
 
-/// translate/rotateDeg/scale keys into a track whose rest is already set.
-void readTrack(const Json& j, const JsonPlace& at, TransformTrack& track, bool allowScale, const std::set<std::string>& extra) {
+/// translate/rotateDeg/scale keys into a track whose rest is already set. `noTranslate`, when
+/// given, is why a key's translate is refused (it would have no effect).
+void readTrack(const Json& j, const JsonPlace& at, TransformTrack& track, bool allowScale, const std::set<std::string>& extra,
+               const char* noTranslate = nullptr) {
   std::set<std::string> fields = {"translate", "rotateDeg"};
   if (allowScale) fields.insert("scale");
   const Interpolation interpolation = readBlock(j, at, extra, fields, [&](const Json& k, const JsonPlace& kp, float t) {
+    if (k.contains("translate") && noTranslate) fail(kp, "translate", noTranslate);
     if (k.contains("translate")) push(track.translationKeys, t, vec3(k, kp, "translate"), Interpolation::Linear);
     if (k.contains("rotateDeg")) push(track.rotationKeys, t, rotationFromDegrees(vec3(k, kp, "rotateDeg")), Interpolation::Linear);
     if (k.contains("scale")) {
@@ -130,8 +133,14 @@ LightAnimation readLightAnimation(const Json& j, const JsonPlace& at, const Ligh
   a.light = index;
   a.restPosition = rest.position;
   a.restDirection = rest.direction;
-  if (j.is_object() && j.contains("pivot")) a.pivot = vec3(j, at, "pivot");
-  readTrack(j, at, a.track, false, {"pivot"});
+  // A sun is a direction: moving it, or turning it about a point, would change nothing.
+  const bool sun = rest.type == LightType::Directional;
+  constexpr const char* kSunHasNoPosition = "a sun has no position (turn its direction with rotateDeg, or give it a sunPath)";
+  if (j.is_object() && j.contains("pivot")) {
+    if (sun) fail(at, "pivot", kSunHasNoPosition);
+    a.pivot = vec3(j, at, "pivot");
+  }
+  readTrack(j, at, a.track, false, {"pivot"}, sun ? kSunHasNoPosition : nullptr);
   return a;
 }
 

@@ -124,6 +124,13 @@ TEST(Animation, BadBlocksNameTheField) {
   EXPECT_NE(load(sceneWith("", R"(, "sunPath": {"keys": [{"timeS": 0, "azimuthDeg": 0}]})"))
                 .find("lights[0].sunPath.keys[0].elevationDeg: missing"),
             std::string::npos);
+  // A sun is a direction: keys that would move it, or a pivot to swing it about, change nothing.
+  EXPECT_NE(load(sceneWith("", R"(, "animation": {"keys": [{"timeS": 0, "rotateDeg": [0, 0, 0]}, {"timeS": 1, "translate": [5, 0, 0]}]})"))
+                .find("lights[0].animation.keys[1].translate: a sun has no position"),
+            std::string::npos);
+  EXPECT_NE(load(sceneWith("", R"(, "animation": {"pivot": [0, 3, 0], "keys": [{"timeS": 0, "rotateDeg": [0, 0, 30]}]})"))
+                .find("lights[0].animation.pivot: a sun has no position"),
+            std::string::npos);
 }
 
 // "dynamic": absent = animated; true marks a still object dynamic; false on an animated object
