@@ -4,6 +4,7 @@
 #include <penumbra/SceneIO.h>
 
 #include "sceneio/AnimationFile.h"
+#include "sceneio/JsonProblem.h"
 #include "sceneio/loaders/ModelImport.h"
 
 #include <fmt/format.h>
@@ -172,6 +173,7 @@ Light readLight(Reader& r) {
   }
   if (l.type == LightType::Spot) {
     if (r.has("target")) {
+      if (r.has("direction")) r.fail("target", "give target or direction, not both (the target sets the direction)");
       const glm::vec3 target = r.vec<3>("target", glm::vec3(0));
       if (glm::length(target - l.position) < 1e-6f) r.fail("target", "equals the position");
       l.direction = glm::normalize(target - l.position);
@@ -193,9 +195,7 @@ Light readLight(Reader& r) {
     if (s.has("updates")) {  // "every", "invalid" or a whole number of maps a frame
       const Json& u = s.raw("updates");
       if (u.is_number()) {
-        // Any budget of at least one map: one above every map the scene has updates them all.
-        constexpr float kMaxBudgetMaps = 1e6f;
-        l.shadow.updates = MapUpdates{MapUpdates::Policy::Budget, s.whole("updates", 1, 1.0f, kMaxBudgetMaps)};
+        l.shadow.updates = MapUpdates{MapUpdates::Policy::Budget, s.whole("updates", 1, 1.0f, static_cast<float>(kMaxBudgetMaps))};
       } else if (u.is_string()) {
         try {
           l.shadow.updates = parseMapUpdates(u.get<std::string>());
@@ -301,26 +301,15 @@ void applyDynamic(Scene& s, const Reader& r, std::optional<bool> declared, const
   }
 }
 
-/// nlohmann's parse message without its "[json.exception…] " tag and without the "last read:"
-/// bytes, which echo whatever the file holds (a PNG's binary header).
-std::string jsonProblem(const Json::exception& e) {
-  std::string what = e.what();
-  if (const size_t tag = what.find("] "); what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
-  if (const size_t bytes = what.find("; last read:"); bytes != std::string::npos) what.erase(bytes);
-  return what;
-}
-
 }  // namespace
 
 Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string file = path.string();
   const std::vector<uint8_t> bytes = loaders::readFileLimited(path, file, kMaxSceneFileBytes);
-  Json j;
-  try {
-    j = Json::parse(bytes.begin(), bytes.end());
-  } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
-    throw Error(fmt::format("{}: not valid JSON: {}", file, jsonProblem(e)));
-  }
+  // Parse errors (and numbers like 1e999, NaN, Infinity) name the field where parsing stopped.
+  if (const std::string problem = sceneio::jsonParseProblem(bytes); !problem.empty())
+    throw Error(fmt::format("{}: not valid JSON: {}", file, problem));
+  const Json j = Json::parse(bytes.begin(), bytes.end());
   Reader top(j, file, "");
   Scene s;
   s.sourceFile = path;

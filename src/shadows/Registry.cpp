@@ -118,6 +118,10 @@ void applyParams(const std::vector<std::pair<std::string, std::string>>& setting
       if (scene.lights.front().type == LightType::Directional && v > kMaxSunAngularRadiusRad)
         throw usageError(fmt::format("light.size={}: the light is a sun, whose size is an angular radius in rad, at most {}",
                                      value, kMaxSunAngularRadiusRad));
+      const float rangeM = scene.lights.front().rangeM;  // as scene files: the range ends outside the sphere
+      if (scene.lights.front().type != LightType::Directional && rangeM > 0.0f && v >= rangeM)
+        throw usageError(fmt::format("light.size={}: the first light's range is {} m; its size (sphere radius) must stay below it", value,
+                                     rangeM));
       scene.lights.front().size = v;
     } else if (projection.hasParam(key)) {
       projection.setParam(key, std::string_view(value));

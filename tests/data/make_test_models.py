@@ -337,6 +337,17 @@ def triangle_gltf(positions=None, indices=(0, 1, 2), mutate=None):
     return g, g.finish_embedded()
 
 
+def moving_triangle_gltf(times, translations, time_format="f", time_component=5126):
+    """One triangle whose node's translation is keyed: `times` (an accessor of `time_component`)
+    and one translation per key."""
+    g, _ = triangle_gltf()
+    t = g.accessor(time_format, list(times), "SCALAR", time_component)
+    v = g.accessor("f", list(translations), "VEC3", 5126)
+    g.doc["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                            "samplers": [{"input": t, "output": v}]}]
+    return g.finish_embedded()
+
+
 def triangle_glb(mutate=None):
     g, _ = triangle_gltf(mutate=mutate)
     g.doc["buffers"] = [{"byteLength": len(g.bin)}]
@@ -460,6 +471,25 @@ def bad_files():
         d["nodes"][0]["extensions"] = {"KHR_lights_punctual": {"light": 0}}
     out["bad_light_size.gltf"] = triangle_gltf(mutate=bad_light)[1]
 
+    # KHR_lights_punctual as scene files are checked: each was accepted (a light that lit nothing,
+    # an unlimited one, a default intensity, a light lost to a default sun).
+    def light(**fields):
+        def mutate(d):
+            d["extensions"] = {"KHR_lights_punctual": {"lights": [dict(type="point", **fields)]}}
+            d["nodes"][0]["extensions"] = {"KHR_lights_punctual": {"light": 0}}
+        return mutate
+    out["gltf_light_range_below_size.gltf"] = triangle_gltf(mutate=light(range=0.2, extras={"size": 0.5}))[1]
+    out["gltf_light_negative_range.gltf"] = triangle_gltf(mutate=light(range=-2))[1]
+    out["gltf_light_intensity_text.gltf"] = triangle_gltf(mutate=light(intensity="bright"))[1]
+
+    def light_extension_array(d):
+        light()(d)
+        d["nodes"][0]["extensions"]["KHR_lights_punctual"] = [{"light": 0}]
+    out["gltf_light_extension_array.gltf"] = triangle_gltf(mutate=light_extension_array)[1]
+    # Animation: key times are floats; a translation to 1e30 m made the triangle vanish.
+    out["gltf_animation_integer_times.gltf"] = moving_triangle_gltf([0, 1], [(0, 0, 0), (1, 0, 0)], "H", 5123)
+    out["gltf_animation_far.gltf"] = moving_triangle_gltf([0.0, 1.0], [(0, 0, 0), (1e30, 0, 0)])
+
     def stride(d):
         d["bufferViews"][0]["byteStride"] = 4
     out["stride_too_small.gltf"] = triangle_gltf(mutate=stride)[1]
@@ -530,6 +560,18 @@ def bad_files():
         {"type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "innerConeDeg": 40, "outerConeDeg": 30}])
     out["scene_light_range_below_size.json"] = with_top(lights=[{"type": "point", "position": [0, 3, 0], "size": 0.5, "range": 0.2}])
     out["scene_binary.json"] = mask_png()  # not JSON: the message must not echo its bytes
+    # Animation within the still pose's bounds: a camera keyed to look straight down its up
+    # vector, a box scaled past ±1e6 m (each rendered empty frames with exit 0).
+    out["scene_camera_animated_down.json"] = with_top(camera={
+        "position": [0, 2, 5], "target": [0, 0, 0],
+        "animation": {"keys": [{"timeS": 0, "position": [0, 2, 5]}, {"timeS": 1, "position": [0, 9, 0]}]}})
+    out["scene_animated_scale_huge.json"] = scene({"shape": "box", "size": [1000, 1000, 1000], "animation": {
+        "keys": [{"timeS": 0, "scale": [1, 1, 1]}, {"timeS": 2, "scale": [1e5, 1, 1]}]}})
+    out["scene_sun_translate_keys.json"] = with_top(lights=[{"type": "sun", "animation": {
+        "keys": [{"timeS": 0, "translate": [0, 0, 0]}, {"timeS": 1, "translate": [5, 0, 0]}]}}])
+    out["scene_spot_target_and_direction.json"] = with_top(lights=[
+        {"type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "direction": [1, -1, 0]}])
+
     return out
 
 

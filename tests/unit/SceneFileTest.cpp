@@ -200,6 +200,7 @@ TEST(SceneFile, BadLightEntriesNameTheField) {
       {R"({"type": "point", "size": 0.5, "range": 0.5})", "lights[1].range: 0.5 m must exceed the light's size 0.5 m"},
       {R"({"type": "spot", "size": 0.1, "range": 0.05})", "lights[1].range: 0.05 m must exceed the light's size 0.1 m"},
       {R"({"type": "spot", "position": [0, 3, 0], "target": [0, 3, 0]})", "lights[1].target: equals the position"},
+      {R"({"type": "spot", "direction": [1, 0, 0], "target": [0, 0, 0]})", "lights[1].target: give target or direction, not both"},
       {R"({"type": "spot", "outerConeDeg": 90})", "lights[1].outerConeDeg: 90 is outside [1, 80.2"},
       {R"({"type": "spot", "outerConeDeg": 0.5})", "lights[1].outerConeDeg: 0.5 is outside [1, 80.2"},
       {R"({"type": "spot", "coneAngleDeg": 120})", "lights[1].coneAngleDeg: 120 is outside [1, 80.2"},
@@ -216,6 +217,8 @@ TEST(SceneFile, BadLightEntriesNameTheField) {
       {R"({"type": "point", "shadow": {"updates": 2.5}})", "lights[1].shadow.updates: 2.5 is not a whole number"},
       {R"({"type": "point", "shadow": {"updates": "0"}})", "lights[1].shadow.updates: map updates '0': expected every, invalid or a number"},
       {R"({"type": "point", "shadow": {"updates": "sometimes"}})", "lights[1].shadow.updates: map updates 'sometimes': expected"},
+      // As a string the number has the number's bound.
+      {R"({"type": "point", "shadow": {"updates": "99999999"}})", "lights[1].shadow.updates: map updates '99999999': expected every, invalid or a number of maps per frame in [1, 1000000]"},
       {R"({"type": "point", "shadow": {"updates": true}})", "lights[1].shadow.updates: expected \"every\", \"invalid\" or a number"},
       {R"({"type": "point", "shadow": {"params": {"pcf.radiusTexels": [2]}}})",
        "lights[1].shadow.params.pcf.radiusTexels: expected a number or a name"},

@@ -419,8 +419,9 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, int
   } else {
     error(sf + ".type", fmt::format("'{}' is not directional, spot or point", src.type));
   }
-  if (src.type != "directional" && src.range > 0.0) {
-    if (!(src.range <= kMaxCoordinateM)) error(sf + ".range", fmt::format("must be at most {} m", kMaxCoordinateM));
+  // KHR_lights_punctual: range > 0 when given (tinygltf reads an absent one as 0: unlimited).
+  if (src.type != "directional" && src.range != 0.0) {
+    if (!(src.range > 0.0 && src.range <= kMaxCoordinateM)) error(sf + ".range", fmt::format("must be in (0, {}] m", kMaxCoordinateM));
     l.rangeM = static_cast<float>(src.range);
   }
   if (src.extras.IsObject() && src.extras.Has("size")) {
@@ -432,6 +433,9 @@ void Converter::addLight(const tinygltf::Node& node, const glm::mat4& world, int
                                              l.type == LightType::Directional ? "angular radius, rad" : "sphere radius, m"));
     l.size = static_cast<float>(size);
   }
+  // As scene files: the range ends outside the light's sphere (a smaller one lights nothing).
+  if (l.rangeM > 0.0f && l.rangeM <= l.size)
+    error(sf + ".range", fmt::format("{} m must exceed the light's size {} m (extras.size)", l.rangeM, l.size));
   if (animNode >= 0) {  // at the node's origin, shining down its -Z, wherever the node goes
     LightAnimation a;
     a.light = static_cast<uint32_t>(mOut.scene.lights.size());
@@ -534,9 +538,12 @@ Model Converter::run() {
       if (!child[i]) roots.push_back(static_cast<int>(i));
   }
   mTracks = readGltfAnimations(g, mFile, [this](int index, int type, const std::string& use) {
-    const AccessorData a = accessor(index, use, type,
-                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                     TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    // Key times (the SCALAR input) are floats (glTF 2.0 §3.11); rotations may be normalized integers.
+    const AccessorData a = type == TINYGLTF_TYPE_SCALAR
+                               ? accessor(index, use, type, {TINYGLTF_COMPONENT_TYPE_FLOAT})
+                               : accessor(index, use, type,
+                                          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                           TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
     std::vector<float> out;
     out.reserve(a.count * static_cast<size_t>(a.components));
     for (size_t i = 0; i < a.count; ++i)

@@ -1,6 +1,7 @@
 // glTF JSON checks before tinygltf (GltfDocument.h).
 #include "sceneio/loaders/GltfDocument.h"
 
+#include "sceneio/JsonProblem.h"
 #include "sceneio/loaders/ModelImport.h"
 
 #include <fmt/format.h>
@@ -169,12 +170,32 @@ void checkRequiredMembers(const Checker& c, const Json& doc) {
     });
   });
   c.array(doc, "", "skins", [&](const Json& s, const std::string& f) { c.members(s, f, {{"joints", Kind::Array}}); });
-  for (const char* name : {"nodes", "materials", "textures", "samplers", "scenes"}) c.array(doc, "", name, [](const Json&, const std::string&) {});
+  for (const char* name : {"materials", "textures", "samplers", "scenes"}) c.array(doc, "", name, [](const Json&, const std::string&) {});
+  // A node's light: tinygltf drops an extension that is not an object (the light would vanish).
+  c.array(doc, "", "nodes", [&](const Json& n, const std::string& f) {
+    if (!n.contains("extensions")) return;
+    c.member(n, f, {"extensions", Kind::Object});
+    const std::string ef = f + ".extensions";
+    if (!n["extensions"].contains("KHR_lights_punctual")) return;
+    c.member(n["extensions"], ef, {"KHR_lights_punctual", Kind::Object});
+    c.members(n["extensions"]["KHR_lights_punctual"], ef + ".KHR_lights_punctual", {{"light", Kind::Index}});
+  });
+  // The lights' members: tinygltf keeps its default for a member of the wrong type ("intensity":
+  // "bright" would shine at 1). The ranges are GltfConverter's.
   if (doc.contains("extensions") && doc["extensions"].is_object() && doc["extensions"].contains("KHR_lights_punctual")) {
     const Json& lights = doc["extensions"]["KHR_lights_punctual"];
     if (!lights.is_object()) fail(c.file(), "extensions.KHR_lights_punctual", "expected an object");
-    c.array(lights, "extensions.KHR_lights_punctual", "lights",
-            [&](const Json& l, const std::string& f) { c.members(l, f, {{"type", Kind::String}}); });
+    c.array(lights, "extensions.KHR_lights_punctual", "lights", [&](const Json& l, const std::string& f) {
+      c.members(l, f, {{"type", Kind::String}});
+      for (const char* key : {"intensity", "range"}) c.member(l, f, {key, Kind::Number}, false);
+      c.member(l, f, {"name", Kind::String}, false);
+      if (l.contains("color") && !(l["color"].is_array() && l["color"].size() == 3 &&
+                                   std::all_of(l["color"].begin(), l["color"].end(), [](const Json& x) { return x.is_number(); })))
+        fail(c.file(), f + ".color", "expected an array of 3 numbers");
+      if (!l.contains("spot")) return;
+      c.member(l, f, {"spot", Kind::Object});
+      for (const char* key : {"innerConeAngle", "outerConeAngle"}) c.member(l["spot"], f + ".spot", {key, Kind::Number}, false);
+    });
   }
 }
 
@@ -201,8 +222,8 @@ void checkViewsInsideBuffers(const Checker& c, const Json& doc) {
 
 nlohmann::json checkGltfDocument(const std::string& file, std::span<const uint8_t> text) {
   if (jsonDepth(text) > kMaxJsonDepth) fail(file, "", fmt::format("JSON nests deeper than {} levels", kMaxJsonDepth));
-  Json doc = Json::parse(text.begin(), text.end(), nullptr, false);
-  if (doc.is_discarded()) fail(file, "", "not valid JSON");
+  if (const std::string problem = sceneio::jsonParseProblem(text); !problem.empty()) fail(file, "", "not valid JSON: " + problem);
+  Json doc = Json::parse(text.begin(), text.end());
   if (!doc.is_object()) fail(file, "", "the glTF document is not a JSON object");
   const Checker c(file);
   checkVersion(c, doc);
