@@ -30,8 +30,12 @@ struct MapUpdates {
   bool operator==(const MapUpdates&) const = default;
 };
 
-/// "every", "invalid" or a number of maps per frame ≥ 1 (a budget). Throws a usage Error that
-/// names the text otherwise.
+/// Most maps a budget names: any budget of at least one map works, and one above every map a
+/// scene has (16 lights, at most 6 views each) updates them all; a larger number is a typo.
+inline constexpr int kMaxBudgetMaps = 1000000;
+
+/// "every", "invalid" or a number of maps per frame in [1, kMaxBudgetMaps] (a budget). Throws a
+/// usage Error that names the text otherwise.
 MapUpdates parseMapUpdates(std::string_view text);
 /// "every", "invalid" or "budget N".
 std::string mapUpdatesName(const MapUpdates& updates);

@@ -1,5 +1,7 @@
 #include "frame/ShadowMaps.h"
 
+#include "gl/Debug.h"
+
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
@@ -23,6 +25,9 @@ void ShadowMapArray::ensure(const std::string& label, int size, int layers, GLen
     mColor = gl::Texture(label + " color", {GL_TEXTURE_2D_ARRAY, colorFormat, size, size, layers, colorLevels});
     mColor.setSampling(mColor.levels() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
   }
+  // Maps too large for the memory fail here, naming their size (a light's own shadow.mapSize
+  // may have asked for it, not --shadow-map).
+  gl::throwIfGlError(fmt::format("the {}: {} maps of {}²", label, layers, size).c_str());
   for (int i = 0; i < layers; ++i) {
     gl::Framebuffer fb(fmt::format("{} layer {}", label, i));
     fb.attach(GL_DEPTH_ATTACHMENT, mDepth, 0, i);

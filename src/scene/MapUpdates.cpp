@@ -12,8 +12,9 @@ MapUpdates parseMapUpdates(std::string_view text) {
   if (text == "invalid") return {MapUpdates::Policy::WhenInvalid};
   int maps = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), maps);
-  if (ec != std::errc() || end != text.data() + text.size() || maps < 1)
-    throw usageError(fmt::format("map updates '{}': expected every, invalid or a number of maps per frame >= 1", text));
+  if (ec != std::errc() || end != text.data() + text.size() || maps < 1 || maps > kMaxBudgetMaps)
+    throw usageError(fmt::format("map updates '{}': expected every, invalid or a number of maps per frame in [1, {}]", text,
+                                 kMaxBudgetMaps));
   return {MapUpdates::Policy::Budget, maps};
 }
 

@@ -122,7 +122,8 @@ TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
   constexpr const char* kLimit = "ulimit -v 3000000 &&";  // KiB: 3 GB, a 16384² moment map needs 4 GiB
   const RunResult r = runPenumbra("render --size 16x16 --filter msm --shadow-map 16384", "", kLimit);
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.err.find("GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try a smaller --shadow-map"),
+  EXPECT_NE(r.err.find("GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try smaller maps, with "
+                       "--shadow-map or a light's shadow.mapSize"),
             std::string::npos) << r.err;
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
 }
