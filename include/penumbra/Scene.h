@@ -84,7 +84,9 @@ enum class LightType { Directional, Spot, Point };
 /// What a scene file may set per light, over the scene's technique (docs/scenes.md).
 struct LightShadowSettings {
   int mapSize = 0;  ///< texels per side of this light's maps; 0 = the technique's (--shadow-map)
-  /// "key" → "value" of the technique's parameters, for this light only.
+  /// "key" → "value" of technique parameters, for this light only: those of the projection and
+  /// filter in use apply (Shadows), another registered technique's wait until it runs (a scene
+  /// written for several techniques); a key of none is an error.
   std::vector<std::pair<std::string, std::string>> params;
   /// When this light's maps are drawn again; none = Shadows::setMapUpdates' policy. A light's own
   /// budget updates that many of its own maps a frame; the lights that follow Shadows' budget

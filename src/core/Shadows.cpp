@@ -52,6 +52,18 @@ private:
   std::optional<core::SavedGlState> mSaved;
 };
 
+/// Whether `key` ("pcss.blockerSamples") is a parameter of a registered projection or filter. A
+/// light's settings may hold keys of techniques other than the one in use (a scene file written
+/// for several): they apply when that technique runs.
+bool isTechniqueParam(std::string_view key) {
+  const std::string id(key.substr(0, key.find('.')));
+  for (const std::string& p : projectionIds())
+    if (p == id) return makeProjection(id)->hasParam(key);
+  for (const std::string& f : filterIds())
+    if (f == id) return makeFilter(id)->hasParam(key);
+  return false;
+}
+
 void checkTexture(uint32_t name, const char* what) {
   if (name != 0 && !glIsTexture(name)) throw usageError(fmt::format("ShadowSurfaces::{} = {} is not a GL texture", what, name));
 }
@@ -187,9 +199,8 @@ struct Shadows::Impl {
     for (const auto& [key, value] : light.shadow.params) {
       if (p.hasParam(key)) p.setParam(key, std::string_view(value));
       else if (f.hasParam(key)) f.setParam(key, std::string_view(value));
-      else
-        throw usageError(fmt::format("light {}: shadow.params.{}: not a parameter of --projection {} or --filter {}", i, key,
-                                     p.id(), f.id()));
+      else if (!isTechniqueParam(key))  // another technique's key waits for it
+        throw usageError(fmt::format("light {}: shadow.params.{}: not a parameter of any projection or filter", i, key));
     }
     return snapshot;
   }
