@@ -22,6 +22,10 @@
 #include <optional>
 
 namespace penumbra::app {
+namespace {
+constexpr double kMaxSecondsPerConfig = 3600.0;  // --max-seconds: an hour of timing per configuration
+}  // namespace
+
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;
@@ -55,7 +59,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   fmt::format("reference light samples per pixel (default {}, as compare; --quick 36)", ReferenceOptions{}.samples))
       ->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--max-seconds", o->maxSeconds, "stop timing a configuration after this many seconds (default 4)")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(finiteNumber(0.0, kMaxSecondsPerConfig));
   sub->add_option("--camera", o->camera,
                   "the view of the run's one scene (--scenes NAME): X,Y,Z:TX,TY,TZ[:FOV], position and target in "
                   "metres, vertical field of view in degrees (default: each scene's own camera)");
@@ -120,6 +124,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     }
 
     checkOutputDir("--out", o->out);
+    if (!o->choosing.empty()) checkOutput("--choosing", o->choosing);
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->verbose});
     checkImageFits(context, settings.width, settings.height, kCompareHostBytesPerPixel);  // each configuration is a compare
     const report::SetupFactory factory = benchSetupFactory(o->camera);

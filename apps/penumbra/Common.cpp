@@ -1,6 +1,7 @@
 #include "Common.h"
 
 #include "base/ProgressBar.h"
+#include "core/ShadowBudget.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Files.h>
@@ -11,6 +12,7 @@
 #include <charconv>
 #include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -77,6 +79,15 @@ void addShadowBudgetOption(CLI::App& app, TechniqueOptions& o) {
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 32));
 }
 
+void addTimeOptions(CLI::App& app, CLI::Option* frames, float& fps, float& timeS, const std::string& timeHelp) {
+  constexpr double kMinFps = 0.001, kMaxFps = 1000.0, kMaxTimeS = 1e6;
+  app.add_option("--fps", fps, "frames per second of the sequence (--frames)")
+      ->check(finiteNumber(kMinFps, kMaxFps))
+      ->capture_default_str()
+      ->needs(frames);
+  app.add_option("--time", timeS, timeHelp)->check(finiteNumber(-kMaxTimeS, kMaxTimeS))->capture_default_str();
+}
+
 void addMapUpdatesOption(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--map-updates", o.mapUpdates,
                  "when shadow maps are drawn again: 'every' map every frame (no cache); 'invalid': each map keeps its "
@@ -118,6 +129,31 @@ void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const 
 std::optional<std::uintmax_t> cacheCapBytes(const std::optional<std::uintmax_t>& mib) {
   constexpr std::uintmax_t kBytesPerMiB = std::uintmax_t{1} << 20;
   return mib ? std::optional(*mib * kBytesPerMiB) : std::nullopt;
+}
+
+CLI::Validator finiteNumber(double lo, double hi, bool aboveLo) {
+  const char* open = aboveLo ? "(" : "[";
+  const std::string range = fmt::format("{}{}, {}]", open, lo, hi);
+  return CLI::Validator(
+      [=](std::string& text) {
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec == std::errc() && end == text.data() + text.size() && std::isfinite(v) && (aboveLo ? v > lo : v >= lo) && v <= hi)
+          return std::string();
+        return fmt::format("{} is not a number in {}", text, range);
+      },
+      fmt::format("FLOAT in {}{} - {}]", open, lo, hi));  // CLI::Range's form in --help
+}
+
+CLI::Validator unsignedNumber() {
+  return CLI::Validator(
+      [](std::string& text) {
+        uint64_t v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec == std::errc() && end == text.data() + text.size() && !text.empty()) return std::string();
+        return fmt::format("{} is not a whole number in [0, {}]", text, UINT64_MAX);
+      },
+      fmt::format("UINT in [0 - {}]", UINT64_MAX));
 }
 
 std::pair<int, int> parseSize(const std::string& text) {
@@ -214,6 +250,62 @@ auto sceneChoice(const Scene& scene, const std::string& field, F&& f) {
   }
 }
 
+/// The projection or filter whose id begins `key` ("pcss" of "pcss.blockerSamples"), at its
+/// defaults, or nothing.
+std::unique_ptr<Parameterized> techniqueOf(const std::string& key) {
+  const std::string id = key.substr(0, key.find('.'));
+  const std::vector<std::string> projections = projectionIds(), filters = filterIds();
+  if (std::find(projections.begin(), projections.end(), id) != projections.end()) return makeProjection(id);
+  if (std::find(filters.begin(), filters.end(), id) != filters.end()) return makeFilter(id);
+  return nullptr;
+}
+
+/// Checks a scene file's technique setting (shadow.params.KEY, a light's too) against the
+/// technique the key names, whether or not that technique runs now: a key or value that technique
+/// refuses is bad input in the file, the same under every --filter. Returns whether the key is of
+/// the technique in use (else it waits for it: bench and tune run several techniques over one
+/// file; --verbose lists what is not applied).
+bool checkTechniqueSetting(const Setup& s, const std::string& field, const std::pair<std::string, std::string>& kv, bool verbose) {
+  const auto& [key, value] = kv;
+  sceneChoice(s.scene, field, [&] {
+    const std::unique_ptr<Parameterized> technique = techniqueOf(key);
+    if (!technique)
+      throw usageError(fmt::format("no technique '{}' (penumbra list shows them; a key is technique.name)", key.substr(0, key.find('.'))));
+    technique->setParam(key, std::string_view(value));
+  });
+  const bool inUse = s.projection->hasParam(key) || s.filter->hasParam(key);
+  if (!inUse && verbose)
+    std::fprintf(stderr, "penumbra: %s: %s=%s not applied: not a parameter of --projection %s or --filter %s\n",
+                 sceneFile(s.scene).c_str(), field.c_str(), value.c_str(), std::string(s.projection->id()).c_str(),
+                 std::string(s.filter->id()).c_str());
+  return inUse;
+}
+
+/// Refuses a --shadow-budget below what the scene's maps take at their smallest (each map's side
+/// at core::kMinBudgetMapSize): it could not be kept, only exceeded. The maps are counted as the
+/// projection makes them for each shadowed light (cascades, cube faces), its own params applied.
+void checkShadowBudget(const Setup& s) {
+  const int64_t budget = s.render.shadowBudgetTexels;
+  if (budget <= 0) return;
+  const SceneExtent extent = s.scene.extent();
+  const float aspect = static_cast<float>(s.render.width) / static_cast<float>(s.render.height);
+  int64_t maps = 0, lights = 0;
+  for (const Light& l : s.scene.lights) {
+    if (!l.castsShadow || !s.projection->incompatibility(l).empty()) continue;  // the latter is refused by name later
+    const std::unique_ptr<Projection> p = makeProjection(s.projection->id());
+    static_cast<Parameterized&>(*p) = static_cast<const Parameterized&>(*s.projection);
+    for (const auto& [key, value] : l.shadow.params)
+      if (p->hasParam(key)) p->setParam(key, std::string_view(value));
+    maps += static_cast<int64_t>(p->computeFrusta(s.scene.camera, aspect, l, extent, core::kMinBudgetMapSize).views.size());
+    ++lights;
+  }
+  const int64_t least = maps * core::kMinBudgetMapSize * core::kMinBudgetMapSize;
+  if (budget < least)
+    throw usageError(fmt::format("--shadow-budget {}: the scene's {} shadowed light{} draw {} maps, {} texels at the smallest side ({}²); "
+                                 "give at least {}, or 0 for no budget",
+                                 budget, lights, lights == 1 ? "" : "s", maps, least, core::kMinBudgetMapSize, least));
+}
+
 }  // namespace
 
 Setup makeSetup(const TechniqueOptions& o) {
@@ -229,20 +321,19 @@ Setup makeSetup(const TechniqueOptions& o) {
                               : sceneChoice(s.scene, "shadow.projection", [&] { return makeProjection(s.scene.shadow.projection); });
   s.filter = o.filter ? makeFilter(*o.filter) : sceneChoice(s.scene, "shadow.filter", [&] { return makeFilter(s.scene.shadow.filter); });
   // The scene's own params apply when they belong to the technique in use (a scene may carry
-  // settings for several); --set applies strictly.
+  // settings for several), and are checked all the same; --set applies strictly.
   for (const auto& kv : s.scene.shadow.params) {
     const std::string field = "shadow.params." + kv.first;
     const std::string prefix = kv.first.substr(0, kv.first.find('.'));
     const bool addOn = std::any_of(addOnGroups().begin(), addOnGroups().end(),
                                    [&](const AddOnGroup& g) { return !g.params.empty() && g.params.front().key.starts_with(prefix + "."); });
-    if (prefix == "light" || addOn || prefix == s.projection->id() || prefix == s.filter->id()) {
+    if (prefix == "light" || addOn || checkTechniqueSetting(s, field, kv, o.verbose))
       sceneChoice(s.scene, field, [&] { applyParams({kv}, s.scene, *s.projection, *s.filter, s.addOns.get()); });
-    } else {
-      const std::vector<std::string> p = projectionIds(), f = filterIds();
-      if (std::find(p.begin(), p.end(), prefix) == p.end() && std::find(f.begin(), f.end(), prefix) == f.end())
-        throw Error(fmt::format("{}: {}: no technique '{}'", sceneFile(s.scene), field, prefix));
-    }
   }
+  // A light's own params: Shadows applies those of the technique in use (penumbra/Scene.h).
+  for (size_t i = 0; i < s.scene.lights.size(); ++i)
+    for (const auto& kv : s.scene.lights[i].shadow.params)
+      checkTechniqueSetting(s, fmt::format("lights[{}].shadow.params.{}", i, kv.first), kv, o.verbose);
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
   applyParams(cli, s.scene, *s.projection, *s.filter, s.addOns.get());
@@ -257,8 +348,21 @@ Setup makeSetup(const TechniqueOptions& o) {
   if (s.render.shadowMapSize < 16)
     throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
   s.render.shadowBudgetTexels = o.shadowBudgetTexels;
+  checkShadowBudget(s);
   s.mapUpdates = parseMapUpdates(o.mapUpdates);
   return s;
+}
+
+std::vector<float> sequenceTimes(float timeS, std::optional<int> frames, float fps) {
+  if (!frames) return timeS != 0.0f ? std::vector<float>{timeS} : std::vector<float>{};
+  std::vector<float> times;
+  for (int f = 0; f < *frames; ++f) times.push_back(timeS + static_cast<float>(f) / fps);
+  return times;
+}
+
+void checkPoses(const Scene& scene, std::span<const float> timesS) {
+  if (const std::string problem = poseProblem(scene, timesS); !problem.empty())
+    throw Error(fmt::format("{}: {}", sceneFile(scene), problem));
 }
 
 report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera) {

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,15 @@ struct Setup {
 /// for anything unknown or out of range).
 Setup makeSetup(const TechniqueOptions& o);
 
+/// The scene's times (s) of a sequence's frames, as renderSequence and compareSequence pose them:
+/// --time, --time + 1/--fps, … (--frames N); without --frames --time alone, none when it is 0
+/// (the still scene).
+std::vector<float> sequenceTimes(float timeS, std::optional<int> frames, float fps);
+/// Throws penumbra::Error (exit 1) naming the scene's file when the scene posed at one of
+/// `timesS` leaves what its still pose keeps (poseProblem: a camera with no view, geometry beyond
+/// ±1e6 m): before any frame is drawn, so that nothing is written.
+void checkPoses(const Scene& scene, std::span<const float> timesS);
+
 /// The factory runBench (bench, tune) makes each configuration with: makeSetup on its scene,
 /// technique and params (as --set), with `camera` (--camera) when given.
 report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera);
@@ -103,6 +113,18 @@ std::string commandLine();
 /// --max-memory's text ("1500" MiB, or with a unit: "512M", "8G", "1.5GiB") in bytes; throws a
 /// usage error otherwise.
 uint64_t parseMemorySize(const std::string& text);
+
+/// Adds --fps (frames per second of the sequence --frames gives, refused without it) and --time
+/// (the scene's time in seconds, as far as a scene file's key times reach: ±1e6 s), each checked
+/// finite and in range while the command line is read (render and compare).
+void addTimeOptions(CLI::App& app, CLI::Option* frames, float& fps, float& timeS, const std::string& timeHelp);
+
+/// The check of a floating-point option: a finite number in [lo, hi] ((lo, hi] with `aboveLo`).
+/// CLI::Range and CLI::PositiveNumber let NaN through (every comparison with it is false).
+CLI::Validator finiteNumber(double lo, double hi, bool aboveLo = false);
+/// The check of an unsigned whole-number option (a seed): digits only, at most UINT64_MAX (the
+/// conversion alone would read "-1" as 2^64 - 1).
+CLI::Validator unsignedNumber();
 
 /// "640x360" → (640, 360); throws a usage error otherwise.
 std::pair<int, int> parseSize(const std::string& text);

@@ -92,17 +92,17 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--shimmer", o->shimmer,
                   "also move the camera by small steps over N frames and report shimmer_pct (world points near shadow edges whose V changes by > 0.1 between frames)")
       ->check(CLI::Range(1, 1000));
-  sub->add_option("--frames", o->frames,
+  CLI::Option* frames = sub->add_option("--frames", o->frames,
                   "also render the animated scene's frames at --time, --time + 1/--fps, ... and compare each with its reference: "
                   "rmse_mean, rmse_worst_frame, flicker_pct (followed surface points whose V changes by > 0.1 between consecutive "
                   "frames while V_ref changes by < 0.02), lag_rmse and ghost_pct (the error, and the share off by > 0.1, on pixels "
                   "whose V_ref changed by > 0.1 within the last 4 frames); the images and the other metrics are of the first frame")
       ->check(CLI::Range(1, 100000));
-  sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
-  sub->add_option("--time", o->timeS, "the scene's time in seconds of the (first) frame")->check(CLI::Range(-1e6, 1e6))->capture_default_str();
+  addTimeOptions(*sub, frames, o->fps, o->timeS, "the scene's time in seconds of the (first) frame");
   commands.push_back({sub, [o] {
     checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
+    checkPoses(s.scene, sequenceTimes(o->timeS, o->frames, o->fps));
     if (o->frames || o->timeS != 0.0f) poseScene(s.scene, o->timeS);  // unposed: the still scene exactly
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, s.render.width, s.render.height, kCompareHostBytesPerPixel);

@@ -4,6 +4,7 @@
 #include "Commands.h"
 #include "Common.h"
 
+#include "base/AtomicFile.h"
 #include "platform/Context.h"
 #include "report/BenchResults.h"
 
@@ -15,12 +16,19 @@
 #include <penumbra/Animation.h>
 #include <penumbra/Error.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <vector>
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace penumbra::app {
 namespace {
@@ -37,12 +45,49 @@ std::optional<std::filesystem::path> findFfmpeg() {
   return std::nullopt;
 }
 
-/// Single-quoted for the shell.
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+/// A command line for messages: the words, those with a space or a quote single-quoted (as a
+/// shell would read them back).
+std::string displayed(const std::vector<std::string>& argv) {
+  std::string out;
+  for (const std::string& a : argv) {
+    if (!out.empty()) out += ' ';
+    if (!a.empty() && a.find_first_of(" '\"\\$`") == std::string::npos) {
+      out += a;
+      continue;
+    }
+    out += '\'';
+    for (char c : a) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    out += '\'';
+  }
+  return out;
 }
+
+/// Runs the program argv[0] with the arguments argv[1..] (no shell: nothing in them is
+/// interpreted) and waits for it. Returns "" when it exits 0, else what happened.
+std::string runProgram(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (const int e = posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ); e != 0)
+    return fmt::format("cannot start it ({})", std::strerror(e));
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return fmt::format("cannot wait for it ({})", std::strerror(errno));
+  if (WIFEXITED(status)) return WEXITSTATUS(status) == 0 ? "" : fmt::format("it exited with status {}", WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return fmt::format("it was stopped by signal {}", WTERMSIG(status));
+  return "it ended abnormally";
+}
+
+/// `text` for an ffmpeg image-sequence pattern, where '%' starts a conversion: "50%" → "50%%".
+std::string patternLiteral(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
+/// "out/penumbra.png" → "out/penumbra.mp4": the sequence's video.
+std::filesystem::path videoPath(const std::string& out) { return std::filesystem::path(out).replace_extension(".mp4"); }
 
 /// "out/penumbra.png" → "out/penumbra-0007.png" (frame 7).
 std::filesystem::path framePath(const std::filesystem::path& out, int frame) {
@@ -86,16 +131,23 @@ std::string renderSequence(Renderer& renderer, const Setup& s, const std::string
   }
   std::string written = fmt::format("wrote {} frames {}..{} at {} fps from {} s", frames, first.string(), framePath(out, frames - 1).string(), fps, startS);
   if (renderer.scene().animation.empty()) written += " (the scene has no animation: every frame is the same)";
-  const std::filesystem::path video = std::filesystem::path(out).replace_extension(".mp4");
+  const std::filesystem::path video = videoPath(out);
   const std::optional<std::filesystem::path> ffmpeg = findFfmpeg();
   if (!ffmpeg) return written + fmt::format("; no {} (ffmpeg is not on the PATH: install it for an MP4)", video.string());
-  const std::filesystem::path pattern = std::filesystem::path(out).parent_path() /
-                                        (std::filesystem::path(out).stem().string() + "-%04d" + std::filesystem::path(out).extension().string());
+  const std::filesystem::path o(out);
+  const std::string pattern = (o.parent_path() / patternLiteral(o.stem().string() + "-")).string() + "%04d" +
+                              patternLiteral(o.extension().string());
+  // Written to a temporary name and renamed, as every output (penumbra/Files.h): the container
+  // is named, since the temporary name's ending is not ".mp4".
+  AtomicFile file(video);
   // yuv420p (what players expect) needs even sides: pad by one pixel where odd.
-  const std::string command = fmt::format("{} -y -loglevel error -framerate {} -i {} -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 "
-                                          "-pix_fmt yuv420p {}",
-                                          quoted(ffmpeg->string()), fps, quoted(pattern.string()), quoted(video.string()));
-  if (std::system(command.c_str()) != 0) throw Error(fmt::format("ffmpeg failed to write {} (the PNG frames are written): {}", video.string(), command));
+  const std::vector<std::string> argv = {ffmpeg->string(), "-y", "-loglevel", "error", "-framerate", fmt::format("{}", fps),
+                                         "-i", pattern, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
+                                         "-pix_fmt", "yuv420p", "-f", "mp4", file.temporary().string()};
+  if (const std::string problem = runProgram(argv); !problem.empty())
+    throw Error(fmt::format("ffmpeg failed to write {}: {} (the PNG frames are written; its command: {})", video.string(), problem,
+                            displayed(argv)));
+  file.commit();
   return written + fmt::format(" and {}", video.string());
 }
 
@@ -128,16 +180,18 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
                                         "(penumbra.png -> penumbra-0000.png, penumbra-0001.png, ...; and penumbra.mp4 through ffmpeg when "
                                         "it is on the PATH)")
                             ->check(CLI::Range(1, 100000));
-  sub->add_option("--fps", o->fps, "frames per second of the sequence (--frames)")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
-  sub->add_option("--time", o->timeS, "the scene's time in seconds of the frame (of the first frame with --frames)")
-      ->check(CLI::Range(-1e6, 1e6))
-      ->capture_default_str();
+  addTimeOptions(*sub, frames, o->fps, o->timeS, "the scene's time in seconds of the frame (of the first frame with --frames)");
   for (const char* single : {"--repeat", "--visibility", "--dump"}) frames->excludes(single);
   commands.push_back({sub, [o] {
     checkOutput("--out", o->out);
     if (!o->visibility.empty()) checkOutput("--visibility", o->visibility);
     if (!o->dump.empty()) checkOutputDir("--dump", o->dump);
+    if (o->frames) {
+      checkOutput("--out", framePath(o->out, *o->frames - 1).string());  // the longest name
+      if (findFfmpeg()) checkOutput("--out", videoPath(o->out).string());
+    }
     Setup s = makeSetup(o->technique);
+    checkPoses(s.scene, sequenceTimes(o->timeS, o->frames, o->fps));
     s.render.triangleIds = false;  // nothing here traces the reference: the frame writes what it shows
     gl::HeadlessContext context({.debug = gl::kDebugBuild, .verbose = o->technique.verbose});
     checkImageFits(context, s.render.width, s.render.height,
@@ -145,7 +199,6 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     if (o->frames) {
-      checkOutput("--out", framePath(o->out, 0).string());
       std::printf("%s\n", renderSequence(renderer, s, o->out, *o->frames, o->fps, o->timeS, o->technique.verbose,
                                           context.info().renderer).c_str());
       return 0;

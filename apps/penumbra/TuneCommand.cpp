@@ -7,6 +7,7 @@
 #include "platform/Context.h"
 #include "report/TuneReport.h"
 #include "report/TuneRunner.h"
+#include "report/TuneSearch.h"
 #include "report/TuneShards.h"
 
 #include <penumbra/Error.h>
@@ -14,11 +15,23 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 namespace penumbra::app {
+namespace {
+
+// The bounds of tune's numeric options: each far above any useful value, so that only a typo
+// (or NaN, infinity, a negative) is refused.
+constexpr double kMaxBudgetMs = 1e6;      // a whole frame's shadow cost in milliseconds
+constexpr double kMaxBudgetMiB = 1e9;     // MiB of GPU memory
+constexpr double kMaxErrorTarget = 100;   // the objectives: RMSE in [0, 1], leak in %
+constexpr double kMaxTuneMinutes = 1e6;   // about two years
+
+}  // namespace
 
 void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
@@ -67,11 +80,12 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "whole shadow cost per frame (shadow + prefilter + visibility, median ms on this machine) at most this "
                   "(default: the default configuration's own cost; with several techniques the dearest default's; with "
                   "--objective acne none)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--budget-mb", o->budgetMb, "GPU memory the technique keeps, at most this many MiB")->check(CLI::PositiveNumber);
+      ->check(finiteNumber(0.0, kMaxBudgetMs, true));
+  sub->add_option("--budget-mb", o->budgetMb, "GPU memory the technique keeps, at most this many MiB")
+      ->check(finiteNumber(0.0, kMaxBudgetMiB, true));
   sub->add_option("--max-error", o->maxError,
                   "an error target instead: the cheapest configuration whose objective is at most this")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteNumber(0.0, kMaxErrorTarget));
   sub->add_option("--objective", o->objective,
                   "what the error is: rmse (every lit pixel), penumbra_rmse (the reference's penumbra only), leak "
                   "(% of pixels too bright), acne (the filter's bias parameters only: acne, over-darkening where the "
@@ -81,7 +95,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--max-minutes", o->maxMinutes,
                   "time for the whole run: the coordinate descent stops early when its next round would pass it (the "
                   "screen, full-size and confirm stages always run)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(finiteNumber(0.0, kMaxTuneMinutes, true));
   sub->add_option("--size", o->technique.size, "full image size WxH, as compare (the screen stage uses a quarter of each side, the shorter at least 32)")
       ->capture_default_str();
   sub->add_option("--shadow-map", o->technique.shadowMapSize,
@@ -93,7 +107,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--candidates", o->candidates, "Latin-hypercube candidates per technique in the screen stage")
       ->capture_default_str()->check(CLI::Range(1, 1000));
-  sub->add_option("--seed", o->seed, "seed of the candidates")->capture_default_str();
+  sub->add_option("--seed", o->seed, "seed of the candidates")->check(unsignedNumber())->capture_default_str();
   sub->add_option("--out", o->out,
                   "output folder: tune.json, tune.html, evaluations.jsonl (every configuration measured: a rerun with "
                   "the same folder resumes from it)")
@@ -133,8 +147,28 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     const Setup scene = makeSetup(o->technique);
     req.filters = o->filters.empty() ? std::vector<std::string>{std::string(scene.filter->id())} : o->filters;
     req.projections = o->projections.empty() ? std::vector<std::string>{std::string(scene.projection->id())} : o->projections;
-    for (const std::string& f : req.filters) (void)makeFilter(f);
-    for (const std::string& p : req.projections) (void)makeProjection(p);
+    // --params: each key is searched somewhere, and each technique has a key to search.
+    std::vector<std::unique_ptr<Filter>> filters;
+    std::vector<std::unique_ptr<Projection>> projections;
+    for (const std::string& f : req.filters) filters.push_back(makeFilter(f));
+    for (const std::string& p : req.projections) projections.push_back(makeProjection(p));
+    const auto mapKey = [](const std::string& key) { return key == report::kMapSizeKey || key == report::kMapBudgetKey; };
+    const auto has = [](const auto& techniques, const std::string& key) {
+      return std::any_of(techniques.begin(), techniques.end(), [&](const auto& t) { return t->hasParam(key); });
+    };
+    for (const std::string& key : o->params)
+      if (!mapKey(key) && !has(filters, key) && !has(projections, key))
+        throw usageError(fmt::format("--params {}: not a parameter of --filters {} or --projections {} (penumbra list shows "
+                                     "their keys), nor {} or {}",
+                                     key, joinNames(req.filters, ","), joinNames(req.projections, ","), report::kMapSizeKey,
+                                     report::kMapBudgetKey));
+    if (!o->params.empty() && std::none_of(o->params.begin(), o->params.end(), mapKey))
+      for (const auto& f : filters)
+        for (const auto& p : projections)
+          if (std::none_of(o->params.begin(), o->params.end(), [&](const std::string& k) { return f->hasParam(k) || p->hasParam(k); }))
+            throw usageError(fmt::format("tune: {} · {} has no parameter to search among --params {} (give one of its keys, or "
+                                         "tune it apart)",
+                                         f->id(), p->id(), joinNames(o->params, ",")));
     req.settings.width = scene.render.width;
     req.settings.height = scene.render.height;
     req.settings.shadowMapSize = o->technique.shadowMapSize;

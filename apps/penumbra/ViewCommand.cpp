@@ -13,6 +13,9 @@
 #include <memory>
 
 namespace penumbra::app {
+namespace {
+constexpr int kMaxViewerFrames = 1000000000;  // --frames: about 200 days at 60 frames a second
+}  // namespace
 
 void addViewCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
@@ -25,7 +28,7 @@ void addViewCommand(CLI::App& app, std::vector<Command>& commands) {
   o->technique.size = "1280x720";
   CLI::App* sub = app.add_subcommand("view", "interactive viewer: panels for every parameter, debug views, timings, heatmap");
   addTechniqueOptions(*sub, o->technique);
-  sub->add_option("--frames", o->frames, "stop after this many frames (0 = when the window is closed)")->check(CLI::NonNegativeNumber);
+  sub->add_option("--frames", o->frames, "stop after this many frames (0 = when the window is closed)")->check(CLI::Range(0, kMaxViewerFrames));
   sub->add_option("--script", o->script, "run the actions in this file (listed below; docs/viewer.md), then exit");
   sub->add_option("--shader-dir", o->shaderDir,
                   "source tree to hot-reload shaders from (default: this build's source tree, if present)");

@@ -117,7 +117,11 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
             sweepUsed[i] = true;
             std::vector<std::vector<std::pair<std::string, std::string>>> next;
             for (const float v : sweep.values(*desc)) {
-              checkParamValue(*desc, v);  // usage error naming the key
+              try {
+                checkParamValue(*desc, v);
+              } catch (const Error& e) {  // named by the option it came from
+                throw usageError(fmt::format("--sweep {}: {}", sweep.key, e.what()));
+              }
               for (auto combo : combos) {
                 combo.emplace_back(sweep.key, formatParamValue(*desc, v));
                 next.push_back(std::move(combo));

@@ -140,7 +140,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
         throw usageError(fmt::format("tune: {} · {} has no parameter to search{}", f, p,
                                      request.objective == TuneObjective::Acne ? " (no bias parameter)"
                                      : request.searchKeys.empty()            ? ""
-                                                                             : " among --params"));
+                                                                             : " among --params " + joinNames(request.searchKeys, ",")));
       t.center = defaultCandidate(t.space);
       techniques.push_back(std::move(t));
     }

@@ -6,8 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 using namespace penumbra::test;
 
@@ -68,4 +70,74 @@ TEST(LightsCli, CompareListsEveryLightWithItsMetrics) {
 TEST(LightsCli, GltfLampsRender) {
   const RunResult r = runPenumbra("render --scene '" PENUMBRA_TEST_DATA "/models/lamps.gltf' --filter pcf --size 64x48 --out lamps.png");
   EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+// A light's own shadow.params are checked at load against the technique they name, under any
+// --filter (exit 1 naming the file, the light and the field), and wait for that technique: the
+// docs' own examples (docs/lights.md: a point light with pcss.blockerSamples) render under the
+// default filter, --verbose says what is not applied, and bench runs hard and pcss on one file.
+TEST(LightsCli, LightParamsAreCheckedAtLoadAndAppliedWithTheirTechnique) {
+  const std::string dir = freshDir("light-params");
+  const auto scene = [&](const std::string& params) {
+    std::ofstream(dir + "/lamp.json") << R"({"lights": [{"type": "sun", "direction": [0.3, -1, 0.2]},
+      {"type": "point", "position": [0, 2.4, 0], "size": 0.05, "range": 8, "shadow": {"mapSize": 64, "params": {)"
+                                      << params << R"(}}}], "objects": [{"shape": "plane"}, {"shape": "box"}]})";
+  };
+  scene(R"("pcss.blockerSamples": 32)");
+  RunResult r = runPenumbra("render --scene lamp.json --size 24x16 --shadow-map 64 --verbose --out a.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("lamp.json: lights[1].shadow.params.pcss.blockerSamples=32 not applied: not a parameter of --projection "
+                       "uniform or --filter hard"),
+            std::string::npos) << r.err;
+  r = runPenumbra("render --scene lamp.json --filter pcss --size 24x16 --shadow-map 64 --verbose --out b.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("not applied"), std::string::npos) << "pcss takes it: " << r.err;
+  r = runPenumbra("bench --scenes lamp.json --filters hard,pcss --projections uniform --size 64x48 --shadow-map 256 --samples 1 "
+                  "--frames 1 --micro-rounds 1 --out bench",
+                  dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("2 configurations measured, 0 skipped (0 failed)"), std::string::npos) << r.out;
+
+  struct Case {
+    std::string params, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {R"("hard.constantBias": 5)", "lamp.json: lights[1].shadow.params.hard.constantBias: hard.constantBias=5 is out of range"},
+           {R"("pcss.nosuch": 1)", "lamp.json: lights[1].shadow.params.pcss.nosuch: unknown parameter 'pcss.nosuch'"},
+           {R"("blurry.radius": 1)", "lamp.json: lights[1].shadow.params.blurry.radius: no technique 'blurry'"},
+           {R"("pcss.blockerSamples": "many")", "lamp.json: lights[1].shadow.params.pcss.blockerSamples: pcss.blockerSamples=many: not a number"},
+       }) {
+    scene(c.params);
+    for (const char* filter : {"hard", "pcss"}) {
+      r = runPenumbra("render --scene lamp.json --size 24x16 --out bad.png --filter " + std::string(filter), dir);
+      EXPECT_EQ(r.exitCode, 1) << c.params << " under " << filter;
+      EXPECT_NE(r.err.find(c.message), std::string::npos) << c.params << " under " << filter << ": " << r.err;
+      EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/bad.png"));
+}
+
+// glTF lights are held to the scene files' rules, and --set light.size to the range it must stay
+// below (each was accepted: compare then scored 0 pixels).
+TEST(LightsCli, GltfLightsAndLightSizeKeepTheSceneFilesRules) {
+  const std::string bad = std::string(PENUMBRA_TEST_DATA) + "/bad/";
+  struct Case {
+    std::string file, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"gltf_light_range_below_size.gltf", "extensions.KHR_lights_punctual.lights[0].range: 0.2 m must exceed the light's size 0.5 m"},
+           {"gltf_light_negative_range.gltf", "extensions.KHR_lights_punctual.lights[0].range: must be in (0, 1000000] m"},
+           {"gltf_light_intensity_text.gltf", "extensions.KHR_lights_punctual.lights[0].intensity: expected a number"},
+           {"gltf_light_extension_array.gltf", "nodes[0].extensions.KHR_lights_punctual: expected an object"},
+           {"gltf_animation_integer_times.gltf", "accessors[2]: componentType 5123 is not allowed for animations[0].samplers[0].input"},
+       }) {
+    const RunResult r = runPenumbra("render --size 16x16 --scene " + bad + c.file);
+    EXPECT_EQ(r.exitCode, 1) << c.file;
+    EXPECT_NE(r.err.find(c.file + ": " + c.message), std::string::npos) << c.file << ": " << r.err;
+  }
+  const RunResult r = runPenumbra("render --scene room --set light.size=10 --size 16x16");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("light.size=10: the first light's range is 6 m; its size (sphere radius) must stay below it"), std::string::npos)
+      << r.err;
 }

@@ -102,10 +102,19 @@ TEST(TuneCli, BadInputFailsWithOneClearLine) {
            {"tune --scene pen --cost guessed", "--cost guessed"},
            {"tune --scene pen --cost model --budget-ms 5", "--cost model"},
            {"tune --scene pen,nosuch", "nosuch"},
+           // --params: every key is a parameter of a technique tuned, or the maps' keys.
+           {"tune --scene pen --filters pcf --params pcf.radiusTexels,nosuch.key",
+            "--params nosuch.key: not a parameter of --filters pcf or --projections uniform"},
+           {"tune --scene pen --filters pcf --params nosuch.key", "--params nosuch.key: not a parameter"},
+           {"tune --scene pen --filters pcf --params hard.bias", "--params hard.bias: not a parameter of --filters pcf"},
+           {"tune --scene pen --filters hard,pcf --params pcf.radiusTexels",
+            "hard · uniform has no parameter to search among --params pcf.radiusTexels"},
        }) {
     const RunResult r = runPenumbra(k.args, dir);
-    EXPECT_NE(r.exitCode, 0) << k.args;
+    EXPECT_EQ(r.exitCode, 2) << k.args;
     EXPECT_NE(r.err.find(k.message), std::string::npos) << k.args << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    EXPECT_FALSE(fs::exists(fs::path(dir) / "tune")) << k.args << " wrote its output folder";
   }
 }
 
