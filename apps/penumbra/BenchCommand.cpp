@@ -24,6 +24,7 @@
 namespace penumbra::app {
 namespace {
 constexpr double kMaxSecondsPerConfig = 3600.0;  // --max-seconds: an hour of timing per configuration
+constexpr double kMaxScaleMTriangles = 100.0;    // --scale: millions of triangles of one generated grid
 }  // namespace
 
 void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
@@ -78,7 +79,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "from OBJ, rendered (G-buffer and shadow pass times per triangle) and given to the reference (BVH build time "
                   "and memory); 0 = none (default: 0.5,2,8 in the default run, none in --quick and custom runs)")
       ->delimiter(',')
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(finiteNumber(0.0, kMaxScaleMTriangles));
   sub->add_flag("--scale-only", o->scaleOnly, "only the triangle-count plan (--scale, default 0.5,2,8): no configurations, no micro-benchmarks");
   sub->add_option("--micro-rounds", o->microRounds, "timed rounds of the micro-benchmarks (default 9; --quick 3)")
       ->check(CLI::Range(1, 1000));

@@ -1,10 +1,10 @@
 // Bad numbers everywhere a number goes in: NaN, ±infinity, huge and negative values fed to every
 // numeric option of every subcommand (found in each subcommand's --help, so that a new option is
 // covered the day it is added), to the options whose text holds numbers (--size, --camera, --set,
-// --map-updates, --shard, --sweep, PENUMBRA_CACHE_MAX_MB), and to every numeric light field of a
-// scene file and of a glTF file. Each run must exit 1 or 2 with one line naming the option or the
-// field, and write nothing: options are checked before any scene is loaded or any GL work, files
-// as they load. Runs go four at a time; the test takes seconds.
+// --map-updates, --max-memory, --shard, --sweep, PENUMBRA_CACHE_MAX_MB), and to every numeric light
+// field of a scene file and of a glTF file. Each run must exit 1 or 2 with one line naming the
+// option or the field, and write nothing: options are checked before any scene is loaded or any GL
+// work, files as they load. Runs go four at a time; the test takes seconds.
 #include "CliSupport.h"
 
 #include <gtest/gtest.h>
@@ -154,6 +154,8 @@ TEST(BadNumbersCli, EveryNumericOptionOfEverySubcommandRefusesThemBeforeAnyWork)
       {"render", "--set", "pcf.radiusTexels={}", "pcf.radiusTexels", "--filter pcf"},
       {"render", "--set", "contact.lengthM={}", "contact.lengthM", ""},
       {"render", "--map-updates", "{}", "--map-updates", ""},
+      {"render", "--max-memory", "{}", "--max-memory", ""},
+      {"compare", "--max-memory", "{}G", "--max-memory", ""},
       {"compare", "--map-updates", "{}", "--map-updates", ""},
       {"compare", "--camera", "1,1,1:0,0,0:{}", "--camera", ""},
       {"view", "--size", "{}x16", "--size", ""},
