@@ -141,3 +141,26 @@ TEST(LightsCli, GltfLightsAndLightSizeKeepTheSceneFilesRules) {
   EXPECT_NE(r.err.find("light.size=10: the first light's range is 6 m; its size (sphere radius) must stay below it"), std::string::npos)
       << r.err;
 }
+
+// A --shadow-budget below what the maps take at their smallest side (16² each) could only be
+// exceeded, never kept: it is refused before any work, naming the maps and the least budget
+// (night's eight lamps draw 28 maps: 4 spots, 4 point lights of 6 faces). The least is kept.
+TEST(LightsCli, AShadowBudgetBelowTheMapsLeastIsRefused) {
+  const std::string dir = freshDir("light-budget");
+  RunResult r = runPenumbra("render --scene night --size 16x16 --shadow-budget 7167 --out below.png", dir);
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("--shadow-budget 7167: the scene's 8 shadowed lights draw 28 maps, 7168 texels at the smallest side (16²); "
+                       "give at least 7168"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/below.png"));
+  r = runPenumbra("compare --scene night --size 16x16 --samples 1 --shadow-budget 7168 --json --no-cache --out least", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  int64_t texels = 0;
+  for (const nlohmann::json& l : j["lights"]) {
+    EXPECT_EQ(l["map_size"].get<int>(), 16) << l;
+    texels += l["map_texels"].get<int64_t>();
+  }
+  EXPECT_EQ(texels, 7168);
+}

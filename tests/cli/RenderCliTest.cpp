@@ -126,6 +126,17 @@ TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
                        "--shadow-map or a light's shadow.mapSize"),
             std::string::npos) << r.err;
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
+  // A scene file's own 16384² point cube (six maps) fails where the maps are made, naming them,
+  // and the advice names the light's shadow.mapSize beside --shadow-map, which did not ask for it.
+  const std::string dir = freshDir("render-cube-oom");
+  std::ofstream(dir + "/cube.json") << R"({"lights": [{"type": "point", "position": [0, 3, 0], "shadow": {"mapSize": 16384}}],
+    "objects": [{"shape": "plane"}, {"shape": "box"}]})";
+  const RunResult cube = runPenumbra("render --scene cube.json --size 16x16 --out cube.png", dir, kLimit);
+  EXPECT_EQ(cube.exitCode, 1) << cube.err;
+  EXPECT_NE(cube.err.find("the hard shadow map: 6 maps of 16384²: GL_OUT_OF_MEMORY"), std::string::npos) << cube.err;
+  EXPECT_NE(cube.err.find("a light's shadow.mapSize in its scene file"), std::string::npos) << cube.err;
+  EXPECT_EQ(countLines(cube.err), 1u) << cube.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/cube.png"));
 }
 
 // A 2 M-triangle load took 12 s without a word: a large model file is announced when it starts
