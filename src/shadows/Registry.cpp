@@ -18,6 +18,7 @@
 #include "shadows/projections/CascadedProjection.h"
 #include "shadows/projections/LightSpacePerspectiveProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
+#include "shadows/projections/SampleDistributionProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
 #include "shadows/sdf/SdfFilter.h"
@@ -43,6 +44,7 @@ const std::vector<Entry<Projection>>& projections() {
       {"psm", [] { return std::make_unique<PerspectiveProjection>(); }},
       {"tsm", [] { return std::make_unique<TrapezoidalProjection>(); }},
       {"lispsm", [] { return std::make_unique<LightSpacePerspectiveProjection>(); }},
+      {"sdsm", [] { return std::make_unique<SampleDistributionProjection>(); }},
   };
   return list;
 }

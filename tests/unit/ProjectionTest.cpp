@@ -1,6 +1,7 @@
 // Projections on the CPU: the practical split scheme, every projection mapping the visible part
 // of the camera frustum into its clip volume (warps included), csm's snapping, and that every
 // caster that can shadow a visible receiver lies inside the light's clip volume.
+#include "ProjectionSamples.h"
 #include "shadows/projections/CascadedProjection.h"
 #include "shadows/projections/LightSpace.h"
 #include "shadows/projections/LightSpacePerspectiveProjection.h"
@@ -18,6 +19,7 @@
 #include <random>
 
 using namespace penumbra;
+using penumbra::test::visibleSurfaceSamples;
 
 namespace {
 
@@ -316,43 +318,6 @@ TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
 
 namespace {
 
-// Points on the scene's triangles (area-weighted) that the camera frustum contains.
-std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint32_t seed) {
-  struct Tri { glm::vec3 a, b, c; };
-  std::vector<Tri> tris;
-  std::vector<float> cumulative;
-  float total = 0.0f;
-  const glm::mat4 clip = scene.camera.clipFromView(kAspect) * scene.camera.viewFromWorld();
-  const float farM = shadowFarDistance(scene.camera, scene.extent());
-  for (const Object& o : scene.objects) {
-    const Mesh& m = scene.meshes[o.mesh];
-    for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-      Tri t{glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i]], 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 1]], 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 2]], 1.0f))};
-      total += 0.5f * glm::length(glm::cross(t.b - t.a, t.c - t.a));
-      tris.push_back(t);
-      cumulative.push_back(total);
-    }
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<glm::vec3> out;
-  for (int tries = 0; tries < count * 400 && static_cast<int>(out.size()) < count; ++tries) {
-    const size_t k = static_cast<size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * total) - cumulative.begin());
-    const Tri& t = tris[std::min(k, tris.size() - 1)];
-    float r1 = u(rng), r2 = u(rng);
-    if (r1 + r2 > 1.0f) { r1 = 1.0f - r1; r2 = 1.0f - r2; }
-    const glm::vec3 p = t.a + r1 * (t.b - t.a) + r2 * (t.c - t.a);
-    const glm::vec4 c = clip * glm::vec4(p, 1.0f);
-    const float depth = -(scene.camera.viewFromWorld() * glm::vec4(p, 1.0f)).z;
-    if (c.w <= 0.0f || depth > farM || depth < scene.camera.nearM) continue;
-    if (std::abs(c.x / c.w) > 1.0f || std::abs(c.y / c.w) > 1.0f) continue;
-    out.push_back(p);
-  }
-  return out;
-}
-
 // World-space triangles (three points each) of the scene's shadow casters.
 std::vector<glm::vec3> casterTriangles(const Scene& scene) {
   std::vector<glm::vec3> tri;
@@ -400,7 +365,7 @@ void expectCastersInsideClip(const Scene& scene, const std::string& projection) 
   const glm::mat4 view = scene.camera.viewFromWorld();
   int hits = 0, outside = 0;
   std::string first;
-  for (const glm::vec3& r : visibleSurfaceSamples(scene, 1000, 5)) {
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, kAspect, 1000, 5)) {
     const float depth = -(view * glm::vec4(r, 1.0f)).z;
     std::vector<size_t> views;
     for (size_t i = 0; i < f.views.size(); ++i) {
@@ -469,7 +434,7 @@ NeededFit measureNeededFit(const Scene& scene, const ShadowView& v) {
   NeededFit n;
   Aabb xy;
   float widestTan = 0.0f;
-  for (const glm::vec3& r : visibleSurfaceSamples(scene, 4000, 17)) {
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, kAspect, 4000, 17)) {
     const glm::vec3 ls = glm::vec3(v.viewFromWorld * glm::vec4(r, 1.0f));
     xy.extend(ls);
     const float tanR = std::max(std::abs(ls.x), std::abs(ls.y)) / -ls.z;
