@@ -17,6 +17,8 @@ constexpr double kMarkerRadius = 4.5, kRingRadius = 8;
 constexpr double kDegenerateRangeFraction = 0.1;
 // Data are padded by this fraction of the range so points do not sit on the frame.
 constexpr double kPadFraction = 0.05;
+// A log axis with fewer 1-2-5 ticks than this in its range gets linear ones (axisTicks).
+constexpr int kMinLogTicks = 3;
 
 std::string num(double v) {
   if (v == 0.0) return "0";
@@ -108,6 +110,9 @@ std::vector<double> axisTicks(double lo, double hi, bool log, int target) {
         const double v = m * std::pow(10.0, e);
         if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) ticks.push_back(v);
       }
+    // Within a decade the 1-2-5 values leave one tick or none (24 … 46 holds none): round linear
+    // steps label such a narrow log axis instead.
+    if (static_cast<int>(ticks.size()) < kMinLogTicks) return axisTicks(lo, hi, false, target);
     return ticks;
   }
   const double raw = (hi - lo) / std::max(target, 1);

@@ -80,7 +80,8 @@ std::string svgBarChart(const BarChart& chart);
 std::string escapeXml(std::string_view text);
 
 /// Tick values for [lo, hi]: 1-2-5 steps, about `target` of them (linear), or powers of ten
-/// (with 2 and 5 between when the range spans less than three decades) for log axes.
+/// (with 2 and 5 between when the range spans less than three decades) for log axes; a log
+/// range that holds fewer than three of those (24 … 46) gets the linear ticks.
 std::vector<double> axisTicks(double lo, double hi, bool log, int target = 6);
 
 /// A fixed set of distinguishable colours (Okabe–Ito first), cycled by index.
