@@ -8,6 +8,7 @@
 #include "report/FrameComparison.h"
 #include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"
+#include "shared/Viewer.h"
 
 #include <penumbra/Metrics.h>
 
@@ -16,6 +17,7 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace penumbra::viewer {
 namespace {
@@ -140,9 +142,18 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
     // A lit-pass view not listed above: the colour output.
   } else {
     std::string meaning = "values as stored";
+    std::optional<float> noData;
     for (const DebugImage& d : mSession.debugImages())  // the selected light's
-      if (d.name == name && !d.meaning.empty()) meaning = std::string(d.meaning);
+      if (d.name == name) {
+        if (!d.meaning.empty()) meaning = std::string(d.meaning);
+        noData = d.noData;
+      }
     ImGui::TextWrapped("%s: %s", name.c_str(), meaning.c_str());
+    if (noData) {  // the viewer_display pass's colour for it
+      ImGui::ColorButton("##nodata", ImVec4(PN_VIEWER_NO_DATA_RGB, 1.0f), ImGuiColorEditFlags_NoTooltip);
+      ImGui::SameLine();
+      ImGui::Text("slate: %s, left out of the range", number(*noData).c_str());
+    }
     const DisplaySettings& s = view.settings;
     if (s.channel == DisplaySettings::kChannelRgb) {
       ImGui::Text("rgb channels, each %s … %s mapped to 0 … 1", number(range.x).c_str(), number(range.y).c_str());
