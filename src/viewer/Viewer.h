@@ -189,6 +189,7 @@ private:
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
   float mSidebarWidth = 380.0f;
+  bool mSidebarFitted = false;  ///< widened once to hold every tab's title
   float mRenderScale = 1.0f;
   bool mFly = false;
   bool mDragInView = false;  ///< a mouse drag that started over the view
