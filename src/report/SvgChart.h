@@ -9,7 +9,7 @@
 
 namespace penumbra::report {
 
-enum class Marker { Circle, Square, Triangle, Diamond };
+enum class Marker { Circle, Square, Triangle, Diamond, TriangleDown, Star, Cross };
 
 /// Colour of Chart::front (a legend entry for it uses this with line + dashed).
 inline constexpr const char* kFrontColor = "#444";
@@ -20,6 +20,7 @@ struct ChartPoint {
   double yLow = std::numeric_limits<double>::quiet_NaN(), yHigh = std::numeric_limits<double>::quiet_NaN();
   std::string tooltip;     ///< shown on hover (an SVG <title>)
   bool emphasised = false; ///< drawn with a ring (e.g. on the Pareto front)
+  std::string tag = {};    ///< a short text beside the marker (the report: the projection's letter)
 };
 
 struct ChartSeries {
@@ -34,6 +35,7 @@ struct LegendEntry {
   Marker marker = Marker::Circle;
   bool line = false;    ///< a line sample instead of a marker
   bool dashed = false;  ///< the line sample dashed (the front's style)
+  std::string tag = {}; ///< a text sample instead of a marker (a point's ChartPoint::tag)
 };
 
 struct Chart {
