@@ -12,8 +12,9 @@ namespace penumbra::report {
 namespace {
 
 // 2: umbra_leak_pct; 3: micro[].ratio; 4: shadow cost, memory, one-off costs, frame_ms, compare_command,
-// recommendations
-constexpr int kFormatVersion = 4;
+// recommendations; 5: motion, flicker and interleaved-round columns, "samples", the recommendations'
+// flicker, contenders and ties
+constexpr int kFormatVersion = 5;
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -171,6 +172,20 @@ nlohmann::json resultsJson(const BenchResults& results) {
     nlohmann::json frames = nlohmann::json::object();
     for (const auto& [pass, samples] : r.frameMs) frames[pass] = samples;
     j["frame_ms"].push_back(std::move(frames));
+  }
+  // Per row, what its motion and its interleaved rounds measured (null where it had none): each
+  // frame's RMSE and penumbra RMSE (the still frame first), the flicker counts, each round's cost.
+  j["samples"] = nlohmann::json::array();
+  for (const BenchRow& r : results.rows) {
+    nlohmann::json m = nullptr;
+    if (r.motion) {
+      m = {{"what", r.motion->what}, {"fps", r.motion->fps}, {"rmse", frameErrors(ErrorMetric::Rmse, r)},
+           {"penumbra_rmse", frameErrors(ErrorMetric::PenumbraRmse, r)}, {"flicker_followed", r.motion->flicker.followed},
+           {"flicker_points", r.motion->flicker.flickering}};
+    }
+    nlohmann::json rounds = nullptr;
+    if (r.rounds) rounds = {{"group", r.rounds->group}, {"ms", r.rounds->ms}};
+    j["samples"].push_back({{"motion", m}, {"rounds", rounds}});
   }
   // The recommendation (Recommendation.h), rows as indices into "rows".
   j["recommendations"] = nlohmann::json::array();

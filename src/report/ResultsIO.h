@@ -41,7 +41,7 @@ std::string resultsCsv(const BenchResults& results);
 /// description, clock, gl_renderer. Same CSV rules as resultsCsv.
 std::string microCsv(const BenchResults& results);
 /// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
-///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "motion": [per row:
+///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "samples": [per row:
 ///  {"motion": {what, fps, rmse: [per frame], penumbra_rmse: [...], flicker_followed,
 ///  flicker_points} or null, "rounds": {group, ms: [per round]} or null}], "recommendations",
 ///  "micro": [...]}; rows hold numbers as numbers, null for no value.

@@ -227,7 +227,7 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   const nlohmann::json& rows = json["rows"];
-  const nlohmann::json& motion = json["motion"];
+  const nlohmann::json& motion = json["samples"];
   ASSERT_EQ(motion.size(), rows.size());
   const std::string html = slurp(dir + "/out/report.html"), page = slurp(dir + "/choosing.md");
   EXPECT_FALSE(fs::exists(dir + "/out/choosing.md")) << "--choosing moves the page";
@@ -262,7 +262,9 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
     for (const size_t i : candidates) {
       ASSERT_FALSE(motion[i]["motion"].is_null()) << situation << " row " << i;
       EXPECT_EQ(motion[i]["motion"][metric].size(), 3u) << situation;
-      if (staticCasters) EXPECT_EQ(motion[i]["motion"]["what"], "a camera walk") << situation;
+      if (staticCasters) {
+        EXPECT_EQ(motion[i]["motion"]["what"], "a camera walk") << situation;
+      }
       const std::vector<double> frames = motion[i]["motion"][metric];
       EXPECT_DOUBLE_EQ(frames.front(), rows[i][metric].get<double>()) << "the still frame first";
     }
@@ -326,10 +328,16 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
       EXPECT_NE(html.find(command), std::string::npos) << name;
     }
     const size_t cheap = rec["cheapest_acceptable"], top = rec["best"];
-    if (rec["cheapest_tie"].is_null()) EXPECT_DOUBLE_EQ(costOf(cheap), cheapest) << situation;
-    else EXPECT_NE(page.find("Tie for the cheapest acceptable"), std::string::npos) << situation;
-    if (rec["best_tie"].is_null()) EXPECT_DOUBLE_EQ(error(top), lowest) << situation;
-    else EXPECT_NE(page.find("Tie for the best"), std::string::npos) << situation;
+    if (rec["cheapest_tie"].is_null()) {
+      EXPECT_DOUBLE_EQ(costOf(cheap), cheapest) << situation;
+    } else {
+      EXPECT_NE(page.find("Tie for the cheapest acceptable"), std::string::npos) << situation;
+    }
+    if (rec["best_tie"].is_null()) {
+      EXPECT_DOUBLE_EQ(error(top), lowest) << situation;
+    } else {
+      EXPECT_NE(page.find("Tie for the best"), std::string::npos) << situation;
+    }
     EXPECT_NE(html.find("id=\"choose-" + situation + "\""), std::string::npos) << situation;
     EXPECT_NE(page.find("<a id=\"" + situation + "\">"), std::string::npos) << situation;
   }
