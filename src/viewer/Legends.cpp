@@ -75,13 +75,14 @@ void Viewer::drawLegends() {
   const float top = static_cast<float>(mFramebuffer.y - mViewRect.y - mViewRect.w) / scale;
   const float left = static_cast<float>(mViewRect.x) / scale, width = static_cast<float>(mViewRect.z) / scale;
   const float bottom = top + static_cast<float>(mViewRect.w) / scale;
-  // The main view's legend in its lower-left corner, the inset's above the inset.
+  // The main view's legend in its lower-left corner, the inset's left of the inset.
   drawLegend("##legend main", mMain, mMainRange, {left + kMarginPx, bottom - kMarginPx}, {0.0f, 1.0f});
   if (mInset.name != kNoInset) {
-    // Above the inset, right-aligned with it (and so with the view).
-    const float insetTop = static_cast<float>(mFramebuffer.y - mInsetRect.y - mInsetRect.w) / scale;
-    drawLegend("##legend inset", mInset, mInsetRange,
-               {static_cast<float>(mInsetRect.x + mInsetRect.z) / scale, insetTop - kMarginPx}, {1.0f, 1.0f});
+    // Left of the inset, on its bottom line: the view's lower corner, where a scene's subject
+    // seldom is (above the inset it covered pen's contact point).
+    const float insetBottom = static_cast<float>(mFramebuffer.y - mInsetRect.y) / scale;
+    drawLegend("##legend inset", mInset, mInsetRange, {static_cast<float>(mInsetRect.x) / scale - kMarginPx, insetBottom},
+               {1.0f, 1.0f});
   }
   if (mSplit && isLitView(mMain.name)) {
     // A divider and the two techniques' names over their halves.

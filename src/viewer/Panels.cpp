@@ -154,7 +154,8 @@ void plot(const char* label, const std::deque<float>& history, const char* unit)
   const float top = niceCeiling(peak * 1.05f);
   ImGui::Text("%-10s %8.2f %s  (max %.2f)", label, static_cast<double>(values.back()), unit, static_cast<double>(peak));
   const std::string topText = fmt::format("{:g} {}", static_cast<double>(top), unit);
-  const float gutter = ImGui::CalcTextSize(topText.c_str()).x + ImGui::GetStyle().ItemSpacing.x;
+  // One gutter for every graph (as wide as a five-digit scale), so that the graphs line up.
+  const float gutter = ImGui::CalcTextSize(fmt::format("00000 {}", unit).c_str()).x + ImGui::GetStyle().ItemSpacing.x;
   ImGui::PlotLines(fmt::format("##{}", label).c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, 0.0f, top,
                    ImVec2(std::max(1.0f, ImGui::GetContentRegionAvail().x - gutter), kGraphHeightPx));
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
@@ -216,8 +217,11 @@ void Viewer::drawPanels() {
   const ImGuiIO& io = ImGui::GetIO();
   if (!mSidebarFitted) {  // wide enough for every tab's whole title ("Technique", not "Tech…")
     const ImGuiStyle& style = ImGui::GetStyle();
-    float tabs = 2.0f * style.WindowPadding.x;
-    for (const PanelInfo& p : kPanels) tabs += ImGui::CalcTextSize(p.title).x + 2.0f * style.FramePadding.x + style.ItemInnerSpacing.x;
+    // The window's padding and a scrollbar's room, then each tab: its title, its frame padding,
+    // the gap to the next, and a quarter of a font height for what ImGui adds around a tab.
+    float tabs = 2.0f * style.WindowPadding.x + style.ScrollbarSize;
+    for (const PanelInfo& p : kPanels)
+      tabs += ImGui::CalcTextSize(p.title).x + 2.0f * style.FramePadding.x + style.ItemInnerSpacing.x + 0.25f * ImGui::GetFontSize();
     mSidebarWidth = std::max(mSidebarWidth, std::ceil(tabs));
     mSidebarFitted = true;
   }
@@ -319,10 +323,19 @@ void Viewer::drawParams(size_t first, size_t last) {
     ImGui::Separator();
     ImGui::TextDisabled("%s", g.title.c_str());
     if (g.descs.empty()) ImGui::TextDisabled("(no parameters)");
+    unsigned lightBits = 0;  // the kinds of light that cast shadows here: other kinds' parameters change nothing
+    for (const Light& l : mSession.scene().lights)
+      if (l.castsShadow) lightBits |= lightKindBit(l.type);
     for (const ParamDesc& d : g.descs) {
       float value = 0.0f;
       const std::string_view unit = unitFor(d, mSession.scene());
-      if (paramWidget(d, unit, mSession.paramValue(d), value)) {
+      const bool idle = (d.lights & lightBits) == 0;
+      ImGui::BeginDisabled(idle);
+      const bool changed = paramWidget(d, unit, mSession.paramValue(d), value);
+      ImGui::EndDisabled();
+      if (idle && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("%s acts on a kind of light this scene does not have: it cannot change this frame", std::string(d.key).c_str());
+      if (changed) {
         try {
           mSession.setParam(d, value);
           setStatus(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), unit), false);
