@@ -75,14 +75,19 @@ void Viewer::drawLegends() {
   const float top = static_cast<float>(mFramebuffer.y - mViewRect.y - mViewRect.w) / scale;
   const float left = static_cast<float>(mViewRect.x) / scale, width = static_cast<float>(mViewRect.z) / scale;
   const float bottom = top + static_cast<float>(mViewRect.w) / scale;
-  // The main view's legend in its lower-left corner, the inset's left of the inset.
-  drawLegend("##legend main", mMain, mMainRange, {left + kMarginPx, bottom - kMarginPx}, {0.0f, 1.0f});
+  // The main view's legend in its lower-left corner. The inset's sits left of the inset, on its
+  // bottom line: the view's lower edge, where a scene's subject seldom is (above the inset it
+  // covered pen's contact point); when the main view has a legend too, the inset's stands on it
+  // instead, so that the two never overlap whatever their widths.
+  const std::optional<float> mainTop =
+      drawLegend("##legend main", mMain, mMainRange, {left + kMarginPx, bottom - kMarginPx}, {0.0f, 1.0f});
   if (mInset.name != kNoInset) {
-    // Left of the inset, on its bottom line: the view's lower corner, where a scene's subject
-    // seldom is (above the inset it covered pen's contact point).
     const float insetBottom = static_cast<float>(mFramebuffer.y - mInsetRect.y) / scale;
-    drawLegend("##legend inset", mInset, mInsetRange, {static_cast<float>(mInsetRect.x) / scale - kMarginPx, insetBottom},
-               {1.0f, 1.0f});
+    if (mainTop)
+      drawLegend("##legend inset", mInset, mInsetRange, {left + kMarginPx, *mainTop - kMarginPx}, {0.0f, 1.0f});
+    else
+      drawLegend("##legend inset", mInset, mInsetRange, {static_cast<float>(mInsetRect.x) / scale - kMarginPx, insetBottom},
+                 {1.0f, 1.0f});
   }
   if (mSplit && isLitView(mMain.name)) {
     // A divider and the two techniques' names over their halves.
@@ -96,13 +101,13 @@ void Viewer::drawLegends() {
   }
 }
 
-void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
-                        const glm::vec2& pivot) {
+std::optional<float> Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
+                                        const glm::vec2& pivot) {
   const std::string& name = view.name;
-  if (name == kShadedView) return;  // the picture itself
+  if (name == kShadedView) return std::nullopt;  // the picture itself
   if (!beginOverlay(id, ImVec2(anchor.x, anchor.y), ImVec2(pivot.x, pivot.y))) {
     ImGui::End();
-    return;
+    return anchor.y;
   }
   ImGui::PushTextWrapPos(kLegendWrapEm * ImGui::GetFontSize());
   const gl::Texture* texture = findView(name);
@@ -121,8 +126,9 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
   } else if (name == "texel-density") {
     ImGui::TextUnformatted("screen pixels per shadow-map texel (log scale)");
     colorBar([](float t) { return rgb(gpu::densityRampColor(PN_DENSITY_LOG2_LO + t * (PN_DENSITY_LOG2_HI - PN_DENSITY_LOG2_LO))); },
-             fmt::format("1/{:g} over-sampled", std::exp2(-PN_DENSITY_LOG2_LO)), "1",
-             fmt::format("{:g} blocky", std::exp2(PN_DENSITY_LOG2_HI)));
+             fmt::format("1/{:g}", std::exp2(-PN_DENSITY_LOG2_LO)), fmt::format("{:g}", std::exp2(0.5 * (PN_DENSITY_LOG2_LO + PN_DENSITY_LOG2_HI))),
+             fmt::format("{:g}", std::exp2(PN_DENSITY_LOG2_HI)));
+    ImGui::TextUnformatted("blue: over-sampled (texels smaller than pixels) · red: blocky");
   } else if (name == kHeatmapView) {
     const float full = HeatmapOptions{}.fullScaleDeltaV;
     const int spot = 2 * report::kLabHeatmap.dilatePx + 1;
@@ -167,7 +173,9 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
     }
   }
   ImGui::PopTextWrapPos();
+  const float legendTop = ImGui::GetWindowPos().y;
   ImGui::End();
+  return legendTop;
 }
 
 }  // namespace penumbra::viewer
