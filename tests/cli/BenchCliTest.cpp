@@ -223,7 +223,8 @@ TEST(BenchCli, DefaultsAreThoseOfCompare) {
 // prints its picks, and a log gets progress lines.
 TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
   const std::string dir = freshDir("bench-recommend");
-  const RunResult r = runPenumbra("bench --quick --out out --choosing choosing.md", dir);
+  // On the process CPU clock, which the page's Run: line must carry to be repeated.
+  const RunResult r = runPenumbra("bench --quick --out out --choosing choosing.md", dir, "env PENUMBRA_CLOCK=cpu");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   const nlohmann::json& rows = json["rows"];
@@ -236,6 +237,7 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
   EXPECT_NE(r.out.find("picks (a quick look, not for decisions"), std::string::npos) << "the run prints its picks: " << r.out;
   EXPECT_NE(r.err.find("penumbra bench: configurations: "), std::string::npos) << "progress in a log: " << r.err;
   EXPECT_NE(page.find("| flicker % |"), std::string::npos) << "the flicker column";
+  EXPECT_NE(page.find("- Run: `PENUMBRA_CLOCK=cpu "), std::string::npos) << "the clock the run was timed with";
   ASSERT_EQ(json["recommendations"].size(), 4u) << "contact-hardening, wide sun, thin casters, static";
   for (const nlohmann::json& rec : json["recommendations"]) {
     const std::string situation = rec["situation"], scene = rec["scene"], metric = rec["metric"];
