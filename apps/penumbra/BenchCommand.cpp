@@ -7,6 +7,7 @@
 #include "report/BenchRunner.h"
 #include "report/ChoosingPage.h"
 #include "report/HtmlReport.h"
+#include "report/Recommendation.h"
 #include "report/ResultsIO.h"
 #include "report/ScaleBench.h"
 
@@ -31,7 +32,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   struct Options {
     std::vector<std::string> scenes, filters, projections, sweeps;
     std::optional<std::string> size, camera;
-    std::optional<int> shadowMap, frames, warmup, samples, microRounds;
+    std::optional<int> shadowMap, frames, warmup, samples, microRounds, motionFrames;
     std::optional<double> maxSeconds;
     std::optional<std::uintmax_t> cacheMaxMb;
     std::string out = "bench";
@@ -51,6 +52,11 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
                   "count values, or at the listed ones (light.size and light.count apply to all; e.g. "
                   "pcss.filterSamples=8:64:4, light.count=1,2,4,8)");
   sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
+  sub->add_option("--motion-frames", o->motionFrames,
+                  "frames at 30 fps over which each row of a recommendation's scene is also scored: the scene's "
+                  "animation, or a camera walk where nothing moves; the still frame is the first (default 6; --quick 3; "
+                  "1 = still frames only)")
+      ->check(CLI::Range(1, 100));
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
   sub->add_option("--size", o->size, fmt::format("image size WxH (default {}, as render and compare; --quick 96x64)", defaultSizeText()));
   sub->add_option("--shadow-map", o->shadowMap,
@@ -103,10 +109,12 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     if (o->warmup) settings.warmupFrames = *o->warmup;
     if (o->samples) settings.referenceSamples = *o->samples;
     if (o->microRounds) settings.microRepetitions = *o->microRounds;
+    if (o->motionFrames) settings.motionFrames = *o->motionFrames;
     if (o->maxSeconds) settings.maxSecondsPerConfig = *o->maxSeconds;
     settings.useCache = !o->noCache;
     settings.cacheMaxBytes = cacheCapBytes(o->cacheMaxMb);
     std::vector<report::BenchConfig> configs = report::expandPlans(plans);  // usage errors before any GL
+    report::markMotion(configs);
     if (o->microOnly || o->scaleOnly) configs.clear();
     if (o->microOnly && o->scaleOnly) throw usageError("--micro-only and --scale-only: give one");
     const bool defaultRun = !o->quick && !custom;
@@ -137,7 +145,8 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
     results.machine.command = commandLine();
     report::writeResults(dir, results);
     report::writeHtmlReport(dir, results);
-    report::writeChoosingPage(o->choosing.empty() ? dir / "choosing.md" : std::filesystem::path(o->choosing), dir, results);
+    const std::filesystem::path choosing = o->choosing.empty() ? dir / "choosing.md" : std::filesystem::path(o->choosing);
+    report::writeChoosingPage(choosing, dir, results);
 
     size_t failed = 0;
     for (const report::SkippedConfig& k : results.skipped)
@@ -158,9 +167,10 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
         ++microFailed;
         std::fprintf(stderr, "penumbra bench: micro-benchmark %s failed: %s\n", m.name.c_str(), m.error.c_str());
       }
-    std::printf("%zu configurations measured, %zu skipped (%zu failed) in %.1f s on %s (%s)\nreport: %s\n",
+    if (!results.rows.empty()) std::printf("%s", report::picksSummary(results, report::recommend(results)).c_str());
+    std::printf("%zu configurations measured, %zu skipped (%zu failed) in %.1f s on %s (%s)\nreport: %s\nchoosing: %s\n",
                 results.rows.size(), results.skipped.size(), failed, results.seconds, results.machine.glRenderer.c_str(),
-                results.machine.clock.c_str(), (dir / "report.html").string().c_str());
+                results.machine.clock.c_str(), (dir / "report.html").string().c_str(), choosing.string().c_str());
     if (failed > 0 || microFailed > 0) {
       std::fprintf(stderr, "penumbra bench: %zu configuration(s) and %zu micro-benchmark(s) failed; the report lists them\n",
                    failed, microFailed);

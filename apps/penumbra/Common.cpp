@@ -14,9 +14,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <set>
 
 namespace penumbra::app {
 
@@ -312,11 +314,18 @@ Setup makeSetup(const TechniqueOptions& o) {
   Setup s;
   auto announcer = std::make_shared<LoadAnnouncer>();
   // The estimate counts the renderer's buffers in host memory (as llvmpipe keeps them; on a GPU
-  // that is the larger guess) and, for a command that traces the reference, the BVH.
+  // that is the larger guess) and, for a command that traces the reference, the BVH. A model
+  // given alone gets a ground under it when it has no floor, and says so once a run (bench and
+  // tune load a scene once per configuration).
+  static std::set<std::string> said;
   s.scene = loadScene(o.scene, {.progress = [announcer](const std::filesystem::path& f, double x) { (*announcer)(f, x); },
                                 .maxMemoryBytes = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory),
                                 .glBuffersInHostMemory = true,
-                                .referenceBvh = o.referenceBvh});
+                                .referenceBvh = o.referenceBvh,
+                                .groundUnderLoneModel = true,
+                                .notice = [](const std::string& sentence) {
+                                  if (said.insert(sentence).second) std::fprintf(stderr, "penumbra: %s\n", sentence.c_str());
+                                }});
   s.projection = o.projection ? makeProjection(*o.projection)
                               : sceneChoice(s.scene, "shadow.projection", [&] { return makeProjection(s.scene.shadow.projection); });
   s.filter = o.filter ? makeFilter(*o.filter) : sceneChoice(s.scene, "shadow.filter", [&] { return makeFilter(s.scene.shadow.filter); });
@@ -390,6 +399,11 @@ std::string commandLine() {
     if (!arg.empty()) out += (out.empty() ? "" : " ") + (arg.find(' ') == std::string::npos ? arg : "'" + arg + "'");
     start = i + 1;
   }
+  // The clock variable changes what every time means (process CPU time instead of the wall
+  // clock): the run is repeated only with it.
+  const char* clock = std::getenv("PENUMBRA_CLOCK");
+  if (clock && *clock && std::string_view(clock).find_first_of(" '\"$`\\") == std::string_view::npos)
+    out = fmt::format("PENUMBRA_CLOCK={} {}", clock, out);
   return out;
 }
 

@@ -107,7 +107,8 @@ inline constexpr uint64_t kCompareHostBytesPerPixel = 170;
 void checkImageFits(const gl::Context& context, int width, int height, uint64_t hostBytesPerPixel);
 
 /// The command line as typed (/proc/self/cmdline), the program's path shortened to its name and
-/// words with spaces quoted: what bench and tune record of their run.
+/// words with spaces quoted, after PENUMBRA_CLOCK=… when that variable is set (it decides what
+/// every time means): what bench and tune record of their run.
 std::string commandLine();
 
 /// --max-memory's text ("1500" MiB, or with a unit: "512M", "8G", "1.5GiB") in bytes; throws a

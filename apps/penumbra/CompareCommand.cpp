@@ -7,7 +7,9 @@
 #include "platform/Context.h"
 #include "metrics/Shimmer.h"
 #include "metrics/TexelDensity.h"
+#include "report/BenchRunner.h"
 #include "report/FrameComparison.h"
+#include "report/ImageKey.h"
 #include "report/Sheet.h"
 #include "report/SequenceComparison.h"
 
@@ -31,14 +33,19 @@
 namespace penumbra::app {
 namespace {
 
+// Pass times are warm: one untimed frame (it compiles the shaders), then the median and p10–p90
+// of this many frames, as the bench times its rows (with fewer frames: compare is interactive).
+constexpr int kCompareWarmupFrames = 1;
+constexpr int kCompareTimedFrames = 5;
+
 /// Every file compare writes into --out, in the order --help names them.
 constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"technique.png", "the frame lit with the technique's V"},
     {"reference.png", "the same frame lit with V_ref"},
-    {"heatmap.png", "V - V_ref on a grey of V_ref: leaks red, over-darkening blue"},
-    {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong"},
+    {"heatmap.png", "V - V_ref over the dimmed frame: leaks red, over-darkening blue, its scale fitted to the frame's errors and written under it with its key"},
+    {"approximation.png", "where the shadow-map model itself (V averaged outside the lighting integral) is wrong, with its key"},
     {"sheet.png", "technique, reference, heatmap and a 4x zoom of its worst region, titled, with the colour legend and the metrics"},
-    {"texel-density.png", "screen pixels per shadow-map texel"},
+    {"texel-density.png", "screen pixels per shadow-map texel, log colour scale, with its key"},
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
     {"reference-visibility-cos.exr", "V_ref weighted by cos(theta): exact over unshadowed shading"},
@@ -72,7 +79,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     TechniqueOptions technique;
     int samples = ReferenceOptions{}.samples;  // as bench and the viewer's heatmap
     std::string out = "compare";
-    bool json = false, noCache = false;
+    bool json = false, noCache = false, walk = false;
     int shimmer = 0;
     std::optional<std::uintmax_t> cacheMaxMb;
     std::optional<int> frames;
@@ -99,8 +106,12 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                   "frames while V_ref changes by < 0.02), lag_rmse and ghost_pct (the error, and the share off by > 0.1, on pixels "
                   "whose V_ref changed by > 0.1 within the last 4 frames); the images and the other metrics are of the first frame")
       ->check(CLI::Range(1, 100000));
+  sub->add_flag("--walk", o->walk,
+                "with --frames: the scene holds still (at --time) and the camera walks around its target (12 degrees a "
+                "second, at its distance and height): the motion penumbra bench scores a still scene over");
   addTimeOptions(*sub, frames, o->fps, o->timeS, "the scene's time in seconds of the (first) frame");
   commands.push_back({sub, [o] {
+    if (o->walk && !o->frames) throw usageError("--walk moves the camera over --frames: give --frames N too");
     checkOutputDir("--out", o->out);
     Setup s = makeSetup(o->technique);
     checkPoses(s.scene, sequenceTimes(o->timeS, o->frames, o->fps));
@@ -110,8 +121,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     const std::unique_ptr<Renderer> rendererPtr = makeRenderer(context, s);
     Renderer& renderer = *rendererPtr;
     const Scene& scene = renderer.scene();  // the setup's, held once
-    renderer.render(s.render);  // warm-up: the first frame includes shader compilation
-    renderer.render(s.render);
+    // Warm times: the first frame includes shader compilation; the last timed frame is compared.
+    const report::WarmTimes times = report::timeWarmFrames(renderer, s.render, kCompareWarmupFrames, kCompareTimedFrames);
     const GBufferData gbuffer = renderer.readGBuffer();
     // Aliasing: screen pixels covered by one shadow-map texel, per pixel.
     const std::vector<float> density = computeTexelDensity(renderer);
@@ -131,12 +142,32 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     const int width = gbuffer.width, height = gbuffer.height;
 
     const std::filesystem::path dir(o->out);
-    const ColorImage &technique = cmp.technique, &reference = cmp.reference, &heat = cmp.heatmap;
+    const ColorImage &technique = cmp.technique, &reference = cmp.reference;
+    // The heatmap's scale adapts to this frame's errors (and is written on it), so that a soft
+    // shadow off by a hundredth shows in colour; each error over a 3 × 3 spot, as kLabHeatmap.
+    const float heatScale = report::adaptiveHeatmapScale(combined.v, combined.vRef, combined.mask);
+    const ColorImage heat = errorHeatmap(combined.v, combined.vRef, combined.mask, width, height, &technique,
+                                         {.fullScaleDeltaV = heatScale, .dilatePx = report::kLabHeatmap.dilatePx});
+    const int spot = 2 * report::kLabHeatmap.dilatePx + 1;
+    const std::string heatGrey = fmt::format(
+        "grey: the technique's frame, dimmed, where V is right · scale fitted to this frame: {:.0f} % of its visible "
+        "errors (|ΔV| > 1/255) are within ±{:g} · each error drawn over a {}×{} spot",
+        100.0 * report::kHeatmapScalePercentile, heatScale, spot, spot);
+    const ColorImage heatKeyed = report::withKey(
+        heat, report::heatmapKey(heatScale, fmt::format("error of {} · {}: ΔV = V − V_ref, blue too dark, red too bright",
+                                                        renderer.filter().id(), renderer.projection().id()),
+                                 heatGrey));
     // The split model's own error in units of V, on the reference's grey, full colour at
     // kApproximationFullScaleV (docs/reference.md).
     constexpr float kApproximationFullScaleV = 0.1f;
-    const ColorImage approx = errorHeatmap(combined.vRef, combined.vRefCosWeighted, combined.mask, width, height, nullptr,
-                                           HeatmapOptions{kApproximationFullScaleV});
+    const ColorImage approx = report::withKey(
+        errorHeatmap(combined.vRef, combined.vRefCosWeighted, combined.mask, width, height, nullptr,
+                     HeatmapOptions{kApproximationFullScaleV}),
+        report::heatmapKey(kApproximationFullScaleV,
+                           "where the shadow-map model itself is wrong · V_ref − V_ref weighted by cos θ: V averaged "
+                           "outside the lighting integral, as every shadow map does",
+                           "grey: V_ref (light lit, dark shadowed), where the model is exact · red: the model is too "
+                           "bright there, blue: too dark · a fixed scale · the same for every technique"));
     double referenceSeconds = 0.0;
     int referenceSamples = 0;
     bool referenceCached = true;
@@ -149,7 +180,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                                                             : fmt::format("light size {:g}", scene.light().size);
     const ColorImage all = report::compareSheet(
         {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = combined.v, .vRef = combined.vRef,
-         .mask = combined.mask, .heatmapFullScaleDeltaV = report::kLabHeatmap.fullScaleDeltaV,
+         .mask = combined.mask, .heatmapFullScaleDeltaV = heatScale, .heatmapScaleNote = heatGrey,
          .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), scene.name),
          .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", referenceSamples),
          .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
@@ -157,9 +188,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                                  m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
                      fmt::format("{}×{} pixels, shadow map {}², {} · --camera {}", width, height,
                                  s.render.shadowMapSize, lightText, cameraArgument(scene.camera))}});
-    const ColorImage densityImage = texelDensityHeatmap(density, gbuffer.width, gbuffer.height);
+    const ColorImage densityImage = report::withKey(texelDensityHeatmap(density, gbuffer.width, gbuffer.height),
+                                                    report::texelDensityKey());
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
-                                    {"heatmap.png", &heat}, {"approximation.png", &approx}, {"sheet.png", &all},
+                                    {"heatmap.png", &heatKeyed}, {"approximation.png", &approx}, {"sheet.png", &all},
                                     {"texel-density.png", &densityImage}})
       writePng(dir / name, img->width, img->height, img->rgba);
     const auto exr = [&](const std::string& name, const std::vector<float>& v) {
@@ -174,7 +206,6 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         if (l.castsShadow) exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
       }
 
-    const PassTimings t = renderer.timings();
     std::optional<ShimmerResult> shimmer;
     if (o->shimmer > 0) {
       ShimmerOptions so;
@@ -186,7 +217,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       ReferenceOptions sro = ro;
       sro.progress = false;
       const report::SequenceTiming timing{*o->frames, o->fps, o->timeS};
-      sequence = report::compareSequence(renderer, Scene(scene), s.render, timing, sro, {}, [&](int f) {
+      Scene moving = scene;
+      if (o->walk) report::addCameraWalk(moving, timing);
+      sequence = report::compareSequence(renderer, moving, s.render, timing, sro, {}, [&](int f) {
         if (!o->json) std::fprintf(stderr, "penumbra: frame %d/%d (t = %.3f s) compared\n", f + 1, timing.frames, timing.timeS(f));
       });
     }
@@ -217,6 +250,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["fps"] = o->fps;
         j["time"] = o->timeS;
         j["rmse_mean"] = sequence->rmseMean;
+        j["penumbra_rmse_mean"] = sequence->penumbraRmseMean;
+        j["walk"] = o->walk;
         j["rmse_worst_frame"] = sequence->rmseWorstFrame;
         j["rmse_worst"] = sequence->rmseWorst;
         j["flicker_pct"] = sequence->flicker.pct();
@@ -264,9 +299,20 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         }
         j["lights"].push_back(std::move(jl));
       }
+      // Warm: the median (and p10–p90) of kCompareTimedFrames frames after the warm-up.
       j["timings_ms"] = nlohmann::json::object();
-      for (const auto& [pass, ms] : t.ms) j["timings_ms"][pass] = ms;
-      j["clock"] = t.clock;
+      j["timings_p10_ms"] = nlohmann::json::object();
+      j["timings_p90_ms"] = nlohmann::json::object();
+      for (const report::PassStats& p : times.passes) {
+        if (p.name == report::kTotalPass) continue;
+        j["timings_ms"][p.name] = p.ms.median;
+        j["timings_p10_ms"][p.name] = p.ms.p10;
+        j["timings_p90_ms"][p.name] = p.ms.p90;
+      }
+      j["shadow_cost_ms"] = {{"median", times.shadowCost.median}, {"p10", times.shadowCost.p10}, {"p90", times.shadowCost.p90}};
+      j["timed_frames"] = times.frames;
+      j["warmup_frames"] = kCompareWarmupFrames;
+      j["clock"] = times.clock;
       j["gl_renderer"] = context.info().renderer;
       j["reference_seconds"] = referenceSeconds;
       j["reference_samples"] = referenceSamples;
@@ -298,8 +344,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
     if (sequence)
-      std::printf("  %zu frames at %g fps from %g s: RMSE mean %.4f, worst %.4f at frame %zu; flicker %.4f%% of %zu followed points\n",
-                  sequence->frames.size(), o->fps, o->timeS, sequence->rmseMean, sequence->rmseWorst, sequence->rmseWorstFrame,
+      std::printf("  %zu frames at %g fps from %g s%s: RMSE mean %.4f, worst %.4f at frame %zu; penumbra RMSE mean %.4f; "
+                  "flicker %.4f%% of %zu followed points\n",
+                  sequence->frames.size(), o->fps, o->timeS, o->walk ? ", the camera walking round its target" : "",
+                  sequence->rmseMean, sequence->rmseWorst, sequence->rmseWorstFrame, sequence->penumbraRmseMean,
                   sequence->flicker.pct(), sequence->flicker.followed);
     if (sequence)
       std::printf("  lag             RMSE %.4f on %zu pixels whose reference changed in the last %d frames; %.2f%% off by > %.1f "
@@ -314,8 +362,13 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     if (shimmer)
       std::printf("  shimmer         %.4f%% of %zu edge points over %d steps\n", shimmer->shimmerPct, shimmer->edgePoints,
                   shimmer->steps);
-    std::printf("  times (%s on %s):\n", t.clock.c_str(), context.info().renderer.c_str());
-    for (const auto& [pass, ms] : t.ms) std::printf("    %-12s %8.2f ms\n", pass.c_str(), ms);
+    std::printf("  times, warm: the median of %d frames after %d warm-up (p10-p90), %s on %s:\n", times.frames,
+                kCompareWarmupFrames, times.clock.c_str(), context.info().renderer.c_str());
+    for (const report::PassStats& p : times.passes)
+      if (p.name != report::kTotalPass)
+        std::printf("    %-12s %8.2f ms  (%.2f-%.2f)\n", p.name.c_str(), p.ms.median, p.ms.p10, p.ms.p90);
+    std::printf("    %-12s %8.2f ms  (%.2f-%.2f; shadow + prefilter + visibility per frame, as bench's whole cost)\n",
+                "whole cost", times.shadowCost.median, times.shadowCost.p10, times.shadowCost.p90);
     std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", referenceSamples, referenceSeconds,
                 referenceCached ? " (cached)" : "", o->out.c_str());
     return 0;

@@ -47,7 +47,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     std::string out = "tune";
     std::optional<std::string> shard;
     std::vector<std::string> merge;
-    bool json = false, noCache = false;
+    bool json = false, noCache = false, allowArtifacts = false;
   };
   auto o = std::make_shared<Options>();
   o->technique.referenceBvh = true;  // tune traces the reference
@@ -92,6 +92,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "reference is fully lit, at most 0.1 %, then the least leak in the reference's umbra, i.e. shadows "
                   "detached from their casters, then the smallest bias)")
       ->capture_default_str();
+  sub->add_flag("--allow-artifacts", o->allowArtifacts,
+                "let the pick raise acne above 0.1 % (or the default's own) and umbra leak (detached shadows) above the "
+                "default's; without it every pick keeps both, as --objective acne does");
   sub->add_option("--max-minutes", o->maxMinutes,
                   "time for the whole run: the coordinate descent stops early when its next round would pass it (the "
                   "screen, full-size and confirm stages always run)")
@@ -178,6 +181,7 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     req.searchKeys = o->params;
     req.budget = {.costMs = o->budgetMs, .memoryMiB = o->budgetMb, .maxError = o->maxError};
     req.maxMinutes = o->maxMinutes;
+    req.allowArtifacts = o->allowArtifacts;
     req.candidates = o->candidates;
     req.seed = o->seed;
     req.outDir = o->out;
@@ -213,10 +217,14 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     const report::TuneRow* def = report::tuneDefaultFor(res);
     const auto line = [&](const char* what, const report::TuneRow& r) {
-      std::printf("  %-12s %s %.4g  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%% (umbra %.3f%%)  acne %.3f%%  cost %.3f ms  "
+      const std::string spread = r.rounds > 0 ? fmt::format(" ({:.3f}-{:.3f} over {} interleaved rounds; {:.2f}x the budget's default, "
+                                                            "p90 {:.2f}x)",
+                                                            r.costP10Ms, r.costP90Ms, r.rounds, r.costRatio.median, r.costRatio.p90)
+                                              : std::string();
+      std::printf("  %-12s %s %.4g  RMSE %.4f  penumbra RMSE %.4f  leak %.2f%% (umbra %.3f%%)  acne %.3f%%  cost %.3f ms%s  "
                   "work %.4g Mops  memory %.1f MiB\n",
                   what, report::objectiveKey(req.objective), r.error, r.metrics.rmse, r.metrics.penumbraRmse,
-                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, r.workM, r.memoryMiB);
+                  r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct, r.costMs, spread.c_str(), r.workM, r.memoryMiB);
     };
     std::printf("tune %s: %zu configurations measured (%zu resumed) in %.0f s on %s (%s); budget %.4g %s%s\n",
                 report::tuneViewsText(req).c_str(), res.evaluations, res.resumed, res.seconds, res.machine.glRenderer.c_str(),

@@ -70,6 +70,8 @@ int run(int argc, char** argv) {
   CLI::App app{"Penumbra: real-time shadow techniques, rendered and measured against a ray-traced reference.\n"
                "With no subcommand, renders the default scene to penumbra.png."};
   app.require_subcommand(0, 1);
+  // The version of the build; bench and tune record GL_RENDERER and the clock with every number.
+  app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION, "print the version and exit");
   penumbra::sdf::installEmbreeBaker();  // the sdf filter's fields: baked with Embree, cached on disk
   std::vector<penumbra::app::Command> commands;
   penumbra::app::registerCommands(app, commands);
@@ -78,6 +80,8 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", printable(e.what()).c_str());

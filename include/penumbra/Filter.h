@@ -6,6 +6,7 @@
 #include <penumbra/Params.h>
 #include <penumbra/Scene.h>
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,9 @@ struct DebugImage {
   std::string name;              ///< file-name friendly: "shadow-map", "moments"
   const gl::Texture* texture;    ///< 2D or 2D array (layer 0 shown)
   std::string_view meaning;      ///< what a value is, with its unit: "linear light depth: 0 = near, 1 = far"
+  /// A value that means "nothing here" rather than a measure (−1 = no blocker found): a viewer
+  /// leaves it out of a measured range and shows it apart. Empty: every value is a measure.
+  std::optional<float> noData = {};
 };
 
 /// Debug images that many filters have are named alike, so that a viewer showing one keeps

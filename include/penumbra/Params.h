@@ -9,6 +9,12 @@
 
 namespace penumbra {
 
+/// The kinds of light a parameter acts on (ParamDesc::lights), as bits: a parameter that only
+/// shapes a point light's cube cannot change a frame lit by suns and spots, so `tune` does not
+/// search it there.
+inline constexpr unsigned kSunLightBit = 1u, kSpotLightBit = 2u, kPointLightBit = 4u;
+inline constexpr unsigned kAnyLightBits = kSunLightBit | kSpotLightBit | kPointLightBit;
+
 /// One tunable. Numeric unless `choices` is non-empty, in which case the value is the index of
 /// the chosen name (def/min/max are indices too). Its unit is `unit`, and part of the key where
 /// it fits ("…Texels", "…M").
@@ -27,6 +33,8 @@ struct ParamDesc {
   /// program is built per value (FrameContext::visibilityProgram) and its loops and branches
   /// fold. Empty: the value reaches the shader through the filter's uniform block.
   std::string_view define = {};
+  /// The kinds of light it acts on (kSunLightBit, …); kAnyLightBits for most.
+  unsigned lights = kAnyLightBits;
 
   bool isChoice() const { return !choices.empty(); }
   bool isInteger() const { return isChoice() || step == 1.0f; }

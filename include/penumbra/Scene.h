@@ -4,6 +4,7 @@
 #include <penumbra/Animation.h>
 #include <penumbra/MapUpdates.h>
 #include <penumbra/Math.h>
+#include <penumbra/Params.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -133,6 +134,9 @@ struct Light {
 
 /// The light type's name in scene files: "sun", "spot" or "point".
 const char* lightTypeName(LightType type);
+
+/// The light kind's bit of ParamDesc::lights (kSunLightBit, kSpotLightBit, kPointLightBit).
+unsigned lightKindBit(LightType type);
 
 /// Spot and point lights have a position (their light comes from a sphere there).
 inline bool isPositional(const Light& l) { return l.type != LightType::Directional; }

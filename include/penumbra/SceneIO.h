@@ -32,7 +32,21 @@ struct LoadOptions {
   bool glBuffersInHostMemory = true;
   /// … and the reference's BVH (compare, bench, tune).
   bool referenceBvh = false;
+  /// A model given alone (not placed by a scene file) whose meshes hold no floor under it gets a
+  /// ground plane, so that its shadow has somewhere to fall (addGroundUnderModel). Off: as loaded.
+  bool groundUnderLoneModel = false;
+  /// Called with one sentence when the load adds what the file does not have (the ground, and
+  /// why); a model that has a floor of its own is told apart too. Empty: no reports.
+  std::function<void(const std::string& sentence)> notice = {};
 };
+
+/// The ground under a lone model: when no object is a floor (flat, at the bottom of the model's
+/// bounds, under at least half its footprint), a grey square kGroundSpanFactor × the model's
+/// larger horizontal side, centred under it at its lowest point, that receives shadows and casts
+/// none. Returns the sentence saying what was done and why (a floor of its own: nothing added).
+std::string addGroundUnderModel(Scene& scene);
+/// The ground's side over the model's larger horizontal side: room for the long shadow of a low sun.
+inline constexpr float kGroundSpanFactor = 4.0f;
 
 /// Loads a scene JSON file. Throws Error("file: field: problem") on any bad input.
 Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options = {});

@@ -31,3 +31,6 @@ uint orderedFromFloat(float f) {
 float floatFromOrdered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? (u & 0x7FFFFFFFu) : ~u); }
 
 bool finite(float v) { return !isnan(v) && !isinf(v); }
+
+// The image's "nothing here" value (DebugImage::noData), when it has one.
+bool noData(float v) { return u_display.mode.y != 0 && v == u_display.range.z; }

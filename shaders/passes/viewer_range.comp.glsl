@@ -14,7 +14,7 @@ void main() {
   int first = c == PN_VIEWER_CHANNEL_RGB ? 0 : c;
   int last = c == PN_VIEWER_CHANNEL_RGB ? 2 : c;
   for (int i = first; i <= last; ++i) {
-    if (!finite(t[i])) continue;
+    if (!finite(t[i]) || noData(t[i])) continue;
     uint u = orderedFromFloat(t[i]);
     atomicMin(o_min, u);
     atomicMax(o_max, u);

@@ -16,6 +16,10 @@
 
 #define PN_VIEWER_CHANNEL_RGB 4    // channels 0..3 = r, g, b, a; 4 = rgb together
 
+// A debug image's "no data" value (DebugImage::noData) is drawn in slate: neither a grey nor a
+// Turbo colour. The legend shows the same swatch.
+#define PN_VIEWER_NO_DATA_RGB 0.16f, 0.2f, 0.32f
+
 #define PN_VIEWER_MAP_GREY 0
 #define PN_VIEWER_MAP_TURBO 1      // Google's Turbo rainbow: small differences stand out
 
@@ -26,8 +30,8 @@ PN_GPU_BEGIN
 struct ViewerDisplayUniforms {
   ivec4 source;  // x: layer (array) or slice (3D), y: mip level, z: channel (0..3 or PN_VIEWER_CHANNEL_RGB), w: PN_VIEWER_MAP_*
   ivec4 rect;    // xy: lower-left corner in window pixels, zw: size in pixels
-  ivec4 mode;    // x: 1 = range measured into the range buffer, 0 = fixed range; yzw: unused
-  vec4 range;    // x: fixed minimum, y: fixed maximum (values mapped to 0 and 1); zw: unused
+  ivec4 mode;    // x: 1 = range measured into the range buffer, 0 = fixed range; y: 1 = range.z is "no data"; zw: unused
+  vec4 range;    // x: fixed minimum, y: fixed maximum (values mapped to 0 and 1); z: the no-data value; w: unused
 };
 
 PN_GPU_END

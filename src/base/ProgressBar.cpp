@@ -15,14 +15,17 @@ constexpr int kBarWidthChars = 40;
 
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label, size_t total, bool wanted)
-    : mLabel(std::move(label)), mTotal(total), mEnabled(wanted && total > 0 && isatty(STDERR_FILENO) == 1),
-      mStart(std::chrono::steady_clock::now()), mLastDraw(mStart) {}
+ProgressBar::ProgressBar(std::string label, size_t total, bool wanted, Elsewhere elsewhere)
+    : mLabel(std::move(label)), mTotal(total), mStart(std::chrono::steady_clock::now()), mLastDraw(mStart) {
+  const bool terminal = isatty(STDERR_FILENO) == 1;
+  mLines = !terminal && elsewhere == Elsewhere::Lines;
+  mEnabled = wanted && total > 0 && (terminal || mLines);
+}
 
 ProgressBar::~ProgressBar() {
   if (!mEnabled) return;
   const std::lock_guard lock(mDrawMutex);
-  if (mDrawn) {
+  if (mDrawn && !mLines) {
     draw(mDone.load());
     std::fputc('\n', stderr);
   }
@@ -34,6 +37,16 @@ void ProgressBar::advance(size_t done) {
   std::unique_lock lock(mDrawMutex, std::try_to_lock);  // a busy drawer is enough
   if (!lock.owns_lock()) return;
   const auto time = std::chrono::steady_clock::now();
+  if (mLines) {  // the first unit, then every kLineInterval, and the last
+    if (mDrawn && time - mLastDraw < kLineInterval && now < mTotal) return;
+    mLastDraw = time;
+    mDrawn = true;
+    const double seconds = std::chrono::duration<double>(time - mStart).count();
+    std::fputs(fmt::format("{}: {}/{} ({:.0f}%), {:.0f} s\n", mLabel, now, mTotal, 100.0 * static_cast<double>(now) / static_cast<double>(mTotal),
+                           seconds).c_str(), stderr);
+    std::fflush(stderr);
+    return;
+  }
   if (time - mLastDraw < kRedrawInterval && now < mTotal) return;
   mLastDraw = time;
   draw(now);

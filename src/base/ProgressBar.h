@@ -1,6 +1,8 @@
 #pragma once
 // A progress bar on stderr for long CPU loops, safe to advance from worker threads. It draws
-// only when asked to and stderr is a terminal, so logs and pipes never receive control codes.
+// only when asked to and stderr is a terminal, so logs and pipes never receive control codes;
+// in Lines mode a log or a pipe gets a plain line instead, at the first unit and then every
+// kLineInterval, so a long run says how far it got wherever its output goes.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -11,7 +13,12 @@ namespace penumbra {
 
 class ProgressBar {
 public:
-  ProgressBar(std::string label, size_t total, bool wanted);
+  /// Where stderr is not a terminal: nothing, or a line now and then.
+  enum class Elsewhere { Nothing, Lines };
+  /// A log gets a line at most this often (a few a minute).
+  static constexpr auto kLineInterval = std::chrono::seconds(15);
+
+  ProgressBar(std::string label, size_t total, bool wanted, Elsewhere elsewhere = Elsewhere::Nothing);
   ~ProgressBar();  // finishes the line if anything was drawn
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -26,6 +33,7 @@ private:
   std::string mLabel;
   size_t mTotal;
   bool mEnabled;
+  bool mLines = false;  // stderr is not a terminal: plain lines
   bool mDrawn = false;
   std::atomic<size_t> mDone{0};
   std::mutex mDrawMutex;

@@ -196,6 +196,9 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
     settings.maxSecondsPerConfig = 0.5;
     settings.referenceSamples = 36;
     settings.microRepetitions = 3;
+    settings.motionFrames = 3;
+    settings.retimeRounds = 3;
+    settings.quick = true;
   }
   // Cost, memory and error against the number of shadowed lights: night's first 1, 2, 4 and 8
   // lamps (its points and spots alternate so that each subset mixes both).

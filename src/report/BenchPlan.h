@@ -46,6 +46,13 @@ struct BenchPlan {
   std::vector<Sweep> sweeps;
 };
 
+/// What a row is scored over besides its still frame.
+enum class MotionKind {
+  None,       ///< the still frame only
+  Animation,  ///< the scene's own animation (a camera walk where it has none): casters may move
+  Walk,       ///< a camera walk around the target (SequenceComparison.h): nothing in the scene moves
+};
+
 /// One configuration to measure.
 struct BenchConfig {
   std::string plan;
@@ -55,6 +62,9 @@ struct BenchConfig {
   std::vector<std::pair<std::string, std::string>> params;
   /// Shown in the report's image grid (technique | reference | heatmap).
   bool inGrid = false;
+  /// Also scored in motion (BenchSettings::motionFrames): the rows a recommendation's situation
+  /// judges (markMotion, Recommendation.h).
+  MotionKind motion = MotionKind::None;
   /// "key=value;key=value" of `params`, "" when there are none.
   std::string paramsText() const;
 };
@@ -85,7 +95,22 @@ struct BenchSettings {
   int microRepetitions = 9;
   /// `--camera` of the run's one scene (cameraArgument form, as typed); "" = each scene's own.
   std::string camera;
+  /// Frames a BenchConfig::motion row is also scored over, at kMotionFps from t = 0 (frame 0 is
+  /// the still frame): the scene's own animation, or a camera walk (addCameraWalk) where the scene
+  /// does not move. Its error over the frames and its flicker decide the recommendation. Six
+  /// frames give five frame pairs for flicker at about twice a still frame's cost per row; 0 or 1
+  /// = still frames only.
+  int motionFrames = 6;
+  /// Rounds in which the recommendation's contenders are timed again, interleaved (one frame
+  /// each per round), for costs that share the machine's load; 0 = none (tune).
+  int retimeRounds = 9;
+  /// `--quick`: small images and maps, few frames, a noisy reference: its recommendation is a
+  /// first look at the tool, not one to decide on, and its pages say so.
+  bool quick = false;
 };
+
+/// The frame rate of the bench's motion: consecutive frames as a game shows them.
+inline constexpr float kMotionFps = 30.0f;
 
 /// Every configuration of the plans, in run order: grouped by scene (one upload; one reference
 /// per light of the scene), in plan order within a scene, so a technique's swept values run one

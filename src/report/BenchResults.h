@@ -4,6 +4,8 @@
 // micro-benchmarks, and the machine. Written as CSV/JSON (ResultsIO.h) and HTML (HtmlReport.h).
 #include "report/BenchPlan.h"
 
+#include "metrics/Flicker.h"
+
 #include <penumbra/Filter.h>
 #include <penumbra/Metrics.h>
 
@@ -52,6 +54,26 @@ TimeStats shadowCostStats(const FrameSamples& frames);
 /// Bytes per MiB: shadow_memory_mb is in MiB (2²⁰ bytes).
 inline constexpr double kBytesPerMiB = 1024.0 * 1024.0;
 
+/// A row over the motion it was scored on (BenchConfig::motion): per frame the combined V against
+/// V_ref (frame 0 is the still frame), and the flicker between consecutive frames.
+inline constexpr const char* kAnimationMotion = "the scene's animation";
+inline constexpr const char* kWalkMotion = "a camera walk";  ///< addCameraWalk
+struct MotionScore {
+  std::string what;  ///< kAnimationMotion or kWalkMotion
+  float fps = kMotionFps;
+  std::vector<VisibilityMetrics> frames;
+  FlickerCounts flicker;
+};
+
+/// A row's whole cost timed again in interleaved rounds with the other contenders of its
+/// situation (BenchSettings::retimeRounds): one frame per round, so each round's times share
+/// the machine's load and a ratio taken within a round cancels it.
+struct RoundCosts {
+  std::string group;       ///< the situation whose contenders ran in these rounds
+  std::vector<double> ms;  ///< the whole cost of the row's frame in each round, in round order
+  TimeStats stats;         ///< median and p10–p90 over the rounds
+};
+
 struct BenchRow {
   BenchConfig config;
   float lightSize = 0.0f;  ///< the light size in effect (scene's own or swept)
@@ -68,6 +90,8 @@ struct BenchRow {
   /// Work done once and kept while the casters do not move (Filter::oneOffCosts): in no frame.
   std::vector<OneOffCost> oneOff;
   VisibilityMetrics metrics;
+  std::optional<MotionScore> motion;  ///< for BenchConfig::motion rows
+  std::optional<RoundCosts> rounds;   ///< for the recommendation's contenders
   /// Image files relative to the output folder; empty when the row is not in the grid.
   std::string imagePath, heatmapPath, referencePath;
 

@@ -5,7 +5,9 @@
 #include "base/ProgressBar.h"
 #include "report/FrameComparison.h"
 #include "report/MicroBenchmarks.h"
+#include "report/Recommendation.h"
 #include "report/ReferenceBaseline.h"
+#include "report/SequenceComparison.h"
 #include "report/VisibilityBaselines.h"
 
 #include <penumbra/Error.h>
@@ -35,21 +37,93 @@ std::string lightKey(const BenchConfig& c) {
   return key;
 }
 
-// Per-pass samples over the timed frames, in first-seen pass order.
-struct PassSamples {
-  std::vector<std::string> order;
-  std::map<std::string, std::vector<double>> ms;
-  void add(const std::string& name, double value) {
-    if (!ms.contains(name)) order.push_back(name);
-    ms[name].push_back(value);
-  }
-};
-
 void writeImage(const std::filesystem::path& dir, const std::string& relative, const ColorImage& img) {
   writePng(dir / relative, img.width, img.height, img.rgba);
 }
 
+RenderOptions renderOptions(const BenchSettings& set, int shadowMapSize) {
+  return {.width = set.width, .height = set.height, .shadowMapSize = shadowMapSize,
+          .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
+}
+
+// The whole cost of the renderer's last frame: its kShadowCostPasses.
+double frameShadowCost(const Renderer& renderer) {
+  FrameSamples frame;
+  for (const auto& [name, ms] : renderer.timings().ms) frame.emplace_back(name, std::vector<double>{ms});
+  return shadowCostStats(frame).median;
+}
+
+// The recommendation's contenders timed again in interleaved rounds (timeInterleaved).
+void retimeContenders(BenchResults& results, const SetupFactory& makeSetup, const RunOptions& options) {
+  const BenchSettings& set = options.settings;
+  for (const SituationPicks& p : recommend(results)) {
+    if (p.contenders.size() < 2) continue;  // nothing to compare: its own frames stand
+    std::vector<BenchConfig> configs;
+    std::vector<RenderOptions> renders;
+    for (const size_t i : p.contenders) {
+      configs.push_back(results.rows[i].config);
+      renders.push_back(renderOptions(set, results.rows[i].shadowMapSize));
+    }
+    const std::vector<std::vector<double>> ms = timeInterleaved(configs, renders, makeSetup, set.warmupFrames, set.retimeRounds);
+    for (size_t k = 0; k < p.contenders.size(); ++k)
+      results.rows[p.contenders[k]].rounds = RoundCosts{.group = p.situation->id, .ms = ms[k], .stats = timeStats(ms[k])};
+    if (options.verbose || options.progress)
+      std::fprintf(stderr, "penumbra bench: %s: %zu contenders timed again in %d interleaved rounds\n", p.situation->id,
+                   p.contenders.size(), set.retimeRounds);
+  }
+}
+
 }  // namespace
+
+std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
+                                                 const SetupFactory& makeSetup, int warmupFrames, int rounds) {
+  PN_CHECK(configs.size() == renders.size(), "timeInterleaved: one render setting per configuration");
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (size_t k = 0; k < configs.size(); ++k) {
+    BenchSetup s = makeSetup(configs[k]);
+    auto r = std::make_unique<Renderer>();
+    r->setScene(s.scene);
+    r->setTechnique(std::move(s.projection), std::move(s.filter));
+    r->shadows().addOns() = *s.addOns;
+    for (int w = 0; w < std::max(warmupFrames, 1); ++w) r->render(renders[k]);
+    renderers.push_back(std::move(r));
+  }
+  std::vector<std::vector<double>> ms(configs.size());
+  for (int round = 0; round < rounds; ++round)
+    for (size_t k = 0; k < renderers.size(); ++k) {
+      renderers[k]->render(renders[k]);
+      ms[k].push_back(frameShadowCost(*renderers[k]));
+    }
+  return ms;
+}
+
+WarmTimes timeWarmFrames(Renderer& renderer, const RenderOptions& render, int warmupFrames, int timedFrames, double maxSeconds) {
+  for (int i = 0; i < std::max(warmupFrames, 1); ++i) renderer.render(render);
+  // Per-pass samples over the timed frames, in first-seen pass order.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> ms;
+  const auto add = [&](const std::string& name, double value) {
+    if (!ms.contains(name)) order.push_back(name);
+    ms[name].push_back(value);
+  };
+  WarmTimes out;
+  const auto timedStart = Clock::now();
+  while (out.frames < std::max(timedFrames, 1)) {
+    renderer.render(render);
+    const PassTimings& t = renderer.timings();
+    for (const auto& [name, v] : t.ms) add(name, v);
+    add(kTotalPass, t.total());
+    out.clock = t.clock;
+    ++out.frames;
+    if (std::chrono::duration<double>(Clock::now() - timedStart).count() > maxSeconds) break;
+  }
+  for (const std::string& name : order) {
+    out.passes.push_back({name, timeStats(ms[name])});
+    if (name != kTotalPass) out.frameMs.emplace_back(name, ms[name]);
+  }
+  out.shadowCost = shadowCostStats(out.frameMs);
+  return out;
+}
 
 std::string fileStem(std::string_view text) {
   std::string out;
@@ -77,8 +151,11 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
     std::vector<ReferenceResult> lights;
   };
   std::map<std::string, FrameReference> references;  // by light key, for the current scene
+  std::map<std::string, SequenceReferences> motionReferences;  // by light key: the motion's frames
   std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
-  ProgressBar bar("bench", configs.size(), options.progress && !options.verbose);
+  std::optional<ProgressBar> bar;
+  bar.emplace("penumbra bench: configurations", configs.size(), options.progress && !options.verbose,
+              ProgressBar::Elsewhere::Lines);
 
   for (const BenchConfig& c : configs) {
     BenchSetup s = makeSetup(c);
@@ -87,6 +164,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       renderer.setScene(s.scene);
       tracer = std::make_unique<ReferenceTracer>(s.scene);
       references.clear();
+      motionReferences.clear();
       referenceImages.clear();
       currentScene = c.scene;
       currentLight = light;
@@ -94,11 +172,9 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
       currentLight = light;
     }
-    const RenderOptions render{.width = set.width, .height = set.height,
-                               .shadowMapSize = set.shadowMapSize.value_or(s.scene.shadow.mapSize),
-                               .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
+    const RenderOptions render = renderOptions(set, set.shadowMapSize.value_or(s.scene.shadow.mapSize));
     const auto done = [&] {
-      bar.advance(1);
+      bar->advance(1);
       if (options.configDone) options.configDone();
     };
     const auto configStart = Clock::now();
@@ -112,19 +188,9 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       continue;
     }
     try {
-      for (int i = 0; i < std::max(set.warmupFrames, 1); ++i) renderer.render(render);
-      PassSamples samples;
-      int frames = 0;
-      const auto timedStart = Clock::now();
-      while (frames < set.timedFrames) {
-        renderer.render(render);
-        const PassTimings& t = renderer.timings();
-        for (const auto& [name, ms] : t.ms) samples.add(name, ms);
-        samples.add(kTotalPass, t.total());
-        results.machine.clock = t.clock;
-        ++frames;
-        if (std::chrono::duration<double>(Clock::now() - timedStart).count() > set.maxSecondsPerConfig) break;
-      }
+      WarmTimes times = timeWarmFrames(renderer, render, set.warmupFrames, set.timedFrames, set.maxSecondsPerConfig);
+      results.machine.clock = times.clock;
+      const int frames = times.frames;
 
       if (!references.contains(light)) {
         ReferenceOptions ro;
@@ -153,14 +219,34 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
           break;
         }
       row.frames = frames;
-      for (const std::string& name : samples.order) {
-        row.passes.push_back({name, timeStats(samples.ms[name])});
-        if (name != kTotalPass) row.frameMs.emplace_back(name, samples.ms[name]);
-      }
-      row.shadowCost = shadowCostStats(row.frameMs);
+      row.passes = std::move(times.passes);
+      row.frameMs = std::move(times.frameMs);
+      row.shadowCost = times.shadowCost;
       row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
       row.oneOff = renderer.filter().oneOffCosts();
       row.metrics = cmp.metrics;
+      // One-off work (a bake) is redone as casters move: such a row is left out where they may.
+      const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();
+      if (c.motion != MotionKind::None && set.motionFrames > 1 && !rebakes) {
+        // The still frame again, then the scene's animation (or a camera walk where nothing
+        // moves) at kMotionFps; the renderer goes back to the still pose for the next row.
+        const SequenceTiming timing{set.motionFrames, kMotionFps, 0.0f};
+        Scene moving = s.scene;
+        const bool walk = c.motion == MotionKind::Walk || moving.animation.empty();
+        if (walk) addCameraWalk(moving, timing);
+        ReferenceOptions ro;
+        ro.samples = set.referenceSamples;
+        ro.useCache = set.useCache;
+        ro.cacheMaxBytes = set.cacheMaxBytes;
+        ro.progress = false;
+        const SequenceComparison seq =
+            compareSequence(renderer, moving, render, timing, ro, {}, {}, {}, &motionReferences[light]);
+        renderer.setPose(s.scene);
+        MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
+                           .flicker = seq.flicker};
+        for (const SequenceFrame& f : seq.frames) motion.frames.push_back(f.metrics);
+        row.motion = std::move(motion);
+      }
       if (c.inGrid) {
         const std::string scene = fileStem(renderer.scene().name);
         const std::string stem = fmt::format("images/{}-{}-{}", scene, fileStem(c.projection), fileStem(c.filter));
@@ -176,17 +262,23 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
         row.referencePath = referenceImages[light];
       }
       results.rows.push_back(std::move(row));
-      if (options.verbose)
-        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f (%d frames, %.1f s)\n",
-                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(),
-                     results.rows.back().shadowCost.median, results.rows.back().memoryMiB(), cmp.metrics.rmse, frames,
+      if (options.verbose) {
+        const BenchRow& b = results.rows.back();
+        const std::string motion = b.motion ? fmt::format(", flicker {:.3f}% over {} frames", b.motion->flicker.pct(), b.motion->frames.size())
+                                            : std::string();
+        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s (%d frames, %.1f s)\n",
+                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(), b.shadowCost.median,
+                     b.memoryMiB(), cmp.metrics.rmse, motion.c_str(), frames,
                      std::chrono::duration<double>(Clock::now() - configStart).count());
+      }
     } catch (const std::exception& e) {
       results.skipped.push_back({c, e.what(), true});
       if (options.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
     }
     done();
   }
+  bar.reset();  // its last line before the next stage's
+  if (set.retimeRounds > 0 && !results.rows.empty()) retimeContenders(results, makeSetup, options);
   if (!options.microBenchmarks) {
     if (results.machine.clock.empty()) results.machine.clock = PassTimer(context.info().softwareRenderer).endFrame().clock;
     results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
@@ -197,6 +289,8 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   int microMapSize = set.shadowMapSize.value_or(0);
   for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
   if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
+  if (options.verbose || options.progress)
+    std::fprintf(stderr, "penumbra bench: micro-benchmarks, %d rounds\n", set.microRepetitions);
   const bool cpuClock = context.info().softwareRenderer;
   results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
   for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,

@@ -10,8 +10,11 @@
 #include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
 
+#include <penumbra/Renderer.h>
+
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 
 namespace penumbra {
@@ -34,7 +37,8 @@ using SetupFactory = std::function<BenchSetup(const BenchConfig&)>;
 struct RunOptions {
   BenchSettings settings;
   std::filesystem::path outDir;  ///< images go to outDir/images/
-  bool progress = true;          ///< progress bar on stderr (drawn only when it is a terminal)
+  /// Progress on stderr: a bar on a terminal, elsewhere a line every 15 s; and a line per stage.
+  bool progress = true;
   bool verbose = false;          ///< one line per configuration on stderr
   /// The micro-benchmarks after the configurations (off: only the rows; `penumbra tune`).
   bool microBenchmarks = true;
@@ -47,6 +51,27 @@ struct RunOptions {
 /// recorded as failed and the run goes on. Errors of the factory propagate.
 BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& configs, const SetupFactory& makeSetup,
                       const RunOptions& options);
+
+/// Warm per-pass times: `warmupFrames` untimed frames (at least one: the first compiles the
+/// technique's shaders), then up to `timedFrames` timed ones, stopping after `maxSeconds` of
+/// them (at least one frame is timed). What bench and compare print.
+struct WarmTimes {
+  std::vector<PassStats> passes;  ///< per pass median and p10–p90, in frame order, then kTotalPass
+  FrameSamples frameMs;           ///< the samples behind them (no total)
+  TimeStats shadowCost;           ///< shadowCostStats(frameMs): the whole cost per frame
+  int frames = 0;                 ///< timed frames run
+  std::string clock;              ///< PassTimings::clock
+};
+WarmTimes timeWarmFrames(Renderer& renderer, const RenderOptions& render, int warmupFrames, int timedFrames,
+                         double maxSeconds = std::numeric_limits<double>::infinity());
+
+/// Times configurations in interleaved rounds: each in a renderer of its own (scene and technique
+/// from `makeSetup`, rendered with its `renders` entry), `warmupFrames` untimed frames each, then
+/// `rounds` rounds of one frame of each, so that a round's times share the machine's load and a
+/// ratio taken within a round cancels it. Returns per configuration its whole cost (the
+/// kShadowCostPasses of the frame) in each round. Errors of the factory or the renderer propagate.
+std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
+                                                 const SetupFactory& makeSetup, int warmupFrames, int rounds);
 
 /// "city-csm-pcss" → a file-name-safe stem (letters, digits, '.', '-', '_').
 std::string fileStem(std::string_view text);

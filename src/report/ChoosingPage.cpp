@@ -1,6 +1,7 @@
 #include "report/ChoosingPage.h"
 
 #include "report/ReportCharts.h"
+#include "report/SequenceComparison.h"
 #include "report/SvgChart.h"
 
 #include <penumbra/Files.h>
@@ -38,36 +39,109 @@ std::string settingsText(const BenchResults& r) {
                      s.referenceSamples, s.timedFrames, s.warmupFrames);
 }
 
+// The whole page's warning when the run was `--quick` (plain text; `code` in backquotes).
+std::string quickText(const BenchResults& r) {
+  return fmt::format("A quick look, not for decisions: this page comes from `penumbra bench --quick` ({}), sizes chosen "
+                     "so that tests run in seconds. Small images and maps and a noisy reference change the errors, and "
+                     "so the picks; decide on the full run's page (`penumbra bench`, docs/choosing.md in the repository).",
+                     settingsText(r));
+}
+
+std::string motionRuleText(const BenchResults& r) {
+  return fmt::format("In motion: every candidate is also rendered over {} frames at {:g} fps, its still frame first — the "
+                     "scene's own animation where it has one, else a camera walk around its target ({:g}° a second) — and "
+                     "each frame is compared with its own reference. The error that decides is the mean over those frames; "
+                     "flicker is the share of surface points, followed from one frame to the next, whose V changes by more "
+                     "than 0.1 while the reference's changes by less than 0.02 (docs/aliasing.md).",
+                     r.settings.motionFrames, kMotionFps, kWalkDegreesPerSecond);
+}
+
 // What decides and what is left out, as sentences (plain text; `code` in backquotes).
-std::vector<std::string> ruleText() {
-  return {
-      fmt::format("Candidates: every configuration the run measured on the situation's scene at its own light. Where "
-                  "casters may move, techniques with one-off work are left out: a baked distance field (sdf) is only "
-                  "valid while nothing moves, and rebaking takes seconds, not a frame."),
-      fmt::format("Acceptable: an error at most {:g}× the lowest error any candidate reached in that situation.",
-                  kAcceptableErrorFactor),
-      "Cheapest acceptable: the acceptable candidate with the lowest whole cost (shadow + prefilter + visibility per "
-      "frame, median over the timed frames).",
-      "Balanced: the acceptable candidate with the lowest whole cost × error, the knee of the front on log-log axes.",
-      "Best: the candidate with the lowest error, whatever it costs.",
-      "Every pick lies on the situation's whole-cost Pareto front: a configuration both cheaper and more accurate would "
-      "be acceptable too and win all three orders. Memory (what the technique keeps on the GPU) is shown, not ranked."};
+std::vector<std::string> ruleText(const BenchResults& r) {
+  std::vector<std::string> out = {
+      "Candidates: every configuration the run measured on the situation's scene at its own light. Where casters may "
+      "move, techniques with one-off work are left out: a baked distance field (sdf) is only valid while nothing "
+      "moves, and rebaking takes seconds, not a frame."};
+  if (r.settings.motionFrames > 1) out.push_back(motionRuleText(r));
+  out.push_back(fmt::format("Acceptable: flicker at most {:g} % of the followed points (one in a thousand), and an error at "
+                            "most {:g}× the lowest error among the candidates within that flicker limit.",
+                            kMaxFlickerPct, kAcceptableErrorFactor));
+  if (r.settings.retimeRounds > 0)
+    out.push_back(fmt::format(
+        "Costs: the acceptable candidates that no other acceptable one beats clearly (cheaper beyond both spreads and "
+        "more accurate) are timed again in {} interleaved rounds, one frame of each per round, so that every round's "
+        "times share the machine's load; the picks' costs are those rounds' median and p10–p90.",
+        r.settings.retimeRounds));
+  out.push_back("Cheapest acceptable: the lowest whole cost (shadow + prefilter + visibility per frame). Another whose "
+                "cost ratio to it goes either way over the rounds (p10 ≤ 1 ≤ p90) is a tie; the simplest of a tie, the "
+                "one that keeps the least GPU memory, is picked.");
+  out.push_back("Balanced: the lowest whole cost × error, the knee of the front on log-log axes.");
+  out.push_back("Best: the lowest error, whatever it costs. Another whose error ratio to it goes either way over the "
+                "frames (p10 ≤ 1 ≤ p90) is a tie; the cheapest of a tie is picked.");
+  out.push_back("Memory (what the technique keeps on the GPU) is shown, not ranked. A tie and a configuration that more "
+                "than one budget picks are named once.");
+  return out;
 }
 
 std::string htmlCode(std::string_view text) {
-  // `a` → <code>a</code>, the rest escaped.
+  // `a` → <code>a</code>, **b** → <b>b</b>, the rest escaped.
   std::string out;
-  bool inCode = false;
+  bool inCode = false, inBold = false;
   size_t start = 0;
   for (size_t i = 0; i <= text.size(); ++i) {
-    if (i < text.size() && text[i] != '`') continue;
+    const bool bold = !inCode && text.substr(i, 2) == "**";
+    if (i < text.size() && text[i] != '`' && !bold) continue;
     out += escapeXml(text.substr(start, i - start));
-    if (i < text.size()) out += inCode ? "</code>" : "<code>";
+    if (i == text.size()) break;
+    if (bold) {
+      out += inBold ? "</b>" : "<b>";
+      inBold = !inBold;
+      start = i + 2;
+      ++i;
+      continue;
+    }
+    out += inCode ? "</code>" : "<code>";
     inCode = !inCode;
     start = i + 1;
   }
   return out;
 }
+
+// A table of text cells (`code` and **bold** marked as in Markdown), written as Markdown or HTML.
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> left;  ///< per column: left-aligned
+
+  std::string markdown() const {
+    std::string m = "|";
+    std::string rule = "|";
+    for (const std::string& h : header) {
+      m += " " + h + " |";
+      rule += "---|";
+    }
+    m += "\n" + rule + "\n";
+    for (const auto& row : rows) {
+      m += "|";
+      for (const std::string& c : row) m += " " + c + " |";
+      m += "\n";
+    }
+    return m;
+  }
+  std::string html(const std::string& cls) const {
+    std::string h = "<div class=\"wide\"><table class=\"" + cls + "\"><tr>";
+    for (size_t k = 0; k < header.size(); ++k)
+      h += fmt::format("<th{}>{}</th>", k < left.size() && left[k] ? " class=\"l\"" : "", htmlCode(header[k]));
+    h += "</tr>\n";
+    for (const auto& row : rows) {
+      h += "<tr>";
+      for (size_t k = 0; k < row.size(); ++k)
+        h += fmt::format("<td{}>{}</td>", k < left.size() && left[k] ? " class=\"l wrap\"" : "", htmlCode(row[k]));
+      h += "</tr>\n";
+    }
+    return h + "</table></div>\n";
+  }
+};
 
 std::string errorText(double v) { return fmt::format("{:.4f}", v); }
 // The metric shown beside the one that decides.
@@ -78,6 +152,21 @@ std::string costText(const TimeStats& t) {
 std::string oneOffCell(const BenchRow& r) {
   return r.oneOff.empty() ? "—" : fmt::format("{} s bake (static casters only)", numberText(r.oneOffSeconds()));
 }
+std::string flickerText(const BenchRow& r) { return r.motion ? fmt::format("{:.3f}", flickerPct(r)) : "—"; }
+
+// The deciding error over the frames: its mean, and the frames' range when there are several.
+std::string motionErrorText(ErrorMetric metric, const BenchRow& r) {
+  const std::vector<double> e = frameErrors(metric, r);
+  if (e.size() < 2) return errorText(e.front());
+  return fmt::format("{} ({}–{})", errorText(motionError(metric, r)), errorText(*std::min_element(e.begin(), e.end())),
+                     errorText(*std::max_element(e.begin(), e.end())));
+}
+
+std::string budgetsText(const SituationPicks& p, size_t row) {
+  std::string out;
+  for (const Budget b : p.budgetsOf(row)) out += (out.empty() ? "" : " = ") + std::string(budgetName(b));
+  return out;
+}
 
 std::vector<size_t> pickedRows(const SituationPicks& p) {
   std::vector<size_t> rows;
@@ -86,11 +175,104 @@ std::vector<size_t> pickedRows(const SituationPicks& p) {
   return rows;
 }
 
+// The `penumbra compare` command that reproduces a row: its still error and, for a row scored in
+// motion, its motion too (the frames, and the walk where the scene does not move).
+std::string reproduceCommand(const BenchResults& r, const BenchRow& row) {
+  std::string cmd = compareCommand(r, row);
+  if (row.motion && !row.motion->frames.empty())
+    cmd += fmt::format(" --frames {} --fps {:g}{}", row.motion->frames.size(), row.motion->fps,
+                       row.motion->what == std::string_view(kWalkMotion) ? " --walk" : "");
+  return cmd;
+}
+
 std::string acceptableText(const BenchResults& r, const SituationPicks& p) {
-  size_t acceptable = 0;
-  for (const size_t i : p.candidates) acceptable += situationError(p.situation->metric, r.rows[i]) <= p.acceptableError;
-  return fmt::format("Acceptable: {} ≤ {:g} × {:.4f} = {:.4f} ({} of {} candidates)", metricName(p.situation->metric),
-                     kAcceptableErrorFactor, p.bestError, p.acceptableError, acceptable, p.candidates.size());
+  const Situation& s = *p.situation;
+  std::string scored = "scored on its still frame";
+  if (p.motion && !p.candidates.empty()) {
+    const MotionScore& m = *r.rows[p.candidates.front()].motion;
+    scored = fmt::format("scored on its still frame and over {} ({} frames at {:g} fps)", m.what, m.frames.size(), m.fps);
+  }
+  if (p.acceptable.empty())
+    return fmt::format("Scene `{}`, {}. **No candidate is acceptable**: each of the {} flickers beyond {:g} %.", s.scene,
+                       scored, p.candidates.size(), kMaxFlickerPct);
+  return fmt::format("Scene `{}`, {}. Acceptable: {} ≤ {:g} × {:.4f} = {:.4f} and flicker ≤ {:g} % ({} of {} candidates).",
+                     s.scene, scored, metricName(s.metric), kAcceptableErrorFactor, p.bestError, p.acceptableError,
+                     kMaxFlickerPct, p.acceptable.size(), p.candidates.size());
+}
+
+// The picks as a table: one row per configuration, its budgets joined when several picked it.
+Table picksTable(const BenchResults& r, const SituationPicks& p) {
+  const ErrorMetric metric = p.situation->metric;
+  Table t;
+  t.header = {"budget", "configuration", fmt::format("{} (decides){}", metricName(metric), p.motion ? ", mean (frames' range)" : ""),
+              fmt::format("{}, still", metricName(otherMetric(metric))), "flicker %",
+              fmt::format("whole cost ms (p10–p90{})", p.retimed ? ", interleaved rounds" : ""), "memory MiB", "one-off",
+              "reproduce"};
+  t.left = {true, true, false, false, false, false, false, true, true};
+  for (const size_t i : pickedRows(p)) {
+    const BenchRow& row = r.rows[i];
+    t.rows.push_back({budgetsText(p, i), fmt::format("**{}**", rowLabel(row)), motionErrorText(metric, row),
+                      errorText(situationError(otherMetric(metric), row)), flickerText(row), costText(pickCost(row)),
+                      numberText(row.memoryMiB()), oneOffCell(row), fmt::format("`{}`", reproduceCommand(r, row))});
+  }
+  return t;
+}
+
+std::string ratioText(const TimeStats& t) { return fmt::format("{:.2f}–{:.2f}", t.p10, t.p90); }
+
+// The notes under a situation's picks: one budget for all, ties, what was left out and why.
+std::vector<std::string> pickNotes(const BenchResults& r, const SituationPicks& p) {
+  std::vector<std::string> notes;
+  const std::vector<size_t> picked = pickedRows(p);
+  if (picked.size() == 1)
+    notes.push_back(fmt::format("One configuration is the cheapest acceptable, the balanced and the best choice here: **{}**.",
+                                rowLabel(r.rows[picked.front()])));
+  if (p.cheapestTie) {
+    std::string with;
+    for (const size_t i : p.cheapestTie->with) {
+      const std::optional<TimeStats> ratio = costRatio(r.rows[i], r.rows[*p.cheapestAcceptable]);
+      with += fmt::format("{}{} (cost ratio {} over the rounds)", with.empty() ? "" : ", ", rowLabel(r.rows[i]),
+                          ratio ? ratioText(*ratio) : "ranges overlap");
+    }
+    notes.push_back(fmt::format("Tie for the cheapest acceptable: **{}** and {}; the costs cannot be told apart, so the one "
+                                "that keeps the least GPU memory is picked.",
+                                rowLabel(r.rows[*p.cheapestAcceptable]), with));
+  }
+  if (p.bestTie) {
+    std::string with;
+    for (const size_t i : p.bestTie->with) {
+      const std::optional<TimeStats> ratio = errorRatio(p.situation->metric, r.rows[i], r.rows[*p.best]);
+      with += fmt::format("{}{} ({} {}, error ratio {} over the frames)", with.empty() ? "" : ", ", rowLabel(r.rows[i]),
+                          metricName(p.situation->metric), errorText(motionError(p.situation->metric, r.rows[i])),
+                          ratio ? ratioText(*ratio) : "equal");
+    }
+    notes.push_back(fmt::format("Tie for the best: **{}** ({} {}) and {}; the errors cannot be told apart over the frames, "
+                                "so the cheaper is picked.",
+                                rowLabel(r.rows[*p.best]), metricName(p.situation->metric),
+                                errorText(motionError(p.situation->metric, r.rows[*p.best])), with));
+  }
+  if (!picked.empty()) notes.push_back("Re-time these: `" + benchCommand(r, picked) + "`.");
+  if (!p.excluded.empty()) {
+    // "label: why" entries, the labels that share a reason named together.
+    std::vector<std::pair<std::string, std::string>> byReason;
+    for (const std::string& e : p.excluded) {
+      const size_t colon = e.find(": ");
+      const std::string label = e.substr(0, colon), why = colon == std::string::npos ? "" : e.substr(colon + 2);
+      const auto it = std::find_if(byReason.begin(), byReason.end(), [&](const auto& b) { return b.second == why; });
+      if (it == byReason.end()) byReason.emplace_back(label, why);
+      else it->first += ", " + label;
+    }
+    std::string text = "Left out: ";
+    for (size_t k = 0; k < byReason.size(); ++k) text += fmt::format("{}{}: {}", k ? "; " : "", byReason[k].first, byReason[k].second);
+    notes.push_back(text + ".");
+  }
+  if (!p.flickering.empty()) {
+    std::string text = fmt::format("Not acceptable, flicker above {:g} % of the followed points: ", kMaxFlickerPct);
+    for (size_t k = 0; k < p.flickering.size(); ++k)
+      text += fmt::format("{}{} ({:.3f} %)", k ? ", " : "", rowLabel(r.rows[p.flickering[k]]), flickerPct(r.rows[p.flickering[k]]));
+    notes.push_back(text + ".");
+  }
+  return notes;
 }
 
 // Per filter, its candidate with the lowest error in the situation (default parameters only).
@@ -99,9 +281,13 @@ std::optional<size_t> bestOfFilter(const BenchResults& r, const SituationPicks& 
   for (const size_t i : p.candidates) {
     const BenchRow& row = r.rows[i];
     if (row.config.filter != filter || !techniqueParams(row).empty()) continue;
-    if (!best || situationError(p.situation->metric, row) < situationError(p.situation->metric, r.rows[*best])) best = i;
+    if (!best || motionError(p.situation->metric, row) < motionError(p.situation->metric, r.rows[*best])) best = i;
   }
   return best;
+}
+
+std::string pageTitle(const BenchResults& r) {
+  return r.settings.quick ? "Which shadow technique? A quick look, not for decisions" : "Which shadow technique?";
 }
 
 }  // namespace
@@ -122,100 +308,102 @@ std::string benchCommand(const BenchResults& results, const std::vector<size_t>&
   for (const auto& [key, value] : params) cmd += fmt::format(" --sweep {}={}:{}:1", key, value, value);
   cmd += fmt::format(" --size {}x{} --samples {} --frames {} --warmup {}", s.width, s.height, s.referenceSamples,
                      s.timedFrames, s.warmupFrames);
+  if (s.motionFrames != BenchSettings{}.motionFrames) cmd += fmt::format(" --motion-frames {}", s.motionFrames);
   if (s.shadowMapSize) cmd += fmt::format(" --shadow-map {}", *s.shadowMapSize);
   if (!s.camera.empty()) cmd += " --camera " + s.camera;
   return cmd;
 }
 
+std::string picksSummary(const BenchResults& r, const std::vector<SituationPicks>& picks) {
+  std::string out = r.settings.quick ? "picks (a quick look, not for decisions: --quick's small images, maps and frames):\n" : "picks:\n";
+  for (const SituationPicks& p : picks) {
+    const Situation& s = *p.situation;
+    out += fmt::format("  {} ({}, {}): ", s.id, s.scene, metricName(s.metric));
+    if (p.candidates.empty()) {
+      out += "not measured in this run\n";
+      continue;
+    }
+    if (p.acceptable.empty()) {
+      out += fmt::format("nothing acceptable (every candidate flickers beyond {:g} %)\n", kMaxFlickerPct);
+      continue;
+    }
+    std::string line;
+    for (const size_t i : pickedRows(p)) {
+      const BenchRow& row = r.rows[i];
+      line += fmt::format("{}{}: {} ({:.4f}, {} ms{})", line.empty() ? "" : "; ", budgetsText(p, i), rowLabel(row),
+                          motionError(s.metric, row), numberText(pickCost(row).median),
+                          row.motion ? fmt::format(", flicker {:.3f} %", flickerPct(row)) : "");
+    }
+    const bool tie = p.cheapestTie || p.bestTie;
+    out += line + (tie ? " (a tie: the page names it)" : "") + "\n";
+  }
+  return out;
+}
+
 std::string recommendationHtml(const BenchResults& r, const std::vector<SituationPicks>& picks) {
-  std::string h = "<h2 id=\"choose\">Which technique? Recommendations from this run</h2>\n<p>For each situation, the "
-                  "configuration this run measured as the cheapest acceptable, the balanced and the best choice. "
-                  "Measured on " + escapeXml(machineText(r)) + ", at " + escapeXml(settingsText(r)) +
-                  ". The same table is written as a Markdown page (docs/choosing.md in the repository).</p>\n<ul>";
-  for (const std::string& line : ruleText()) h += "<li>" + htmlCode(line) + "</li>";
+  std::string h = "<h2 id=\"choose\">Which technique? Recommendations from this run</h2>\n";
+  if (r.settings.quick) h += "<p class=\"quick\">" + htmlCode(quickText(r)) + "</p>\n";
+  h += "<p>For each situation, the configuration this run measured as the cheapest acceptable, the balanced and the best "
+       "choice. Measured on " + escapeXml(machineText(r)) + ", at " + escapeXml(settingsText(r)) +
+       ". The same table is written as a Markdown page (docs/choosing.md in the repository).</p>\n<ul>";
+  for (const std::string& line : ruleText(r)) h += "<li>" + htmlCode(line) + "</li>";
   h += "</ul>\n";
   for (const SituationPicks& p : picks) {
     const Situation& s = *p.situation;
-    h += fmt::format("<h3 id=\"choose-{}\">{}</h3>\n<p>Scene <code>{}</code>: {}", s.id, escapeXml(s.title), s.scene,
-                     escapeXml(s.why));
+    h += fmt::format("<h3 id=\"choose-{}\">{}</h3>\n<p>{}</p>\n", s.id, escapeXml(s.title), escapeXml(s.why));
     if (p.candidates.empty()) {
-      h += fmt::format(" <b>Not measured in this run</b>: add <code>--scenes {}</code>.</p>\n", s.scene);
+      h += fmt::format("<p><b>Not measured in this run</b>: add <code>--scenes {}</code>.</p>\n", s.scene);
       continue;
     }
-    h += fmt::format(" {}.</p>\n", escapeXml(acceptableText(r, p)));
-    h += fmt::format("<div class=\"wide\"><table class=\"picks\"><tr><th class=\"l\">budget</th><th class=\"l\">configuration</th>"
-                     "<th>{} (decides)</th><th>{}</th><th>whole cost ms <small>p10–p90</small></th><th>memory MiB</th>"
-                     "<th class=\"l\">one-off</th><th class=\"l cmd\">reproduce the error (and one frame's times)</th></tr>\n",
-                     metricName(s.metric), metricName(otherMetric(s.metric)));
-    for (const Budget b : kBudgets) {
-      const BenchRow& row = r.rows[*p.pick(b)];
-      h += fmt::format("<tr><th class=\"l\">{}</th><td class=\"l wrap\"><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td>"
-                       "<td>{}</td><td class=\"l wrap\">{}</td><td class=\"l cmd\"><code>{}</code></td></tr>\n",
-                       budgetName(b), escapeXml(rowLabel(row)), errorText(situationError(s.metric, row)),
-                       errorText(situationError(otherMetric(s.metric), row)), costText(row.shadowCost), numberText(row.memoryMiB()),
-                       escapeXml(oneOffCell(row)),
-                       escapeXml(compareCommand(r, row)));
-    }
-    h += "</table></div>\n";
-    h += "<p class=\"note\">Re-time these three: <code>" + escapeXml(benchCommand(r, pickedRows(p))) + "</code>";
-    if (!p.excluded.empty()) {
-      h += ". Left out: ";
-      for (size_t k = 0; k < p.excluded.size(); ++k) h += (k ? "; " : "") + escapeXml(p.excluded[k]);
-    }
-    h += ".</p>\n";
+    h += "<p>" + htmlCode(acceptableText(r, p)) + "</p>\n";
+    if (!p.acceptable.empty()) h += picksTable(r, p).html("picks");
+    for (const std::string& note : pickNotes(r, p)) h += "<p class=\"note\">" + htmlCode(note) + "</p>\n";
   }
   return h;
 }
 
 std::string choosingMarkdown(const BenchResults& r, const std::vector<SituationPicks>& picks, const std::string& reportLink) {
-  std::string m = "# Which shadow technique?\n\n";
+  std::string m = "# " + pageTitle(r) + "\n\n";
   m += "<!-- Written by `penumbra bench` from its own results: do not edit by hand (docs/bench.md says how to "
        "regenerate it). -->\n\n";
+  if (r.settings.quick) m += "> **" + quickText(r) + "**\n\n";
   m += fmt::format(
       "For four situations users bring, the configuration that [the bench]({}) measured as the **cheapest acceptable**, "
-      "the **balanced** and the **best** choice: its error against the ray-traced reference, its whole cost per frame, "
-      "the GPU memory it keeps, and the `penumbra compare` command that reproduces its error (and prints one frame's "
-      "pass times). This page is written by `penumbra bench`; every number comes from that run.\n\n",
+      "the **balanced** and the **best** choice: its error against the ray-traced reference, still and in motion, its "
+      "flicker, its whole cost per frame, the GPU memory it keeps, and the `penumbra compare` command that reproduces its "
+      "error, motion and flicker (and prints its warm pass times). This page is written by `penumbra bench`; every "
+      "number comes from that run.\n\n",
       reportLink);
   m += fmt::format("- Run: `{}`, {}.\n- Machine: {}.\n- Times are this machine's (llvmpipe runs on the CPU): compare them "
-                   "with each other, not with a GPU's. Whole cost = shadow + prefilter + visibility passes per frame, the "
-                   "median over the timed frames (docs/bench.md, \"What is measured\", says what is counted).\n\n",
+                   "with each other, not with a GPU's. Whole cost = shadow + prefilter + visibility passes per frame "
+                   "(docs/bench.md, \"What is measured\", says what is counted).\n\n",
                    r.machine.command.empty() ? "penumbra bench" : r.machine.command, settingsText(r), machineText(r));
-  m += "## How the picks are made\n\n| situation | scene | error that decides | what the scene stands for |\n|---|---|---|---|\n";
-  for (const Situation& s : kSituations)
-    m += fmt::format("| [{}](#{}) | `{}` | {} | {} |\n", s.title, s.id, s.scene, metricName(s.metric), s.why);
+  m += "## How the picks are made\n\n| situation | scene | error that decides | motion | what the scene stands for |\n"
+       "|---|---|---|---|---|\n";
+  for (const SituationPicks& p : picks) {
+    const Situation& s = *p.situation;
+    std::string motion = "still frame only";
+    if (p.motion) motion = r.rows[p.candidates.front()].motion->what;
+    m += fmt::format("| [{}](#{}) | `{}` | {} | {} | {} |\n", s.title, s.id, s.scene, metricName(s.metric), motion, s.why);
+  }
   m += "\n";
-  for (const std::string& line : ruleText()) m += "- " + line + "\n";
+  for (const std::string& line : ruleText(r)) m += "- " + line + "\n";
   m += "\n";
   for (const SituationPicks& p : picks) {
     const Situation& s = *p.situation;
-    m += fmt::format("## {} <a id=\"{}\"></a>\n\nScene `{}`. ", s.title, s.id, s.scene);
+    m += fmt::format("## {} <a id=\"{}\"></a>\n\n", s.title, s.id);
     if (p.candidates.empty()) {
-      m += fmt::format("**Not measured in this run**: add `--scenes {}`.\n\n", s.scene);
+      m += fmt::format("Scene `{}`. **Not measured in this run**: add `--scenes {}`.\n\n", s.scene, s.scene);
       continue;
     }
-    m += acceptableText(r, p) + ".\n\n";
-    m += fmt::format("| budget | configuration | {} (decides) | {} | whole cost ms (p10–p90) | memory MiB | one-off | "
-                     "reproduce |\n|---|---|---|---|---|---|---|---|\n",
-                     metricName(s.metric), metricName(otherMetric(s.metric)));
-    for (const Budget b : kBudgets) {
-      const BenchRow& row = r.rows[*p.pick(b)];
-      m += fmt::format("| {} | **{}** | {} | {} | {} | {} | {} | `{}` |\n", budgetName(b), rowLabel(row),
-                       errorText(situationError(s.metric, row)), errorText(situationError(otherMetric(s.metric), row)),
-                       costText(row.shadowCost), numberText(row.memoryMiB()), oneOffCell(row), compareCommand(r, row));
-    }
-    m += "\nRe-time these three: `" + benchCommand(r, pickedRows(p)) + "`.";
-    if (!p.excluded.empty()) {
-      m += " Left out: ";
-      for (size_t k = 0; k < p.excluded.size(); ++k) m += (k ? "; " : "") + p.excluded[k];
-      m += ".";
-    }
-    m += "\n\n";
+    m += acceptableText(r, p) + "\n\n";
+    if (!p.acceptable.empty()) m += picksTable(r, p).markdown() + "\n";
+    for (const std::string& note : pickNotes(r, p)) m += note + "\n\n";
   }
   // Every filter's own best showing per situation: what the technique pages link to.
   m += "## Every filter at a glance <a id=\"every-filter\"></a>\n\nPer filter and situation, its most accurate "
-       "projection in this run (default parameters): the error that decides there · whole cost ms · memory MiB. "
-       "✓ = acceptable by the rule above.\n\n| filter |";
+       "projection in this run (default parameters): the error that decides there (mean over the frames) · flicker % · "
+       "whole cost ms (its own timed frames) · memory MiB. ✓ = acceptable by the rule above.\n\n| filter |";
   std::string rule = "|---|";
   for (const SituationPicks& p : picks) {
     m += fmt::format(" [{}](#{}) (`{}`) |", p.situation->title, p.situation->id, p.situation->scene);
@@ -236,9 +424,10 @@ std::string choosingMarkdown(const BenchResults& r, const std::vector<SituationP
         continue;
       }
       const BenchRow& row = r.rows[*i];
-      const double e = situationError(p.situation->metric, row);
-      m += fmt::format(" {:.4f} · {} ms · {} MiB ({}){} |", e, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
-                       row.config.projection, e <= p.acceptableError ? " ✓" : "");
+      const bool acceptable = std::find(p.acceptable.begin(), p.acceptable.end(), *i) != p.acceptable.end();
+      m += fmt::format(" {:.4f} · {} · {} ms · {} MiB ({}){} |", motionError(p.situation->metric, row),
+                       row.motion ? fmt::format("{:.3f} %", flickerPct(row)) : "still", numberText(row.shadowCost.median),
+                       numberText(row.memoryMiB()), row.config.projection, acceptable ? " ✓" : "");
     }
     m += "\n";
   }

@@ -15,6 +15,10 @@ namespace penumbra::report {
 /// scenes, projections, filters and swept values).
 std::string benchCommand(const BenchResults& results, const std::vector<size_t>& rows);
 
+/// The picks as plain text for the terminal: per situation its picks, error, cost and flicker
+/// (`penumbra bench` prints it; a --quick run says it is a quick look).
+std::string picksSummary(const BenchResults& results, const std::vector<SituationPicks>& picks);
+
 /// The report's section (an <h2 id="choose"> and what follows).
 std::string recommendationHtml(const BenchResults& results, const std::vector<SituationPicks>& picks);
 

@@ -3,6 +3,7 @@
 #include "report/ScaleBench.h"
 
 #include "report/ChoosingPage.h"
+#include "report/Recommendation.h"
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 
@@ -30,10 +31,13 @@ code { background: #f4f4f4; padding: 1px 4px; } .wide { overflow-x: auto; } td.w
 td.cmd, th.cmd { white-space: normal; min-width: 300px; max-width: 480px; }
 /* the recommendation: headings and names wrap so that the command column fits a 1280-pixel window */
 table.picks th { white-space: normal; } table.picks td.wrap { min-width: 120px; }
+.quick { background: #fff3cd; border: 1px solid #e0c060; padding: 8px 12px; font-weight: bold; }
 )";
 
-// Image-grid thumbnails are shown at most this wide (pixels); a click opens the full picture.
+// Image-grid thumbnails are shown at most this wide (pixels); a click opens the full picture. A
+// smaller picture (--quick's 96×64) is shown at least this wide, its pixels enlarged.
 constexpr int kThumbWidthPx = 320;
+constexpr int kMinThumbWidthPx = 240;
 
 std::string esc(std::string_view s) { return escapeXml(s); }
 
@@ -57,7 +61,8 @@ std::string header(const BenchResults& r) {
   const BenchSettings& s = r.settings;
   size_t refused = 0, failed = 0;
   for (const SkippedConfig& k : r.skipped) (k.failed ? failed : refused)++;
-  std::string h = "<h1>Penumbra bench: shadow techniques, quality against whole cost and memory</h1>\n";
+  std::string h = fmt::format("<h1>Penumbra bench: shadow techniques, quality against whole cost and memory{}</h1>\n",
+                              s.quick ? " — a quick look, not for decisions" : "");
   h += fmt::format(
       "<p>{} configurations measured, {} refused as unsupported pairs, {} failed; {:.0f} s in all. Raw data: "
       "<a href=\"results.csv\">results.csv</a>, <a href=\"results.json\">results.json</a>.</p>\n",
@@ -76,38 +81,62 @@ std::string header(const BenchResults& r) {
                      "not the scene's own.</p>\n",
                      esc(s.camera));
   h += "<p class=\"note\">Contents: <a href=\"#choose\">which technique?</a> · <a href=\"#quality\">1. quality vs whole cost and memory</a> · <a href=\"#light\">2. cost vs light "
-       "size</a> · <a href=\"#lights\">2b. cost vs number of lights</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a></p>\n";
+       "size</a> · <a href=\"#lights\">2b. cost vs number of lights</a> · <a href=\"#grid\">3. image grid</a> · <a href=\"#tables\">4. tables</a> · "
+       "the building blocks' micro-benchmarks: <a href=\"micro.html\">micro.html</a></p>\n";
   return h;
 }
 
-std::string frontText(const BenchResults& r, const std::vector<size_t>& front, bool memory) {
+std::string frontText(const BenchResults& r, const std::vector<size_t>& front, bool memory, ErrorMetric metric) {
   std::string h;
   for (size_t k = 0; k < front.size(); ++k) {
     const BenchRow& row = r.rows[front[k]];
-    h += fmt::format("{}<span class=\"front\">{}</span> ({}, RMSE {:.4f})", k ? " → " : "", esc(rowLabel(row)),
+    h += fmt::format("{}<span class=\"front\">{}</span> ({}, {} {:.4f})", k ? " → " : "", esc(rowLabel(row)),
                      memory ? numberText(row.memoryMiB()) + " MiB" : numberText(row.shadowCost.median) + " ms",
-                     row.metrics.rmse);
+                     metricName(metric), motionError(metric, row));
   }
   return h;
 }
 
+// "its picks: cheapest acceptable = balanced: pcss · uniform; best: …" for a situation's scene.
+std::string picksText(const BenchResults& r, const std::vector<SituationPicks>& picks, const std::string& scene) {
+  for (const SituationPicks& p : picks) {
+    if (scene != p.situation->scene || !p.cheapestAcceptable) continue;
+    std::string h = fmt::format(" The <a href=\"#choose-{}\">recommendation</a>'s picks, by the costs of their interleaved rounds: ",
+                                p.situation->id);
+    std::vector<size_t> done;
+    for (const Budget b : kBudgets) {
+      const size_t i = *p.pick(b);
+      if (std::find(done.begin(), done.end(), i) != done.end()) continue;
+      done.push_back(i);
+      std::string budgets;
+      for (const Budget o : p.budgetsOf(i)) budgets += (budgets.empty() ? "" : " = ") + std::string(budgetName(o));
+      h += fmt::format("{}{}: <b>{}</b>", done.size() > 1 ? "; " : "", budgets, esc(rowLabel(r.rows[i])));
+    }
+    return h + ".";
+  }
+  return "";
+}
+
 std::string qualitySection(const BenchResults& r) {
   std::string h = fmt::format(
-      "<h2 id=\"quality\">1. Quality against whole cost and memory</h2>\n<p>One point per configuration: the RMSE of "
-      "its visibility V against the ray-traced V<sub>ref</sub> (pixels that face the light) against its <b>whole cost</b>: "
-      "per frame the {} passes added up, then the median over the timed frames (the G-buffer and lit passes are the "
-      "same for every technique and left out). Beside it, the same errors against the <b>GPU memory</b> the technique "
-      "keeps (every map, moment, mip, summed-area and pyramid texture and buffer: docs/bench.md). Colour: filter; "
-      "marker: projection; ringed and joined by the dashed staircase: the Pareto front (no other configuration is both "
-      "cheaper and more accurate). sdf's bake is in no frame: its points carry it as a one-off cost, valid only while "
-      "the casters do not move. Below each pair, a bar per configuration shows where its time goes. Hover for numbers."
-      "</p>\n",
+      "<h2 id=\"quality\">1. Quality against whole cost and memory</h2>\n<p>One point per configuration: the error that "
+      "decides in the scene's situation (penumbra RMSE on <code>pen</code>, RMSE elsewhere: pixels that face the light), "
+      "the mean over the frames it was scored on (its still frame and, for a situation's scene, the scene's animation or "
+      "a camera walk), against its <b>whole cost</b>: per frame the {} passes added up, then the median over the timed "
+      "frames (the G-buffer and lit passes are the same for every technique and left out). Beside it, the same errors "
+      "against the <b>GPU memory</b> the technique keeps (every map, moment, mip, summed-area and pyramid texture and "
+      "buffer: docs/bench.md). Colour and shape: filter; the letter beside a point: its projection; ringed and joined by "
+      "the dashed staircase: the Pareto front (no other configuration is both cheaper and more accurate). sdf's bake is "
+      "in no frame: its points carry it as a one-off cost, valid only while the casters do not move. Below each pair, a "
+      "bar per configuration shows where its time goes. Hover for numbers (and flicker).</p>\n",
       kCostName);
+  const std::vector<SituationPicks> picks = recommend(r);
   for (const SceneCharts& q : sceneCharts(r)) {
+    const ErrorMetric metric = q.rows.empty() ? ErrorMetric::Rmse : sceneMetric(q.scene);
     h += fmt::format("<h3>{}</h3>\n<div class=\"charts\">\n", esc(q.scene));
-    h += "<figure>" + svgChart(q.cost) + "<figcaption>Whole-cost Pareto front: " + frontText(r, q.costFront, false) +
-         "</figcaption></figure>\n";
-    h += "<figure>" + svgChart(q.memory) + "<figcaption>Memory Pareto front: " + frontText(r, q.memoryFront, true) +
+    h += "<figure>" + svgChart(q.cost) + "<figcaption>Whole-cost Pareto front: " + frontText(r, q.costFront, false, metric) +
+         "." + picksText(r, picks, q.scene) + "</figcaption></figure>\n";
+    h += "<figure>" + svgChart(q.memory) + "<figcaption>Memory Pareto front: " + frontText(r, q.memoryFront, true, metric) +
          "</figcaption></figure>\n</div>\n";
     h += "<div class=\"wide\">" + svgBarChart(q.passes) + "</div>\n";
   }
@@ -158,8 +187,8 @@ std::string gridSection(const BenchResults& r) {
     std::string rows;
     for (const BenchRow& row : r.rows) {
       if (row.config.scene != scene || row.imagePath.empty()) continue;
-      // Thumbnails at most kThumbWidthPx wide; each opens the full-size picture.
-      const int thumbW = std::min(row.width, kThumbWidthPx);
+      // Thumbnails kMinThumbWidthPx to kThumbWidthPx wide; each opens the full-size picture.
+      const int thumbW = std::clamp(row.width, kMinThumbWidthPx, kThumbWidthPx);
       const int thumbH = static_cast<int>(std::lround(static_cast<double>(row.height) * thumbW / std::max(row.width, 1)));
       auto img = [&](const std::string& path, const std::string& alt) {
         return fmt::format("<td><a href=\"{0}\"><img src=\"{0}\" width=\"{1}\" height=\"{2}\" alt=\"{3}\" title=\"{3}: "
@@ -311,22 +340,36 @@ std::string machineTable(const BenchResults& r) {
   return h + "</table>\n";
 }
 
+// A page's head with the report's style, up to the opened <body>.
+std::string pageHead(const std::string& title) {
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+         "<meta name=\"viewport\" content=\"width=device-width\"><title>" + esc(title) +
+         "</title><link rel=\"icon\" href=\"data:,\"><style>" + kStyle + "</style></head><body>\n";
+}
+
 }  // namespace
 
 std::string htmlReport(const BenchResults& r) {
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-                  "<meta name=\"viewport\" content=\"width=device-width\"><title>Penumbra bench</title>"
-                  "<link rel=\"icon\" href=\"data:,\"><style>";
-  h += kStyle;
-  h += "</style></head><body>\n";
+  std::string h = pageHead("Penumbra bench");
   h += header(r) + recommendationHtml(r, recommend(r)) + qualitySection(r) + lightSection(r) + lightCountSection(r) + gridSection(r);
-  h += "<h2 id=\"tables\">4. Tables</h2>\n" + microTable(r) + scaleSectionHtml(r.scale, r.machine) + ratioTable(r) + resultsTables(r) +
-       skippedTable(r) + machineTable(r);
+  h += "<h2 id=\"tables\">4. Tables</h2>\n" + scaleSectionHtml(r.scale, r.machine) + ratioTable(r) + resultsTables(r) + skippedTable(r) +
+       machineTable(r);
   return h + "</body></html>\n";
+}
+
+std::string microHtml(const BenchResults& r) {
+  std::string h = pageHead("Penumbra bench: building blocks");
+  h += "<h1>Penumbra bench: the building blocks against their baselines</h1>\n";
+  h += fmt::format("<p>What the tool's own parts cost, each against the simplest work of its kind: for the people who work "
+                   "on Penumbra, not for choosing a technique (that is <a href=\"report.html\">the report</a>). Clock "
+                   "<b>{}</b> on <b>{}</b>, {} rounds; docs/bench.md, \"Micro-benchmarks\", says what each row times.</p>\n",
+                   esc(r.machine.clock), esc(r.machine.glRenderer), r.settings.microRepetitions);
+  return h + microTable(r) + machineTable(r) + "</body></html>\n";
 }
 
 void writeHtmlReport(const std::filesystem::path& dir, const BenchResults& results) {
   writeTextFile(dir / "report.html", htmlReport(results));
+  writeTextFile(dir / "micro.html", microHtml(results));
 }
 
 }  // namespace penumbra::report

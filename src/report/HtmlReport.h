@@ -3,8 +3,9 @@
 // images/) that a user reads to choose a technique: the recommendation (ChoosingPage.h),
 // 1. quality vs whole cost and vs memory with their Pareto fronts, where the time goes,
 // 2. cost vs light size, 3. the image grid per scene (technique | reference | heatmap),
-// 4. tables (micro-benchmarks such as the SAT build against a copy, cost ratios such as msm/vsm,
-// every row, skipped configurations, the machine).
+// 4. tables (cost ratios such as msm/vsm, every row, skipped configurations, the machine). The
+// micro-benchmarks (building blocks such as the SAT build against a copy) are a page of their
+// own, micro.html: they time the tool's parts, not the user's choice.
 #include "report/BenchResults.h"
 
 #include <filesystem>
@@ -20,8 +21,11 @@ inline constexpr std::pair<const char*, const char*> kCostRatioPairs[] = {
 
 /// The page as text.
 std::string htmlReport(const BenchResults& results);
+/// The micro-benchmarks' page as text.
+std::string microHtml(const BenchResults& results);
 
-/// Writes dir/report.html (atomically). The images the rows name must already be in dir.
+/// Writes dir/report.html and dir/micro.html (atomically). The images the rows name must
+/// already be in dir.
 void writeHtmlReport(const std::filesystem::path& dir, const BenchResults& results);
 
 }  // namespace penumbra::report

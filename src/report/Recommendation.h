@@ -8,13 +8,22 @@
 //  - candidates: the rows of the situation's scene at its own light (BenchResults: sceneRows),
 //    except, where casters may move, techniques with one-off work (a baked field is only valid
 //    while nothing moves: sdf);
-//  - acceptable: error ≤ kAcceptableErrorFactor × the lowest error among the candidates;
-//  - cheapest acceptable: the acceptable candidate with the lowest whole cost (ties: lower error);
-//  - best: the lowest error (ties: lower cost);
-//  - balanced: the acceptable candidate with the lowest whole cost × error (ties: lower cost),
-//    the knee of the front on log-log axes.
-// Each pick is on the whole-cost Pareto front of the candidates: a configuration that is both
-// cheaper and more accurate would be acceptable too and win every one of the three orders.
+//  - each is scored in motion as well as still (BenchConfig::motion): its error is the mean over
+//    the still frame and the frames of the scene's animation or a camera walk; its flicker is
+//    the share of surface points whose V changes between consecutive frames while V_ref holds;
+//  - acceptable: flicker ≤ kMaxFlickerPct and error ≤ kAcceptableErrorFactor × the lowest error
+//    among the candidates that do not flicker beyond it;
+//  - contenders: the acceptable candidates that no other acceptable one beats clearly (cheaper
+//    beyond both spreads and more accurate); they are timed again in interleaved rounds
+//    (RoundCosts), and the picks and their costs come from those rounds;
+//  - cheapest acceptable: the contender with the lowest whole cost; contenders whose cost ratio
+//    to it spans 1 over the rounds (p10–p90) tie with it, and the simplest of them (the least
+//    GPU memory) is picked;
+//  - best: the lowest error; contenders whose error ratio to it spans 1 over the frames tie
+//    with it, and the cheapest of them is picked;
+//  - balanced: the lowest whole cost × error (the knee of the front on log-log axes).
+// A tie is named on the page. Each pick is an acceptable configuration that nothing acceptable
+// beats clearly in both cost and error.
 #include "report/BenchResults.h"
 
 #include <optional>
@@ -60,24 +69,74 @@ inline constexpr Situation kSituations[] = {
 /// shows (hard edges under a soft light, light bleeding, a map stretched over 600 m).
 inline constexpr double kAcceptableErrorFactor = 2.0;
 
+/// Acceptable: at most this share (%) of the followed surface points flicker between consecutive
+/// frames of the motion (metrics/Flicker.h: V changes by more than 0.1 while V_ref changes by
+/// less than 0.02) — one point in a thousand, the bar `tune` holds acne to. On city's walk one
+/// uniform map flickers 3 %, tsm 0.5 %, psm 0.2 %, stabilised cascades 0.06 % (pcf, 640×360).
+inline constexpr double kMaxFlickerPct = 0.1;
+
+/// At most this many contenders per situation are timed again in interleaved rounds (the
+/// cheapest first, and always the most accurate): each costs a renderer held for the rounds.
+inline constexpr size_t kMaxContenders = 8;
+
 enum class Budget { CheapestAcceptable, Balanced, Best };
 inline constexpr Budget kBudgets[] = {Budget::CheapestAcceptable, Budget::Balanced, Budget::Best};
 const char* budgetName(Budget b);  ///< "cheapest acceptable", "balanced", "best"
 const char* budgetKey(Budget b);   ///< "cheapest_acceptable", "balanced", "best" (JSON)
 
-/// What `metric` reads on a row.
+/// What `metric` reads on a row's still frame.
 double situationError(ErrorMetric metric, const BenchRow& row);
+/// What `metric` reads on each frame the row was scored on: the still frame, then its motion's.
+std::vector<double> frameErrors(ErrorMetric metric, const BenchRow& row);
+/// The error that decides: the mean of frameErrors.
+double motionError(ErrorMetric metric, const BenchRow& row);
+/// The row's flicker (%) over its motion; 0 for a row scored still only.
+double flickerPct(const BenchRow& row);
+/// The whole cost the picks compare: the interleaved rounds' when the row has them, else its own
+/// timed frames'.
+const TimeStats& pickCost(const BenchRow& row);
+
+/// Whether two rows' costs are indistinguishable: the per-round ratio of their interleaved
+/// costs spans 1 from p10 to p90; rows without rounds: their p10–p90 ranges overlap.
+bool costsTie(const BenchRow& a, const BenchRow& b);
+/// The per-round cost ratio a/b (median, p10–p90); empty without common rounds.
+std::optional<TimeStats> costRatio(const BenchRow& a, const BenchRow& b);
+/// Whether two rows' errors are indistinguishable: the per-frame ratio of their errors spans 1
+/// from p10 to p90 (one frame each: only equal errors tie).
+bool errorsTie(ErrorMetric metric, const BenchRow& a, const BenchRow& b);
+/// The per-frame error ratio a/b (median, p10–p90); empty when the frames differ in number.
+std::optional<TimeStats> errorRatio(ErrorMetric metric, const BenchRow& a, const BenchRow& b);
+
+/// Marks the configurations the situations judge (a situation's scene at its own light) to be
+/// scored in motion too (BenchConfig::motion).
+void markMotion(std::vector<BenchConfig>& configs);
 const char* metricName(ErrorMetric metric);  ///< "RMSE", "penumbra RMSE"
 const char* metricKey(ErrorMetric metric);   ///< "rmse", "penumbra_rmse" (the results column)
 
+/// A pick that tied: the rows it tied with (by cost for the cheapest, by error for the best) and
+/// the row the plain order would have picked among them.
+struct PickTie {
+  std::vector<size_t> with;   ///< the other rows of the tie (indices into results.rows)
+  size_t first = 0;           ///< the row first in the plain order (lowest cost or lowest error)
+};
+
 struct SituationPicks {
   const Situation* situation = nullptr;
-  std::vector<size_t> candidates;  ///< indices into results.rows
+  std::vector<size_t> candidates;     ///< indices into results.rows
   std::vector<std::string> excluded;  ///< "sdf · uniform: one-off work (...)", one per row left out
-  std::vector<size_t> front;       ///< whole-cost Pareto front of the candidates, ascending cost
+  /// Candidates that flicker beyond kMaxFlickerPct: not acceptable whatever their error.
+  std::vector<size_t> flickering;
+  std::vector<size_t> acceptable;     ///< acceptable candidates
+  std::vector<size_t> front;          ///< whole-cost Pareto front of the candidates, ascending cost
+  std::vector<size_t> contenders;     ///< what the interleaved rounds time (the picks among them)
   double bestError = 0.0, acceptableError = 0.0;
-  std::optional<size_t> cheapestAcceptable, balanced, best;  ///< rows; empty when no candidate
+  bool motion = false;                ///< the candidates were scored in motion
+  bool retimed = false;               ///< the picks' costs come from interleaved rounds
+  std::optional<size_t> cheapestAcceptable, balanced, best;  ///< rows; empty when nothing is acceptable
+  std::optional<PickTie> cheapestTie, bestTie;
   std::optional<size_t> pick(Budget b) const;
+  /// The budgets that picked `row`, in kBudgets order.
+  std::vector<Budget> budgetsOf(size_t row) const;
 };
 
 /// One entry per kSituations entry, in that order; a situation whose scene the run did not

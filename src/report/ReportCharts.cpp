@@ -1,5 +1,7 @@
 #include "report/ReportCharts.h"
 
+#include "report/Recommendation.h"
+
 #include <penumbra/Registry.h>
 
 #include <fmt/format.h>
@@ -14,9 +16,8 @@
 namespace penumbra::report {
 namespace {
 
-constexpr Marker kMarkers[] = {Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond};
-// Projection legend entries show the marker only: in a grey no filter colour uses (paletteColor).
-constexpr const char* kProjectionLegendColor = "#777";
+// A filter's marker with its colour: two filters of like colours differ in shape too.
+constexpr Marker kMarkers[] = {Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond, Marker::TriangleDown, Marker::Star};
 
 template <class T>
 size_t indexIn(const std::vector<T>& list, const T& value) {
@@ -36,10 +37,10 @@ std::vector<LegendEntry> legendFor(const BenchResults& results, const std::vecto
   }
   std::vector<LegendEntry> legend;
   for (const std::string& f : filterIds())
-    if (filters.contains(f)) legend.push_back({f, filterColor(f), Marker::Circle, false, false});
+    if (filters.contains(f)) legend.push_back({f, filterColor(f), filterMarker(f), false, false});
   if (projections)
     for (const std::string& p : projectionIds())
-      if (projs.contains(p)) legend.push_back({"▸ " + p, kProjectionLegendColor, projectionMarker(p), false, false});
+      if (projs.contains(p)) legend.push_back({.label = "projection " + p, .color = "#333", .tag = projectionTag(p)});
   return legend;
 }
 
@@ -71,8 +72,23 @@ std::string rowLabel(const BenchRow& row) {
 
 std::string filterColor(const std::string& filterId) { return paletteColor(indexIn(filterIds(), filterId)); }
 
-Marker projectionMarker(const std::string& projectionId) {
-  return kMarkers[indexIn(projectionIds(), projectionId) % std::size(kMarkers)];
+Marker filterMarker(const std::string& filterId) { return kMarkers[indexIn(filterIds(), filterId) % std::size(kMarkers)]; }
+
+std::string projectionTag(const std::string& projectionId) {
+  // The shortest prefix no other registered projection starts with.
+  const std::vector<std::string> ids = projectionIds();
+  for (size_t n = 1; n < projectionId.size(); ++n) {
+    const std::string prefix = projectionId.substr(0, n);
+    if (std::none_of(ids.begin(), ids.end(), [&](const std::string& o) { return o != projectionId && o.starts_with(prefix); }))
+      return prefix;
+  }
+  return projectionId;
+}
+
+ErrorMetric sceneMetric(const std::string& scene) {
+  for (const Situation& s : kSituations)
+    if (scene == s.scene) return s.metric;
+  return ErrorMetric::Rmse;
 }
 
 std::vector<size_t> sceneRows(const BenchResults& results, const std::string& scene) {
@@ -94,33 +110,39 @@ std::string oneOffText(const BenchRow& r) {
 
 namespace {
 
-// RMSE against `x` (cost or memory) over the rows, one series per filter and projection, the
-// front ringed; returns the front (rows, ascending x).
+// The scene's deciding error (its situation's metric, the mean over the row's frames) against `x`
+// (cost or memory) over the rows, one series per filter and projection, the front ringed;
+// returns the front (rows, ascending x).
 std::vector<size_t> errorChart(const BenchResults& results, const std::vector<size_t>& rows, Chart& c,
                                const std::function<double(const BenchRow&)>& x, const std::string& xText) {
+  const ErrorMetric metric = rows.empty() ? ErrorMetric::Rmse : sceneMetric(results.rows[rows.front()].config.scene);
+  const auto y = [&](const BenchRow& r) { return motionError(metric, r); };
+  const bool moving = std::any_of(rows.begin(), rows.end(), [&](size_t i) { return results.rows[i].motion.has_value(); });
   std::vector<double> xs, ys;
   for (const size_t i : rows) {
     xs.push_back(x(results.rows[i]));
-    ys.push_back(results.rows[i].metrics.rmse);
+    ys.push_back(y(results.rows[i]));
   }
   std::vector<size_t> front;
   for (const size_t k : paretoFront(xs, ys)) front.push_back(rows[k]);
-  c.yLabel = "RMSE of V against the reference";
+  c.yLabel = fmt::format("{} of V against the reference{}", metricName(metric), moving ? ", mean over the frames" : "");
   c.logX = true;
   std::map<std::pair<std::string, std::string>, ChartSeries> series;  // by filter and projection
   for (const size_t i : rows) {
     const BenchRow& r = results.rows[i];
     ChartSeries& s = series[{r.config.filter, r.config.projection}];
     s.color = filterColor(r.config.filter);
-    s.marker = projectionMarker(r.config.projection);
+    s.marker = filterMarker(r.config.filter);
     const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
-    s.points.push_back({x(r), r.metrics.rmse, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
-                        fmt::format("{}: {} {}, {:.2f} MiB{}, RMSE {:.4f}{}", rowLabel(r), kCostName, timeText(r.shadowCost),
-                                    r.memoryMiB(), oneOffText(r), r.metrics.rmse, onFront ? " (on the " + xText + " front)" : ""),
-                        onFront});
+    s.points.push_back({x(r), y(r), std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
+                        fmt::format("{}: {} {}, {:.2f} MiB{}, {} {:.4f}{}{}", rowLabel(r), kCostName, timeText(r.shadowCost),
+                                    r.memoryMiB(), oneOffText(r), metricName(metric), y(r),
+                                    r.motion ? fmt::format(", flicker {:.3f} %", flickerPct(r)) : "",
+                                    onFront ? " (on the " + xText + " front)" : ""),
+                        onFront, projectionTag(r.config.projection)});
   }
   for (auto& [key, s] : series) c.series.push_back(std::move(s));
-  for (const size_t i : front) c.front.emplace_back(x(results.rows[i]), results.rows[i].metrics.rmse);
+  for (const size_t i : front) c.front.emplace_back(x(results.rows[i]), y(results.rows[i]));
   c.legend = legendFor(results, rows, true);
   c.legend.push_back({"Pareto front", kFrontColor, Marker::Circle, true, true});
   return front;
@@ -212,7 +234,7 @@ std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
       out.push_back(std::move(l));
       it = std::prev(out.end());
     }
-    ChartSeries cost{.color = filterColor(k.filter), .marker = projectionMarker(k.projection), .connect = true, .points = {}};
+    ChartSeries cost{.color = filterColor(k.filter), .marker = filterMarker(k.filter), .connect = true, .points = {}};
     ChartSeries error = cost;
     for (const size_t i : groups[k]) {
       const BenchRow& r = results.rows[i];
@@ -225,7 +247,7 @@ std::vector<LightSizeCharts> lightSizeCharts(const BenchResults& results) {
     it->cost.series.push_back(std::move(cost));
     it->error.series.push_back(std::move(error));
     const std::string label = k.params.empty() ? k.filter : k.filter + " " + k.params;
-    it->cost.legend.push_back({label, filterColor(k.filter), projectionMarker(k.projection), false, false});
+    it->cost.legend.push_back({label, filterColor(k.filter), filterMarker(k.filter), false, false});
     it->error.legend.push_back(it->cost.legend.back());
   }
   return out;
@@ -257,7 +279,7 @@ std::vector<LightCountCharts> lightCountCharts(const BenchResults& results) {
       for (const size_t i : rows) counts.insert(results.rows[i].lights);
       if (counts.size() < 2) continue;
       const BenchRow& first = results.rows[rows.front()];
-      ChartSeries cost{.color = filterColor(first.config.filter), .marker = projectionMarker(first.config.projection),
+      ChartSeries cost{.color = filterColor(first.config.filter), .marker = filterMarker(first.config.filter),
                        .connect = true, .points = {}};
       ChartSeries memory = cost, error = cost;
       constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
@@ -274,7 +296,7 @@ std::vector<LightCountCharts> lightCountCharts(const BenchResults& results) {
       }
       for (auto [chart, series] : {std::pair{&l.costPerLight, &cost}, {&l.memoryPerLight, &memory}, {&l.error, &error}}) {
         chart->series.push_back(std::move(*series));
-        chart->legend.push_back({label, filterColor(first.config.filter), projectionMarker(first.config.projection), false, false});
+        chart->legend.push_back({label, filterColor(first.config.filter), filterMarker(first.config.filter), false, false});
       }
     }
     if (!l.error.series.empty()) out.push_back(std::move(l));

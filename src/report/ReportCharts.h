@@ -1,12 +1,15 @@
 #pragma once
 // The report's charts, built from the results (HtmlReport.cpp lays them out):
-//  1. per scene: RMSE against the whole cost (BenchRow::shadowCost: shadow + prefilter +
-//     visibility per frame) and against the memory the technique keeps, one point per
-//     configuration, colour = filter, marker = projection, each Pareto front marked; and a
+//  1. per scene: its deciding error (its situation's metric, Recommendation.h, mean over the
+//     frames it was scored on; RMSE for other scenes) against the whole cost (BenchRow::shadowCost:
+//     shadow + prefilter + visibility per frame) and against the memory the technique keeps, one
+//     point per configuration, colour and shape = filter, a letter = projection, each Pareto
+//     front marked (the recommendation's own front on the cost chart); and a
 //     stacked bar per configuration showing where its time goes, pass by pass;
 //  2. whole cost (and error) against light size, for every technique run at several light sizes;
 //  3. per-light cost and memory, and error, against the number of lights (the light-count plan).
 #include "report/BenchResults.h"
+#include "report/Recommendation.h"
 #include "report/SvgChart.h"
 
 #include <string>
@@ -69,8 +72,14 @@ struct LightCountCharts {
 /// Empty when the run has no rows of the light-count plan (kLightCountPlan) at two counts or more.
 std::vector<LightCountCharts> lightCountCharts(const BenchResults& results);
 
-/// Stable colour of a filter and marker of a projection (by registry order) across charts.
+/// Stable colour and marker of a filter (by registry order) across charts: filters are told apart
+/// by shape as well as colour.
 std::string filterColor(const std::string& filterId);
-Marker projectionMarker(const std::string& projectionId);
+Marker filterMarker(const std::string& filterId);
+/// The error a scene's charts plot: its situation's metric (Recommendation.h), else RMSE.
+ErrorMetric sceneMetric(const std::string& scene);
+/// A projection's tag beside each point: the shortest prefix of its id that no other registered
+/// projection starts with ("u", "c", "p", "t").
+std::string projectionTag(const std::string& projectionId);
 
 }  // namespace penumbra::report

@@ -12,8 +12,9 @@ namespace penumbra::report {
 namespace {
 
 // 2: umbra_leak_pct; 3: micro[].ratio; 4: shadow cost, memory, one-off costs, frame_ms, compare_command,
-// recommendations
-constexpr int kFormatVersion = 4;
+// recommendations; 5: motion, flicker and interleaved-round columns, "samples", the recommendations'
+// flicker, contenders and ties
+constexpr int kFormatVersion = 5;
 const char* const kStatSuffixes[] = {"_ms_median", "_ms_p10", "_ms_p90"};
 
 std::string csvField(const Cell& c) {
@@ -41,7 +42,10 @@ std::vector<std::string> tableColumns(const BenchResults& results) {
                                    "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "umbra_leak_pct",
                                    "overdark_pct", "penumbra_rmse", "pixels"};
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kShadowCostColumn) + suffix);
-  for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what"}) cols.emplace_back(c);
+  for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what", "motion", "motion_frames", "flicker_pct",
+                        "rmse_motion_mean", "penumbra_rmse_motion_mean"})
+    cols.emplace_back(c);
+  for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kRoundsCostColumn) + suffix);
   for (const std::string& pass : results.passNames())
     for (const char* suffix : kStatSuffixes) cols.push_back(pass + suffix);
   for (const char* c : {"compare_command", "image", "heatmap", "reference", "clock", "gl_renderer"}) cols.emplace_back(c);
@@ -66,6 +70,16 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
     cells.emplace_back(num(r.oneOffSeconds()));
     cells.emplace_back(what + kOneOffValidity);
   }
+  if (r.motion) {
+    cells.insert(cells.end(), {Cell(r.motion->what), num(r.motion->frames.size()), num(flickerPct(r)),
+                               num(motionError(ErrorMetric::Rmse, r)), num(motionError(ErrorMetric::PenumbraRmse, r))});
+  } else {
+    cells.insert(cells.end(), 5, Cell());
+  }
+  if (r.rounds)
+    cells.insert(cells.end(), {num(r.rounds->stats.median), num(r.rounds->stats.p10), num(r.rounds->stats.p90)});
+  else
+    cells.insert(cells.end(), 3, Cell());
   for (const std::string& pass : results.passNames()) {
     const auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassStats& p) { return p.name == pass; });
     if (it == r.passes.end()) {
@@ -159,6 +173,20 @@ nlohmann::json resultsJson(const BenchResults& results) {
     for (const auto& [pass, samples] : r.frameMs) frames[pass] = samples;
     j["frame_ms"].push_back(std::move(frames));
   }
+  // Per row, what its motion and its interleaved rounds measured (null where it had none): each
+  // frame's RMSE and penumbra RMSE (the still frame first), the flicker counts, each round's cost.
+  j["samples"] = nlohmann::json::array();
+  for (const BenchRow& r : results.rows) {
+    nlohmann::json m = nullptr;
+    if (r.motion) {
+      m = {{"what", r.motion->what}, {"fps", r.motion->fps}, {"rmse", frameErrors(ErrorMetric::Rmse, r)},
+           {"penumbra_rmse", frameErrors(ErrorMetric::PenumbraRmse, r)}, {"flicker_followed", r.motion->flicker.followed},
+           {"flicker_points", r.motion->flicker.flickering}};
+    }
+    nlohmann::json rounds = nullptr;
+    if (r.rounds) rounds = {{"group", r.rounds->group}, {"ms", r.rounds->ms}};
+    j["samples"].push_back({{"motion", m}, {"rounds", rounds}});
+  }
   // The recommendation (Recommendation.h), rows as indices into "rows".
   j["recommendations"] = nlohmann::json::array();
   for (const SituationPicks& p : recommend(results)) {
@@ -171,7 +199,14 @@ nlohmann::json resultsJson(const BenchResults& results) {
                         {"front", p.front},
                         {"best_error", p.bestError},
                         {"acceptable_error", p.acceptableError},
-                        {"acceptable_factor", kAcceptableErrorFactor}};
+                        {"acceptable_factor", kAcceptableErrorFactor},
+                        {"max_flicker_pct", kMaxFlickerPct},
+                        {"flickering", p.flickering},
+                        {"acceptable", p.acceptable},
+                        {"contenders", p.contenders},
+                        {"retimed", p.retimed},
+                        {"cheapest_tie", p.cheapestTie ? nlohmann::json(p.cheapestTie->with) : nlohmann::json(nullptr)},
+                        {"best_tie", p.bestTie ? nlohmann::json(p.bestTie->with) : nlohmann::json(nullptr)}};
     for (const Budget b : kBudgets) s[budgetKey(b)] = p.pick(b) ? nlohmann::json(*p.pick(b)) : nlohmann::json(nullptr);
     j["recommendations"].push_back(std::move(s));
   }

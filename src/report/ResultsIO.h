@@ -15,6 +15,9 @@ namespace penumbra::report {
 
 /// Columns <kShadowCostColumn>_ms_{median,p10,p90}: BenchRow::shadowCost.
 inline constexpr const char* kShadowCostColumn = "shadow_cost";
+/// Columns <kRoundsCostColumn>_ms_{median,p10,p90}: the whole cost over the interleaved rounds
+/// (BenchRow::rounds), empty for a row that was not a contender.
+inline constexpr const char* kRoundsCostColumn = "rounds_cost";
 /// Appended to a one_off_what cell: a one-off cost holds only while nothing it baked moves.
 inline constexpr const char* kOneOffValidity = "; valid for static casters only (a moving caster redoes it)";
 
@@ -22,7 +25,9 @@ inline constexpr const char* kOneOffValidity = "; valid for static casters only 
 using Cell = std::variant<std::monostate, std::string, double>;
 
 /// Column names, in order: configuration, quality, the whole cost (shadow_cost_ms_{median,p10,p90},
-/// shadow_memory_mb in MiB, one_off_s and one_off_what: empty for techniques with none), then
+/// shadow_memory_mb in MiB, one_off_s and one_off_what: empty for techniques with none), the
+/// motion (motion, motion_frames, flicker_pct, rmse_motion_mean, penumbra_rmse_motion_mean: empty
+/// for a still row), rounds_cost_ms_{median,p10,p90}, then
 /// <pass>_ms_{median,p10,p90} for every pass of results.passNames(), then image paths and the clock.
 std::vector<std::string> tableColumns(const BenchResults& results);
 /// One row's cells, aligned with tableColumns(results).
@@ -36,8 +41,10 @@ std::string resultsCsv(const BenchResults& results);
 /// description, clock, gl_renderer. Same CSV rules as resultsCsv.
 std::string microCsv(const BenchResults& results);
 /// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
-///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "micro": [...]}; rows
-///  hold numbers as numbers, null for no value.
+///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "samples": [per row:
+///  {"motion": {what, fps, rmse: [per frame], penumbra_rmse: [...], flicker_followed,
+///  flicker_points} or null, "rounds": {group, ms: [per round]} or null}], "recommendations",
+///  "micro": [...]}; rows hold numbers as numbers, null for no value.
 nlohmann::json resultsJson(const BenchResults& results);
 
 /// Writes results.csv, results.json and micro.csv into dir (each atomically).

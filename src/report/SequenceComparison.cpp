@@ -25,9 +25,27 @@ std::vector<glm::mat4> transforms(const Scene& s) {
 
 }  // namespace
 
+void addCameraWalk(Scene& scene, const SequenceTiming& timing) {
+  SceneAnimation walk;
+  const Camera& c = scene.camera;
+  const glm::vec3 offset = c.position - c.target;
+  for (int f = 0; f < timing.frames; ++f) {
+    const float t = timing.timeS(f);
+    const float angle = glm::radians(kWalkDegreesPerSecond * (t - timing.startS));
+    const float cs = std::cos(angle), sn = std::sin(angle);
+    const glm::vec3 turned{cs * offset.x + sn * offset.z, offset.y, -sn * offset.x + cs * offset.z};
+    walk.camera.position.timesS.push_back(t);
+    walk.camera.position.values.push_back(c.target + turned);
+    walk.camera.target.timesS.push_back(t);
+    walk.camera.target.values.push_back(c.target);
+  }
+  scene.animation = std::move(walk);
+}
+
 SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const RenderOptions& render, const SequenceTiming& timing,
                                    const ReferenceOptions& reference, const FlickerOptions& flickerOptions,
-                                   const std::function<void(int)>& progress, const LagOptions& lagOptions) {
+                                   const std::function<void(int)>& progress, const LagOptions& lagOptions,
+                                   SequenceReferences* shared) {
   if (timing.frames < 1 || !(timing.fps > 0.0f) || !std::isfinite(timing.fps) || !std::isfinite(timing.startS))
     throw usageError(fmt::format("a sequence needs at least 1 frame and a positive frame rate ({} frames at {} fps)", timing.frames, timing.fps));
   SequenceComparison out;
@@ -36,19 +54,33 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
   std::vector<glm::mat4> traced;  // the objects' transforms the tracer was built with
   // Per shadow-casting light, its last frames, nearest first: flicker reads the first, lag them all.
   std::vector<std::deque<FlickerFrame>> earlier;
+  SequenceReferences::Frame owned;  // this frame's, without `shared`
   for (int f = 0; f < timing.frames; ++f) {
     SequenceFrame frame;
     frame.timeS = timing.timeS(f);
     poseScene(posed, frame.timeS);
     renderer.setPose(posed);
     renderer.render(render);
-    const GBufferData gbuffer = renderer.readGBuffer();
     const std::vector<glm::mat4> placed = transforms(posed);
-    if (!tracer || placed != traced) {
-      tracer = std::make_unique<ReferenceTracer>(posed);
-      traced = placed;
+    const auto f0 = static_cast<size_t>(f);
+    if (!shared || shared->frames.size() <= f0) {
+      SequenceReferences::Frame fresh;
+      fresh.gbuffer = renderer.readGBuffer();
+      if (!tracer || placed != traced) {
+        tracer = std::make_unique<ReferenceTracer>(posed);
+        traced = placed;
+      }
+      fresh.lights = traceLights(*tracer, fresh.gbuffer, posed.lights, reference);
+      if (shared) {
+        PN_CHECK(shared->frames.size() == f0, "compareSequence: shared references fill frame by frame");
+        shared->frames.push_back(std::move(fresh));
+      } else {
+        owned = std::move(fresh);
+      }
     }
-    const std::vector<ReferenceResult> refs = traceLights(*tracer, gbuffer, posed.lights, reference);
+    const SequenceReferences::Frame& at = shared ? shared->frames[f0] : owned;
+    const GBufferData& gbuffer = at.gbuffer;
+    const std::vector<ReferenceResult>& refs = at.lights;
     for (const ReferenceResult& r : refs) {
       out.referenceSeconds += r.traceSeconds;
       out.referenceCached = out.referenceCached && (r.fromCache || r.width == 0);
@@ -94,6 +126,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
   for (size_t f = 0; f < out.frames.size(); ++f) {
     const double rmse = out.frames[f].metrics.rmse;
     out.rmseMean += rmse / static_cast<double>(out.frames.size());
+    out.penumbraRmseMean += out.frames[f].metrics.penumbraRmse / static_cast<double>(out.frames.size());
     if (f == 0 || rmse > out.rmseWorst) {
       out.rmseWorst = rmse;
       out.rmseWorstFrame = f;

@@ -37,9 +37,33 @@ struct LightSequence {
   LagCounts lag;
 };
 
+/// What the frames of a sequence share whatever the technique: each frame's G-buffer and its
+/// references (the G-buffer pass does not depend on the technique). compareSequence fills it on a
+/// first call and reads it on the next ones, so that the configurations of one scene (the bench)
+/// trace each frame once and read no G-buffer back.
+struct SequenceReferences {
+  struct Frame {
+    GBufferData gbuffer;
+    std::vector<ReferenceResult> lights;
+  };
+  std::vector<Frame> frames;
+};
+
+/// How fast the camera walk turns (compare --walk, and the bench's scoring of a scene that does
+/// not move): 12° a second around the target, 0.4° a frame at 30 fps, about 5 mm a frame at
+/// pen's 0.75 m — a slow look around that still moves every projection's texel grid.
+inline constexpr float kWalkDegreesPerSecond = 12.0f;
+
+/// Replaces the scene's motion with the walk: nothing in the scene moves (its animation is
+/// dropped, the scene stays as it is posed), and for each frame of `timing` the camera is turned
+/// about the vertical axis through its target by kWalkDegreesPerSecond × (t − timing.startS), at
+/// the same distance and height, looking at the target. Frame 0 is the view as it was.
+void addCameraWalk(Scene& scene, const SequenceTiming& timing);
+
 struct SequenceComparison {
   std::vector<SequenceFrame> frames;
   double rmseMean = 0.0;      ///< rmse_mean: the mean of the frames' RMSE
+  double penumbraRmseMean = 0.0;  ///< penumbra_rmse_mean: the mean of the frames' penumbra RMSE
   size_t rmseWorstFrame = 0;  ///< rmse_worst_frame: the index of the frame with the largest RMSE
   double rmseWorst = 0.0;
   /// Every consecutive pair and every shadow-casting light together: flicker_pct = flicker.pct()
@@ -54,10 +78,12 @@ struct SequenceComparison {
 /// Renders `scene` (the renderer's scene with its animation, at any pose) at each frame time
 /// (poseScene, Renderer::setPose), traces each frame's reference (a BVH per pose where objects
 /// moved) and compares. `progress(frame)` is called after each frame when given. The renderer
-/// is left at the last frame's pose. Throws penumbra::Error on bad timing.
+/// is left at the last frame's pose. With `shared`, each frame's G-buffer and references come
+/// from it when it holds the frame, and go into it when it does not. Throws penumbra::Error on
+/// bad timing.
 SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const RenderOptions& render,
                                    const SequenceTiming& timing, const ReferenceOptions& reference,
                                    const FlickerOptions& flicker = {}, const std::function<void(int)>& progress = {},
-                                   const LagOptions& lag = {});
+                                   const LagOptions& lag = {}, SequenceReferences* shared = nullptr);
 
 }  // namespace penumbra::report

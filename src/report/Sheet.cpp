@@ -1,5 +1,6 @@
 #include "report/Sheet.h"
 
+#include "report/ImageKey.h"
 #include "report/ImageText.h"
 
 #include <penumbra/Error.h>
@@ -15,15 +16,11 @@ namespace {
 
 constexpr Rgb kBackground = {246, 246, 246};
 constexpr Rgb kInk = {20, 20, 20};
-constexpr Rgb kMutedInk = {90, 90, 90};
 constexpr Rgb kZoomBox = {255, 214, 0};  // the crop's outline on the heatmap: neither leak nor over-dark
-constexpr float kTitlePx = 17.0f, kSmallPx = 15.0f;
+constexpr float kTitlePx = 17.0f;
 constexpr float kMinTextPx = 10.0f;  // text is made smaller to fit a narrow sheet, never below this
-constexpr int kLineGapPx = 3;
 constexpr int kMarginPx = 8;
 constexpr int kZoomBoxPx = 2;      // outline thickness
-constexpr int kLegendBarWidthPx = 360, kLegendBarHeightPx = 14;
-constexpr int kLegendTicks = 5;    // −full … +full
 
 void blit(ColorImage& dst, const ColorImage& src, int ox, int oy) {
   for (int y = 0; y < src.height; ++y)
@@ -73,40 +70,11 @@ ColorImage magnify(const ColorImage& src, const Window& win, int width, int heig
   return out;
 }
 
-// The heatmap's colour for a signed ΔV over a mid grey (errorHeatmap's blend).
-Rgb legendColor(float delta, float fullScale) {
-  constexpr float kGrey = 128.0f;
-  const float t = std::min(1.0f, std::abs(delta) / fullScale);
-  const uint8_t* tint = delta > 0.0f ? kLeakColor : kOverDarkColor;
-  Rgb c{};
-  for (size_t k = 0; k < 3; ++k) c[k] = static_cast<uint8_t>(std::lround(kGrey + t * (static_cast<float>(tint[k]) - kGrey)));
-  return c;
-}
-
 // The largest size up to `px` at which `text` fits `width` pixels (down to kMinTextPx).
 float fittingSize(std::string_view text, int width, float px) {
   for (; px > kMinTextPx; px -= 1.0f)
     if (TextPainter(px).width(text) <= width) return px;
   return kMinTextPx;
-}
-
-// `parts` joined with " · " into lines no wider than `width` at the painter's size.
-std::vector<std::string> wrapParts(const std::vector<std::string>& parts, const TextPainter& painter, int width) {
-  std::vector<std::string> lines;
-  for (const std::string& part : parts) {
-    if (!lines.empty() && painter.width(lines.back() + " · " + part) <= width) lines.back() += " · " + part;
-    else lines.push_back(part);
-  }
-  return lines;
-}
-
-std::vector<std::string> splitParts(const std::string& line) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  for (size_t at; (at = line.find(" · ", start)) != std::string::npos; start = at + std::string(" · ").size())
-    parts.push_back(line.substr(start, at - start));
-  parts.push_back(line.substr(start));
-  return parts;
 }
 
 }  // namespace
@@ -131,20 +99,11 @@ ColorImage compareSheet(const SheetInputs& in) {
       {&zoom, fmt::format("×{} zoom of the boxed region (largest error)", kSheetZoom)},
   };
 
-  // The footer's lines, wrapped to the sheet's width: the legend's label and bar, its key, then
-  // the metrics.
-  const int textWidth = 2 * w - 2 * kMarginPx;
-  const TextPainter small(fittingSize("heatmap colour = ΔV = V − V_ref:", textWidth / 3, kSmallPx));
-  const int lineHeight = small.ascent() + small.descent() + kLineGapPx;
-  const std::string legend = "heatmap colour = ΔV = V − V_ref:";
-  const int barWidth = std::min(kLegendBarWidthPx, textWidth - small.width(legend) - kMarginPx);
-  std::vector<std::string> lines =
-      wrapParts({"blue: too dark", "red: too bright", fmt::format("full colour at |ΔV| ≥ {:g}", in.heatmapFullScaleDeltaV)},
-                small, textWidth);
-  for (const std::string& m : in.metrics)
-    for (const std::string& l : wrapParts(splitParts(m), small, textWidth)) lines.push_back(l);
-  const int legendHeight = kLegendBarHeightPx + 3 + lineHeight;  // bar, ticks and tick labels
-  const int footerHeight = kMarginPx + legendHeight + static_cast<int>(lines.size()) * lineHeight + kMarginPx;
+  // The footer: the heatmap's key, then the metrics.
+  ColorKey key = heatmapKey(in.heatmapFullScaleDeltaV, "heatmap colour = ΔV = V − V_ref: blue too dark, red too bright",
+                            in.heatmapScaleNote);
+  for (const std::string& m : in.metrics) key.notes.push_back(m);
+  const int footerHeight = keyHeight(key, 2 * w);
 
   ColorImage sheet{2 * w, 2 * (h + kSheetTitleBandPx) + footerHeight, {}};
   sheet.rgba.assign(static_cast<size_t>(sheet.width) * static_cast<size_t>(sheet.height) * 4, 255);
@@ -156,25 +115,7 @@ ColorImage compareSheet(const SheetInputs& in) {
     title.draw(sheet, ox + kMarginPx, baseline, tiles[k].second, kInk);
     blit(sheet, *tiles[k].first, ox, oy + kSheetTitleBandPx);
   }
-
-  // Footer: the heatmap's colour scale, its key, the metrics.
-  int y = 2 * (h + kSheetTitleBandPx) + kMarginPx + small.ascent();
-  small.draw(sheet, kMarginPx, y, legend, kInk);
-  const int barX = kMarginPx + small.width(legend) + kMarginPx, barY = y - small.ascent() + 1;
-  for (int x = 0; x < barWidth; ++x) {
-    const float delta = in.heatmapFullScaleDeltaV * (2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(barWidth) - 1.0f);
-    fillRect(sheet, barX + x, barY, 1, kLegendBarHeightPx, legendColor(delta, in.heatmapFullScaleDeltaV));
-  }
-  for (int t = 0; t < kLegendTicks; ++t) {
-    const float delta = in.heatmapFullScaleDeltaV * (2.0f * static_cast<float>(t) / (kLegendTicks - 1) - 1.0f);
-    const std::string label = delta == 0.0f ? "0" : fmt::format("{}{:g}", delta > 0 ? "+" : "−", std::abs(delta));
-    const int tx = barX + t * (barWidth - 1) / (kLegendTicks - 1);
-    fillRect(sheet, tx, barY + kLegendBarHeightPx, 1, 3, kInk);
-    small.draw(sheet, tx - small.width(label) / 2, barY + kLegendBarHeightPx + 3 + small.ascent(), label, kMutedInk);
-  }
-  y = barY + legendHeight + kMarginPx / 2 + small.ascent();
-  for (size_t i = 0; i < lines.size(); ++i, y += lineHeight)
-    small.draw(sheet, kMarginPx, y, lines[i], i == 0 ? kMutedInk : kInk);
+  drawKey(sheet, 0, 2 * (h + kSheetTitleBandPx), 2 * w, key);
   return sheet;
 }
 

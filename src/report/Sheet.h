@@ -25,13 +25,15 @@ struct SheetInputs {
   std::span<const float> v, vRef;
   std::span<const uint8_t> mask;
   float heatmapFullScaleDeltaV = 0.5f;  ///< the heatmap's HeatmapOptions::fullScaleDeltaV
+  std::string heatmapScaleNote;         ///< why that scale, and what the grey is (heatmapKey's last note)
   std::string techniqueTitle;  ///< "pcss · uniform on pen"
   std::string referenceTitle;  ///< "reference: Embree, 256 light samples per pixel"
   std::vector<std::string> metrics;  ///< one line each, written under the legend
 };
 
-/// The sheet: width 2·w, height 2·(h + kSheetTitleBandPx) + the footer's for w × h images; text
-/// is made smaller (and metrics wrapped at " · ") to fit a narrow sheet. Throws penumbra::Error
+/// The sheet: width 2·w, height 2·(h + kSheetTitleBandPx) + the footer's (the heatmap's key,
+/// ImageKey.h, then the metrics, wrapped at " · ") for w × h images; titles are made smaller to
+/// fit a narrow sheet. Throws penumbra::Error
 /// when the images' sizes differ.
 ColorImage compareSheet(const SheetInputs& in);
 

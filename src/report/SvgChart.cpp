@@ -17,6 +17,8 @@ constexpr double kMarkerRadius = 4.5, kRingRadius = 8;
 constexpr double kDegenerateRangeFraction = 0.1;
 // Data are padded by this fraction of the range so points do not sit on the frame.
 constexpr double kPadFraction = 0.05;
+// A log axis with fewer 1-2-5 ticks than this in its range gets linear ones (axisTicks).
+constexpr int kMinLogTicks = 3;
 
 std::string num(double v) {
   if (v == 0.0) return "0";
@@ -74,6 +76,20 @@ std::string markerSvg(Marker m, double x, double y, const std::string& color, do
     case Marker::Diamond:
       return fmt::format(R"(<polygon points="{:.1f},{:.1f} {:.1f},{:.1f} {:.1f},{:.1f} {:.1f},{:.1f}" fill="{}"/>)", x,
                          y - r * 1.3, x + r * 1.3, y, x, y + r * 1.3, x - r * 1.3, y, color);
+    case Marker::TriangleDown:
+      return fmt::format(R"(<polygon points="{:.1f},{:.1f} {:.1f},{:.1f} {:.1f},{:.1f}" fill="{}"/>)", x, y + r * 1.2,
+                         x - r * 1.1, y - r * 0.8, x + r * 1.1, y - r * 0.8, color);
+    case Marker::Star: {  // five points
+      std::string pts;
+      for (int k = 0; k < 10; ++k) {
+        const double a = 3.14159265358979 * (0.5 + 0.2 * k), rr = k % 2 == 0 ? r * 1.35 : r * 0.6;
+        pts += fmt::format("{:.1f},{:.1f} ", x + rr * std::cos(a), y - rr * std::sin(a));
+      }
+      return fmt::format(R"(<polygon points="{}" fill="{}"/>)", pts, color);
+    }
+    case Marker::Cross:  // an x: a point set apart (tune: beyond the bars)
+      return fmt::format(R"(<path d="M{0:.1f},{1:.1f}L{2:.1f},{3:.1f}M{0:.1f},{3:.1f}L{2:.1f},{1:.1f}" stroke="{4}" stroke-width="2"/>)",
+                         x - r, y - r, x + r, y + r, color);
     case Marker::Circle:
     default:
       return fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="{:.1f}" fill="{}"/>)", x, y, r, color);
@@ -108,6 +124,9 @@ std::vector<double> axisTicks(double lo, double hi, bool log, int target) {
         const double v = m * std::pow(10.0, e);
         if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) ticks.push_back(v);
       }
+    // Within a decade the 1-2-5 values leave one tick or none (24 … 46 holds none): round linear
+    // steps label such a narrow log axis instead.
+    if (static_cast<int>(ticks.size()) < kMinLogTicks) return axisTicks(lo, hi, false, target);
     return ticks;
   }
   const double raw = (hi - lo) / std::max(target, 1);
@@ -202,6 +221,9 @@ std::string svgChart(const Chart& c) {
       if (p.emphasised)
         s += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="{:.1f}" fill="none" stroke="#000" stroke-width="1.2"/>)", x, y, kRingRadius);
       s += markerSvg(series.marker, x, y, series.color);
+      if (!p.tag.empty())
+        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="9" fill="#333">{}</text>)", x + kMarkerRadius + 1.5,
+                         y - kMarkerRadius + 1.0, escapeXml(p.tag));
       s += "</g>\n";
     }
   }
@@ -213,6 +235,9 @@ std::string svgChart(const Chart& c) {
     if (e.line)
       s += fmt::format(R"(<line x1="{0:.1f}" y1="{1:.1f}" x2="{2:.1f}" y2="{1:.1f}" stroke="{3}" stroke-width="1.5" stroke-dasharray="{4}"/>)",
                        lx - 6, ly, lx + 6, e.color, e.dashed ? "5,3" : "none");
+    else if (!e.tag.empty())
+      s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle" font-size="9" fill="#333">{}</text>)", lx, ly + 3,
+                       escapeXml(e.tag));
     else
       s += markerSvg(e.marker, lx, ly, e.color);
     s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)", lx + 12, ly + 4, escapeXml(e.label));

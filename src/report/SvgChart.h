@@ -9,7 +9,7 @@
 
 namespace penumbra::report {
 
-enum class Marker { Circle, Square, Triangle, Diamond };
+enum class Marker { Circle, Square, Triangle, Diamond, TriangleDown, Star, Cross };
 
 /// Colour of Chart::front (a legend entry for it uses this with line + dashed).
 inline constexpr const char* kFrontColor = "#444";
@@ -20,6 +20,7 @@ struct ChartPoint {
   double yLow = std::numeric_limits<double>::quiet_NaN(), yHigh = std::numeric_limits<double>::quiet_NaN();
   std::string tooltip;     ///< shown on hover (an SVG <title>)
   bool emphasised = false; ///< drawn with a ring (e.g. on the Pareto front)
+  std::string tag = {};    ///< a short text beside the marker (the report: the projection's letter)
 };
 
 struct ChartSeries {
@@ -34,6 +35,7 @@ struct LegendEntry {
   Marker marker = Marker::Circle;
   bool line = false;    ///< a line sample instead of a marker
   bool dashed = false;  ///< the line sample dashed (the front's style)
+  std::string tag = {}; ///< a text sample instead of a marker (a point's ChartPoint::tag)
 };
 
 struct Chart {
@@ -80,7 +82,8 @@ std::string svgBarChart(const BarChart& chart);
 std::string escapeXml(std::string_view text);
 
 /// Tick values for [lo, hi]: 1-2-5 steps, about `target` of them (linear), or powers of ten
-/// (with 2 and 5 between when the range spans less than three decades) for log axes.
+/// (with 2 and 5 between when the range spans less than three decades) for log axes; a log
+/// range that holds fewer than three of those (24 … 46) gets the linear ticks.
 std::vector<double> axisTicks(double lo, double hi, bool log, int target = 6);
 
 /// A fixed set of distinguishable colours (Okabe–Ito first), cycled by index.

@@ -240,6 +240,27 @@ void TuneEvaluator::measure(const std::vector<TuneJob>& jobs, const std::vector<
   }
 }
 
+std::vector<std::vector<std::vector<double>>> TuneEvaluator::timeRounds(const std::vector<TuneJob>& jobs, int width, int height,
+                                                                       int rounds) {
+  std::vector<std::vector<std::vector<double>>> out;
+  for (const TuneView& view : mRequest.views) {
+    std::vector<BenchConfig> configs;
+    std::vector<RenderOptions> renders;
+    for (const TuneJob& j : jobs) {
+      const TuneMaps maps = mapsOf(j);
+      configs.push_back(config(j, view));
+      renders.push_back({.width = width, .height = height, .shadowMapSize = maps.size, .shadowBudgetTexels = maps.budgetTexels,
+                         .debugView = 0});
+    }
+    const SetupFactory factory = [&](const BenchConfig& c) { return mMakeSetup(c, view.camera); };
+    const auto start = Clock::now();
+    out.push_back(timeInterleaved(configs, renders, factory, mRequest.settings.warmupFrames, rounds));
+    const double each = std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(std::max<size_t>(jobs.size(), 1));
+    for (size_t k = 0; k < jobs.size(); ++k) mProgress.advance(each);
+  }
+  return out;
+}
+
 TuneMaps TuneEvaluator::mapsOf(const TuneJob& j) const {
   const TuneTechnique& t = mTechniques[j.technique];
   return tuneMaps(t.space, j.candidate, t.maps);

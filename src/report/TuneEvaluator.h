@@ -84,6 +84,10 @@ public:
   /// (reported on stderr).
   std::vector<std::optional<TuneRow>> run(const std::vector<TuneJob>& jobs, int width, int height, int frames);
 
+  /// Times the jobs in interleaved rounds on every view (timeInterleaved): [view][job][round],
+  /// each round's whole cost. Each job is in a renderer of its own for the rounds.
+  std::vector<std::vector<std::vector<double>>> timeRounds(const std::vector<TuneJob>& jobs, int width, int height, int rounds);
+
   /// Before any full-size configuration is measured, one is guessed to take this many times a
   /// screen-stage one (fixed costs, shader compiles and the reference load do not scale with pixels).
   static constexpr double kFullOverScreenGuess = 4.0;

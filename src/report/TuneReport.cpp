@@ -56,11 +56,15 @@ tr.rec { font-weight: bold; } .note { color: #555; }
 )";
 
 std::string rowHtml(const TuneRow& r, const std::string& what, bool recommended) {
+  const std::string ratio =
+      r.rounds > 0 ? fmt::format("{:.2f} <small>{:.2f}–{:.2f}</small>", r.costRatio.median, r.costRatio.p10, r.costRatio.p90) : "—";
   return fmt::format(
       "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td class=\"l\"><code>{}</code></td><td>{:.4f}</td>"
-      "<td>{:.4f}</td><td>{:.2f}</td><td>{:.3f} <small>{:.3f}–{:.3f}</small></td><td>{:.4g}</td><td>{:.1f}</td></tr>\n",
+      "<td>{:.4f}</td><td>{:.2f}</td><td>{:.3f}</td><td>{:.3f}</td><td>{}</td><td>{:.3f} <small>{:.3f}–{:.3f}</small></td>"
+      "<td>{}</td><td>{:.4g}</td><td>{:.1f}</td></tr>\n",
       recommended ? " class=\"rec\"" : "", escapeXml(what), escapeXml(technique(r)), escapeXml(mapText(r)), escapeXml(paramsText(r)),
-      r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct, r.costMs, r.costP10Ms, r.costP90Ms, r.workM, r.memoryMiB);
+      r.metrics.rmse, r.metrics.penumbraRmse, r.metrics.leakPct, r.metrics.umbraLeakPct, r.metrics.acnePct,
+      r.withinBars ? "✓" : "<b>beyond</b>", r.costMs, r.costP10Ms, r.costP90Ms, ratio, r.workM, r.memoryMiB);
 }
 
 std::string tuneHtml(const TuneResults& res) {
@@ -75,31 +79,49 @@ std::string tuneHtml(const TuneResults& res) {
   std::vector<std::string> names;
   for (const TuneRow& r : res.explored)
     if (std::find(names.begin(), names.end(), technique(r)) == names.end()) names.push_back(technique(r));
+  // Each configuration once: at its confirmed cost where it was confirmed, else as explored. The
+  // front is drawn over every point shown (within the bars and the memory budget), so that no
+  // point shown is both cheaper and more accurate than the front.
+  const auto sameConfig = [](const TuneRow& a, const TuneRow& b) {
+    return a.filter == b.filter && a.projection == b.projection && a.params == b.params && a.mapSize == b.mapSize &&
+           a.budgetTexels == b.budgetTexels;
+  };
+  std::vector<const TuneRow*> shown;
+  for (const TuneRow& r : res.confirmed) shown.push_back(&r);
+  for (const TuneRow& r : res.explored)
+    if (std::none_of(res.confirmed.begin(), res.confirmed.end(), [&](const TuneRow& c) { return sameConfig(c, r); }))
+      shown.push_back(&r);
+  const auto isConfirmed = [&](const TuneRow* r) { return r >= res.confirmed.data() && r < res.confirmed.data() + res.confirmed.size(); };
   for (size_t n = 0; n < names.size(); ++n) {
     ChartSeries explored{.color = paletteColor(n), .marker = Marker::Circle, .connect = false, .points = {}};
-    for (const TuneRow& r : res.explored)
-      if (technique(r) == names[n]) explored.points.push_back({.x = rankedCost(r, c), .y = r.error, .tooltip = tooltip(r, o)});
     ChartSeries confirmed{.color = paletteColor(n), .marker = Marker::Diamond, .connect = false, .points = {}};
-    for (size_t i = 0; i < res.confirmed.size(); ++i)
-      if (technique(res.confirmed[i]) == names[n] && !res.confirmed[i].isDefault) {
-        const TuneRow& r = res.confirmed[i];
-        confirmed.points.push_back({.x = rankedCost(r, c), .y = r.error, .tooltip = "confirmed: " + tooltip(r, o),
-                                    .emphasised = res.recommended == i});
-      }
     ChartSeries defaults{.color = paletteColor(n), .marker = Marker::Square, .connect = false, .points = {}};
-    for (const size_t d : res.defaults)
-      if (technique(res.confirmed[d]) == names[n])
-        defaults.points.push_back({.x = rankedCost(res.confirmed[d], c), .y = res.confirmed[d].error,
-                                   .tooltip = "default: " + tooltip(res.confirmed[d], o)});
-    chart.series.push_back(std::move(explored));
-    chart.series.push_back(std::move(confirmed));
-    chart.series.push_back(std::move(defaults));
+    ChartSeries beyond{.color = paletteColor(n), .marker = Marker::Cross, .connect = false, .points = {}};
+    for (const TuneRow* r : shown) {
+      if (technique(*r) != names[n]) continue;
+      const bool conf = isConfirmed(r);
+      const std::string tip = (r->isDefault ? "default: " : conf ? "confirmed: " : "") + tooltip(*r, o);
+      ChartPoint pt{.x = rankedCost(*r, c), .y = r->error, .tooltip = tip,
+                    .emphasised = conf && res.recommended == static_cast<size_t>(r - res.confirmed.data())};
+      if (conf && r->rounds > 0)  // the confirmed cost's spread
+        pt.tooltip += fmt::format("\ncost p10–p90 {:.3g}–{:.3g} ms over {} interleaved rounds", r->costP10Ms, r->costP90Ms, r->rounds);
+      (!r->withinBars ? beyond : r->isDefault ? defaults : conf ? confirmed : explored).points.push_back(pt);
+    }
+    for (ChartSeries* series : {&explored, &confirmed, &defaults, &beyond}) chart.series.push_back(std::move(*series));
     chart.legend.push_back({.label = names[n], .color = paletteColor(n), .marker = Marker::Circle});
   }
-  for (const size_t i : res.front) chart.front.emplace_back(rankedCost(res.confirmed[i], c), res.confirmed[i].error);
+  std::vector<TunePoint> pts;
+  for (const TuneRow* r : shown) {
+    TunePoint p = r->point(c);
+    p.costMs = rankedCost(*r, c);
+    pts.push_back(p);
+  }
+  for (const size_t i : tuneFront(pts, res.request.budget.memoryMiB)) chart.front.emplace_back(pts[i].costMs, pts[i].error);
+  chart.legend.push_back({.label = "explored", .color = "#777", .marker = Marker::Circle});
   chart.legend.push_back({.label = "confirmed (ring: the pick)", .color = "#777", .marker = Marker::Diamond});
   chart.legend.push_back({.label = "default", .color = "#777", .marker = Marker::Square});
-  chart.legend.push_back({.label = "Pareto front (confirmed)", .color = kFrontColor, .line = true, .dashed = true});
+  chart.legend.push_back({.label = "beyond the acne/leak bars", .color = "#777", .marker = Marker::Cross});
+  chart.legend.push_back({.label = "Pareto front of all shown", .color = kFrontColor, .line = true, .dashed = true});
 
   std::string h = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>penumbra tune</title><style>";
   h += kStyle;
@@ -137,8 +159,21 @@ std::string tuneHtml(const TuneResults& res) {
                            what, escapeXml(viewText(v)), v.error, v.metrics.rmse, v.costMs, escapeXml(v.command));
     h += "</table>\n";
   }
-  h += "\n<h2>Confirmed configurations</h2>\n<table><tr><th class=\"l\"></th><th class=\"l\">technique</th><th>map</th>"
-       "<th class=\"l\">--set</th><th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>cost ms <small>p10–p90</small></th>"
+  h += fmt::format(
+      "\n<h2>Confirmed configurations</h2>\n<p class=\"note\">Errors are the full-size measurements (the frames are "
+      "deterministic). {} Bars: acne at most {:g} % (or the default's own) and umbra leak at most the default's + {:g} "
+      "points{}.</p>\n",
+      c == TuneCost::Model
+          ? std::string("Costs are modelled work (--cost model); the milliseconds are shown, not ranked.")
+          : fmt::format("Costs: each confirmed configuration and every technique's default timed again in {} interleaved "
+                        "rounds (one frame of each per round, so a round's times share the machine's load): median and "
+                        "p10–p90, and the per-round ratio to the budget's default. A configuration fits the budget when "
+                        "the upper end of its spread does ({}): never over the budget within the noise.",
+                        kConfirmRounds, res.request.budget.costMs ? "its p90 cost ≤ --budget-ms" : "its ratio's p90 ≤ 1"),
+      kMaxAcnePct, kUmbraLeakSlackPct, res.request.allowArtifacts ? " — lifted by --allow-artifacts" : "");
+  h += "<table><tr><th class=\"l\"></th><th class=\"l\">technique</th><th>map</th>"
+       "<th class=\"l\">--set</th><th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th>umbra leak %</th><th>acne %</th>"
+       "<th>bars</th><th>cost ms <small>p10–p90</small></th><th>× budget's default <small>p10–p90</small></th>"
        "<th>work Mops</th><th>MiB</th></tr>\n";
   for (size_t i = 0; i < res.confirmed.size(); ++i) {
     const bool onFront = std::find(res.front.begin(), res.front.end(), i) != res.front.end();
@@ -197,7 +232,11 @@ nlohmann::json tuneRowJson(const TuneRow& r, TuneObjective objective) {
           {"leak_pct", r.metrics.leakPct}, {"overdark_pct", r.metrics.overDarkPct},
           {"umbra_leak_pct", r.metrics.umbraLeakPct}, {"acne_pct", r.metrics.acnePct}, {"shadow_cost_ms", r.costMs},
           {"shadow_cost_p10_ms", r.costP10Ms}, {"shadow_cost_p90_ms", r.costP90Ms}, {"shadow_memory_mb", r.memoryMiB},
-          {"command", r.command}, {"set", tuneSetLine(r)}, {"scene_snippet", tuneSceneSnippet(r)}};
+          {"command", r.command}, {"set", tuneSetLine(r)}, {"scene_snippet", tuneSceneSnippet(r)},
+          {"within_bars", r.withinBars}, {"cost_rounds", r.rounds},
+          {"cost_ratio", r.rounds > 0 ? nlohmann::json{{"median", r.costRatio.median}, {"p10", r.costRatio.p10}, {"p90", r.costRatio.p90}}
+                                      : nlohmann::json()},
+          {"budget_cost_ms", r.rounds > 0 ? nlohmann::json(r.budgetCostMs) : nlohmann::json()}};
 }
 
 const TuneRow* tuneDefaultFor(const TuneResults& res) {
@@ -231,6 +270,9 @@ nlohmann::json tuneJson(const TuneResults& res) {
   j[res.request.cost == TuneCost::Model ? "budget_mops" : "budget_ms"] = res.budget;
   j["budget_mb"] = res.request.budget.memoryMiB ? nlohmann::json(*res.request.budget.memoryMiB) : nlohmann::json();
   j["max_error"] = res.request.budget.maxError ? nlohmann::json(*res.request.budget.maxError) : nlohmann::json();
+  j["allow_artifacts"] = res.request.allowArtifacts;
+  j["bars"] = {{"max_acne_pct", kMaxAcnePct}, {"umbra_leak_slack_pct", kUmbraLeakSlackPct}};
+  j["confirm_rounds"] = res.request.cost == TuneCost::Measured ? kConfirmRounds : 0;
   j["width"] = res.request.settings.width;
   j["height"] = res.request.settings.height;
   j["samples"] = res.request.settings.referenceSamples;

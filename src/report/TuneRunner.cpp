@@ -57,6 +57,10 @@ TuneCost parseCost(std::string_view text) {
   throw usageError(fmt::format("--cost {}: expected measured or model", text));
 }
 
+bool withinBars(const VisibilityMetrics& m, const VisibilityMetrics& def) {
+  return m.acnePct <= std::max(kMaxAcnePct, def.acnePct) && m.umbraLeakPct <= def.umbraLeakPct + kUmbraLeakSlackPct;
+}
+
 double objectiveValue(TuneObjective o, const VisibilityMetrics& m) {
   switch (o) {
     case TuneObjective::Rmse: return m.rmse;
@@ -69,10 +73,83 @@ double objectiveValue(TuneObjective o, const VisibilityMetrics& m) {
 
 namespace {
 
-std::vector<TunePoint> points(const std::vector<std::pair<TuneCandidate, TuneRow>>& rows, TuneCost cost) {
+// One technique's rows as the search sees them, each marked within or beyond the bars against
+// the technique's default among them.
+std::vector<TunePoint> points(const std::vector<std::pair<TuneCandidate, TuneRow>>& rows, TuneCost cost, bool allowArtifacts) {
+  const auto def = std::find_if(rows.begin(), rows.end(), [](const auto& e) { return e.second.isDefault; });
   std::vector<TunePoint> out;
-  for (const auto& [c, r] : rows) out.push_back(r.point(cost));
+  for (const auto& [c, r] : rows) {
+    TunePoint p = r.point(cost);
+    p.withinBars = allowArtifacts || def == rows.end() || withinBars(r.metrics, def->second.metrics);
+    out.push_back(p);
+  }
   return out;
+}
+
+// The confirmed rows' costs from interleaved rounds: ms[view][row][round]. Per view, a row's cost
+// stats over the rounds and its per-round ratio to the budget's default (the dearest default on
+// that view); then aggregated over the views. The budget is checked at the upper end: against a
+// budget in ms the cost's p90; against the default's cost the ratio's p90 times that default's
+// median (a row fits when its ratio's p90 ≤ 1: never over the budget within the noise).
+// Returns the budget's default's median cost (aggregated over the views).
+double confirmCosts(TuneResults& res, const std::vector<std::vector<std::vector<double>>>& ms, TuneAggregate aggregate,
+                    std::optional<double> budgetMs) {
+  const auto over = [&](const std::vector<double>& values) {
+    if (aggregate == TuneAggregate::Worst) return *std::max_element(values.begin(), values.end());
+    double sum = 0.0;
+    for (const double v : values) sum += v;
+    return sum / static_cast<double>(values.size());
+  };
+  std::vector<std::vector<TimeStats>> cost(res.confirmed.size()), ratio(res.confirmed.size());
+  std::vector<double> referenceMedian;
+  for (size_t v = 0; v < ms.size(); ++v) {
+    size_t ref = res.defaults.front();
+    for (const size_t d : res.defaults)
+      if (timeStats(ms[v][d]).median > timeStats(ms[v][ref]).median) ref = d;
+    referenceMedian.push_back(timeStats(ms[v][ref]).median);
+    for (size_t i = 0; i < res.confirmed.size(); ++i) {
+      std::vector<double> r;
+      for (size_t k = 0; k < ms[v][i].size() && k < ms[v][ref].size(); ++k)
+        if (ms[v][ref][k] > 0.0) r.push_back(ms[v][i][k] / ms[v][ref][k]);
+      cost[i].push_back(timeStats(ms[v][i]));
+      ratio[i].push_back(timeStats(r));
+      if (v < res.confirmed[i].views.size()) {
+        TuneRow& view = res.confirmed[i].views[v];
+        view.costMs = cost[i].back().median;
+        view.costP10Ms = cost[i].back().p10;
+        view.costP90Ms = cost[i].back().p90;
+      }
+    }
+  }
+  const double reference = over(referenceMedian);
+  for (size_t i = 0; i < res.confirmed.size(); ++i) {
+    TuneRow& r = res.confirmed[i];
+    const auto field = [&](const std::vector<TimeStats>& s, double TimeStats::*m) {
+      std::vector<double> values;
+      for (const TimeStats& t : s) values.push_back(t.*m);
+      return over(values);
+    };
+    r.costMs = field(cost[i], &TimeStats::median);
+    r.costP10Ms = field(cost[i], &TimeStats::p10);
+    r.costP90Ms = field(cost[i], &TimeStats::p90);
+    r.costRatio = {field(ratio[i], &TimeStats::median), field(ratio[i], &TimeStats::p10), field(ratio[i], &TimeStats::p90)};
+    r.rounds = ms.empty() ? 0 : static_cast<int>(ms.front()[i].size());
+    r.budgetCostMs = budgetMs ? r.costP90Ms : r.costRatio.p90 * reference;
+  }
+  return reference;
+}
+
+// The kinds of light that cast shadows in any view's scene (ParamDesc::lights bits).
+unsigned sceneLightBits(const TuneRequest& request, const TuneSetupFactory& makeSetup) {
+  unsigned bits = 0;
+  for (const TuneView& v : request.views) {
+    const BenchSetup s = makeSetup({.plan = "tune", .scene = v.scene, .projection = request.projections.front(),
+                                    .filter = request.filters.front(), .params = {}, .inGrid = false},
+                                   v.camera);
+    for (const Light& l : s.scene.lights)
+      if (l.castsShadow) bits |= lightKindBit(l.type);
+  }
+  return bits;
 }
 
 // The default configuration's maps on the first view: its side, and the texels of every shadowed
@@ -104,6 +181,8 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
 
   std::vector<TuneTechnique> techniques;
   const TuneView& first = request.views.front();
+  // A parameter of a light kind no view has cannot change a frame: it is not searched.
+  const unsigned lightBits = sceneLightBits(request, makeSetup);
   for (const std::string& p : request.projections)
     for (const std::string& f : request.filters) {
       BenchSetup s = makeSetup({.plan = "tune", .scene = first.scene, .projection = p, .filter = f, .params = {}, .inGrid = false},
@@ -123,6 +202,8 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
       const int mapSize = request.settings.shadowMapSize.value_or(s.scene.shadow.mapSize);
       t.maps = defaultMaps(s, mapSize, request.settings.width, request.settings.height);
       std::vector<std::string> fixed = kFixedKeys;
+      for (const ParamDesc& d : descs)
+        if ((d.lights & lightBits) == 0) fixed.emplace_back(d.key);
       if (request.objective == TuneObjective::Acne)  // the filter's bias only, on the default's maps
         for (const ParamDesc& d : descs)
           if (!isBiasKey(d.key) || !s.filter->hasParam(d.key)) fixed.emplace_back(d.key);
@@ -195,12 +276,13 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
   std::vector<TuneJob> promoted;
   for (size_t t = 0; t < techniques.size(); ++t) {
     std::vector<size_t> index;
-    std::vector<TunePoint> pts;
+    std::vector<std::pair<TuneCandidate, TuneRow>> rows;
     for (size_t i = 0; i < jobs.size(); ++i)
       if (jobs[i].technique == t && screened[i]) {
         index.push_back(i);
-        pts.push_back(screened[i]->point(cost));
+        rows.emplace_back(jobs[i].candidate, *screened[i]);
       }
+    const std::vector<TunePoint> pts = points(rows, cost, request.allowArtifacts);
     promoted.push_back({t, defaultCandidate(techniques[t].space)});
     for (const size_t k : halvingSurvivors(pts, keep))
       if (jobs[index[k]].candidate != promoted.back().candidate) promoted.push_back(jobs[index[k]]);
@@ -233,7 +315,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
     for (size_t t = 0; t < techniques.size(); ++t) {
       TuneTechnique& tech = techniques[t];
       if (!tech.descending) continue;
-      if (const std::optional<size_t> best = pickRecommended(points(tech.full, cost), budget)) tech.center = tech.full[*best].first;
+      if (const std::optional<size_t> best = pickRecommended(points(tech.full, cost, request.allowArtifacts), budget)) tech.center = tech.full[*best].first;
       for (TuneCandidate& c : neighbours(tech.space, tech.center)) {
         const bool seen = std::any_of(tech.full.begin(), tech.full.end(), [&](const auto& e) { return e.first == c; });
         if (!seen) step.push_back({t, std::move(c)});
@@ -260,10 +342,12 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
       const TuneTechnique& tech = techniques[t];
       const auto centre = std::find_if(tech.full.begin(), tech.full.end(), [&](const auto& e) { return e.first == tech.center; });
       if (centre == tech.full.end()) continue;
+      const auto def = std::find_if(tech.full.begin(), tech.full.end(), [](const auto& e) { return e.second.isDefault; });
       std::vector<std::pair<double, TuneCandidate>> better;
       for (size_t i = 0; i < step.size(); ++i) {
         if (step[i].technique != t || !rows[i]) continue;
-        const TunePoint p = rows[i]->point(cost);
+        TunePoint p = rows[i]->point(cost);
+        p.withinBars = request.allowArtifacts || def == tech.full.end() || withinBars(rows[i]->metrics, def->second.metrics);
         if (pickRecommended(std::vector<TunePoint>{p}, budget) && p.error < centre->second.point(cost).error)
           better.emplace_back(p.error, step[i].candidate);
       }
@@ -282,35 +366,51 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
         if (moved[i]) techniques[combined[i].technique].full.emplace_back(combined[i].candidate, *moved[i]);
     }
     for (TuneTechnique& tech : techniques) {
-      const std::optional<size_t> best = pickRecommended(points(tech.full, cost), budget);
+      const std::optional<size_t> best = pickRecommended(points(tech.full, cost, request.allowArtifacts), budget);
       tech.descending = best && tech.full[*best].first != tech.center;
     }
   }
 
-  // 4. Confirm: each technique's full-size front within the memory budget, its best within
-  // the budget and its default, measured again with more frames.
+  // 4. Confirm: each technique's full-size front within the memory budget, its best within the
+  // budget and its default. Their errors are the full-size rows' (the frames are deterministic);
+  // with the measured cost, their costs are timed again in interleaved rounds on every view, each
+  // technique's default among them, and the budget is checked at the upper end of each spread.
   std::vector<TuneJob> finalists;
   for (size_t t = 0; t < techniques.size(); ++t) {
     const TuneTechnique& tech = techniques[t];
     for (const auto& [c, row] : tech.full) res.explored.push_back(row);
+    const std::vector<TunePoint> pts = points(tech.full, cost, request.allowArtifacts);
     std::vector<TuneCandidate> picks = {defaultCandidate(tech.space)};
-    for (const size_t i : tuneFront(points(tech.full, cost), budget.memoryMiB)) picks.push_back(tech.full[i].first);
-    if (const std::optional<size_t> best = pickRecommended(points(tech.full, cost), budget)) picks.push_back(tech.full[*best].first);
+    for (const size_t i : tuneFront(pts, budget.memoryMiB)) picks.push_back(tech.full[i].first);
+    if (const std::optional<size_t> best = pickRecommended(pts, budget)) picks.push_back(tech.full[*best].first);
     for (TuneCandidate& c : picks) {
       const bool dup = std::any_of(finalists.begin(), finalists.end(), [&](const TuneJob& j) { return j.technique == t && j.candidate == c; });
       if (!dup) finalists.push_back({t, std::move(c)});
     }
   }
-  progress.stage("4/4 confirm", eval.unmeasured(finalists, fullW, fullH, kConfirmFrames), 0.0);
-  const std::vector<std::optional<TuneRow>> confirmed = eval.run(finalists, fullW, fullH, kConfirmFrames);
-  progress.finish();
+  const std::vector<std::optional<TuneRow>> confirmed = eval.run(finalists, fullW, fullH, kFullFrames);  // read back
+  std::vector<size_t> finalistOf;  // per confirmed row, its finalist
   for (size_t i = 0; i < finalists.size(); ++i) {
     if (!confirmed[i]) continue;
     if (confirmed[i]->isDefault) res.defaults.push_back(res.confirmed.size());
     res.confirmed.push_back(*confirmed[i]);
+    finalistOf.push_back(i);
   }
   if (res.defaults.empty()) throw usageError(fmt::format("tune: no default configuration could be rendered on {}", firstScene));
-  if (!request.budget.costMs && !request.budget.maxError && costDecides) {
+  for (TuneRow& r : res.confirmed)  // the bars against the technique's own default
+    for (const size_t d : res.defaults)
+      if (res.confirmed[d].filter == r.filter && res.confirmed[d].projection == r.projection)
+        r.withinBars = request.allowArtifacts || withinBars(r.metrics, res.confirmed[d].metrics);
+  const bool defaultBudget = !request.budget.costMs && !request.budget.maxError && costDecides;
+  if (cost == TuneCost::Measured) {
+    std::vector<TuneJob> timed;
+    for (const size_t f : finalistOf) timed.push_back(finalists[f]);
+    progress.stage(fmt::format("4/4 confirm, {} interleaved rounds", kConfirmRounds), timed.size() * request.views.size(), 0.0);
+    const std::vector<std::vector<std::vector<double>>> ms = eval.timeRounds(timed, fullW, fullH, kConfirmRounds);
+    const double reference = confirmCosts(res, ms, request.aggregate, defaultBudget ? std::optional<double>() : request.budget.costMs);
+    progress.finish();
+    if (defaultBudget) budget.costMs = reference;  // the dearest default's, timed in the same rounds
+  } else if (defaultBudget) {
     budget.costMs.reset();
     for (const size_t d : res.defaults) budget.costMs = std::max(budget.costMs.value_or(0.0), res.confirmed[d].point(cost).costMs);
   }

@@ -5,8 +5,11 @@
 //  1. screen:  Latin-hypercube candidates (and the default) at a small image, few frames;
 //  2. promote: successive halving keeps the small-size front and the most accurate to the full size;
 //  3. descend: coordinate descent around the best configuration within the budget, at full size;
-//  4. confirm: the full-size front and the default measured again with more frames; the
-//     recommendation and the front come from these rows only.
+//  4. confirm: the full-size front, the best within the budget and the default timed again in
+//     interleaved rounds (their errors are the full-size rows': frames are deterministic); the
+//     recommendation and the front come from these rows only, the budget checked at the upper
+//     end of each cost's spread.
+// Unless asked, a pick keeps acne and umbra leak within the acne objective's bars (withinBars).
 // Every evaluation is kept in OUT/evaluations.jsonl, so that an interrupted run resumes.
 #include "report/BenchRunner.h"
 #include "report/TuneSearch.h"
@@ -33,6 +36,13 @@ double objectiveValue(TuneObjective o, const VisibilityMetrics& m);
 inline constexpr double kMaxAcnePct = 0.1;
 /// Added to a rejected configuration's error: above any percentage.
 inline constexpr double kAcneRejectedError = 1000.0;
+/// The bars every pick keeps unless asked not to (TuneRequest::allowArtifacts), the acne
+/// objective's own: acne at most kMaxAcnePct (or the default's, where that is more), and no more
+/// umbra leak (detached shadows) than the default's plus this slack — about fifteen pixels of a
+/// 640×360 frame, so that a pixel or two of difference does not decide.
+inline constexpr double kUmbraLeakSlackPct = 0.01;
+/// Whether `m` keeps the bars against its technique's default `def`.
+bool withinBars(const VisibilityMetrics& m, const VisibilityMetrics& def);
 /// Weight of tuneBiasSize in the acne error: far below one pixel's share of any percentage
 /// (one pixel of 640×360 is 4e-4 %), so that it only breaks ties.
 inline constexpr double kBiasTieWeight = 1e-7;
@@ -79,6 +89,8 @@ struct TuneRequest {
   std::filesystem::path outDir;
   bool verbose = false;
   bool progress = true;  ///< the progress line on stderr
+  /// --allow-artifacts: the pick may raise acne and umbra leak past the bars (withinBars).
+  bool allowArtifacts = false;
   /// --shard K/N: measure only every N-th screen configuration from the K-th (1-based) into
   /// OUT/evaluations.jsonl and stop; `--merge` of the shards' folders goes on from all of them.
   std::optional<TuneShard> shard;
@@ -87,8 +99,11 @@ struct TuneRequest {
 /// Divisor of the screen stage's image sides (1/16 of the pixels), its shorter side at least the minimum.
 inline constexpr int kScreenSizeDivisor = 4;
 inline constexpr int kMinScreenSidePixels = 32;
-/// Timed frames: enough for a median at the cheap stages, more when a cost decides (confirm).
-inline constexpr int kScreenFrames = 2, kFullFrames = 3, kConfirmFrames = 7;
+/// Timed frames: enough for a median at the cheap stages.
+inline constexpr int kScreenFrames = 2, kFullFrames = 3;
+/// The confirm stage's interleaved rounds: each round renders one frame of every finalist (each
+/// technique's default among them), so that their costs share the machine's load.
+inline constexpr int kConfirmRounds = 9;
 /// Successive halving keeps this fraction of the screened candidates.
 inline constexpr int kHalvingDivisor = 3;
 /// Rounds of coordinate descent at most (--max-minutes may stop it earlier): each moves the
@@ -119,12 +134,23 @@ struct TuneRow {
   double workM = 0.0;  ///< TuneCost::Model's work, millions of operations per frame
   double memoryMiB = 0.0;
   bool isDefault = false;
+  /// Acne and umbra leak within the bars against the technique's default (withinBars).
+  bool withinBars = true;
+  /// Confirmed rows (measured cost): the whole cost over the interleaved rounds is costMs /
+  /// costP10Ms / costP90Ms; its per-round ratio to the budget's default (the default itself when
+  /// the budget is the default's cost) is costRatio; budgetCostMs is what the budget is checked
+  /// against: the cost's p90, or the ratio's p90 times that default's median. -1: not confirmed.
+  int rounds = 0;
+  TimeStats costRatio;
+  double budgetCostMs = -1.0;
   std::string scene, camera;  ///< the view (of the first view when aggregated)
   std::string command;  ///< the `penumbra compare` line that reproduces the row (the first view's)
   std::vector<TuneRow> views;  ///< per view, when measured on several (or one) views
   /// What the search ranks: error, the cost of `cost`'s kind, memory.
   TunePoint point(TuneCost cost) const {
-    return {.error = error, .costMs = cost == TuneCost::Model ? workM : costMs, .memoryMiB = memoryMiB};
+    const bool model = cost == TuneCost::Model;
+    return {.error = error, .costMs = model ? workM : costMs, .memoryMiB = memoryMiB,
+            .costHighMs = model ? -1.0 : budgetCostMs, .withinBars = withinBars};
   }
 };
 

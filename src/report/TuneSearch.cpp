@@ -219,7 +219,7 @@ std::vector<size_t> tuneFront(std::span<const TunePoint> points, std::optional<d
   std::vector<size_t> kept;
   std::vector<double> x, y;
   for (size_t i = 0; i < points.size(); ++i)
-    if (!budgetMiB || points[i].memoryMiB <= *budgetMiB) {
+    if (points[i].withinBars && (!budgetMiB || points[i].memoryMiB <= *budgetMiB)) {
       kept.push_back(i);
       x.push_back(points[i].costMs);
       y.push_back(points[i].error);
@@ -248,8 +248,9 @@ std::optional<size_t> pickRecommended(std::span<const TunePoint> points, const T
   std::optional<size_t> best;
   for (size_t i = 0; i < points.size(); ++i) {
     const TunePoint& p = points[i];
+    if (!p.withinBars) continue;
     if (budget.memoryMiB && p.memoryMiB > *budget.memoryMiB) continue;
-    if (budget.costMs && p.costMs > *budget.costMs) continue;
+    if (budget.costMs && p.budgetCost() > *budget.costMs) continue;
     if (budget.maxError) {
       if (p.error > *budget.maxError) continue;
       if (!best || p.costMs < points[*best].costMs ||

@@ -115,6 +115,12 @@ struct TunePoint {
   double error = 0.0;   ///< the objective (lower is better)
   double costMs = 0.0;  ///< whole shadow cost per frame, median
   double memoryMiB = 0.0;
+  /// The upper end of the cost's spread: what the budget is checked against, so that a pick is
+  /// never over the budget within the noise (negative: costMs).
+  double costHighMs = -1.0;
+  /// Acne and umbra leak within the bars the pick keeps (TuneRunner.h: withinBars).
+  bool withinBars = true;
+  double budgetCost() const { return costHighMs >= 0.0 ? costHighMs : costMs; }
 };
 
 /// Successive halving's cut: the indices of `keep` points to evaluate at the next rung. The
@@ -122,7 +128,8 @@ struct TunePoint {
 /// error; never more than `keep`, front points by ascending error when the front alone is larger.
 std::vector<size_t> halvingSurvivors(std::span<const TunePoint> points, size_t keep);
 
-/// The (cost, error) Pareto front of the points that fit the memory budget, ascending cost.
+/// The (cost, error) Pareto front of the points within the bars that fit the memory budget,
+/// ascending cost.
 std::vector<size_t> tuneFront(std::span<const TunePoint> points, std::optional<double> budgetMiB = std::nullopt);
 
 /// What the user asked for.
@@ -132,9 +139,9 @@ struct TuneBudget {
   std::optional<double> maxError;  ///< --max-error: then the cheapest with error at most this
 };
 
-/// The recommended point among those within the cost and memory budgets: with maxError, the
-/// cheapest whose error is at most it (ties: lower error); else the lowest error (ties: lower
-/// cost). Nothing when no point qualifies.
+/// The recommended point among those within the bars and the cost and memory budgets (the cost
+/// checked at TunePoint::budgetCost): with maxError, the cheapest whose error is at most it
+/// (ties: lower error); else the lowest error (ties: lower cost). Nothing when no point qualifies.
 std::optional<size_t> pickRecommended(std::span<const TunePoint> points, const TuneBudget& budget);
 
 }  // namespace penumbra::report

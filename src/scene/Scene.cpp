@@ -38,6 +38,15 @@ glm::mat4 Camera::clipFromView(float aspect) const {
   return m;
 }
 
+unsigned lightKindBit(LightType type) {
+  switch (type) {
+    case LightType::Directional: return kSunLightBit;
+    case LightType::Spot: return kSpotLightBit;
+    case LightType::Point: return kPointLightBit;
+  }
+  return kAnyLightBits;
+}
+
 const char* lightTypeName(LightType type) {
   switch (type) {
     case LightType::Directional: return "sun";

@@ -22,8 +22,10 @@ void PenumbraDebugImages::bind(const FrameContext& frame) {
 }
 
 std::vector<DebugImage> PenumbraDebugImages::debugImages() const {
-  return {{"blocker-depth", &mBlockerDepth, "mean blocker depth, linear light depth in [0, 1]; −1 = no blocker found"},
-          {"penumbra-width-m", &mPenumbraWidth, "penumbra width on the receiver (m); −1 = no blocker found"}};
+  return {{"blocker-depth", &mBlockerDepth, "mean blocker depth, linear light depth in [0, 1]; −1 = no blocker found",
+           PN_PENUMBRA_DEBUG_NONE},
+          {"penumbra-width-m", &mPenumbraWidth, "penumbra width on the receiver (m); −1 = no blocker found",
+           PN_PENUMBRA_DEBUG_NONE}};
 }
 
 }  // namespace penumbra

@@ -116,8 +116,8 @@ glm::vec2 DebugDisplay::draw(const gl::Texture& texture, DisplaySettings s, cons
   }
 
   gpu::ViewerDisplayUniforms u{};
-  u.mode = glm::ivec4(s.autoRange ? 1 : 0, 0, 0, 0);
-  u.range = glm::vec4(s.lo, s.hi, 0.0f, 0.0f);
+  u.mode = glm::ivec4(s.autoRange ? 1 : 0, s.noData ? 1 : 0, 0, 0);
+  u.range = glm::vec4(s.lo, s.hi, s.noData.value_or(0.0f), 0.0f);
   auto upload = [&](int layer, const glm::ivec4& rect) {
     u.source = glm::ivec4(layer, s.level, s.channel, s.turbo ? PN_VIEWER_MAP_TURBO : PN_VIEWER_MAP_GREY);
     u.rect = rect;

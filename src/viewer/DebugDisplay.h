@@ -10,6 +10,7 @@
 
 #include <penumbra/Renderer.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct DisplaySettings {
   bool turbo = false;     ///< colour map instead of grey (single channels)
   bool autoRange = true;  ///< measure min/max over the shown pixels; else [lo, hi]
   float lo = 0.0f, hi = 1.0f;
+  /// The image's "nothing here" value (DebugImage::noData): left out of the measured range and
+  /// drawn in kNoDataColor. Set from the image, not by the user.
+  std::optional<float> noData;
   static constexpr int kChannelRgb = 4;
 };
 

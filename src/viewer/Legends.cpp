@@ -9,6 +9,7 @@
 #include "report/ReportCharts.h"
 #include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"
+#include "shared/Viewer.h"
 
 #include <penumbra/Metrics.h>
 
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace penumbra::viewer {
 namespace {
@@ -74,13 +76,19 @@ void Viewer::drawLegends() {
   const float top = static_cast<float>(mFramebuffer.y - mViewRect.y - mViewRect.w) / scale;
   const float left = static_cast<float>(mViewRect.x) / scale, width = static_cast<float>(mViewRect.z) / scale;
   const float bottom = top + static_cast<float>(mViewRect.w) / scale;
-  // The main view's legend in its lower-left corner, the inset's above the inset.
-  drawLegend("##legend main", mMain, mMainRange, {left + kMarginPx, bottom - kMarginPx}, {0.0f, 1.0f});
+  // The main view's legend in its lower-left corner. The inset's sits left of the inset, on its
+  // bottom line: the view's lower edge, where a scene's subject seldom is (above the inset it
+  // covered pen's contact point); when the main view has a legend too, the inset's stands on it
+  // instead, so that the two never overlap whatever their widths.
+  const std::optional<float> mainTop =
+      drawLegend("##legend main", mMain, mMainRange, {left + kMarginPx, bottom - kMarginPx}, {0.0f, 1.0f});
   if (mInset.name != kNoInset) {
-    // Above the inset, right-aligned with it (and so with the view).
-    const float insetTop = static_cast<float>(mFramebuffer.y - mInsetRect.y - mInsetRect.w) / scale;
-    drawLegend("##legend inset", mInset, mInsetRange,
-               {static_cast<float>(mInsetRect.x + mInsetRect.z) / scale, insetTop - kMarginPx}, {1.0f, 1.0f});
+    const float insetBottom = static_cast<float>(mFramebuffer.y - mInsetRect.y) / scale;
+    if (mainTop)
+      drawLegend("##legend inset", mInset, mInsetRange, {left + kMarginPx, *mainTop - kMarginPx}, {0.0f, 1.0f});
+    else
+      drawLegend("##legend inset", mInset, mInsetRange, {static_cast<float>(mInsetRect.x) / scale - kMarginPx, insetBottom},
+                 {1.0f, 1.0f});
   }
   if (mSplit && isLitView(mMain.name)) {
     // A divider and the two techniques' names over their halves.
@@ -94,13 +102,13 @@ void Viewer::drawLegends() {
   }
 }
 
-void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
-                        const glm::vec2& pivot) {
+std::optional<float> Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
+                                        const glm::vec2& pivot) {
   const std::string& name = view.name;
-  if (name == kShadedView) return;  // the picture itself
+  if (name == kShadedView) return std::nullopt;  // the picture itself
   if (!beginOverlay(id, ImVec2(anchor.x, anchor.y), ImVec2(pivot.x, pivot.y))) {
     ImGui::End();
-    return;
+    return anchor.y;
   }
   ImGui::PushTextWrapPos(kLegendWrapEm * ImGui::GetFontSize());
   const gl::Texture* texture = findView(name);
@@ -124,8 +132,9 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
   } else if (name == "texel-density") {
     ImGui::TextUnformatted("screen pixels per shadow-map texel (log scale)");
     colorBar([](float t) { return rgb(gpu::densityRampColor(PN_DENSITY_LOG2_LO + t * (PN_DENSITY_LOG2_HI - PN_DENSITY_LOG2_LO))); },
-             fmt::format("1/{:g} over-sampled", std::exp2(-PN_DENSITY_LOG2_LO)), "1",
-             fmt::format("{:g} blocky", std::exp2(PN_DENSITY_LOG2_HI)));
+             fmt::format("1/{:g}", std::exp2(-PN_DENSITY_LOG2_LO)), fmt::format("{:g}", std::exp2(0.5 * (PN_DENSITY_LOG2_LO + PN_DENSITY_LOG2_HI))),
+             fmt::format("{:g}", std::exp2(PN_DENSITY_LOG2_HI)));
+    ImGui::TextUnformatted("blue: over-sampled (texels smaller than pixels) · red: blocky");
   } else if (name == kHeatmapView) {
     const float full = HeatmapOptions{}.fullScaleDeltaV;
     const int spot = 2 * report::kLabHeatmap.dilatePx + 1;
@@ -146,9 +155,18 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
     // A lit-pass view not listed above: the colour output.
   } else {
     std::string meaning = "values as stored";
+    std::optional<float> noData;
     for (const DebugImage& d : mSession.debugImages())  // the selected light's
-      if (d.name == name && !d.meaning.empty()) meaning = std::string(d.meaning);
+      if (d.name == name) {
+        if (!d.meaning.empty()) meaning = std::string(d.meaning);
+        noData = d.noData;
+      }
     ImGui::TextWrapped("%s: %s", name.c_str(), meaning.c_str());
+    if (noData) {  // the viewer_display pass's colour for it
+      ImGui::ColorButton("##nodata", ImVec4(PN_VIEWER_NO_DATA_RGB, 1.0f), ImGuiColorEditFlags_NoTooltip);
+      ImGui::SameLine();
+      ImGui::Text("slate: %s, left out of the range", number(*noData).c_str());
+    }
     const DisplaySettings& s = view.settings;
     if (s.channel == DisplaySettings::kChannelRgb) {
       ImGui::Text("rgb channels, each %s … %s mapped to 0 … 1", number(range.x).c_str(), number(range.y).c_str());
@@ -161,7 +179,9 @@ void Viewer::drawLegend(const char* id, const ViewState& view, const glm::vec2& 
     }
   }
   ImGui::PopTextWrapPos();
+  const float legendTop = ImGui::GetWindowPos().y;
   ImGui::End();
+  return legendTop;
 }
 
 }  // namespace penumbra::viewer

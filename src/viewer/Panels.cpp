@@ -51,13 +51,21 @@ void hint(const char* text) {
   ImGui::PopStyleColor();
 }
 
-void helpTooltip(const ParamDesc& d) {
+// A unit written "a | b" (light.size: "m | rad") is the first light's: b for a sun, a otherwise.
+std::string_view unitFor(const ParamDesc& d, const Scene& scene) {
+  const size_t bar = d.unit.find(" | ");
+  if (bar == std::string_view::npos) return d.unit;
+  const bool sun = !scene.lights.empty() && scene.lights.front().type == LightType::Directional;
+  return sun ? d.unit.substr(bar + 3) : d.unit.substr(0, bar);
+}
+
+void helpTooltip(const ParamDesc& d, std::string_view unit) {
   if (!ImGui::IsItemHovered()) return;
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
   ImGui::TextUnformatted(std::string(d.key).c_str());
   ImGui::TextDisabled("%s", std::string(d.help).c_str());
-  ImGui::TextDisabled("default %s %s; right-click to reset", formatParamValue(d, d.def).c_str(), std::string(d.unit).c_str());
+  ImGui::TextDisabled("default %s %s; right-click to reset", formatParamValue(d, d.def).c_str(), std::string(unit).c_str());
   ImGui::PopTextWrapPos();
   ImGui::EndTooltip();
 }
@@ -69,8 +77,9 @@ std::string sliderFormat(const char* number, std::string_view unit) {
   return u.empty() ? std::string(number) : fmt::format("{} {}", number, u);
 }
 
-/// One widget for one parameter. Returns true and the new value when the user changed it.
-bool paramWidget(const ParamDesc& d, float current, float& out) {
+/// One widget for one parameter, its value shown in `unit`. Returns true and the new value when
+/// the user changed it.
+bool paramWidget(const ParamDesc& d, std::string_view unit, float current, float& out) {
   const std::string label = fmt::format("{}##{}", d.label.empty() ? d.key : d.label, d.key);
   bool changed = false;
   if (d.isChoice()) {
@@ -88,7 +97,7 @@ bool paramWidget(const ParamDesc& d, float current, float& out) {
     }
   } else if (d.isInteger()) {
     int v = static_cast<int>(std::lround(current));
-    if (ImGui::SliderInt(label.c_str(), &v, static_cast<int>(d.min), static_cast<int>(d.max), sliderFormat("%d", d.unit).c_str(),
+    if (ImGui::SliderInt(label.c_str(), &v, static_cast<int>(d.min), static_cast<int>(d.max), sliderFormat("%d", unit).c_str(),
                          ImGuiSliderFlags_AlwaysClamp)) {
       out = static_cast<float>(v);
       changed = true;
@@ -97,13 +106,13 @@ bool paramWidget(const ParamDesc& d, float current, float& out) {
     float v = current;
     ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
     if (d.min >= 0.0f && d.def > 0.0f && d.max / d.def > kLogRangeRatio) flags |= ImGuiSliderFlags_Logarithmic;
-    if (ImGui::SliderFloat(label.c_str(), &v, d.min, d.max, sliderFormat("%.4g", d.unit).c_str(), flags)) {
+    if (ImGui::SliderFloat(label.c_str(), &v, d.min, d.max, sliderFormat("%.4g", unit).c_str(), flags)) {
       if (d.step > 0.0f) v = d.min + std::round((v - d.min) / d.step) * d.step;
       out = std::clamp(v, d.min, d.max);
       changed = true;
     }
   }
-  helpTooltip(d);
+  helpTooltip(d, unit);
   if (ImGui::BeginPopupContextItem(std::string(d.key).c_str())) {
     if (ImGui::MenuItem("Reset to default")) {
       out = d.def;
@@ -128,14 +137,33 @@ std::optional<std::string> idCombo(const char* label, const std::string& current
   return chosen;
 }
 
-// A rolling graph under its own text line (numbers never drawn over the curve).
+// The graph's top: the smallest 1-2-5 step at or above `v` (12.3 → 20), so the scale reads at a glance.
+float niceCeiling(float v) {
+  const float mag = std::pow(10.0f, std::floor(std::log10(std::max(v, 1e-3f))));
+  for (const float m : {1.0f, 2.0f, 5.0f, 10.0f})
+    if (m * mag >= v) return m * mag;
+  return 10.0f * mag;
+}
+
+// A rolling graph under its own text line (numbers never drawn over the curve), its scale in a
+// gutter on its right: the top value with the unit, and 0.
 void plot(const char* label, const std::deque<float>& history, const char* unit) {
   if (history.empty()) return;
   const std::vector<float> values(history.begin(), history.end());
   const float peak = *std::max_element(values.begin(), values.end());
+  const float top = niceCeiling(peak * 1.05f);
   ImGui::Text("%-10s %8.2f %s  (max %.2f)", label, static_cast<double>(values.back()), unit, static_cast<double>(peak));
-  ImGui::PlotLines(fmt::format("##{}", label).c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, 0.0f,
-                   std::max(peak, 1e-3f) * 1.1f, ImVec2(ImGui::GetContentRegionAvail().x, kGraphHeightPx));
+  const std::string topText = fmt::format("{:g} {}", static_cast<double>(top), unit);
+  // One gutter for every graph (as wide as a five-digit scale), so that the graphs line up.
+  const float gutter = ImGui::CalcTextSize(fmt::format("00000 {}", unit).c_str()).x + ImGui::GetStyle().ItemSpacing.x;
+  ImGui::PlotLines(fmt::format("##{}", label).c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, 0.0f, top,
+                   ImVec2(std::max(1.0f, ImGui::GetContentRegionAvail().x - gutter), kGraphHeightPx));
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImU32 ink = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  const float x = hi.x + ImGui::GetStyle().ItemSpacing.x;
+  draw->AddText(ImVec2(x, lo.y), ink, topText.c_str());
+  draw->AddText(ImVec2(x, hi.y - ImGui::GetTextLineHeight()), ink, "0");
 }
 
 }  // namespace
@@ -187,6 +215,16 @@ std::string Viewer::layoutText() const {
 void Viewer::drawPanels() {
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
   const ImGuiIO& io = ImGui::GetIO();
+  if (!mSidebarFitted) {  // wide enough for every tab's whole title ("Technique", not "Tech…")
+    const ImGuiStyle& style = ImGui::GetStyle();
+    // The window's padding and a scrollbar's room, then each tab: its title, its frame padding,
+    // the gap to the next, and a quarter of a font height for what ImGui adds around a tab.
+    float tabs = 2.0f * style.WindowPadding.x + style.ScrollbarSize;
+    for (const PanelInfo& p : kPanels)
+      tabs += ImGui::CalcTextSize(p.title).x + 2.0f * style.FramePadding.x + style.ItemInnerSpacing.x + 0.25f * ImGui::GetFontSize();
+    mSidebarWidth = std::max(mSidebarWidth, std::ceil(tabs));
+    mSidebarFitted = true;
+  }
   const float maxWidth = io.DisplaySize.x * kMaxSidebarFraction;
   ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(kMinSidebarWidthPx, maxWidth), io.DisplaySize.y),
                                       ImVec2(maxWidth, io.DisplaySize.y));
@@ -285,12 +323,22 @@ void Viewer::drawParams(size_t first, size_t last) {
     ImGui::Separator();
     ImGui::TextDisabled("%s", g.title.c_str());
     if (g.descs.empty()) ImGui::TextDisabled("(no parameters)");
+    unsigned lightBits = 0;  // the kinds of light that cast shadows here: other kinds' parameters change nothing
+    for (const Light& l : mSession.scene().lights)
+      if (l.castsShadow) lightBits |= lightKindBit(l.type);
     for (const ParamDesc& d : g.descs) {
       float value = 0.0f;
-      if (paramWidget(d, mSession.paramValue(d), value)) {
+      const std::string_view unit = unitFor(d, mSession.scene());
+      const bool idle = (d.lights & lightBits) == 0;
+      ImGui::BeginDisabled(idle);
+      const bool changed = paramWidget(d, unit, mSession.paramValue(d), value);
+      ImGui::EndDisabled();
+      if (idle && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("%s acts on a kind of light this scene does not have: it cannot change this frame", std::string(d.key).c_str());
+      if (changed) {
         try {
           mSession.setParam(d, value);
-          setStatus(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), d.unit), false);
+          setStatus(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), unit), false);
         } catch (const Error& e) {
           setStatus(e.what(), true);
         }

@@ -143,7 +143,9 @@ void ViewSession::setProjection(const std::string& id) { rebuildTechnique(id, mF
 void ViewSession::setFilter(const std::string& id) { rebuildTechnique(mProjectionId, id); }
 
 void ViewSession::loadScene(const std::string& nameOrPath) {
-  Scene next = penumbra::loadScene(nameOrPath);
+  LoadOptions options;
+  options.groundUnderLoneModel = true;  // as the CLI
+  Scene next = penumbra::loadScene(nameOrPath, options);
   applySceneLightParams(next, mRenderer.projection(), mRenderer.filter());
   // What the new scene's file sets explicitly wins over values remembered from before.
   auto previousRemembered = mRemembered;

@@ -375,6 +375,8 @@ void Viewer::drawViews() {
       return false;  // e.g. sdf keeps no shadow-map: the slot waits for a filter that does
     }
     DisplaySettings s = view.settings;
+    for (const DebugImage& d : mSession.debugImages())  // the image's own "no data" value, if any
+      if (d.name == view.name) s.noData = d.noData;
     if (texture == &mSession.renderer().colorTexture() || texture == &mHeatmapTexture || texture == &mReferenceTexture) {
       s = DisplaySettings{};  // colour images are shown as they are
       s.channel = DisplaySettings::kChannelRgb;

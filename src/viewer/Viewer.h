@@ -161,8 +161,9 @@ private:
   // Legends (Legends.cpp): what the colours of the main view and the inset mean.
   void drawLegends();
   /// The legend of one view slot, its corner at `anchor` (window pixels from the top-left) taken
-  /// at `pivot` (0..1 of its size), e.g. (0, 1) = lower-left.
-  void drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
+  /// at `pivot` (0..1 of its size), e.g. (0, 1) = lower-left. Returns the legend's top edge
+  /// (window pixels from the top), or nothing where the view needs no legend (`shaded`).
+  std::optional<float> drawLegend(const char* id, const ViewState& view, const glm::vec2& range, const glm::vec2& anchor,
                   const glm::vec2& pivot);
 
   ViewerOptions mOptions;
@@ -189,6 +190,7 @@ private:
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
   float mSidebarWidth = 380.0f;
+  bool mSidebarFitted = false;  ///< widened once to hold every tab's title
   float mRenderScale = 1.0f;
   bool mFly = false;
   bool mDragInView = false;  ///< a mouse drag that started over the view

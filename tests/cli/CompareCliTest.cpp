@@ -39,6 +39,39 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
 }
 
+// compare prints warm times: an untimed frame (it compiles the shaders), then the median and
+// p10–p90 of 5 frames. Two runs in a row agree within the spread each reports, as the bench
+// reads its rows. Timed by the process's CPU time (PENUMBRA_CLOCK=cpu, every driver thread):
+// builds beside the test change the wall clock between two runs by far more than any noise a
+// run can report, the CPU time hardly. A cold first frame (the shader compile, 10× a warm one
+// here) lies outside a warm run's spread.
+TEST(CompareCli, WarmTimesOfTwoRunsInARowAgreeWithinTheSpreadTheyReport) {
+  const std::string dir = freshDir("compare-warm");
+  const std::string args = "compare --scene pen --filter pcf --size 160x90 --shadow-map 512 --samples 4 --json --out imgs";
+  nlohmann::json runs[2];
+  for (nlohmann::json& j : runs) {
+    const RunResult r = runPenumbra(args, dir, "env PENUMBRA_CLOCK=cpu");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["timed_frames"], 5);
+    EXPECT_EQ(j["warmup_frames"], 1);
+    EXPECT_NE(j["clock"].get<std::string>().find("process_cpu_time"), std::string::npos) << j["clock"];
+  }
+  const nlohmann::json &a = runs[0]["shadow_cost_ms"], &b = runs[1]["shadow_cost_ms"];
+  EXPECT_LE(a["p10"].get<double>(), a["median"].get<double>());
+  EXPECT_LE(a["median"].get<double>(), a["p90"].get<double>());
+  EXPECT_LE(a["p10"].get<double>(), b["p90"].get<double>()) << a << " " << b;
+  EXPECT_LE(b["p10"].get<double>(), a["p90"].get<double>()) << a << " " << b;
+  // The passes' medians add up to about the whole cost (each a median of the same 5 frames).
+  double passes = 0.0;
+  for (const char* pass : {"shadow", "prefilter", "visibility"}) passes += runs[1]["timings_ms"].value(pass, 0.0);
+  EXPECT_NEAR(passes, b["median"].get<double>(), 0.25 * b["median"].get<double>());
+  // Printed as warm, not as one frame.
+  const RunResult text = runPenumbra("compare --scene pen --filter pcf --size 160x90 --shadow-map 512 --samples 4 --out imgs", dir);
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_NE(text.out.find("times, warm: the median of 5 frames after 1 warm-up"), std::string::npos) << text.out;
+}
+
 // sheet.png reads on its own: a title band over each of its four tiles and a footer with the
 // heatmap's colour legend and the metrics, so it is taller than the 2 × 2 images by those bands,
 // and each band carries text (dark pixels on the light background).

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -160,8 +161,10 @@ TEST(RenderCli, LargeModelLoadsAreAnnounced) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("penumbra: loading big.obj ("), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" MiB)\npenumbra: loaded big.obj in "), std::string::npos) << r.err;
-  // Small files load silently.
-  EXPECT_EQ(runPenumbra("render --scene " + std::string(PENUMBRA_TEST_DATA) + "/models/box.obj --size 16x16").err, "");
+  // Small files load without progress lines (the one line box.obj prints is its added ground).
+  const std::string small = runPenumbra("render --scene " + std::string(PENUMBRA_TEST_DATA) + "/models/box.obj --size 16x16").err;
+  EXPECT_EQ(small.find("loading"), std::string::npos) << small;
+  EXPECT_EQ(small.find("loaded"), std::string::npos) << small;
 }
 
 // --size 16384x16384 was accepted where 8192² already took 66 s and 3.8 GB: the size is checked
@@ -297,4 +300,17 @@ TEST(ListCli, JsonListsEveryTechniqueAndParameter) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* s : {"\"scenes\"", "\"boxes\"", "\"pen\"", "\"fence\"", "\"grazing\"", "\"uniform\"", "\"hard\"", "hard.bias", "light.size"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
+}
+
+// --version names the build; a model given alone says, in one stderr line, that a ground was
+// added under it (box.obj has no floor), and renders.
+TEST(RenderCli, VersionAndALoneModelsGround) {
+  const RunResult v = runPenumbra("--version");
+  EXPECT_EQ(v.exitCode, 0) << v.err;
+  EXPECT_TRUE(std::regex_match(v.out, std::regex("penumbra [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << v.out;
+  const RunResult r = runPenumbra("render --scene " + std::string(PENUMBRA_TEST_DATA) + "/models/box.obj --size 16x16",
+                                  freshDir("render-lone-model"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("penumbra: box.obj: no floor in the model, so a ", 0), 0u) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
 }

@@ -59,8 +59,19 @@ TEST(TuneCli, RecommendsNoWorseThanTheDefaultWithinBudgetAndCompareReproducesIt)
       EXPECT_TRUE(row->contains(key)) << key;
   EXPECT_EQ(rec["filter"], "pcf");
   EXPECT_LE(rec["rmse"].get<double>(), def["rmse"].get<double>());
-  EXPECT_LE(rec["shadow_cost_ms"].get<double>(), j["budget_ms"].get<double>());
+  // Confirmed in interleaved rounds with the default: never over the budget within the noise.
+  EXPECT_GT(rec["cost_rounds"].get<int>(), 1);
+  EXPECT_LE(rec["budget_cost_ms"].get<double>(), j["budget_ms"].get<double>() * (1.0 + 1e-9));
+  EXPECT_LE(rec["cost_ratio"]["p90"].get<double>(), 1.0 + 1e-9);
+  // The acne objective's bars hold: acne at most 0.1 %, umbra leak at most the default's + 0.01.
+  EXPECT_TRUE(rec["within_bars"].get<bool>());
+  EXPECT_LE(rec["acne_pct"].get<double>(), std::max(0.1, def["acne_pct"].get<double>()));
+  EXPECT_LE(rec["umbra_leak_pct"].get<double>(), def["umbra_leak_pct"].get<double>() + 0.01);
   EXPECT_GE(j["front"].size(), 1u);
+  // pen is lit by a spot: the point lights' cube guard band cannot change its frame, so it is
+  // neither searched nor printed.
+  for (const nlohmann::json& row : j["explored"]) EXPECT_FALSE(row["params"].contains("uniform.cubeGuardTexels")) << row["params"];
+  EXPECT_EQ(r.out.find("cubeGuardTexels"), std::string::npos);
   for (const auto& [key, value] : rec["params"].items()) {
     // --set keys of the technique tuned: the filter's and the projection's (the scene's own: uniform)
     EXPECT_TRUE(key.starts_with("pcf.") || key.starts_with("uniform.")) << key;
@@ -76,13 +87,16 @@ TEST(TuneCli, RecommendsNoWorseThanTheDefaultWithinBudgetAndCompareReproducesIt)
   const double rmse = c["rmse"].get<double>();
   EXPECT_NEAR(rmse, rec["rmse"].get<double>(), kReproduceFraction * rec["rmse"].get<double>()) << command;
 
-  // The same run again reads every configuration back instead of measuring it.
+  // The same run again reads every configuration back instead of measuring it; only the
+  // finalists' costs are timed again, so its pick is one of the same finalists.
   const RunResult again = runPenumbra(kTinyTune + " --json", dir);
   ASSERT_EQ(again.exitCode, 0) << again.err;
   const nlohmann::json j2 = nlohmann::json::parse(again.out);
   EXPECT_EQ(j2["evaluations"], 0) << again.err;
   EXPECT_GT(j2["resumed"].get<int>(), 0);
-  EXPECT_EQ(j2["recommended"]["params"], rec["params"]);
+  bool measured = false;
+  for (const nlohmann::json& row : j["explored"]) measured = measured || row["params"] == j2["recommended"]["params"];
+  EXPECT_TRUE(measured) << j2["recommended"]["params"];
 }
 
 TEST(TuneCli, BadInputFailsWithOneClearLine) {

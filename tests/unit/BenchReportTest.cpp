@@ -176,7 +176,8 @@ TEST(BenchResultsIO, FailedMicroBenchmarkIsReportedNotLost) {
   const nlohmann::json j = resultsJson(r);
   EXPECT_EQ(j["micro"][0]["error"].get<std::string>(), "GL_INVALID_VALUE in glDispatchCompute");
   EXPECT_EQ(j["micro"][1]["error"].get<std::string>(), "");
-  const std::string html = htmlReport(r);
+  const std::string html = microHtml(r);
+  EXPECT_EQ(htmlReport(r).find("SAT build"), std::string::npos) << "the building blocks are a page of their own";
   EXPECT_NE(html.find("failed: GL_INVALID_VALUE in glDispatchCompute"), std::string::npos);
   EXPECT_EQ(html.find(" × <small>"), std::string::npos) << "a ratio against a failed baseline";
   EXPECT_NE(html.find("<td class=\"l\">SAT build, 2 moments</td><td class=\"l wrap\">copy SAT table, 2 moments</td>"),
@@ -192,6 +193,9 @@ TEST(SvgChart, TicksAreRoundNumbersInsideTheRange) {
   EXPECT_LE(lin.back(), 0.13);
   EXPECT_EQ(axisTicks(0.3, 40.0, true), (std::vector<double>{0.5, 1, 2, 5, 10, 20}));
   EXPECT_EQ(axisTicks(0.05, 5000.0, true), (std::vector<double>{0.1, 1, 10, 100, 1000}));
+  // A narrow log axis (tune's costs: 24 … 46 ms) holds no 1-2-5 value: round linear steps label it.
+  EXPECT_EQ(axisTicks(24.0, 46.0, true), (std::vector<double>{25, 30, 35, 40, 45}));
+  EXPECT_GE(axisTicks(0.0141, 0.0227, true).size(), 3u);
 }
 
 TEST(SvgChart, DrawsOneMarkerPerPointAndEscapesText) {

@@ -589,3 +589,31 @@ TEST(ModelLoader, ObjStatementsPenumbraIgnoresAreNotParsed) {
   const std::string e = errorOf([&] { loadScene((kData / "bad" / "skin_weight_overflow.obj").string()); });
   EXPECT_NE(e.find("vertex index 4 is out of range (3 vertices)"), std::string::npos) << e;
 }
+
+// A model given alone gets a ground under it at its lowest point, said in one sentence; one whose
+// meshes hold a floor keeps its own and adds none; without the option nothing is added.
+TEST(ModelLoader, ALoneModelGetsAGroundUnlessItHasAFloorOfItsOwn) {
+  const fs::path box = kData / "models/box.obj";
+  const Scene plain = loadScene(box.string());
+  std::vector<std::string> notices;
+  LoadOptions options;
+  options.groundUnderLoneModel = true;
+  options.notice = [&](const std::string& s) { notices.push_back(s); };
+  const Scene grounded = loadScene(box.string(), options);
+  ASSERT_EQ(grounded.objects.size(), plain.objects.size() + 1);
+  const Object& ground = grounded.objects.back();
+  EXPECT_EQ(ground.name, "ground (added)");
+  EXPECT_FALSE(ground.castsShadow);
+  const Aabb model = plain.bounds(), g = grounded.meshes[ground.mesh].bounds().transformed(ground.worldFromObject);
+  EXPECT_FLOAT_EQ(g.lo.y, model.lo.y) << "at the model's lowest point";
+  EXPECT_FLOAT_EQ(g.hi.x - g.lo.x, kGroundSpanFactor * std::max(model.hi.x - model.lo.x, model.hi.z - model.lo.z));
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(notices[0].rfind("box.obj: no floor in the model, so a ", 0), 0u) << notices[0];
+
+  // A floor of its own: a flat object under the whole footprint at the bottom.
+  Scene floored = plain;
+  addObject(floored, "floor", makePlane(20.0f, 20.0f), glm::vec3(0.5f), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, model.lo.y, 0.0f)), true);
+  const size_t objects = floored.objects.size();
+  EXPECT_EQ(addGroundUnderModel(floored), "its own 'floor' is the floor: no ground added");
+  EXPECT_EQ(floored.objects.size(), objects);
+}

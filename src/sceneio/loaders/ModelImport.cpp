@@ -10,6 +10,7 @@
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -40,6 +41,12 @@ const glm::vec3 kDefaultViewDirection{0.55f, 0.45f, 1.0f};   // from the model t
 const glm::vec3 kDefaultSunDirection{-0.4f, -1.0f, -0.3f};   // toward the scene
 constexpr float kMinFramedRadiusM = 1e-3f;                    // a point-sized model still gets a view
 constexpr float kMinNearM = 1e-4f;                            // the scene file's smallest near plane
+
+// A floor of the model's own: an object at most this fraction of the model's larger horizontal
+// side tall, within it of the model's lowest point, under at least kFloorCover of its footprint.
+constexpr float kFloorFlatness = 0.02f;
+constexpr float kFloorCover = 0.5f;
+const glm::vec3 kGroundColor{0.6f};  // the built-in scenes' mid grey
 
 }  // namespace
 
@@ -109,10 +116,44 @@ Model loadModelFile(const std::filesystem::path& path, const LoadOptions& option
 
 Scene loadModelScene(const std::filesystem::path& path, const LoadOptions& options) {
   Model model = loadModelFile(path, options);
-  addDefaultLightAndCamera(model.scene, model.hasCamera);
+  addDefaultLightAndCamera(model.scene, model.hasCamera);  // framed on the model, before any ground
+  if (options.groundUnderLoneModel) {
+    const std::string what = addGroundUnderModel(model.scene);
+    if (options.notice) options.notice(path.filename().string() + ": " + what);
+  }
   model.scene.validate();
   return std::move(model.scene);
 }
+
+}  // namespace penumbra::loaders
+
+namespace penumbra {
+
+std::string addGroundUnderModel(Scene& scene) {
+  const Aabb b = scene.bounds();
+  if (b.empty()) return "nothing to stand on a ground: no ground added";
+  const glm::vec3 size = b.hi - b.lo;
+  const float side = std::max({size.x, size.z, loaders::kMinFramedRadiusM});
+  const float footprint = std::max(size.x, loaders::kMinFramedRadiusM) * std::max(size.z, loaders::kMinFramedRadiusM);
+  for (const Object& o : scene.objects) {
+    if (o.mesh >= scene.meshes.size()) continue;
+    const Aabb ob = scene.meshes[o.mesh].bounds().transformed(o.worldFromObject);
+    if (ob.empty()) continue;
+    const glm::vec3 os = ob.hi - ob.lo;
+    if (os.y <= loaders::kFloorFlatness * side && ob.lo.y - b.lo.y <= loaders::kFloorFlatness * side && os.x * os.z >= loaders::kFloorCover * footprint)
+      return fmt::format("its own '{}' is the floor: no ground added", o.name);
+  }
+  const float ground = kGroundSpanFactor * side;
+  const glm::vec3 centre{0.5f * (b.lo.x + b.hi.x), b.lo.y, 0.5f * (b.lo.z + b.hi.z)};
+  addObject(scene, "ground (added)", makePlane(ground, ground), loaders::kGroundColor, glm::translate(glm::mat4(1.0f), centre), false);
+  return fmt::format("no floor in the model, so a {:.3g} m ground is added under it at y = {:.3g} m (its lowest point), where "
+                     "its shadow can fall; a scene file places a model on a ground of its choice (docs/scenes.md)",
+                     ground, centre.y);
+}
+
+}  // namespace penumbra
+
+namespace penumbra::loaders {
 
 void addDefaultLightAndCamera(Scene& scene, bool hasCamera) {
   const Aabb bounds = scene.bounds();

@@ -20,7 +20,7 @@ constexpr ParamDesc kParams[] = {
      static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
     {"csm.lambda", "Split λ", "practical split blend: 0 = uniform slices, 1 = logarithmic slices", "fraction", 0.9f, 0.0f, 1.0f, 0.0f},
     {"csm.stabilize", "Stabilise", "sun: bounding-sphere cascades snapped to whole texels so edges do not shimmer", "",
-     1.0f, 0.0f, 1.0f, 1.0f, kOnOff},
+     1.0f, 0.0f, 1.0f, 1.0f, kOnOff, {}, kSunLightBit},
     {"csm.blendBandM", "Blend band", "camera depth (m) before each split where two cascades are mixed; at most half the shortest cascade", "m",
      2.0f, 0.0f, 100.0f, 0.0f},
     {"csm.marginTexels", "Margin", "border added around each cascade, in texels", "texels", 2.0f, 0.0f, 64.0f, 1.0f},

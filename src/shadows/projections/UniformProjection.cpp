@@ -16,7 +16,7 @@ constexpr ParamDesc kParams[] = {
     {"uniform.cubeGuardTexels", "Cube guard band",
      "point lights: each cube face's map reaches this many texels past the face's edge, so a kernel, blocker search or "
      "filter region near an edge reads the scene beyond it (what the neighbouring face holds) instead of clamping",
-     "texels", 32.0f, 0.0f, 256.0f, 1.0f},
+     "texels", 32.0f, 0.0f, 256.0f, 1.0f, {}, {}, kPointLightBit},
 };
 
 // The six faces of a point light's cube, in the order the shaders pick them (common/shadow.glsl's
