@@ -353,7 +353,7 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
 // without their footprint are measured against the one-tap kernels of their default rows.
 TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
   const std::string dir = freshDir("bench-micro");
-  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --out out", dir);
+  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --micro-rounds 3 --out out", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   EXPECT_TRUE(json["rows"].empty());
