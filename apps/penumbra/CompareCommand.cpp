@@ -49,14 +49,16 @@ constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
     {"reference-visibility-cos.exr", "V_ref weighted by cos(theta): exact over unshadowed shading"},
-    {"visibility-lightN.exr, reference-visibility-lightN.exr", "with several lights: each light's own V and V_ref"},
+    {"visibility-lightN.exr, reference-visibility-lightN.exr, reference-visibility-cos-lightN.exr",
+     "with several lights: each light's own V, V_ref and cos-weighted V_ref"},
 };
 
 std::string outputsHelp() {
   std::string help = "folder for the outputs:";
   for (const auto& [name, what] : kOutputs) help += fmt::format("\n  {} ({})", name, what);
-  return help + "\nEXR files: one float channel V, row 0 = top; V_ref is 0 on geometry that faces away from the light "
-                "(or lies outside a spot's cone) and 1 on background; with several lights visibility.exr and reference-visibility*.exr "
+  return help + "\nEXR files: one float channel V, row 0 = top; V_ref is 0 on geometry that no part of the light reaches "
+                "above its horizon (or that lies outside a spot's cone) and 1 on background; the metrics count the pixels that face the "
+                "light's centre; with several lights visibility.exr and reference-visibility*.exr "
                 "hold the lights' V combined, each weighted by its unshadowed light at the pixel";
 }
 
@@ -170,7 +172,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     double referenceSeconds = 0.0;
     int referenceSamples = 0;
     bool referenceCached = true;
+    size_t horizonPixels = 0;  // lit by part of a soft light whose centre is below their horizon: not in the metrics
     for (const ReferenceResult& r : refs) {
+      horizonPixels += r.horizonPixels;
       referenceSeconds += r.traceSeconds;
       referenceSamples = std::max(referenceSamples, r.samplesPerPixel);
       referenceCached = referenceCached && (r.fromCache || r.width == 0);
@@ -202,7 +206,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     if (refs.size() > 1)
       for (const report::LightComparison& l : cmp.lights) {
         exr(fmt::format("visibility-light{}.exr", l.index), l.visibility);
-        if (l.castsShadow) exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
+        if (!l.castsShadow) continue;
+        exr(fmt::format("reference-visibility-light{}.exr", l.index), refs[l.index].visibility);
+        exr(fmt::format("reference-visibility-cos-light{}.exr", l.index), refs[l.index].visibilityCosWeighted);
       }
 
     std::optional<ShimmerResult> shimmer;
@@ -316,6 +322,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["reference_seconds"] = referenceSeconds;
       j["reference_samples"] = referenceSamples;
       j["reference_cached"] = referenceCached;
+      j["reference_horizon_pixels"] = horizonPixels;
       std::printf("%s\n", j.dump(2).c_str());
       return 0;
     }
@@ -368,8 +375,12 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         std::printf("    %-12s %8.2f ms  (%.2f-%.2f)\n", p.name.c_str(), p.ms.median, p.ms.p10, p.ms.p90);
     std::printf("    %-12s %8.2f ms  (%.2f-%.2f; shadow + prefilter + visibility per frame, as bench's whole cost)\n",
                 "whole cost", times.shadowCost.median, times.shadowCost.p10, times.shadowCost.p90);
-    std::printf("  reference: %d samples/pixel, %.2f s%s\n  images in %s/\n", referenceSamples, referenceSeconds,
-                referenceCached ? " (cached)" : "", o->out.c_str());
+    std::printf("  reference: %d samples/pixel, %.2f s%s\n", referenceSamples, referenceSeconds, referenceCached ? " (cached)" : "");
+    if (horizonPixels > 0)
+      std::printf("  left out:       %zu pixels lit by part of a soft light whose centre is below their horizon (in the EXRs, "
+                  "not in the metrics)\n",
+                  horizonPixels);
+    std::printf("  images in %s/\n", o->out.c_str());
     return 0;
   }});
 }

@@ -20,7 +20,7 @@ namespace penumbra {
 
 /// Version of the reference's maths; part of every cache key. Bump it whenever a change to the
 /// code changes the numbers it produces, so that stale cache files are never read.
-inline constexpr uint32_t kReferenceCodeVersion = 4;
+inline constexpr uint32_t kReferenceCodeVersion = 5;
 
 /// How far a G-buffer position may lie off its triangle's plane, in float32 spacings of the
 /// largest magnitude it was computed from (its coordinates, its triangle's world vertices and the
@@ -57,7 +57,8 @@ struct ReferenceResult {
   /// and, for a spot light, lies inside its cone. Metrics are taken over these pixels only.
   std::vector<uint8_t> litMask;
   /// V_ref in [0, 1]: the fraction of the light's solid angle (above the surface's horizon)
-  /// that is unoccluded. Outside litMask: 0 for covered pixels (no direct light), 1 for background.
+  /// that is unoccluded. Outside litMask: 1 for background; on geometry 0 where no part of the
+  /// light is above the horizon, else the fraction of that part (see horizonPixels).
   std::vector<float> visibility;
   /// Cosine-weighted visibility ∫cos·V dω / ∫cos dω = shadingExact / unshadowed shading. Its
   /// difference to `visibility` is the split approximation's error in units of V.
@@ -70,6 +71,13 @@ struct ReferenceResult {
   std::vector<glm::vec3> shadingSplit;
   /// shadingSplit − shadingExact: > 0 where the split model is too bright.
   std::vector<glm::vec3> approximationError;
+
+  /// Pixels outside litMask that the light lights all the same: a soft light whose centre is
+  /// below their horizon with part of it above (a box top beside a lamp lower than it, the dark
+  /// side of a ball under a large lamp). Their V_ref, cos-weighted V_ref and shading are traced
+  /// over that part like any pixel's; the metrics leave them out, since a shadow map's lit pass
+  /// takes N·L at the light's centre and gives them no light whatever its V.
+  size_t horizonPixels = 0;
 
   double seconds = 0.0;       ///< wall-clock seconds of this call (a cache hit: the load time)
   double traceSeconds = 0.0;  ///< wall-clock seconds of the trace that produced the data

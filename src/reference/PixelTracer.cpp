@@ -32,6 +32,7 @@ LightSetup setupLight(const Light& light) {
     s.sunCapHeight = reference::oneMinusCos(light.size);
     // E at normal incidence = ∫_cone L_e cos dω = L_e · π sin²α.
     const float sinAlpha = std::sin(light.size);
+    s.sunSinRadius = sinAlpha;
     if (s.soft) s.radiance = s.power / (glm::pi<float>() * sinAlpha * sinAlpha);
   } else {
     PN_CHECK(light.type == LightType::Point || (light.coneAngleRad > 0.0f && light.coneAngleRad < glm::pi<float>()),

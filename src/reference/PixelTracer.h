@@ -46,6 +46,7 @@ struct LightSetup {
   float rangeM = 0.0f;                // spot, point: no light beyond it (0 = unlimited)
   Light light;                        // the light itself: its falloff scales the shading
   float sunCapHeight = 0.0f;          // sun: 1 − cos(angular radius)
+  float sunSinRadius = 0.0f;          // sun: sin(angular radius): how far below the horizon its centre may sink
   glm::vec3 power{1.0f};              // colour × intensity: E at normal incidence (sun) or I (spot)
   glm::vec3 radiance{0.0f};           // soft lights: uniform emitted radiance L_e
 };
@@ -85,8 +86,16 @@ Receiver receiverOf(const GBufferData& g, size_t i, const std::vector<std::vecto
 /// receiverOf() for every pixel of g, over every core (the cache key hashes them all).
 std::vector<Receiver> receiversOf(const GBufferData& g, const std::vector<std::vector<ReceiverTriangle>>& triangles);
 
+/// How much of the light a receiving pixel can see above its horizon.
+enum class Reach {
+  None,     ///< none of it (no normal, outside the spot's cone or its range, the whole light below the horizon)
+  Centre,   ///< the light's centre is above the horizon: the pixel is in litMask
+  Horizon,  ///< a soft light's centre is below the horizon but part of the light is above it
+};
+
 struct PixelOut {
-  bool lit = false;
+  bool lit = false;      // in litMask (Reach::Centre)
+  bool horizon = false;  // Reach::Horizon: traced, outside litMask
   float visibility = 0.0f, visibilityCos = 0.0f;
   glm::vec3 exact{0.0f}, split{0.0f};
 };
@@ -120,8 +129,10 @@ public:
     PixelOut out;
     glm::vec3 n;
     float distanceM = 0.0f;
-    if (!facesLight(origin, normalIn, n, distanceM)) return out;
-    out.lit = true;
+    const Reach reach = reaches(origin, normalIn, n, distanceM);
+    if (reach == Reach::None) return out;
+    out.lit = reach == Reach::Centre;
+    out.horizon = reach == Reach::Horizon;
     const glm::vec3 brdf = albedo * glm::one_over_pi<float>();
 
     if (!soft(distanceM)) return traceHard(out, origin, n, brdf, receiver);
@@ -159,26 +170,32 @@ public:
     return out;
   }
 
-  /// A pixel's unit normal and its distance to a spot light's centre (inf for the sun); false where
-  /// the light cannot reach it (no normal, outside the spot's cone, facing away from the centre).
-  bool facesLight(const glm::vec3& origin, const glm::vec3& normalIn, glm::vec3& n, float& distanceM) const {
+  /// A pixel's unit normal, its distance to a spot light's centre (inf for the sun) and how much of
+  /// the light it sees above its horizon. A soft light whose centre is below the horizon still
+  /// lights the pixel where the light's cap of half angle α reaches above it (N·L > −sin α): a box
+  /// top beside a lamp lower than it, the shadow side of a ball under a large lamp.
+  Reach reaches(const glm::vec3& origin, const glm::vec3& normalIn, glm::vec3& n, float& distanceM) const {
     const float normalLength = glm::length(normalIn);
-    if (!(normalLength > kMinNormalLength)) return false;
+    if (!(normalLength > kMinNormalLength)) return Reach::None;
     n = normalIn / normalLength;
     glm::vec3 axis = mLight.toLight;
     distanceM = std::numeric_limits<float>::infinity();
+    float sinRadius = mLight.sunSinRadius;
     if (!mLight.directional) {
       const glm::vec3 toCentre = mLight.centre - origin;
       distanceM = glm::length(toCentre);
-      if (!(distanceM > 0.0f)) return false;
+      if (!(distanceM > 0.0f)) return Reach::None;
       axis = toCentre / distanceM;
-      if (glm::dot(-axis, mLight.spotAxis) < mLight.cosCone) return false;  // outside the spot cone
-      if (mLight.rangeM > 0.0f && distanceM >= mLight.rangeM) return false;  // beyond its range
+      if (glm::dot(-axis, mLight.spotAxis) < mLight.cosCone) return Reach::None;  // outside the spot cone
+      if (mLight.rangeM > 0.0f && distanceM >= mLight.rangeM) return Reach::None;  // beyond its range
+      sinRadius = soft(distanceM) ? mLight.radiusM / distanceM : 0.0f;
     }
-    return glm::dot(n, axis) > 0.0f;  // faces the light's centre
+    const float cosCentre = glm::dot(n, axis);
+    if (cosCentre > 0.0f) return Reach::Centre;  // faces the light's centre
+    return mLight.soft && cosCentre > -sinRadius ? Reach::Horizon : Reach::None;
   }
 
-  /// Whether a pixel that faces the light (facesLight) is lit softly: by softSamples' rays.
+  /// Whether a pixel that sees the light (reaches) is lit softly: by softSamples' rays.
   bool soft(float distanceM) const { return mLight.soft && distanceM > mLight.radiusM; }
 
   /// The soft light's samples of one pixel (distanceM: to a spot light's centre, inf for the sun),

@@ -37,7 +37,8 @@ struct RayBenchmark::Impl {
     const glm::vec3 origin(g.position[i]);
     glm::vec3 n;
     float distanceM = 0.0f;
-    if (!pixelTracer.facesLight(origin, glm::vec3(g.geoNormal[i]), n, distanceM) || !pixelTracer.soft(distanceM)) return false;
+    if (pixelTracer.reaches(origin, glm::vec3(g.geoNormal[i]), n, distanceM) == Reach::None || !pixelTracer.soft(distanceM))
+      return false;
     pixelTracer.softSamples(i, origin, n, receivers[i], distanceM, out);
     return true;
   }

@@ -54,6 +54,13 @@ const char* take(const char* in, std::vector<T>& values, size_t count) {
 
 }  // namespace
 
+size_t countHorizonPixels(const ReferenceResult& result) {
+  size_t count = 0;
+  for (size_t i = 0; i < result.litMask.size(); ++i)
+    count += result.litMask[i] == 0 && result.shadingExact[i] != glm::vec3(0.0f) ? 1 : 0;
+  return count;
+}
+
 fs::path cacheFilePath(const fs::path& dir, uint64_t key) {
   return dir / fmt::format("reference-{:016x}.bin", key);
 }
@@ -101,6 +108,7 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
   // Derived, not stored: recomputing it is exact and keeps the file a fifth smaller.
   r.approximationError.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) r.approximationError[i] = r.shadingSplit[i] - r.shadingExact[i];
+  r.horizonPixels = countHorizonPixels(r);
   touchCacheEntry(cacheFilePath(dir, key));  // used: the last to be evicted
   return r;
 }

@@ -10,6 +10,10 @@
 
 namespace penumbra::reference {
 
+/// ReferenceResult::horizonPixels of a result's arrays: pixels outside litMask with light on them
+/// (shadingExact ≠ 0). Derived, not stored: a traced result and its cached copy count alike.
+size_t countHorizonPixels(const ReferenceResult& result);
+
 std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);
 
 /// Creates `dir` if needed. Throws penumbra::Error naming it and why when it cannot be created

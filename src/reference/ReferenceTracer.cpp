@@ -3,7 +3,9 @@
 // Estimator: the light is the cone of directions it subtends (a sphere's cap for a spot light,
 // the sun's disk), sampled uniformly in solid angle on a jittered nx × ny grid mapped through
 // the concentric disk. Samples below the surface's horizon are dropped from every sum: the
-// receiver's own surface is not a shadow caster, and their cosine weight is zero anyway. From
+// receiver's own surface is not a shadow caster, and their cosine weight is zero anyway. A pixel
+// whose horizon cuts the light is traced over the part above it, its centre above the horizon or
+// not (only the former are in litMask). From
 // the same samples: V = mean visibility, ∫cos·V and ∫cos, so exact and split shading differ by
 // the split alone (their difference is −Ω·L·Cov(cos, V) over the light).
 #include <penumbra/Error.h>
@@ -183,6 +185,7 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
       progress.advance(static_cast<size_t>(g.width));
     }
   });
+  r.horizonPixels = countHorizonPixels(r);
   r.traceSeconds = secondsSince(start);
   r.seconds = r.traceSeconds;
   if (!cacheDir.empty()) {

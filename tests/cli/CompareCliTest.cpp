@@ -5,6 +5,7 @@
 #include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -203,4 +204,36 @@ TEST(CompareCli, WritesEveryFileItsHelpNamesAndTheTruthAsFloatImages) {
     agree += std::abs(v[i] - ref[i]) < 0.5f;
   }
   EXPECT_GT(static_cast<double>(agree), 0.95 * static_cast<double>(ref.size()));
+}
+
+// With several lights every light's own cos-weighted V_ref is written too: 0 where its V_ref is 0
+// (umbra, or no light), 1 where its V_ref is 1 (the whole light seen). A lamp large enough to
+// light box tops and chair sides from below their horizon: those pixels are counted, traced (some
+// V_ref > 0 outside the mask shows in the light's EXR) and left out of the metrics.
+TEST(CompareCli, WritesEachLightsCosWeightedReferenceAndCountsPixelsLitFromBelowTheHorizon) {
+  const std::string dir = freshDir("compare-light-cos");
+  const RunResult r = runPenumbra(
+      "compare --scene room --set light.size=0.3 --size 128x96 --samples 16 --shadow-map 256 --json --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["lights"].size(), 2u);
+  EXPECT_GT(j["reference_horizon_pixels"].get<size_t>(), 0u);
+  for (int light = 0; light < 2; ++light) {
+    int w = 0, h = 0;
+    const std::vector<float> ref = penumbra::readExr(fmt::format("{}/imgs/reference-visibility-light{}.exr", dir, light), w, h);
+    const std::vector<float> cos =
+        penumbra::readExr(fmt::format("{}/imgs/reference-visibility-cos-light{}.exr", dir, light), w, h);
+    ASSERT_EQ(cos.size(), ref.size());
+    size_t weighted = 0;  // penumbra pixels where the cosine weighting moves V_ref
+    for (size_t i = 0; i < ref.size(); ++i) {
+      if (ref[i] == 0.0f || ref[i] == 1.0f) {
+        EXPECT_EQ(cos[i], ref[i]) << "light " << light << " pixel " << i;
+      }
+      EXPECT_TRUE(cos[i] >= 0.0f && cos[i] <= 1.0f) << cos[i];
+      weighted += cos[i] != ref[i];
+    }
+    if (light == 0) {
+      EXPECT_GT(weighted, 0u) << "the 0.3 m lamp's penumbrae weigh their samples by cos";
+    }
+  }
 }

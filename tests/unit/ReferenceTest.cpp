@@ -188,6 +188,75 @@ TEST(Reference, MaskKeepsOnlyPixelsThatFaceTheLightInsideTheCone) {
   EXPECT_EQ(r.shadingExact[1], glm::vec3(0.0f));
 }
 
+/// Irradiance over radiance of a uniform sphere (or the sun's disk) of angular radius α whose
+/// centre is at cos θ from a surface's normal, the part below the surface's horizon left out:
+/// π sin²α cos θ while the whole light is above the horizon, else the closed form of the cap cut
+/// by the horizon plane (Snyder 1996, "Area light sources for real-time graphics").
+double horizonCutIrradiance(double cosTheta, double sinAlpha) {
+  const double sin2 = sinAlpha * sinAlpha;
+  if (cosTheta * cosTheta > sin2) return glm::pi<double>() * sin2 * std::max(cosTheta, 0.0);
+  const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta);
+  const double x = std::sqrt(1.0 / sin2 - 1.0);
+  const double y = -x * cosTheta / sinTheta;
+  const double s = sinTheta * std::sqrt(1.0 - y * y);
+  return (cosTheta * std::acos(y) - x * s) * sin2 + std::atan(s / x);
+}
+
+// A sphere light whose centre lies below a receiver's horizon still lights it by the part above
+// (the shadow side of a ball, a box top beside a lower lamp): the reference traces that part,
+// keeps the pixel out of litMask (the metrics') and counts it.
+TEST(Reference, SphereLightPartlyAboveTheHorizonLightsTheReceiver) {
+  const float distanceM = 2.0f, radiusM = 1.0f;  // sin α = 1/2: 30°
+  Scene s;
+  addObject(s, "far", makePlane(1.0f, 1.0f), glm::vec3(0.8f), glm::translate(glm::mat4(1.0f), {50.0f, 0.0f, 50.0f}));
+  Light light;
+  light.type = LightType::Point;
+  light.intensity = 5.0f;
+  light.size = radiusM;
+  const ReferenceTracer tracer(s);
+  // The centre 15° below the horizon of the points' plane (y = 0, normal +Y): the light's upper
+  // 15° rise above it. At 35° below, none of it does.
+  const auto lightAt = [&](double elevationRad) {
+    Light l = light;
+    l.position = glm::vec3(std::cos(elevationRad), std::sin(elevationRad), 0.0) * distanceM;
+    return l;
+  };
+  const double radiance = light.intensity / (glm::pi<double>() * radiusM * radiusM);
+  const double brdf = 1.0 / glm::pi<double>();  // pointsGBuffer's albedo is 1
+  for (const double degrees : {-15.0, -5.0}) {
+    const double elevation = glm::radians(degrees);
+    const ReferenceResult r = tracer.trace(pointsGBuffer({{0, 0, 0}}), lightAt(elevation), quiet(4096));
+    const double expected = brdf * radiance * horizonCutIrradiance(std::sin(elevation), 0.5);
+    std::printf("sphere centre %.0f deg below the horizon: shading %.5f, closed form %.5f (%.2f%%)\n", -degrees,
+                r.shadingExact[0].x, expected, 100.0 * (r.shadingExact[0].x - expected) / expected);
+    EXPECT_EQ(r.litMask[0], 0);
+    EXPECT_EQ(r.horizonPixels, 1u);
+    EXPECT_EQ(r.visibility[0], 1.0f);  // nothing hides the part above the horizon
+    EXPECT_EQ(r.visibilityCosWeighted[0], 1.0f);
+    EXPECT_NEAR(r.shadingExact[0].x, expected, 0.02 * expected);
+  }
+  const ReferenceResult below = tracer.trace(pointsGBuffer({{0, 0, 0}}), lightAt(glm::radians(-35.0)), quiet(256));
+  EXPECT_EQ(below.horizonPixels, 0u);
+  EXPECT_EQ(below.visibility[0], 0.0f);
+  EXPECT_EQ(below.shadingExact[0], glm::vec3(0.0f));
+  // A wall between the receiver and the light hides the part above the horizon: no light, not counted.
+  addObject(s, "wall", makePlane(4.0f, 4.0f), glm::vec3(0.8f),
+            glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, 0.0f, 0.0f}), glm::half_pi<float>(), glm::vec3(0, 0, 1)));
+  const ReferenceResult covered = ReferenceTracer(s).trace(pointsGBuffer({{0, 0, 0}}), lightAt(glm::radians(-15.0)), quiet(256));
+  EXPECT_EQ(covered.visibility[0], 0.0f);
+  EXPECT_EQ(covered.horizonPixels, 0u);
+  // The sun too: 0.1 rad wide, its centre 0.05 rad below the horizon.
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.size = 0.1f;
+  sun.direction = -glm::vec3(std::cos(-0.05f), std::sin(-0.05f), 0.0f);
+  const ReferenceResult low = tracer.trace(pointsGBuffer({{0, 0, 0}}), sun, quiet(4096));
+  const double sunRadiance = sun.intensity / (glm::pi<double>() * std::sin(0.1) * std::sin(0.1));
+  const double sunExpected = brdf * sunRadiance * horizonCutIrradiance(std::sin(-0.05), std::sin(0.1));
+  EXPECT_EQ(low.horizonPixels, 1u);
+  EXPECT_NEAR(low.shadingExact[0].x, sunExpected, 0.03 * sunExpected);
+}
+
 TEST(Reference, SameSeedRepeatsExactlyAndAnotherSeedDoesNot) {
   const ReferenceTracer tracer(squareOverPlane());
   const GBufferData g = lineGBuffer(lineXs());
