@@ -54,6 +54,12 @@ struct Material {
   int baseColorTexture = -1;   ///< index into Scene::images, -1 = none
   bool alphaMask = false;      ///< alpha-tested: texels with alpha < alphaCutoff are holes
   float alphaCutoff = 0.5f;
+  /// The share of light, per colour, that passes through the surface (linear RGB, each in
+  /// [0, 1]): (0, 0, 0) = opaque, the default; (0.9, 0.3, 0.2) a red glass. A translucent caster
+  /// tints and dims the light behind it instead of stopping it (docs/scenes.md, "Translucent
+  /// casters"); the surface itself is drawn and receives shadows like any other.
+  glm::vec3 transmittance{0.0f};
+  bool translucent() const { return transmittance != glm::vec3(0.0f); }
 };
 
 /// One placed mesh.

@@ -140,9 +140,14 @@ void Scene::validate() const {
     PN_CHECK(o.mesh < meshes.size(), fmt::format("{}: object '{}': mesh index out of range", where, o.name));
     PN_CHECK(o.material < materials.size(), fmt::format("{}: object '{}': material index out of range", where, o.name));
   }
-  for (const Material& m : materials)
+  for (const Material& m : materials) {
     PN_CHECK(m.baseColorTexture < static_cast<int>(images.size()),
              fmt::format("{}: material '{}': texture index out of range", where, m.name));
+    PN_CHECK(glm::all(glm::greaterThanEqual(m.transmittance, glm::vec3(0.0f))) &&
+                 glm::all(glm::lessThanEqual(m.transmittance, glm::vec3(1.0f))),
+             fmt::format("{}: material '{}': transmittance ({}, {}, {}) must be in [0, 1] per colour", where, m.name,
+                         m.transmittance.x, m.transmittance.y, m.transmittance.z));
+  }
   PN_CHECK(triangleCount() > 0, fmt::format("{}: the scene has zero triangles", where));
   PN_CHECK(std::any_of(objects.begin(), objects.end(), [&](const Object& o) { return meshes[o.mesh].hasArea(); }),
            fmt::format("{}: every triangle has zero area (its corners lie on one line): nothing would be drawn", where));

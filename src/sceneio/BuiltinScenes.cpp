@@ -195,6 +195,50 @@ Scene makeCity() {
   return s;
 }
 
+// Translucent casters under the sun: a stained-glass canopy (four coloured panes in opaque leading)
+// and a tinted pane below it, on a floor. Their shadows are coloured: each pane's transmittance
+// tints the light behind it, and where the light crosses a canopy pane and the tinted pane both,
+// it keeps the product of the two; the leading and a box cast ordinary shadows beside them. The
+// tinted pane's shadow is one large patch of one known hue (its red/green ratio is the test of a
+// coloured shadow); the canopy's lie side by side, each bounded by opaque lines.
+Scene makeGlass() {
+  Scene s;
+  s.name = "glass";
+  addObject(s, "floor", makePlane(12.0f, 12.0f), kFloorColor);
+  constexpr float kCanopyM = 1.6f, kPaneM = 0.8f, kLeadM = 0.05f;  // height, pane side, leading width
+  const glm::vec3 canopy{0.0f, kCanopyM, 0.0f};
+  struct Pane {
+    const char* name;
+    glm::vec3 transmittance;
+  };
+  const Pane panes[] = {{"red", {0.9f, 0.2f, 0.15f}},
+                        {"green", {0.2f, 0.85f, 0.25f}},
+                        {"blue", {0.2f, 0.35f, 0.9f}},
+                        {"amber", {0.95f, 0.7f, 0.15f}}};
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec3 centre = canopy + glm::vec3((i % 2 == 0 ? -0.5f : 0.5f) * kPaneM, 0.0f, (i < 2 ? -0.5f : 0.5f) * kPaneM);
+    const uint32_t o = addObject(s, fmt::format("{} glass", panes[i].name), makePlane(kPaneM, kPaneM),
+                                 panes[i].transmittance, translate(centre));
+    s.materials[s.objects[o].material].transmittance = panes[i].transmittance;
+  }
+  for (int i = -1; i <= 1; ++i) {  // the leading: three bars each way, over the panes' edges
+    const float offset = static_cast<float>(i) * kPaneM;
+    addObject(s, fmt::format("lead x{}", i + 1), makeBox({2.0f * kPaneM + kLeadM, kLeadM, kLeadM}), {0.2f, 0.2f, 0.22f},
+              translate(canopy + glm::vec3(0.0f, 0.0f, offset)));
+    addObject(s, fmt::format("lead z{}", i + 1), makeBox({kLeadM, kLeadM, 2.0f * kPaneM + kLeadM}), {0.2f, 0.2f, 0.22f},
+              translate(canopy + glm::vec3(offset, 0.0f, 0.0f)));
+  }
+  const glm::vec3 tint{0.85f, 0.45f, 0.3f};
+  const uint32_t pane = addObject(s, "tinted pane", makePlane(1.2f, 1.0f), tint, translate({0.6f, 0.7f, -0.4f}));
+  s.materials[s.objects[pane].material].transmittance = tint;
+  addObject(s, "box", makeBox({0.6f, 0.6f, 0.6f}), {0.8f, 0.3f, 0.25f}, translate({-2.2f, 0.3f, -0.6f}));
+  s.lights.push_back(sun({-0.5f, -1.0f, 0.6f}, 0.01f));
+  s.camera.position = {1.5f, 3.8f, 5.0f};
+  s.camera.target = {-0.4f, 0.2f, 0.3f};
+  s.camera.fovYRad = 0.8f;
+  return s;
+}
+
 struct Builtin {
   std::string_view name, description;
   std::function<Scene()> make;
@@ -213,6 +257,7 @@ const std::vector<Builtin>& builtins() {
          sceneio::animateRoom(s);
          return s;
        }},
+      {"glass", "a stained-glass canopy and a tinted pane over a floor under the sun: coloured shadows through translucent casters, and their product where both overlap", makeGlass},
       {"night", "a street at night under 8 lamps (4 point, 4 spot) whose shadows overlap; lights ordered near to far for sweeps of the first N", makeNightScene},
   };
   return list;

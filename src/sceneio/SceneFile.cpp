@@ -362,7 +362,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     if (r.has("file")) {  // a glTF/OBJ model, path relative to this file, in place of a shape (docs/scenes.md)
       const std::string model = r.string("file", "");
       if (model.empty()) r.fail("file", "must name a .gltf, .glb or .obj file");
-      for (const char* key : {"shape", "color"})
+      for (const char* key : {"shape", "color", "transmittance"})
         if (r.has(key)) r.fail(key, "not allowed with 'file' (the model brings its own meshes and materials)");
       const glm::mat4 m = readTransform(r);
       const bool casts = r.boolean("castsShadow", true);
@@ -385,6 +385,10 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     const glm::vec3 color = r.vec<3>("color", glm::vec3(0.8f));
     if (glm::any(glm::lessThan(color, glm::vec3(0))) || glm::any(glm::greaterThan(color, glm::vec3(1))))
       r.fail("color", "each component must be in [0, 1]");
+    // The light that passes through it, per colour: a translucent caster (0 = opaque).
+    const glm::vec3 transmittance = r.vec<3>("transmittance", glm::vec3(0.0f));
+    if (glm::any(glm::lessThan(transmittance, glm::vec3(0))) || glm::any(glm::greaterThan(transmittance, glm::vec3(1))))
+      r.fail("transmittance", "each component must be in [0, 1]");
     const glm::mat4 m = readTransform(r);
     const bool casts = r.boolean("castsShadow", true);
     const std::optional<TransformTrack> track = readAnimation(r);
@@ -392,6 +396,7 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
     r.finish();
     const size_t object = s.objects.size(), node = s.animation.nodes.size();
     addObject(s, name, std::move(mesh), color, m, casts);
+    s.materials[s.objects[object].material].transmittance = transmittance;
     if (track) followNode(s, *track, name, m, object, node);
     applyDynamic(s, r, dynamic, name, object);
   }

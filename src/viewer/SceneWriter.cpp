@@ -56,6 +56,7 @@ Json objectJson(const Scene& scene, const Object& o) {
   j["rotateDeg"] = tidyVec(t.rotateDeg);
   j["scale"] = tidyVec(t.scale);
   j["color"] = tidyVec(scene.materials.at(o.material).baseColor);
+  if (scene.materials.at(o.material).translucent()) j["transmittance"] = tidyVec(scene.materials.at(o.material).transmittance);
   j["castsShadow"] = o.castsShadow;
   if (o.dynamic) j["dynamic"] = true;
   return j;

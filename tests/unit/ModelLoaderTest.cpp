@@ -617,3 +617,39 @@ TEST(ModelLoader, ALoneModelGetsAGroundUnlessItHasAFloorOfItsOwn) {
   EXPECT_EQ(addGroundUnderModel(floored), "its own 'floor' is the floor: no ground added");
   EXPECT_EQ(floored.objects.size(), objects);
 }
+
+// BLEND's factor alpha is the share of light a surface covers; KHR_materials_transmission passes
+// its factor of the covered share, tinted by the base colour. Both make a translucent caster.
+TEST(ModelLoader, BlendAlphaAndTransmissionMakeTranslucentCasters) {
+  const auto transmittanceOf = [](const std::string& material) {
+    const std::string top = fmt::format(R"("extensionsUsed": ["KHR_materials_transmission"], "materials": [{}],)", material);
+    const loaders::Model m = loadText(meshGltf(kSquare, {0, 1, 2}, R"(, "material": 0)", R"([{"mesh": 0}])", "[0]", top));
+    return m.scene.materials.at(m.scene.objects.at(0).material).transmittance;
+  };
+  const std::string colour = R"("pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, ALPHA]})";
+  const auto with = [&](const std::string& alpha, const std::string& rest) {
+    std::string c = colour;
+    c.replace(c.find("ALPHA"), 5, alpha);
+    return "{" + c + rest + "}";
+  };
+  const glm::vec3 tint(1.0f, 0.5f, 0.25f);
+  EXPECT_EQ(transmittanceOf(with("1", "")), glm::vec3(0.0f)) << "OPAQUE without transmission is opaque";
+  EXPECT_EQ(transmittanceOf(with("0.6", R"(, "alphaMode": "MASK")")), glm::vec3(0.0f)) << "MASK is alpha-tested, not translucent";
+  const glm::vec3 blend = transmittanceOf(with("0.4", R"(, "alphaMode": "BLEND")"));
+  EXPECT_NEAR(blend.x, 0.6f, 1e-6f);
+  EXPECT_EQ(blend.x, blend.y);
+  EXPECT_EQ(blend.y, blend.z);
+  const glm::vec3 glass = transmittanceOf(with("1", R"(, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.8}})"));
+  EXPECT_NEAR(glass.x, 0.8f * tint.x, 1e-6f);
+  EXPECT_NEAR(glass.y, 0.8f * tint.y, 1e-6f);
+  EXPECT_NEAR(glass.z, 0.8f * tint.z, 1e-6f);
+  const glm::vec3 both = transmittanceOf(
+      with("0.5", R"(, "alphaMode": "BLEND", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}})"));
+  EXPECT_NEAR(both.x, 0.5f + 0.5f * tint.x, 1e-6f);
+  EXPECT_NEAR(both.y, 0.5f + 0.5f * tint.y, 1e-6f);
+  EXPECT_NEAR(both.z, 0.5f + 0.5f * tint.z, 1e-6f);
+  const std::string bad = errorOf([&] {
+    transmittanceOf(with("1", R"(, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.5}})"));
+  });
+  EXPECT_NE(bad.find("materials[0].extensions.KHR_materials_transmission.transmissionFactor"), std::string::npos) << bad;
+}

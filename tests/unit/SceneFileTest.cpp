@@ -286,3 +286,21 @@ TEST(SceneFile, LightsKeepEveryKey) {
   EXPECT_EQ(s.lights[3].type, LightType::Directional);
   EXPECT_FLOAT_EQ(s.lights[3].size, 0.01f);
 }
+
+// An object's transmittance makes it a translucent caster: the share of light of each colour
+// that passes through it. Out of [0, 1], or beside a model file (which brings its own materials),
+// it is refused by name.
+TEST(SceneFile, TransmittanceMakesATranslucentCaster) {
+  const Scene s = loadSceneFile(writeTemp("glass.json", R"({"lights": [{"type": "sun"}], "objects": [
+    {"shape": "box"},
+    {"shape": "plane", "color": [0.9, 0.3, 0.2], "transmittance": [0.9, 0.3, 0.2], "translate": [0, 1, 0]}]})"));
+  EXPECT_FALSE(s.materials[s.objects[0].material].translucent());
+  EXPECT_EQ(s.materials[s.objects[1].material].transmittance, glm::vec3(0.9f, 0.3f, 0.2f));
+  EXPECT_TRUE(s.materials[s.objects[1].material].translucent());
+  std::string e = loadError(R"({"lights": [{"type": "sun"}], "objects": [{"shape": "box", "transmittance": [0.5, 1.2, 0]}]})");
+  EXPECT_NE(e.find("objects[0].transmittance: each component must be in [0, 1]"), std::string::npos) << e;
+  e = loadError(R"({"lights": [{"type": "sun"}], "objects": [{"file": "m.obj", "transmittance": [0.5, 0.5, 0.5]}]})");
+  EXPECT_NE(e.find("objects[0].transmittance"), std::string::npos) << e;
+  EXPECT_TRUE(makeBuiltinScene("glass").materials[makeBuiltinScene("glass").objects[1].material].translucent())
+      << "the glass scene's panes are translucent";
+}

@@ -75,6 +75,8 @@ TEST(SceneWriter, EveryBuiltinSceneRoundTrips) {
       expectSameBounds(s.meshes[a.mesh].bounds().transformed(a.worldFromObject),
                        back.meshes[b.mesh].bounds().transformed(b.worldFromObject), name + ": " + a.name);
       EXPECT_NEAR(glm::length(s.materials[a.material].baseColor - back.materials[b.material].baseColor), 0.0f, 1e-5f);
+      EXPECT_NEAR(glm::length(s.materials[a.material].transmittance - back.materials[b.material].transmittance), 0.0f, 1e-5f)
+          << name << ": " << a.name;
     }
     EXPECT_NEAR(glm::length(back.camera.position - s.camera.position), 0.0f, kEpsM) << name;
     EXPECT_NEAR(glm::length(back.camera.target - s.camera.target), 0.0f, kEpsM) << name;

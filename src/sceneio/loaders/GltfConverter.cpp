@@ -31,7 +31,21 @@ constexpr float kMaxSpotSizeM = 100.0f, kMaxSunSizeRad = 0.5f;  // the scene fil
 
 const std::set<std::string> kSupportedRequiredExtensions = {
     "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_unlit", "KHR_materials_emissive_strength",
-    "KHR_texture_transform", "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+    "KHR_texture_transform", "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_materials_transmission"};
+
+/// KHR_materials_transmission's transmissionFactor of `material` (0 without the extension);
+/// throws Error naming the field when it is not a number in [0, 1]. Its texture is not read.
+float transmissionFactor(const tinygltf::Material& material, const std::string& file, const std::string& field) {
+  const auto ext = material.extensions.find("KHR_materials_transmission");
+  if (ext == material.extensions.end()) return 0.0f;
+  const std::string base = field + ".extensions.KHR_materials_transmission";
+  if (!ext->second.IsObject()) fail(file, base, "expected an object");
+  if (!ext->second.Has("transmissionFactor")) return 0.0f;
+  const tinygltf::Value& v = ext->second.Get("transmissionFactor");
+  const double t = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+  if (!(t >= 0.0 && t <= 1.0)) fail(file, base + ".transmissionFactor", "must be a number in [0, 1]");
+  return static_cast<float>(t);
+}
 
 // --- accessors ---------------------------------------------------------------------------------
 int componentBytes(int type) {
@@ -248,9 +262,8 @@ int Converter::materialFor(int gm, const std::string& use, bool& invisible) {
       mUvTransforms[gm] = readTextureTransform(pbr.baseColorTexture, mFile, field + ".pbrMetallicRoughness.baseColorTexture");
     }
     const float factorAlpha = static_cast<float>(pbr.baseColorFactor[3]);
-    if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") {
-      // No transparency in Penumbra: BLEND is alpha-tested at the default cutoff.
-      const double cutoff = src.alphaMode == "MASK" ? src.alphaCutoff : 0.5;
+    if (src.alphaMode == "MASK") {
+      const double cutoff = src.alphaCutoff;
       if (!(cutoff >= 0.0 && cutoff <= 1.0)) error(field + ".alphaCutoff", "must be in [0, 1]");
       // alpha = factor.a × texel.a < cutoff  ⇔  texel.a < cutoff / factor.a
       if (m.baseColorTexture >= 0) {
@@ -259,9 +272,22 @@ int Converter::materialFor(int gm, const std::string& use, bool& invisible) {
       } else {
         invisible = factorAlpha < static_cast<float>(cutoff);  // every fragment is discarded
       }
+    } else if (src.alphaMode == "BLEND") {
+      // A translucent surface: the factor's alpha is the share of light it covers (below). A
+      // texture's alpha cuts holes at 0.5 of its own (leaves cut out of a card); factor alpha 0 is
+      // nothing at all.
+      if (m.baseColorTexture >= 0) {
+        m.alphaMask = true;
+        m.alphaCutoff = 0.5f;
+      }
+      invisible = factorAlpha == 0.0f;
     } else if (src.alphaMode != "OPAQUE") {
       error(field + ".alphaMode", fmt::format("'{}' is not OPAQUE, MASK or BLEND", src.alphaMode));
     }
+    // What passes through: the uncovered share (1 − alpha, BLEND only) and, of the covered share,
+    // KHR_materials_transmission's factor tinted by the base colour (the glass's colour).
+    const float coverage = src.alphaMode == "BLEND" ? factorAlpha : 1.0f;
+    m.transmittance = glm::vec3(1.0f - coverage) + coverage * transmissionFactor(src, mFile, field) * m.baseColor;
   }
   mOut.scene.materials.push_back(std::move(m));
   const int index = static_cast<int>(mOut.scene.materials.size() - 1);
