@@ -10,6 +10,7 @@
 #include "report/BenchRunner.h"
 #include "report/FrameComparison.h"
 #include "report/ImageKey.h"
+#include "report/ImageText.h"
 #include "report/Sheet.h"
 #include "report/SequenceComparison.h"
 
@@ -49,6 +50,8 @@ constexpr std::pair<const char*, const char*> kOutputs[] = {
     {"visibility.exr", "the technique's V"},
     {"reference-visibility.exr", "V_ref: the unoccluded fraction of the light"},
     {"reference-visibility-cos.exr", "V_ref weighted by cos(theta): exact over unshadowed shading"},
+    {"heatmap-colour.png, where the scene has translucent casters",
+     "the colour of V - V_ref per channel (128 grey = exact), titled, with the colour RMSE"},
     {"visibility-lightN.exr, reference-visibility-lightN.exr, reference-visibility-cos-lightN.exr",
      "with several lights: each light's own V, V_ref and cos-weighted V_ref"},
 };
@@ -60,6 +63,36 @@ std::string outputsHelp() {
                 "above its horizon (or that lies outside a spot's cone) and 1 on background; the metrics count the pixels that face the "
                 "light's centre; with several lights visibility.exr and reference-visibility*.exr "
                 "hold the lights' V combined, each weighted by its unshadowed light at the pixel";
+}
+
+// The colour metrics' JSON keys (a scene with translucent casters), the same at the top and per light.
+void putColourMetrics(nlohmann::json& j, const ColourMetrics& m) {
+  j["rmse_rgb"] = m.rmse;
+  j["rmse_r"] = m.channelRmse[0];
+  j["rmse_g"] = m.channelRmse[1];
+  j["rmse_b"] = m.channelRmse[2];
+}
+
+/// The colour error image under a title band: what it shows, its scale and the colour metrics.
+ColorImage colourErrorSheet(const ColorImage& error, const ColourMetrics& m, const std::string& title) {
+  const report::TextPainter text(14.0f);
+  const std::string lines[] = {
+      title,
+      "V - V_ref per colour channel: mid grey = exact; a channel brighter = too much of that colour,",
+      "darker = too little (a black shadow under red glass reads cyan), full at ±0.5; dark grey: not measured",
+      fmt::format("RMSE over RGB {:.4f} · red {:.4f} · green {:.4f} · blue {:.4f} over {} lit pixels", m.rmse, m.channelRmse[0],
+                  m.channelRmse[1], m.channelRmse[2], m.pixels)};
+  constexpr int kLines = static_cast<int>(std::size(lines)), kMargin = 4;
+  const int line = text.ascent() + text.descent() + 4, band = kLines * line + 2 * kMargin;
+  int width = error.width;
+  for (const std::string& l : lines) width = std::max(width, text.width(l) + 2 * kMargin);
+  ColorImage sheet{width, error.height + band, {}};
+  sheet.rgba.assign(4 * static_cast<size_t>(sheet.width) * static_cast<size_t>(sheet.height), 255);
+  for (int i = 0; i < kLines; ++i) text.draw(sheet, kMargin, kMargin + i * line + text.ascent(), lines[i], {0, 0, 0});
+  for (int y = 0; y < error.height; ++y)
+    std::copy_n(error.rgba.begin() + 4 * static_cast<std::ptrdiff_t>(y) * error.width, 4 * error.width,
+                sheet.rgba.begin() + 4 * (static_cast<std::ptrdiff_t>(y + band) * sheet.width));
+  return sheet;
 }
 
 // The metrics' JSON keys, the same for the combined result and for each light.
@@ -211,6 +244,24 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         exr(fmt::format("reference-visibility-cos-light{}.exr", l.index), refs[l.index].visibilityCosWeighted);
       }
 
+    // A scene with translucent casters: each light's V (one channel: grey) against its RGB V_ref.
+    std::vector<std::optional<ColourMetrics>> colour(refs.size());
+    for (const report::LightComparison& l : cmp.lights) {
+      if (!l.castsShadow || refs[l.index].visibilityRgb.empty()) continue;
+      std::vector<glm::vec3> grey(l.visibility.size());
+      std::transform(l.visibility.begin(), l.visibility.end(), grey.begin(), [](float v) { return glm::vec3(v); });
+      colour[l.index] = compareColourVisibility(grey, refs[l.index].visibilityRgb, refs[l.index].litMask);
+      if (l.index == 0 || !std::any_of(colour.begin(), colour.begin() + static_cast<std::ptrdiff_t>(l.index),
+                                        [](const auto& c) { return c.has_value(); })) {  // the first such light's image
+        const ColorImage error = colourErrorImage(grey, refs[l.index].visibilityRgb, refs[l.index].litMask, width, height);
+        const ColorImage sheet = colourErrorSheet(
+            error, *colour[l.index],
+            fmt::format("{} · {} on {}, light {}: colour error against the RGB reference", renderer.filter().id(),
+                        renderer.projection().id(), scene.name, l.index));
+        writePng(dir / "heatmap-colour.png", sheet.width, sheet.height, sheet.rgba);
+      }
+    }
+    const std::optional<ColourMetrics> topColour = refs.size() == 1 ? colour[0] : std::nullopt;
     std::optional<ShimmerResult> shimmer;
     if (o->shimmer > 0) {
       ShimmerOptions so;
@@ -240,6 +291,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["shadow_map"] = s.render.shadowMapSize;
       j["light_size"] = scene.light().size;
       putMetrics(j, m);
+      if (topColour) putColourMetrics(j, *topColour);
       j["approximation_rmse"] = approximationRmse;
       j["texel_density_median"] = densityStats.median;
       j["texel_density_p95"] = densityStats.p95;
@@ -285,6 +337,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         jl["type"] = lightTypeName(l.type);
         jl["casts_shadow"] = l.castsShadow;
         if (l.castsShadow) putMetrics(jl, l.metrics);
+        if (colour[l.index]) putColourMetrics(jl, *colour[l.index]);
         jl["map_texels"] = l.map.texels();
         jl["map_size"] = l.map.mapSize;
         jl["map_size_requested"] = l.map.requestedMapSize;
@@ -347,6 +400,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
           std::printf("    %5zu  %-5s casts no shadow\n", l.index, lightTypeName(l.type));
       }
     }
+    for (const report::LightComparison& l : cmp.lights)
+      if (colour[l.index])
+        std::printf("  colour RMSE     %8.4f  (over RGB; red %.4f, green %.4f, blue %.4f) against light %zu's RGB reference\n",
+                    colour[l.index]->rmse, colour[l.index]->channelRmse[0], colour[l.index]->channelRmse[1],
+                    colour[l.index]->channelRmse[2], l.index);
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
     if (sequence)

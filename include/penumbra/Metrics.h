@@ -5,6 +5,7 @@
 #include <penumbra/Image.h>
 #include <penumbra/Scene.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -48,6 +49,27 @@ struct VisibilityMetrics {
 /// ref.visibilityCosWeighted, ref.litMask).rmse is its error in units of V.
 VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const float> vRef,
                                     std::span<const uint8_t> mask);
+
+/// V against an RGB V_ref (ReferenceResult::visibilityRgb, a scene with translucent casters)
+/// over the mask's pixels: the RMSE over all three channels and each channel's own. A one-channel
+/// technique's V enters as grey (V, V, V).
+struct ColourMetrics {
+  double rmse = 0.0;                       ///< sqrt(mean over pixels and channels of (V_c − V_ref,c)²)
+  std::array<double, 3> channelRmse{};     ///< red, green, blue
+  size_t pixels = 0;
+};
+
+/// Throws penumbra::Error when the sizes differ; all zeros when the mask selects nothing.
+ColourMetrics compareColourVisibility(std::span<const glm::vec3> v, std::span<const glm::vec3> vRef,
+                                      std::span<const uint8_t> mask);
+
+/// The colour of the error: on the mask's pixels mid grey (128) where V = V_ref, each channel
+/// brighter where V lets through more of that colour than V_ref and darker where less, fully at
+/// ±fullScaleDeltaV (a black shadow under a red glass: dark in red, less so in green and blue,
+/// so it reads cyan, the light it is missing). Other pixels dark grey. Inputs row 0 = bottom,
+/// output row 0 = top. Throws on size mismatch.
+ColorImage colourErrorImage(std::span<const glm::vec3> v, std::span<const glm::vec3> vRef, std::span<const uint8_t> mask,
+                            int width, int height, float fullScaleDeltaV = 0.5f);
 
 /// Several lights' V as one number per pixel, for metrics over a frame lit by many lights:
 /// V = Σ wᵢ·Vᵢ / Σ wᵢ, each light weighted by its unshadowed contribution at the pixel

@@ -71,6 +71,12 @@ struct ReferenceResult {
   std::vector<glm::vec3> shadingSplit;
   /// shadingSplit − shadingExact: > 0 where the split model is too bright.
   std::vector<glm::vec3> approximationError;
+  /// Where the scene has translucent casters (Material::translucent), V_ref per colour: the mean
+  /// over the light's samples of each ray's RGB light, the product of the transmittances of the
+  /// translucent casters it crosses (0 where an opaque one stops it), and its cos-weighted twin.
+  /// `visibility` and `visibilityCosWeighted` are then their channels' mean. Empty in a scene
+  /// without translucent casters, whose V_ref is one channel.
+  std::vector<glm::vec3> visibilityRgb, visibilityCosWeightedRgb;
 
   /// Pixels outside litMask that the light lights all the same: a soft light whose centre is
   /// below their horizon with part of it above (a box top beside a lamp lower than it, the dark

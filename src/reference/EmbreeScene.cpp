@@ -1,7 +1,8 @@
 // Builds the Embree scene of the shadow casters and answers occlusion queries.
 // Alpha-masked materials (Material::alphaMask with a base-colour texture) get an occlusion
-// filter that rejects hits on texels with alpha < alphaCutoff; it is installed only on those
-// geometries, so opaque scenes pay nothing for it.
+// filter that rejects hits on texels with alpha < alphaCutoff; translucent ones (a non-zero
+// Material::transmittance) one that multiplies the ray's light by their transmittance and lets
+// it go on. Filters are installed only on those geometries, so opaque scenes pay nothing for them.
 #include "reference/EmbreeScene.h"
 
 #include "base/Hash.h"
@@ -59,6 +60,9 @@ float alphaAt(const Image& image, glm::vec2 uv) {
 struct SkipContext {
   RTCIntersectContext context;  // first: Embree sees a pointer to it
   TriangleId skip;
+  /// Per ray (indexed by RTCRay::id): its light through translucent casters; null = the caller
+  /// does not follow colour, and a translucent caster blocks like an opaque one.
+  RayTransmittance* colour = nullptr;
 };
 
 /// Rejects hits on the receiver's own triangle: a flat triangle cannot shadow its own points
@@ -74,15 +78,36 @@ void skipReceiverFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-void alphaOcclusionFilter(const RTCFilterFunctionNArguments* args) {
-  const auto* mask = static_cast<const AlphaMaskGeometry*>(args->geometryUserPtr);
+/// A translucent caster's hit on one ray: its light is multiplied by the caster's transmittance
+/// (once per triangle) and the ray goes on, unless no light is left. The receiver's own triangle
+/// is skipped here too: this filter runs before the context's.
+bool passesThrough(const FilteredGeometry& g, const SkipContext& c, unsigned int rayId, unsigned int prim) {
+  if (g.object == c.skip.object && prim == c.skip.triangle) return true;
+  RayTransmittance& ray = c.colour[rayId];
+  for (uint32_t k = 0; k < ray.crossings; ++k)
+    if (ray.crossed[k].object == g.object && ray.crossed[k].triangle == prim) return true;  // already counted
+  if (ray.crossings == kMaxTranslucentCrossings) return false;
+  ray.crossed[ray.crossings++] = {g.object, prim};
+  ray.product *= g.transmittance;
+  return ray.product != glm::vec3(0.0f);
+}
+
+void casterOcclusionFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const FilteredGeometry*>(args->geometryUserPtr);
+  const auto* c = reinterpret_cast<const SkipContext*>(args->context);
   for (unsigned int i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const unsigned int prim = RTCHitN_primID(args->hit, args->N, i);
-    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    const glm::vec2* t = &mask->uvs[3 * static_cast<size_t>(prim)];
-    const glm::vec2 uv = (1.0f - u - v) * t[0] + u * t[1] + v * t[2];
-    if (alphaAt(*mask->image, uv) < mask->alphaCutoff) args->valid[i] = 0;  // a hole: keep going
+    if (g->image) {
+      const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+      const glm::vec2* t = &g->uvs[3 * static_cast<size_t>(prim)];
+      const glm::vec2 uv = (1.0f - u - v) * t[0] + u * t[1] + v * t[2];
+      if (alphaAt(*g->image, uv) < g->alphaCutoff) {
+        args->valid[i] = 0;  // a hole: keep going
+        continue;
+      }
+    }
+    if (g->translucent && c->colour && passesThrough(*g, *c, RTCRayN_id(args->ray, args->N, i), prim)) args->valid[i] = 0;
   }
 }
 
@@ -178,8 +203,21 @@ EmbreeScene::EmbreeScene(const Scene& scene, MeshStorage storage) {
       for (uint32_t index : mesh.indices) hash.value(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
 
     const Material& material = scene.materials[object.material];
-    if (material.alphaMask && material.baseColorTexture >= 0 && !mesh.uvs.empty()) {
-      auto mask = std::make_unique<AlphaMaskGeometry>();
+    const bool alphaMask = material.alphaMask && material.baseColorTexture >= 0 && !mesh.uvs.empty();
+    if (alphaMask || material.translucent()) {
+      auto mask = std::make_unique<FilteredGeometry>();
+      mask->object = objectIndex;
+      if (material.translucent()) {
+        mask->translucent = mTranslucent = true;
+        mask->transmittance = material.transmittance;
+        hash.value(material.transmittance);  // only translucent casters add to the key: opaque ones keep theirs
+      }
+      rtcSetGeometryUserData(geometry, mask.get());
+      rtcSetGeometryOccludedFilterFunction(geometry, casterOcclusionFilter);
+      mFiltered.push_back(std::move(mask));
+    }
+    if (alphaMask) {
+      FilteredGeometry* mask = mFiltered.back().get();
       mask->image = &mImages[static_cast<size_t>(material.baseColorTexture)];
       mask->alphaCutoff = material.alphaCutoff;
       mask->uvs.reserve(mesh.indices.size());
@@ -192,9 +230,6 @@ EmbreeScene::EmbreeScene(const Scene& scene, MeshStorage storage) {
       hash.array(std::span<const glm::vec2>(mask->uvs));
       hash.value(mask->image->width);
       hash.array(std::span<const uint8_t>(mask->image->rgba));
-      rtcSetGeometryUserData(geometry, mask.get());
-      rtcSetGeometryOccludedFilterFunction(geometry, alphaOcclusionFilter);
-      mAlphaMasks.push_back(std::move(mask));
     }
     rtcCommitGeometry(geometry);
     mCasterTriangles += triangles;
@@ -219,6 +254,32 @@ void EmbreeScene::occluded(Bundle& bundle, TriangleId skip) const {
   c.skip = skip;
   if (skip.object != TriangleId::kNoObject) c.context.filter = skipReceiverFilter;
   rtcOccluded1M(mScene.get(), &c.context, bundle.rays.data(), static_cast<unsigned int>(bundle.rays.size()), sizeof(RTCRay));
+}
+
+void EmbreeScene::transmittance(Bundle& bundle, std::vector<glm::vec3>& transmittance, TriangleId skip) const {
+  transmittance.resize(bundle.size());
+  if (bundle.rays.empty()) return;
+  thread_local std::vector<RayTransmittance> rays;
+  rays.assign(bundle.size(), RayTransmittance{});
+  for (size_t k = 0; k < bundle.size(); ++k) bundle.rays[k].id = static_cast<unsigned int>(k);
+  SkipContext c;
+  rtcInitIntersectContext(&c.context);
+  c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  c.skip = skip;
+  c.colour = rays.data();
+  if (skip.object != TriangleId::kNoObject) c.context.filter = skipReceiverFilter;
+  rtcOccluded1M(mScene.get(), &c.context, bundle.rays.data(), static_cast<unsigned int>(bundle.rays.size()), sizeof(RTCRay));
+  for (size_t k = 0; k < bundle.size(); ++k) transmittance[k] = bundle.blocked(k) ? glm::vec3(0.0f) : rays[k].product;
+}
+
+glm::vec3 EmbreeScene::transmittance(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar,
+                                     TriangleId skip) const {
+  thread_local Bundle bundle;
+  thread_local std::vector<glm::vec3> out;
+  bundle.clear();
+  bundle.add(origin, direction, tNear, tFar);
+  transmittance(bundle, out, skip);
+  return out[0];
 }
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar,

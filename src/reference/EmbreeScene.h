@@ -24,11 +24,34 @@ typedef struct RTCSceneTy* RTCScene;
 
 namespace penumbra::reference {
 
-/// What the alpha-test occlusion filter of one geometry needs: uvs by triangle and the texture.
-struct AlphaMaskGeometry {
-  std::vector<glm::vec2> uvs;      ///< three per triangle, in triangle order
-  const Image* image = nullptr;    ///< RGBA8, row 0 = top; owned by EmbreeScene
+/// A triangle: object index in Scene::objects, triangle index in its mesh.
+struct TriangleId {
+  static constexpr uint32_t kNoObject = ~0u;  ///< no triangle
+  uint32_t object = kNoObject, triangle = 0;
+};
+
+/// What the occlusion filter of one geometry needs: for an alpha mask, uvs by triangle and the
+/// texture; for a translucent caster, its transmittance.
+struct FilteredGeometry {
+  std::vector<glm::vec2> uvs;      ///< three per triangle, in triangle order (alpha mask only)
+  const Image* image = nullptr;    ///< RGBA8, row 0 = top; owned by EmbreeScene; null = no alpha mask
   float alphaCutoff = 0.5f;
+  uint32_t object = 0;             ///< its geometry ID
+  bool translucent = false;
+  glm::vec3 transmittance{0.0f};   ///< Material::transmittance, when translucent
+};
+
+/// The most distinct translucent triangles one ray counts; a ray that crosses more is blocked
+/// (docs/reference.md, "Translucent casters").
+inline constexpr uint32_t kMaxTranslucentCrossings = 32;
+
+/// One ray's light through the translucent casters it has crossed so far: the product of their
+/// transmittances, and which triangles they were (Embree may report a triangle twice when the BVH
+/// split it: each counts once).
+struct RayTransmittance {
+  glm::vec3 product{1.0f};
+  uint32_t crossings = 0;
+  TriangleId crossed[kMaxTranslucentCrossings];
 };
 
 /// The last error Embree reported through its callback.
@@ -43,11 +66,6 @@ struct EmbreeMemory {
   std::atomic<int64_t> peak{0};
 };
 
-/// A triangle: object index in Scene::objects, triangle index in its mesh.
-struct TriangleId {
-  static constexpr uint32_t kNoObject = ~0u;  ///< no triangle
-  uint32_t object = kNoObject, triangle = 0;
-};
 
 class EmbreeScene {
 public:
@@ -89,6 +107,18 @@ public:
   /// the rays leave one point toward one light.
   void occluded(Bundle& bundle, TriangleId skip = {}) const;
 
+  /// Whether any caster is translucent (Material::translucent): only then do the reference's
+  /// rays carry colour.
+  bool hasTranslucentCasters() const { return mTranslucent; }
+  /// occluded(bundle) that also multiplies each ray's light by the transmittance of every
+  /// translucent caster it crosses (in any order: a product), an opaque hit stopping it.
+  /// transmittance[i] is ray i's product, 0 where it is blocked; a ray that crosses no
+  /// translucent caster gets exactly (1, 1, 1).
+  void transmittance(Bundle& bundle, std::vector<glm::vec3>& transmittance, TriangleId skip = {}) const;
+  /// The same for one segment.
+  glm::vec3 transmittance(const glm::vec3& origin, const glm::vec3& direction, float tNear, float tFar,
+                          TriangleId skip = {}) const;
+
   /// Hash of the world-space caster triangles and alpha masks (part of the cache key).
   uint64_t geometryHash() const { return mGeometryHash; }
   size_t casterTriangles() const { return mCasterTriangles; }
@@ -108,7 +138,8 @@ private:
   std::unique_ptr<RTCDeviceTy, ReleaseDevice> mDevice;
   std::unique_ptr<RTCSceneTy, ReleaseScene> mScene;  // after mDevice: released first
   std::vector<Image> mImages;  // copies: the filter reads them after the Scene is gone
-  std::vector<std::unique_ptr<AlphaMaskGeometry>> mAlphaMasks;  // stable addresses for Embree
+  std::vector<std::unique_ptr<FilteredGeometry>> mFiltered;  // stable addresses for Embree
+  bool mTranslucent = false;
   uint64_t mGeometryHash = 0;
   size_t mCasterTriangles = 0;
   Memory mMemoryAfterBuild;

@@ -28,6 +28,29 @@ void checkSize(size_t count, int width, int height, const char* what) {
 
 }  // namespace
 
+ColorImage colourErrorImage(std::span<const glm::vec3> v, std::span<const glm::vec3> vRef, std::span<const uint8_t> mask,
+                            int width, int height, float fullScaleDeltaV) {
+  checkSize(v.size(), width, height, "V");
+  checkSize(vRef.size(), width, height, "V_ref");
+  PN_CHECK(mask.empty() || mask.size() == v.size(), fmt::format("metrics: the mask has {} pixels, not {}", mask.size(), v.size()));
+  PN_CHECK(fullScaleDeltaV > 0.0f && fullScaleDeltaV <= 1.0f,
+           fmt::format("metrics: colour error full scale {} is outside (0, 1]", fullScaleDeltaV));
+  constexpr float kMid = 128.0f, kSpan = 127.0f, kOutside = 40.0f;
+  ColorImage image{width, height, std::vector<uint8_t>(4 * v.size())};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t in = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      const size_t out = static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      const bool measured = mask.empty() || mask[in] != 0;
+      for (int c = 0; c < 3; ++c)
+        image.rgba[4 * out + static_cast<size_t>(c)] =
+            measured ? toByte(kMid + kSpan * std::clamp((v[in][c] - vRef[in][c]) / fullScaleDeltaV, -1.0f, 1.0f))
+                     : toByte(kOutside);
+      image.rgba[4 * out + 3] = 255;
+    }
+  return image;
+}
+
 ColorImage visibilityImage(std::span<const float> v, int width, int height) {
   checkSize(v.size(), width, height, "V");
   ColorImage image{width, height, std::vector<uint8_t>(4 * v.size())};

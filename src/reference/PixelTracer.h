@@ -98,7 +98,13 @@ struct PixelOut {
   bool horizon = false;  // Reach::Horizon: traced, outside litMask
   float visibility = 0.0f, visibilityCos = 0.0f;
   glm::vec3 exact{0.0f}, split{0.0f};
+  glm::vec3 visibilityRgb{0.0f}, visibilityCosRgb{0.0f};  // only where the scene has translucent casters
 };
+
+/// The scalar V of a ray's RGB light (EmbreeScene::transmittance): the mean of its channels, so
+/// that a ray that meets no translucent caster counts exactly 1 and a blocked one exactly 0, as
+/// in an opaque scene.
+inline float channelMean(const glm::vec3& t) { return (t.x + t.y + t.z) / 3.0f; }
 
 /// A soft light's samples of one pixel that lie above its horizon, in sample order: N·ω, and the
 /// index of the sample's ray in `bundle` (-1: the ray never rises above the receiver's float
@@ -136,6 +142,7 @@ public:
     const glm::vec3 brdf = albedo * glm::one_over_pi<float>();
 
     if (!soft(distanceM)) return traceHard(out, origin, n, brdf, receiver);
+    if (mScene.hasTranslucentCasters()) return traceSoftColour(out, pixel, origin, n, brdf, receiver, distanceM);
 
     // The pixel's rays, one coherent stream through Embree (the samples' order is kept: the sums
     // add in it, so the result does not depend on how Embree groups the rays). Σ cos is summed as
@@ -281,6 +288,41 @@ private:
     }
   }
 
+  /// trace() of a soft light where the scene has translucent casters: every ray carries the RGB
+  /// product of the transmittances it crosses (0 when an opaque caster stops it). The scalar V is
+  /// the mean of the channels, summed in sample order like the opaque path's count, so that
+  /// where no ray meets a translucent caster every value is the opaque path's, bit for bit.
+  PixelOut traceSoftColour(PixelOut out, size_t pixel, const glm::vec3& origin, const glm::vec3& n, const glm::vec3& brdf,
+                           const Receiver& receiver, float distanceM) const {
+    thread_local SoftSamples samples;
+    thread_local std::vector<glm::vec3> light;
+    float sumCos = 0.0f;
+    softSamples(pixel, origin, n, receiver, distanceM, samples, [&sumCos](float cosTheta) { sumCos += cosTheta; });
+    mScene.transmittance(samples.bundle, light, receiver.triangle);
+    const size_t above = samples.cosTheta.size();
+    float sumV = 0.0f, sumCosV = 0.0f;
+    glm::vec3 sumRgb(0.0f), sumCosRgb(0.0f);
+    for (size_t k = 0; k < above; ++k) {
+      const int ray = samples.ray[k];
+      const glm::vec3 t = ray < 0 ? glm::vec3(1.0f) : light[static_cast<size_t>(ray)];
+      const float v = channelMean(t), cosTheta = samples.cosTheta[k];
+      sumV += v;
+      sumCosV += cosTheta * v;
+      sumRgb += t;
+      sumCosRgb += cosTheta * t;
+    }
+    const float count = static_cast<float>(above);
+    out.visibility = above > 0 ? sumV / count : 0.0f;
+    out.visibilityCos = sumCos > 0.0f ? sumCosV / sumCos : out.visibility;
+    out.visibilityRgb = above > 0 ? sumRgb / count : glm::vec3(0.0f);
+    out.visibilityCosRgb = sumCos > 0.0f ? sumCosRgb / sumCos : out.visibilityRgb;
+    const float weight = glm::two_pi<float>() * capHeight(distanceM) / static_cast<float>(mSamples);
+    const float falloff = mLight.directional ? 1.0f : lightFalloff(mLight.light, origin);
+    out.exact = brdf * mLight.radiance * ((falloff * weight) * sumCosRgb);
+    out.split = brdf * mLight.radiance * (falloff * weight * sumCos * out.visibilityRgb);
+    return out;
+  }
+
   float capHeight(float distanceM) const {
     return mLight.directional ? mLight.sunCapHeight : reference::sphereOneMinusCos(mLight.radiusM, distanceM);
   }
@@ -301,6 +343,13 @@ private:
       if (mLight.soft) length = 0.0f;
     }
     const float cosTheta = std::max(0.0f, glm::dot(n, dir));
+    if (mScene.hasTranslucentCasters()) {  // the ray's RGB light through translucent casters
+      const glm::vec3 t = length > 0.0f ? transmittance(origin, dir, n, length, receiver) : glm::vec3(1.0f);
+      out.visibility = out.visibilityCos = channelMean(t);
+      out.visibilityRgb = out.visibilityCosRgb = t;
+      out.exact = out.split = brdf * irradiance * (cosTheta * t);
+      return out;
+    }
     const float v = length > 0.0f && occluded(origin, dir, n, length, receiver) ? 0.0f : 1.0f;
     out.visibility = out.visibilityCos = v;
     out.exact = out.split = brdf * irradiance * (cosTheta * v);
@@ -324,6 +373,13 @@ private:
                 const Receiver& receiver) const {
     const float tNear = nearEnd(glm::dot(receiver.plane(n), dir), receiver.errorM);
     return tNear < tFar && mScene.occluded(origin, dir, tNear, tFar, receiver.triangle);
+  }
+
+  /// occluded()'s RGB twin: the ray's light through the translucent casters it crosses.
+  glm::vec3 transmittance(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& n, float tFar,
+                          const Receiver& receiver) const {
+    const float tNear = nearEnd(glm::dot(receiver.plane(n), dir), receiver.errorM);
+    return tNear < tFar ? mScene.transmittance(origin, dir, tNear, tFar, receiver.triangle) : glm::vec3(1.0f);
   }
 
   /// Rays end where they enter the spherical light: casters behind it do not shadow.

@@ -21,8 +21,9 @@ namespace fs = std::filesystem;
 constexpr char kMagic[8] = {'P', 'N', 'R', 'E', 'F', 'B', 'I', 'N'};
 
 // Fixed-size header; the payload follows: litMask (n bytes), visibility, visibilityCosWeighted
-// (n floats each), shadingExact, shadingSplit (3n floats each). Native (little-endian) order:
-// the cache is local to one machine.
+// (n floats each), shadingExact, shadingSplit (3n floats each) and, for a scene with translucent
+// casters only, visibilityRgb and visibilityCosWeightedRgb (3n floats each; the payload's size
+// says which). Native (little-endian) order: the cache is local to one machine.
 struct Header {
   char magic[8];
   uint32_t codeVersion;
@@ -35,8 +36,8 @@ struct Header {
 
 static_assert(sizeof(Header) == 48, "the header has no padding: every byte is written");
 
-size_t payloadBytes(size_t pixels) {
-  return pixels * (sizeof(uint8_t) + 2 * sizeof(float) + 2 * sizeof(glm::vec3));
+size_t payloadBytes(size_t pixels, bool colour) {
+  return pixels * (sizeof(uint8_t) + 2 * sizeof(float) + (colour ? 4 : 2) * sizeof(glm::vec3));
 }
 
 template <class T>
@@ -89,8 +90,10 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
       header.key != key || header.width <= 0 || header.height <= 0)
     return std::nullopt;
   const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
-  if (file.size() != sizeof(Header) + payloadBytes(pixels)) return std::nullopt;
-  if (cacheEntryHash(header, &Header::hash, file.data() + sizeof(Header), payloadBytes(pixels)) != header.hash) return std::nullopt;
+  const bool colour = file.size() == sizeof(Header) + payloadBytes(pixels, true);
+  if (file.size() != sizeof(Header) + payloadBytes(pixels, colour)) return std::nullopt;
+  if (cacheEntryHash(header, &Header::hash, file.data() + sizeof(Header), payloadBytes(pixels, colour)) != header.hash)
+    return std::nullopt;
 
   ReferenceResult r;
   r.width = header.width;
@@ -104,7 +107,11 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
   p = take(p, r.visibility, pixels);
   p = take(p, r.visibilityCosWeighted, pixels);
   p = take(p, r.shadingExact, pixels);
-  take(p, r.shadingSplit, pixels);
+  p = take(p, r.shadingSplit, pixels);
+  if (colour) {
+    p = take(p, r.visibilityRgb, pixels);
+    take(p, r.visibilityCosWeightedRgb, pixels);
+  }
   // Derived, not stored: recomputing it is exact and keeps the file a fifth smaller.
   r.approximationError.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) r.approximationError[i] = r.shadingSplit[i] - r.shadingExact[i];
@@ -115,14 +122,19 @@ std::optional<ReferenceResult> loadCachedResult(const fs::path& dir, uint64_t ke
 
 void storeCachedResult(const fs::path& dir, const ReferenceResult& result) {
   const size_t pixels = static_cast<size_t>(result.width) * static_cast<size_t>(result.height);
+  const bool colour = !result.visibilityRgb.empty();
   std::vector<char> payload;
-  payload.reserve(payloadBytes(pixels));
+  payload.reserve(payloadBytes(pixels, colour));
   append(payload, std::span<const uint8_t>(result.litMask));
   append(payload, std::span<const float>(result.visibility));
   append(payload, std::span<const float>(result.visibilityCosWeighted));
   append(payload, std::span<const glm::vec3>(result.shadingExact));
   append(payload, std::span<const glm::vec3>(result.shadingSplit));
-  PN_ASSERT(payload.size() == payloadBytes(pixels));
+  if (colour) {
+    append(payload, std::span<const glm::vec3>(result.visibilityRgb));
+    append(payload, std::span<const glm::vec3>(result.visibilityCosWeightedRgb));
+  }
+  PN_ASSERT(payload.size() == payloadBytes(pixels, colour));
 
   Header header{};
   std::memcpy(header.magic, kMagic, sizeof(kMagic));

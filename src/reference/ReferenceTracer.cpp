@@ -161,10 +161,16 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
   r.shadingExact.resize(pixels);
   r.shadingSplit.resize(pixels);
   r.approximationError.resize(pixels);
+  const bool colour = mImpl->embree.hasTranslucentCasters();
+  if (colour) {
+    r.visibilityRgb.resize(pixels);
+    r.visibilityCosWeightedRgb.resize(pixels);
+  }
 
   const PixelTracer tracer(mImpl->embree, setup, r.samplesPerPixel, options.seed);
   PixelOut background;  // nothing to shadow: V = 1
   background.visibility = background.visibilityCos = 1.0f;
+  background.visibilityRgb = background.visibilityCosRgb = glm::vec3(1.0f);
   ProgressBar progress(fmt::format("reference {}x{} @ {} spp", g.width, g.height, r.samplesPerPixel),
                                   pixels, options.progress);
   // Rows, one task each: enough tasks to balance shadowed and empty rows across cores.
@@ -181,6 +187,10 @@ ReferenceResult ReferenceTracer::trace(const GBufferData& g, const Light& light,
         r.shadingExact[i] = p.exact;
         r.shadingSplit[i] = p.split;
         r.approximationError[i] = p.split - p.exact;
+        if (colour) {
+          r.visibilityRgb[i] = p.visibilityRgb;
+          r.visibilityCosWeightedRgb[i] = p.visibilityCosRgb;
+        }
       }
       progress.advance(static_cast<size_t>(g.width));
     }

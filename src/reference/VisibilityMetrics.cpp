@@ -52,6 +52,28 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
   return m;
 }
 
+ColourMetrics compareColourVisibility(std::span<const glm::vec3> v, std::span<const glm::vec3> vRef,
+                                      std::span<const uint8_t> mask) {
+  PN_CHECK(v.size() == vRef.size(), fmt::format("metrics: V has {} pixels but the RGB V_ref has {}", v.size(), vRef.size()));
+  PN_CHECK(mask.empty() || mask.size() == v.size(),
+           fmt::format("metrics: the mask has {} pixels but V has {}", mask.size(), v.size()));
+  ColourMetrics m;
+  std::array<double, 3> squares{};
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!mask.empty() && mask[i] == 0) continue;
+    ++m.pixels;
+    for (int c = 0; c < 3; ++c) {
+      const double delta = static_cast<double>(v[i][c]) - static_cast<double>(vRef[i][c]);
+      squares[static_cast<size_t>(c)] += delta * delta;
+    }
+  }
+  if (m.pixels == 0) return m;
+  const auto n = static_cast<double>(m.pixels);
+  for (size_t c = 0; c < 3; ++c) m.channelRmse[c] = std::sqrt(squares[c] / n);
+  m.rmse = std::sqrt((squares[0] + squares[1] + squares[2]) / (3.0 * n));
+  return m;
+}
+
 std::vector<float> lightWeights(const GBufferData& gbuffer, const Light& light, std::span<const uint8_t> litMask) {
   const size_t n = static_cast<size_t>(gbuffer.width) * static_cast<size_t>(gbuffer.height);
   if (gbuffer.position.size() != n || gbuffer.normal.size() != n || litMask.size() != n)

@@ -237,3 +237,25 @@ TEST(CompareCli, WritesEachLightsCosWeightedReferenceAndCountsPixelsLitFromBelow
     }
   }
 }
+
+// The glass scene's truth carries colour: compare reports the colour RMSE (over RGB and per
+// channel, at the top and per light), writes heatmap-colour.png, and every filter today draws a
+// translucent caster as opaque, so its colour error is large where the reference is tinted.
+TEST(CompareCli, GlassSceneHasAColourReferenceAndColourMetrics) {
+  const std::string dir = freshDir("compare-glass");
+  const RunResult r = runPenumbra("compare --scene glass --filter pcf --size 128x72 --samples 16 --shadow-map 512 --json --out imgs", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"rmse_rgb", "rmse_r", "rmse_g", "rmse_b"}) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j[key], j["lights"][0][key]) << key;
+  }
+  // Under the tinted pane (0.85, 0.45, 0.3) the reference keeps most red and the black shadow
+  // misses it: the red channel's error is the largest.
+  EXPECT_GT(j["rmse_r"].get<double>(), j["rmse_b"].get<double>());
+  EXPECT_GT(j["rmse_rgb"].get<double>(), 0.05);
+  int w = 0, h = 0;
+  const std::vector<uint8_t> sheet = penumbra::readPng(dir + "/imgs/heatmap-colour.png", w, h);
+  EXPECT_GE(w, 128);
+  EXPECT_GT(h, 72) << "the image has its title band";
+}

@@ -141,3 +141,28 @@ TEST(Metrics, VisibilityImageIsLinearGreyFlippedToTopDown) {
 
 }  // namespace
 }  // namespace penumbra
+
+// Colour V_ref (translucent casters): a black shadow under a tinted glass misses each channel of
+// the glass's light, and the image shows the missing light per channel around mid grey.
+namespace penumbra {
+
+TEST(Metrics, ColourErrorPerChannelAndAsAnImage) {
+  const std::vector<glm::vec3> v = {glm::vec3(0.0f), glm::vec3(1.0f), glm::vec3(0.0f)};
+  const std::vector<glm::vec3> ref = {{0.85f, 0.45f, 0.3f}, glm::vec3(1.0f), glm::vec3(1.0f)};
+  const std::vector<uint8_t> mask = {1, 1, 0};  // the third pixel's error is not measured
+  const ColourMetrics m = compareColourVisibility(v, ref, mask);
+  EXPECT_EQ(m.pixels, 2u);
+  EXPECT_NEAR(m.channelRmse[0], 0.85 / std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(m.channelRmse[1], 0.45 / std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(m.channelRmse[2], 0.3 / std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(m.rmse, std::sqrt((0.85 * 0.85 + 0.45 * 0.45 + 0.3 * 0.3) / 6.0), 1e-6);
+  EXPECT_THROW(compareColourVisibility(v, std::vector<glm::vec3>(2), mask), Error);
+
+  const std::vector<glm::vec3> halfRed = {{0.5f, 0.25f, 0.0f}, glm::vec3(1.0f), glm::vec3(1.0f)};
+  const ColorImage image = colourErrorImage(v, halfRed, mask, 3, 1, 0.5f);
+  EXPECT_EQ(std::vector<uint8_t>(image.rgba.begin(), image.rgba.begin() + 4), (std::vector<uint8_t>{1, 65, 128, 255}));
+  EXPECT_EQ(std::vector<uint8_t>(image.rgba.begin() + 4, image.rgba.begin() + 8), (std::vector<uint8_t>{128, 128, 128, 255}));
+  EXPECT_EQ(std::vector<uint8_t>(image.rgba.begin() + 8, image.rgba.begin() + 12), (std::vector<uint8_t>{40, 40, 40, 255}));
+}
+
+}  // namespace penumbra
