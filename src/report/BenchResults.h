@@ -6,7 +6,7 @@
 
 #include "metrics/Flicker.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 #include <penumbra/Metrics.h>
 
 #include <cstddef>

@@ -28,14 +28,14 @@ using namespace penumbra::test;
 
 namespace {
 
-struct Technique {
+struct Case {
   std::string projection;
   int mapSize;
   std::vector<std::pair<std::string, std::string>> params;
 };
 
-std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const Technique& t, const std::string& filter = "hard") {
-  return makeTestRenderer(scene, t.projection, filter, t.params);
+std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const Case& t, const std::string& filter = "hard") {
+  return makeTestRenderer(scene, t.projection, filter, t.params, t.mapSize);
 }
 
 // Where a test may leave images for a person to look at (unset: nowhere).
@@ -55,7 +55,7 @@ std::map<std::string, TexelDensityStats> cityDensities(const glm::vec3& position
   std::map<std::string, TexelDensityStats> out;
   for (const std::string& projection : projections) {
     auto r = makeRenderer(city, {projection, kMap, {}});
-    r->render({width, height, kMap});
+    r->render({.width = width, .height = height});
     const TexelDensityStats& s = out[projection] =
         texelDensityStats(computeTexelDensity(*r), r->readGBuffer(), city.camera.position);
     std::printf("  %-8s median %.3f, near median %.3f screen px per texel\n", projection.c_str(), s.median, s.nearMedian);
@@ -83,7 +83,7 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   s.camera.fovYRad = 0.9f;
   constexpr int kW = 160, kH = 120, kMap = 512;
   auto r = makeRenderer(s, {"uniform", kMap, {}});
-  r->render({kW, kH, kMap});
+  r->render({.width = kW, .height = kH});
   const std::vector<float> d = computeTexelDensity(*r);
   const ShadowView& v = r->frusta().views[0];
   const float pixelM = 2.0f * kHeightM * std::tan(0.5f * s.camera.fovYRad) / static_cast<float>(kH);
@@ -92,7 +92,8 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   const float measured = d[static_cast<size_t>(kH / 2) * kW + kW / 2];
   EXPECT_NEAR(measured, expected, 0.01f * expected) << "extent " << v.extent.x << " x " << v.extent.y;
   // Double the map: a texel covers a quarter of the pixels.
-  r->render({kW, kH, 2 * kMap});
+  setMapSize(*r, 2 * kMap);
+  r->render({.width = kW, .height = kH});
   const float finer = computeTexelDensity(*r)[static_cast<size_t>(kH / 2) * kW + kW / 2];
   const ShadowView& v2 = r->frusta().views[0];
   EXPECT_NEAR(finer, (v2.extent.x / (2 * kMap)) * (v2.extent.y / (2 * kMap)) / (pixelM * pixelM), 0.01f * finer);
@@ -108,7 +109,7 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
 // little behind, favours it).
 TEST(Aliasing, CityTexelDensityTable) {
   const Scene city = makeBuiltinScene("city");
-  const std::vector<Technique> techniques = {
+  const std::vector<Case> techniques = {
       {"uniform", 2048, {}},
       {"psm", 2048, {}},
       {"tsm", 2048, {}},
@@ -116,9 +117,9 @@ TEST(Aliasing, CityTexelDensityTable) {
   };
   std::map<std::string, TexelDensityStats> stats;
   std::printf("\n  projection  map          median        p95   near_median  undersampled_pct\n");
-  for (const Technique& t : techniques) {
+  for (const Case& t : techniques) {
     auto r = makeRenderer(city, t);
-    r->render({1280, 720, t.mapSize});
+    r->render({.width = 1280, .height = 720});
     const std::vector<float> d = computeTexelDensity(*r);
     const TexelDensityStats s = texelDensityStats(d, r->readGBuffer(), city.camera.position);
     stats[t.projection] = s;
@@ -169,10 +170,10 @@ TEST(Aliasing, CsmStabilisationStopsShimmer) {
   const Scene city = makeBuiltinScene("city");
   ShimmerOptions o;
   o.steps = 50;
-  const RenderOptions render{192, 108, 512};
+  const RenderOptions render{.width = 192, .height = 108};
   double pct[2] = {0.0, 0.0};
   for (int stabilize = 0; stabilize <= 1; ++stabilize) {
-    auto r = makeRenderer(city, {"csm", render.shadowMapSize, {{"csm.stabilize", stabilize ? "on" : "off"}}});
+    auto r = makeRenderer(city, {"csm", 512, {{"csm.stabilize", stabilize ? "on" : "off"}}});
     const ShimmerResult s = measureShimmer(*r, render, o);
     std::printf("  csm.stabilize=%s: shimmer_pct %.4f over %zu edge points, %d steps of %.4f m texels\n",
                 stabilize ? "on" : "off", s.shimmerPct, s.edgePoints, s.steps, s.texelM);
@@ -224,7 +225,7 @@ TEST(Aliasing, PsmLightBehindCameraProbePixels) {
 TEST(Aliasing, CascadeAndTexelDensityDebugViews) {
   const Scene city = makeBuiltinScene("city");
   auto r = makeRenderer(city, {"csm", 512, {}});
-  RenderOptions o{192, 108, 512};
+  RenderOptions o{.width = 192, .height = 108};
   o.debugView = PN_VIEW_CASCADES;
   r->render(o);
   const ColorImage cascades = r->readColor();

@@ -6,7 +6,7 @@
 #include "shadows/projections/PerspectiveProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>

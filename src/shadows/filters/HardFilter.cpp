@@ -33,10 +33,10 @@ void HardFilter::renderShadowMaps(FrameContext& frame) {
 
 void HardFilter::computeVisibility(FrameContext& frame) {
   gpu::HardUniforms u{};
-  u.bias = glm::vec4(param("hard.constantBias"), param("hard.slopeBias"), param("hard.normalOffsetTexels"), 0.0f);
+  u.bias = glm::vec4(frame.param("hard.constantBias"), frame.param("hard.slopeBias"), frame.param("hard.normalOffsetTexels"), 0.0f);
   frame.setFilterBlock(u);
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl", *this));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/hard.glsl"));
 }
 
 std::vector<DebugImage> HardFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}}; }

@@ -50,10 +50,10 @@ void PcfFilter::renderShadowMaps(FrameContext& frame) {
 
 void PcfFilter::computeVisibility(FrameContext& frame) {
   gpu::PcfUniforms u{};
-  const float radiusTexels = std::min(param("pcf.radiusTexels"), maxKernelRadiusTexels(frame.mapSize()));
-  u.params = glm::vec4(radiusTexels, param("pcf.constantBias"), param("pcf.slopeBias"), 0.0f);
+  const float radiusTexels = std::min(frame.param("pcf.radiusTexels"), maxKernelRadiusTexels(frame.mapSize()));
+  u.params = glm::vec4(radiusTexels, frame.param("pcf.constantBias"), frame.param("pcf.slopeBias"), 0.0f);
   frame.setFilterBlock(u);
-  const bool hardware = paramInt("pcf.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcf.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
   // One view: the box kernel's size is known here (cascades hold the radius in metres, so theirs
@@ -61,7 +61,7 @@ void PcfFilter::computeVisibility(FrameContext& frame) {
   if (frame.viewCount() == 1) defines.set("PN_PCF_BOX_HALF_SIDE", static_cast<int>(std::ceil(radiusTexels)));
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   if (hardware) mCompare.bind(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", *this, defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
 }
 

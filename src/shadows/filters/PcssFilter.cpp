@@ -42,25 +42,25 @@ void PcssFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void PcssFilter::prefilter(FrameContext& frame) {
-  mTightSearch.build(frame, paramInt("pcss.tightSearch") != 0, mMaps.depth());
+  mTightSearch.build(frame, frame.paramInt("pcss.tightSearch") != 0, mMaps.depth());
 }
 
 void PcssFilter::computeVisibility(FrameContext& frame) {
   gpu::PcssUniforms u{};
   const float mapRadius = maxKernelRadiusTexels(frame.mapSize());
-  u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), std::min(param("pcss.minRadiusTexels"), mapRadius),
-                       std::min(param("pcss.maxRadiusTexels"), mapRadius));
+  u.params = glm::vec4(frame.param("pcss.constantBias"), frame.param("pcss.slopeBias"), std::min(frame.param("pcss.minRadiusTexels"), mapRadius),
+                       std::min(frame.param("pcss.maxRadiusTexels"), mapRadius));
   frame.setFilterBlock(u);
-  const bool hardware = paramInt("pcss.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
-  mTightSearch.bind(paramInt("pcss.tightSearch") != 0, defines);
+  mTightSearch.bind(frame.paramInt("pcss.tightSearch") != 0, defines);
   // One map at two units: raw depths for the blocker search, comparisons for the filter.
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   mMaps.depth().bindUnit(PN_TEX_FILTER1);
   if (hardware) mCompare.bind(PN_TEX_FILTER1);
   mPenumbraDebug.bind(frame);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", *this, defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER1);
 }
 

@@ -43,8 +43,14 @@ glm::vec2 sliceBoundingSphere(float a, float b, float k2) {
 
 ShadowView stabilizedSunCascade(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                                 float a, float b, int mapSize, float marginTexels) {
-  const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
-  const glm::vec2 sphere = sliceBoundingSphere(a, b, tx * tx + ty * ty);
+  glm::vec2 sphere;
+  if (camera.orthographic()) {  // a box slice: its centre, and the half diagonal
+    const float hy = camera.orthoHalfHeightM, hx = hy * aspect, hz = 0.5f * (b - a);
+    sphere = {0.5f * (a + b), std::sqrt(hx * hx + hy * hy + hz * hz)};
+  } else {
+    const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
+    sphere = sliceBoundingSphere(a, b, tx * tx + ty * ty);
+  }
   // Half-size of the square: the sphere's radius plus the margin in texels of this map.
   const float half = sphere.y / (1.0f - 2.0f * marginTexels / static_cast<float>(mapSize));
   const float texelM = 2.0f * half / static_cast<float>(mapSize);

@@ -10,7 +10,7 @@
 // Artifacts: a resolution step at each split (hidden by the band), N shadow passes.
 #include "shadows/projections/LightSpace.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <vector>
 
@@ -35,7 +35,7 @@ public:
   std::string_view description() const override {
     return "cascaded maps over practical splits of the view depth; stabilised, with a blend band";
   }
-  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  /// A point light shines every way: its views are the six cube faces of the uniform projection.
   std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;

@@ -1,7 +1,7 @@
 #pragma once
 // Light-space helpers shared by the projections: the light's view basis, the visible receiver
 // region, and the depth plane that maps distance along the light axis to [0,1].
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <array>
 #include <string>
@@ -14,7 +14,8 @@ namespace penumbra {
 /// which only the uniform projection makes. Empty for other lights.
 inline std::string pointLightIncompatibility(const Light& light) {
   return light.type == LightType::Point
-             ? "a point light shines every way: its shadows are six cube faces, which --projection uniform makes"
+             ? "a point light shines every way: its shadows are six cube faces, which only the uniform projection makes "
+               "(a light's own LightShadowSettings::projection = \"uniform\" gives it one beside the others' technique)"
              : std::string();
 }
 

@@ -11,7 +11,7 @@
 // sides; as the camera turns the trapezoid changes every frame (no snapping: edges crawl).
 #include "shadows/projections/LightSpace.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <vector>
 
@@ -24,7 +24,7 @@ public:
   std::string_view description() const override {
     return "one map warped by a trapezoid around the view frustum in light space (80% focus rule)";
   }
-  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  /// A point light shines every way: its views are the six cube faces of the uniform projection.
   std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;

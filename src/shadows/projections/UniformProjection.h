@@ -3,7 +3,7 @@
 // shadow them. Orthographic for the sun, perspective for spot lights; near/far tight.
 // Its texel density is uniform in light space, so near the camera (in large views) one texel
 // covers many pixels: the aliasing that csm/psm/tsm reduce.
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 namespace penumbra {
 
