@@ -1,8 +1,13 @@
 #pragma once
-// The aliasing axis: where the light's view(s) are placed and how they are warped.
-// Pure C++ (no GL), so every projection is unit-testable on the CPU.
+// The aliasing axis: where the light's view(s) are placed and how they are warped. A projection
+// holds no GPU storage: an instance is its parameter values (a light's, made from its technique:
+// makeProjection) and a pure function of them. Pure C++ (no GL), so every projection is
+// unit-testable on the CPU.
+#include <penumbra/Camera.h>
+#include <penumbra/Light.h>
 #include <penumbra/Params.h>
 #include <penumbra/Scene.h>
+#include <penumbra/ShadowViews.h>
 
 #include <memory>
 #include <string>
@@ -10,30 +15,6 @@
 #include <vector>
 
 namespace penumbra {
-
-/// One rendered shadow map's view of the light.
-struct ShadowView {
-  glm::mat4 viewFromWorld{1.0f};  ///< light view space: looking down -Z
-  glm::mat4 clipFromWorld{1.0f};  ///< rasterisation and lookup: NDC xy in [-1,1] → map uv
-  /// Linear light-space depth in [0,1] = dot(depthPlane, vec4(wsPosition, 1)): the distance
-  /// along the light axis mapped from [nearM, farM]. Linear for ortho and perspective views.
-  glm::vec4 depthPlane{0.0f};
-  bool perspective = false;
-  /// clipFromWorld is warped (psm, tsm): a projective map in the light's image plane on top of
-  /// the plain light view, so texel size varies over the map. `extent` then describes the unwarped
-  /// fit; shaders take the local texel size from clipFromWorld's derivatives (common/shadow.glsl).
-  bool warped = false;
-  float nearM = 0.0f, farM = 1.0f;  ///< along the light axis, metres
-  /// Ortho: world size (m) of the map's x and y extent. Perspective: the extent at unit
-  /// distance from the light, i.e. 2·tan(half fov) on each axis.
-  glm::vec2 extent{1.0f};
-  float splitFarM = 1e30f;  ///< camera view depth (m) where this view's cascade ends
-};
-
-struct LightFrusta {
-  std::vector<ShadowView> views;  ///< 1 for uniform/psm/tsm, one per cascade for csm
-  float blendBandM = 0.0f;        ///< csm: width of the blend band between cascades
-};
 
 class Projection : public Parameterized {
 public:
