@@ -91,9 +91,9 @@ std::vector<CasterGeometry> casterGeometry(const Scene& scene) {
     if (!o.castsShadow) continue;
     const Mesh& mesh = scene.meshes[o.mesh];
     CasterGeometry g;
-    g.vertices = std::as_bytes(std::span<const Vertex>(mesh.vertices));
-    g.stride = sizeof(Vertex);
-    g.positionOffset = offsetof(Vertex, position);
+    g.vertices = std::as_bytes(std::span<const glm::vec3>(mesh.positions));
+    g.stride = sizeof(glm::vec3);
+    g.positionOffset = 0;
     g.indices = std::as_bytes(std::span<const uint32_t>(mesh.indices));
     g.indexType = IndexType::UInt32;
     g.worldFromObject = o.worldFromObject;

@@ -102,10 +102,9 @@ EdgeError againstAnalyticEdge(const RenderResult& r) {
 // smrt with `params` on the plate, `frames` frames of a still view (the last one read).
 EdgeError smrtOnThePlate(const Params& params, int frames = 1) {
   constexpr int kSize = 160;
-  const std::unique_ptr<Renderer> renderer = makeTestRenderer(plateScene(), "uniform", "smrt", params);
+  const std::unique_ptr<Renderer> renderer = makeTestRenderer(plateScene(), "uniform", "smrt", params, kMapSize);
   RenderOptions o;
   o.width = o.height = kSize;
-  o.shadowMapSize = kMapSize;
   for (int i = 0; i < frames; ++i) renderer->render(o);
   RenderResult r;
   r.visibility = renderer->readVisibility();
