@@ -187,7 +187,7 @@ void checkOutputDir(const char* option, const std::string& path) {
   }
 }
 
-std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, const Setup& s) {
+std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, Setup& s) {
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(std::move(s.scene));  // held once, by the renderer: renderer->scene()
   renderer->setTechnique(s.technique);

@@ -244,9 +244,7 @@ struct Shadows::Impl {
     states.front()->frameBlock.upload(frame);
     states.front()->frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
     bindSurfaces(in.surfaces);
-    ShaderDefines defines;
-    if (surface.source == SurfaceSource::Depth) defines.set("PN_SURFACE_FROM_DEPTH");
-    const Aabb box = surfaceBounds.measure(shaders, screen, defines);
+    const Aabb box = surfaceBounds.measure(shaders, screen, surfaceDefines(surface));
     unbindSurfaces();
     gl::throwIfGlError("the surface bounds pass");
     return box;

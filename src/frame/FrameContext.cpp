@@ -56,13 +56,15 @@ ShaderDefines FrameContext::frameDefines() const {
   return d;
 }
 
-ShaderDefines FrameContext::surfaceDefines() const {
+ShaderDefines surfaceDefines(const SurfaceFacts& surface) {
   ShaderDefines d;
-  if (mSurface.source == SurfaceSource::Depth) d.set("PN_SURFACE_FROM_DEPTH");
-  if (mSurface.normalsFromPositions) d.set("PN_NORMALS_FROM_POSITIONS");
-  if (mSurface.orthographicCamera) d.set("PN_CAMERA_ORTHOGRAPHIC");
+  if (surface.source == SurfaceSource::Depth) d.set("PN_SURFACE_FROM_DEPTH");
+  if (surface.normalsFromPositions) d.set("PN_NORMALS_FROM_POSITIONS");
+  if (surface.orthographicCamera) d.set("PN_CAMERA_ORTHOGRAPHIC");
   return d;
 }
+
+ShaderDefines FrameContext::surfaceDefines() const { return penumbra::surfaceDefines(mSurface); }
 
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;

@@ -39,6 +39,9 @@ struct SurfaceFacts {
   /// The camera is orthographic: its rays are parallel (PN_CAMERA_ORTHOGRAPHIC).
   bool orthographicCamera = false;
 };
+/// How a screen pass reads such surfaces (common/visibility.glsl): PN_SURFACE_FROM_DEPTH,
+/// PN_NORMALS_FROM_POSITIONS, PN_CAMERA_ORTHOGRAPHIC, each where it holds.
+ShaderDefines surfaceDefines(const SurfaceFacts& surface);
 
 /// Cached shadow maps across frames (MapUpdates): how many layers renderViews restored and
 /// rendered.
