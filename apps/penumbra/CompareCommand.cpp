@@ -154,7 +154,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         100.0 * report::kHeatmapScalePercentile, heatScale, spot, spot);
     const ColorImage heatKeyed = report::withKey(
         heat, report::heatmapKey(heatScale, fmt::format("error of {} · {}: ΔV = V − V_ref, blue too dark, red too bright",
-                                                        renderer.filter().id(), renderer.projection().id()),
+                                                        renderer.technique().filter(), renderer.technique().projection()),
                                  heatGrey));
     // The split model's own error in units of V, on the reference's grey, full colour at
     // kApproximationFullScaleV (docs/reference.md).

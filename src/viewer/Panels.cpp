@@ -5,9 +5,9 @@
 #include "viewer/Viewer.h"
 
 #include "report/ImageText.h"
+#include "shadows/Registry.h"
 
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
