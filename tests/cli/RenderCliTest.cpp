@@ -126,7 +126,7 @@ TEST(RenderCli, ShadowMapThatDoesNotFitSaysOutOfMemory) {
   EXPECT_NE(r.err.find("GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try smaller maps "
                        "(Technique::mapSize, or a light's shadow.mapSize in its scene file"),
             std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("[--shadow-map]"),
+  EXPECT_NE(r.err.find("[--shadow-map"),
             std::string::npos) << r.err;
   EXPECT_EQ(countLines(r.err), 1u) << r.err;
   // A scene file's own 16384² point cube (six maps) fails where the maps are made, naming them,
