@@ -16,6 +16,7 @@
 #include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
 #include "frame/PassTimer.h"
+#include "frame/PixelBoundsReducer.h"
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
@@ -234,7 +235,16 @@ struct Shadows::Impl {
     const auto snapshot = applySettings(i, slot.light);
     Projection& projectionI = projectionOf(i);
     Filter& filterI = filterOf(i);
-    slot.frusta = projectionI.computeFrusta(in.camera.fit, in.camera.aspect, slot.light, fitExtent(slot.light), slot.mapSize);
+    // A projection fitted to the pixels (sdsm) measures them here, on the GPU, before its views
+    // exist; the others ask nothing and no pass runs.
+    PixelBoundsReducer pixels(shaders, surface, screen, in.camera.fit, timer,
+                              [&] {
+                                slot.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+                                bindSurfaces(s);
+                              },
+                              [] { unbindSurfaces(); });
+    slot.frusta = projectionI.computeFrustaFromPixels(in.camera.fit, in.camera.aspect, slot.light, fitExtent(slot.light),
+                                                      slot.mapSize, pixels);
     slot.keptViews = schedule.apply(i, slot.frusta, slot.mapSize);
     slot.shadowBlock.upload(core::shadowUniforms(slot.frusta, slot.mapSize));
     bindBlocks(i);
