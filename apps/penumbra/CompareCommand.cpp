@@ -67,6 +67,7 @@ void putMetrics(nlohmann::json& j, const VisibilityMetrics& m) {
   j["leak_pct"] = m.leakPct;
   j["overdark_pct"] = m.overDarkPct;
   j["umbra_leak_pct"] = m.umbraLeakPct;
+  j["acne_pct"] = m.acnePct;
   j["penumbra_rmse"] = m.penumbraRmse;
   j["pixels"] = m.pixels;
 }
@@ -323,10 +324,10 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
                 scene.name.c_str(), projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height,
                 s.technique.mapSize(), scene.light().size, cameraArgument(scene.camera).c_str());
     std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f  (inside the reference's umbra: %.3f)\n"
-                "  over-dark %%     %8.3f\n"
+                "  over-dark %%     %8.3f  (acne: %.3f %% of the pixels the reference sees fully lit)\n"
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
                 "  pixels          %8zu\n",
-                m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+                m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.acnePct, m.penumbraRmse, approximationRmse, m.pixels);
     if (cmp.lights.size() > 1) {
       std::printf("  the metrics above combine the lights, each weighted by its unshadowed light at the pixel:\n"
                   "    light  type   RMSE     leak %%  over-dark %%  penumbra RMSE  map\n");

@@ -15,6 +15,7 @@
 #include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
 #include "frame/PassTimer.h"
+#include "frame/PixelBoundsReducer.h"
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
@@ -191,7 +192,16 @@ struct Shadows::Impl {
       glClearTexSubImage(visibility.id(), 0, 0, 0, static_cast<GLint>(s.layer), screen.x, screen.y, 1, GL_RED, GL_FLOAT, &one);
       return;
     }
-    s.frusta = s.projection->computeFrusta(in.camera.fit, in.camera.aspect, s.light, fitExtent(s.light, all, still), s.mapSize);
+    // A projection fitted to the pixels (sdsm) measures them here, on the GPU, before its views
+    // exist; the others ask nothing and no pass runs.
+    PixelBoundsReducer pixels(shaders, surfaceDefines(surface), screen, in.camera.fit, timer,
+                              [&] {
+                                s.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
+                                bindSurfaces(in.surfaces);
+                              },
+                              [] { unbindSurfaces(); });
+    s.frusta = s.projection->computeFrustaFromPixels(in.camera.fit, in.camera.aspect, s.light, fitExtent(s.light, all, still),
+                                                     s.mapSize, pixels);
     s.keptViews = schedule.apply(s.key, s.frusta, s.mapSize);
     s.shadowBlock.upload(core::shadowUniforms(s.frusta, s.mapSize));
     bindBlocks(s);

@@ -15,7 +15,9 @@
 #include "shadows/filters/VssmFilter.h"
 #include "shadows/contact/ContactShadows.h"
 #include "shadows/projections/CascadedProjection.h"
+#include "shadows/projections/LightSpacePerspectiveProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
+#include "shadows/projections/SampleDistributionProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
 #include "shadows/sdf/SdfFilter.h"
@@ -60,6 +62,8 @@ Kinds<Projection>& projections() {
       {"csm", [] { return std::make_unique<CascadedProjection>(); }},
       {"psm", [] { return std::make_unique<PerspectiveProjection>(); }},
       {"tsm", [] { return std::make_unique<TrapezoidalProjection>(); }},
+      {"lispsm", [] { return std::make_unique<LightSpacePerspectiveProjection>(); }},
+      {"sdsm", [] { return std::make_unique<SampleDistributionProjection>(); }},
   }, {}};
   return kinds;
 }

@@ -229,7 +229,9 @@ void Viewer::drawViewLabels() {
   };
   auto layerName = [&](int layer) {
     if (light.type == LightType::Point) return fmt::format("face {}", cubeFaceName(layer));
-    return fmt::format("{} {}", mSession.projectionId() == "csm" ? "cascade" : "layer", layer);
+    // Views split by camera depth (csm, sdsm) are cascades; a single view is the map's only layer.
+    const bool cascades = mSession.renderer().frusta().views.size() > 1;
+    return fmt::format("{} {}", cascades ? "cascade" : "layer", layer);
   };
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   // Inside the slot's top-left corner: the legends (Legends.cpp) sit at the main view's lower

@@ -103,17 +103,19 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   EXPECT_NEAR(st.median, expected, 0.1f * expected);
 }
 
-// The table: city at 1280×720, equal texel budgets (uniform/psm/tsm one 2048² map, csm
-// four 1024² maps). Near-camera density (median screen pixels per texel within 20 m) must drop
-// at least 4× for csm and tsm, 2× for psm (whose light direction here, from the side and a
-// little behind, favours it).
+// The table: city at 1280×720, equal texel budgets (uniform/psm/tsm/lispsm one 2048² map,
+// csm and sdsm four 1024² maps). Near-camera density (median screen pixels per texel within 20 m)
+// must drop at least 4× for csm, tsm and lispsm, 2× for psm (whose light direction here, from the
+// side and a little behind, favours it); sdsm, with csm's memory, must at least halve csm's.
 TEST(Aliasing, CityTexelDensityTable) {
   const Scene city = makeBuiltinScene("city");
   const std::vector<Case> techniques = {
       {"uniform", 2048, {}},
       {"psm", 2048, {}},
       {"tsm", 2048, {}},
+      {"lispsm", 2048, {}},
       {"csm", 1024, {{"csm.cascades", "4"}}},
+      {"sdsm", 1024, {{"sdsm.cascades", "4"}}},
   };
   std::map<std::string, TexelDensityStats> stats;
   std::printf("\n  projection  map          median        p95   near_median  undersampled_pct\n");
@@ -123,7 +125,7 @@ TEST(Aliasing, CityTexelDensityTable) {
     const std::vector<float> d = computeTexelDensity(*r);
     const TexelDensityStats s = texelDensityStats(d, r->readGBuffer(), city.camera.position);
     stats[t.projection] = s;
-    const std::string budget = t.projection == "csm" ? "4x1024^2" : "1x2048^2";
+    const std::string budget = t.mapSize == 1024 ? "4x1024^2" : "1x2048^2";
     std::printf("  %-10s  %-9s %10.4f %10.3f %12.4f %12.1f\n", t.projection.c_str(), budget.c_str(), s.median, s.p95,
                 s.nearMedian, s.undersampledPct);
     RecordProperty(t.projection + "_texel_density_near_median", fmt::format("{:.4f}", s.nearMedian));
@@ -138,6 +140,8 @@ TEST(Aliasing, CityTexelDensityTable) {
   EXPECT_LE(stats["csm"].nearMedian * 4.0, uniform);
   EXPECT_LE(stats["tsm"].nearMedian * 4.0, uniform);
   EXPECT_LE(stats["psm"].nearMedian * 2.0, uniform);
+  EXPECT_LE(stats["lispsm"].nearMedian * 4.0, uniform);
+  EXPECT_LE(stats["sdsm"].nearMedian * 2.0, stats["csm"].nearMedian);
 }
 
 // tsm from city's bench, looking down and away from the sun (`--camera 1.5,1.7,310:4.3,0,305.5:40`):

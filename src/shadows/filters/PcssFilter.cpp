@@ -25,10 +25,12 @@ constexpr ParamDesc kParams[] = {
      96.0f, 1.0f, 512.0f, 0.0f},
     {"pcss.hardwareCompare", "Hardware compare", "on: each filter tap is the hardware's bilinear 2x2 comparison (sampler2DShadow)", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
-     0.0002f, 0.0f, 0.05f, 0.0f},
+    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range), added to the plane bias", "depth range",
+     0.0f, 0.0f, 0.05f, 0.0f},
     tightSearchParam("pcss.tightSearch"),
-    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)", "texels",
+    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope, added to the plane bias", "texels",
+     0.0f, 0.0f, 16.0f, 0.0f},
+    {"pcss.planeBiasTexels", "Plane bias", "every tap compares the receiver's own plane at its texel's centre, moved back along the receiver's normal by this many texels of world size plus the tap texel's distance from the receiver in texels", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -50,6 +52,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
   const float mapRadius = maxKernelRadiusTexels(frame.mapSize());
   u.params = glm::vec4(frame.param("pcss.constantBias"), frame.param("pcss.slopeBias"), std::min(frame.param("pcss.minRadiusTexels"), mapRadius),
                        std::min(frame.param("pcss.maxRadiusTexels"), mapRadius));
+  u.bias = glm::vec4(frame.param("pcss.planeBiasTexels"), 0.0f, 0.0f, 0.0f);
   frame.setFilterBlock(u);
   const bool hardware = frame.paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;

@@ -222,6 +222,15 @@ std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Li
   return out;
 }
 
+ViewRegion wholeViewRegion(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene) {
+  ViewRegion r;
+  r.nearM = camera.nearM;
+  r.farM = std::max(shadowFarDistance(camera, scene), 2.0f * r.nearM);
+  r.body = receiverBody(camera, aspect, r.nearM, r.farM, scene, light);
+  r.casters = casterExtrusion(r.body, light, scene.casterBounds());
+  return r;
+}
+
 glm::mat4 sunViewMatrix(const SceneExtent& scene, const Light& light) {
   const Aabb bounds = scene.bounds();
   const float radius = std::max(bounds.radius(), 1e-3f);

@@ -13,6 +13,7 @@
 
 #include "frame/Projection.h"
 
+#include <span>
 #include <vector>
 
 namespace penumbra {
@@ -36,6 +37,17 @@ public:
 /// Returned as a 4×4 acting on the unwarped light clip coordinates (clip z/w is set to 0.5: the
 /// depth written is the linear light depth, not this).
 glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float lambda, float tMin, float tMax);
+
+/// The extent (smallest, largest) of `hull` along the unit direction u, measured from `top`.
+glm::vec2 extentAlong(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u);
+
+/// The trapezoid (a perspective frustum of the light's image plane) around the points `hull`,
+/// centred on the line through `top` along the unit direction u: its top and base edges
+/// perpendicular to u touch the region, its apex lies on the line `eta` before the top edge and
+/// its sides are the widest tangents from the apex; `marginFraction` of the map is added on every
+/// side, in warped units. Shared by tsm (η from the 80% rule) and lispsm (η = n_opt).
+glm::mat4 trapezoidAround(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u, float eta,
+                          float marginFraction);
 
 /// The 80% rule: distance η of the apex behind the top edge so that a point δ past the top edge
 /// (of a trapezoid of height λ) maps to `mapFraction` of the way across the map:
