@@ -47,7 +47,6 @@ function(penumbra_floor target)
   foreach(extra IN LISTS F_INCLUDE_ROOTS)
     target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${extra}>)
   endforeach()
-  target_compile_definitions(${target} PUBLIC GLM_FORCE_XYZW_ONLY)
   target_link_libraries(${target} PUBLIC ${F_DEPS} PRIVATE $<BUILD_INTERFACE:penumbra_warnings> ${F_PRIVATE_DEPS})
 endfunction()
 

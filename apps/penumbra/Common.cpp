@@ -190,8 +190,7 @@ void checkOutputDir(const char* option, const std::string& path) {
 std::unique_ptr<Renderer> makeRenderer(gl::Context& /*current: the renderer draws on it*/, Setup& s) {
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(std::move(s.scene));  // held once, by the renderer: renderer->scene()
-  renderer->setTechnique(std::move(s.projection), std::move(s.filter));
-  renderer->shadows().addOns() = *s.addOns;
+  renderer->setTechnique(s.technique);
   renderer->shadows().setMapUpdates(s.mapUpdates);
   return renderer;
 }
@@ -252,16 +251,6 @@ auto sceneChoice(const Scene& scene, const std::string& field, F&& f) {
   }
 }
 
-/// The projection or filter whose id begins `key` ("pcss" of "pcss.blockerSamples"), at its
-/// defaults, or nothing.
-std::unique_ptr<Parameterized> techniqueOf(const std::string& key) {
-  const std::string id = key.substr(0, key.find('.'));
-  const std::vector<std::string> projections = projectionIds(), filters = filterIds();
-  if (std::find(projections.begin(), projections.end(), id) != projections.end()) return makeProjection(id);
-  if (std::find(filters.begin(), filters.end(), id) != filters.end()) return makeFilter(id);
-  return nullptr;
-}
-
 /// Checks a scene file's technique setting (shadow.params.KEY, a light's too) against the
 /// technique the key names, whether or not that technique runs now: a key or value that technique
 /// refuses is bad input in the file, the same under every --filter. Returns whether the key is of
@@ -270,16 +259,22 @@ std::unique_ptr<Parameterized> techniqueOf(const std::string& key) {
 bool checkTechniqueSetting(const Setup& s, const std::string& field, const std::pair<std::string, std::string>& kv, bool verbose) {
   const auto& [key, value] = kv;
   sceneChoice(s.scene, field, [&] {
-    const std::unique_ptr<Parameterized> technique = techniqueOf(key);
-    if (!technique)
-      throw usageError(fmt::format("no technique '{}' (penumbra list shows them; a key is technique.name)", key.substr(0, key.find('.'))));
-    technique->setParam(key, std::string_view(value));
+    const std::string id = key.substr(0, key.find('.'));
+    const std::vector<std::string> projections = projectionIds(), filters = filterIds();
+    const bool projection = std::find(projections.begin(), projections.end(), id) != projections.end();
+    if (!projection && std::find(filters.begin(), filters.end(), id) == filters.end())
+      throw usageError(fmt::format("no technique '{}' (penumbra list shows them; a key is technique.name)", id));
+    Technique owner;
+    if (projection) owner.setProjection(id);
+    else owner.setFilter(id);
+    owner.set(key, std::string_view(value));
   });
-  const bool inUse = s.projection->hasParam(key) || s.filter->hasParam(key);
+  const ParamOwner owner = s.technique.owner(key);
+  const bool inUse = owner == ParamOwner::Projection || owner == ParamOwner::Filter;
   if (!inUse && verbose)
     std::fprintf(stderr, "penumbra: %s: %s=%s not applied: not a parameter of --projection %s or --filter %s\n",
-                 sceneFile(s.scene).c_str(), field.c_str(), value.c_str(), std::string(s.projection->id()).c_str(),
-                 std::string(s.filter->id()).c_str());
+                 sceneFile(s.scene).c_str(), field.c_str(), value.c_str(), s.technique.projection().c_str(),
+                 s.technique.filter().c_str());
   return inUse;
 }
 
@@ -293,11 +288,15 @@ void checkShadowBudget(const Setup& s) {
   const float aspect = static_cast<float>(s.render.width) / static_cast<float>(s.render.height);
   int64_t maps = 0, lights = 0;
   for (const Light& l : s.scene.lights) {
-    if (!l.castsShadow || !s.projection->incompatibility(l).empty()) continue;  // the latter is refused by name later
-    const std::unique_ptr<Projection> p = makeProjection(s.projection->id());
-    static_cast<Parameterized&>(*p) = static_cast<const Parameterized&>(*s.projection);
-    for (const auto& [key, value] : l.shadow.params)
-      if (p->hasParam(key)) p->setParam(key, std::string_view(value));
+    if (!l.castsShadow) continue;
+    Technique t;
+    try {
+      t = s.technique.forLight(l.shadow, "");
+    } catch (const Error&) {
+      continue;  // refused by name later
+    }
+    if (!t.problemWith(l).empty()) continue;  // the same
+    const std::unique_ptr<Projection> p = makeProjection(t);
     maps += static_cast<int64_t>(p->computeFrusta(s.scene.camera, aspect, l, extent, core::kMinBudgetMapSize).views.size());
     ++lights;
   }
@@ -326,18 +325,23 @@ Setup makeSetup(const TechniqueOptions& o) {
                                 .notice = [](const std::string& sentence) {
                                   if (said.insert(sentence).second) std::fprintf(stderr, "penumbra: %s\n", sentence.c_str());
                                 }});
-  s.projection = o.projection ? makeProjection(*o.projection)
-                              : sceneChoice(s.scene, "shadow.projection", [&] { return makeProjection(s.scene.shadow.projection); });
-  s.filter = o.filter ? makeFilter(*o.filter) : sceneChoice(s.scene, "shadow.filter", [&] { return makeFilter(s.scene.shadow.filter); });
+  if (o.projection) s.technique.setProjection(*o.projection);
+  else sceneChoice(s.scene, "shadow.projection", [&] { s.technique.setProjection(s.scene.shadow.projection); });
+  if (o.filter) s.technique.setFilter(*o.filter);
+  else sceneChoice(s.scene, "shadow.filter", [&] { s.technique.setFilter(s.scene.shadow.filter); });
+  const int mapSize = o.shadowMapSize.value_or(s.scene.shadow.mapSize);
+  if (mapSize < kMinMapSizeTexels || mapSize > kMaxMapSizeTexels)
+    throw usageError(fmt::format("--shadow-map {}: a map side is {}..{} texels (the maximum Penumbra takes; a driver may allow less)",
+                                 mapSize, kMinMapSizeTexels, kMaxMapSizeTexels));
+  s.technique.setMapSize(mapSize);
   // The scene's own params apply when they belong to the technique in use (a scene may carry
-  // settings for several), and are checked all the same; --set applies strictly.
+  // settings for several techniques), and are checked all the same; --set applies strictly.
   for (const auto& kv : s.scene.shadow.params) {
     const std::string field = "shadow.params." + kv.first;
-    const std::string prefix = kv.first.substr(0, kv.first.find('.'));
-    const bool addOn = std::any_of(addOnGroups().begin(), addOnGroups().end(),
-                                   [&](const AddOnGroup& g) { return !g.params.empty() && g.params.front().key.starts_with(prefix + "."); });
-    if (prefix == "light" || addOn || checkTechniqueSetting(s, field, kv, o.verbose))
-      sceneChoice(s.scene, field, [&] { applyParams({kv}, s.scene, *s.projection, *s.filter, s.addOns.get()); });
+    if (kv.first.starts_with("light."))
+      sceneChoice(s.scene, field, [&] { applySettings({kv}, s.scene, s.technique); });
+    else if (s.technique.owner(kv.first) == ParamOwner::AddOn || checkTechniqueSetting(s, field, kv, o.verbose))
+      sceneChoice(s.scene, field, [&] { s.technique.set(kv.first, std::string_view(kv.second)); });
   }
   // A light's own params: Shadows applies those of the technique in use (penumbra/Scene.h).
   for (size_t i = 0; i < s.scene.lights.size(); ++i)
@@ -345,7 +349,10 @@ Setup makeSetup(const TechniqueOptions& o) {
       checkTechniqueSetting(s, fmt::format("lights[{}].shadow.params.{}", i, kv.first), kv, o.verbose);
   std::vector<std::pair<std::string, std::string>> cli;
   for (const std::string& a : o.sets) cli.push_back(splitAssignment(a));
-  applyParams(cli, s.scene, *s.projection, *s.filter, s.addOns.get());
+  applySettings(cli, s.scene, s.technique);
+  // Each light's own settings, as the core will merge them: bad input in the file, named there.
+  for (size_t i = 0; i < s.scene.lights.size(); ++i)
+    sceneChoice(s.scene, fmt::format("lights[{}].shadow", i), [&] { (void)s.technique.forLight(s.scene.lights[i].shadow, ""); });
   if (o.camera) {
     s.scene.camera = parseCameraArgument(*o.camera, s.scene.camera);
     s.scene.animation.camera = {};  // the camera given stays where it is
@@ -353,9 +360,6 @@ Setup makeSetup(const TechniqueOptions& o) {
   const auto [w, h] = parseSize(o.size);
   s.render.width = w;
   s.render.height = h;
-  s.render.shadowMapSize = o.shadowMapSize.value_or(s.scene.shadow.mapSize);
-  if (s.render.shadowMapSize < 16)
-    throw usageError(fmt::format("--shadow-map {}: must be at least 16", s.render.shadowMapSize));
   s.render.shadowBudgetTexels = o.shadowBudgetTexels;
   checkShadowBudget(s);
   s.mapUpdates = parseMapUpdates(o.mapUpdates);
@@ -384,7 +388,7 @@ report::SetupFactory benchSetupFactory(const std::optional<std::string>& camera)
     t.projection = c.projection;
     for (const auto& [k, v] : c.params) t.sets.push_back(k + "=" + v);
     Setup s = makeSetup(t);
-    return report::BenchSetup{std::move(s.scene), std::move(s.projection), std::move(s.filter), std::move(s.addOns)};
+    return report::BenchSetup{std::move(s.scene), std::move(s.technique)};
   };
 }
 

@@ -3,7 +3,7 @@
 // place that turns them into a scene + technique.
 #include "report/BenchRunner.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 
@@ -51,15 +51,14 @@ std::string mapUpdatesSummary(const Shadows& shadows);
 
 struct Setup {
   Scene scene;
-  std::unique_ptr<Projection> projection;
-  std::unique_ptr<Filter> filter;
-  std::unique_ptr<Parameterized> addOns = makeAddOns();  ///< "contact.*", "temporal.*"
+  Technique technique;    ///< ids, map size and every parameter (add-ons included)
   RenderOptions render;
   MapUpdates mapUpdates;  ///< --map-updates
 };
 
-/// Loads the scene, makes the technique, applies the scene's params then --set (usage errors
-/// for anything unknown or out of range).
+/// Loads the scene, makes the technique (the scene's own, --projection/--filter over it, the map
+/// size from --shadow-map or the scene), applies the scene's params then --set (usage errors for
+/// anything unknown or out of range).
 Setup makeSetup(const TechniqueOptions& o);
 
 /// The scene's times (s) of a sequence's frames, as renderSequence and compareSequence pose them:

@@ -102,6 +102,7 @@ void putMetrics(nlohmann::json& j, const VisibilityMetrics& m) {
   j["leak_pct"] = m.leakPct;
   j["overdark_pct"] = m.overDarkPct;
   j["umbra_leak_pct"] = m.umbraLeakPct;
+  j["acne_pct"] = m.acnePct;
   j["penumbra_rmse"] = m.penumbraRmse;
   j["pixels"] = m.pixels;
 }
@@ -189,7 +190,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         100.0 * report::kHeatmapScalePercentile, heatScale, spot, spot);
     const ColorImage heatKeyed = report::withKey(
         heat, report::heatmapKey(heatScale, fmt::format("error of {} · {}: ΔV = V − V_ref, blue too dark, red too bright",
-                                                        renderer.filter().id(), renderer.projection().id()),
+                                                        renderer.technique().filter(), renderer.technique().projection()),
                                  heatGrey));
     // The split model's own error in units of V, on the reference's grey, full colour at
     // kApproximationFullScaleV (docs/reference.md).
@@ -217,13 +218,13 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     const ColorImage all = report::compareSheet(
         {.technique = &technique, .reference = &reference, .heatmap = &heat, .v = combined.v, .vRef = combined.vRef,
          .mask = combined.mask, .heatmapFullScaleDeltaV = heatScale, .heatmapScaleNote = heatGrey,
-         .techniqueTitle = fmt::format("{} · {} on {}", renderer.filter().id(), renderer.projection().id(), scene.name),
+         .techniqueTitle = fmt::format("{} · {} on {}", renderer.technique().filter(), renderer.technique().projection(), scene.name),
          .referenceTitle = fmt::format("reference: Embree, {} light samples per pixel", referenceSamples),
          .metrics = {fmt::format("RMSE {:.4f} · mean |ΔV| {:.4f} · penumbra RMSE {:.4f} · leak {:.2f}% (in the umbra "
                                  "{:.2f}%) · over-dark {:.2f}% over {} lit pixels",
                                  m.rmse, m.mae, m.penumbraRmse, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.pixels),
                      fmt::format("{}×{} pixels, shadow map {}², {} · --camera {}", width, height,
-                                 s.render.shadowMapSize, lightText, cameraArgument(scene.camera))}});
+                                 s.technique.mapSize(), lightText, cameraArgument(scene.camera))}});
     const ColorImage densityImage = report::withKey(texelDensityHeatmap(density, gbuffer.width, gbuffer.height),
                                                     report::texelDensityKey());
     for (const auto& [name, img] : {std::pair{"technique.png", &technique}, {"reference.png", &reference},
@@ -279,7 +280,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         if (!o->json) std::fprintf(stderr, "penumbra: frame %d/%d (t = %.3f s) compared\n", f + 1, timing.frames, timing.timeS(f));
       });
     }
-    const std::string projection(renderer.projection().id()), filter(renderer.filter().id());
+    const std::string projection = renderer.technique().projection(), filter = renderer.technique().filter();
     if (o->json) {
       nlohmann::json j;
       j["scene"] = scene.name;
@@ -288,7 +289,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       j["camera"] = cameraArgument(scene.camera);  // what --camera takes: the run repeats from it
       j["width"] = gbuffer.width;
       j["height"] = gbuffer.height;
-      j["shadow_map"] = s.render.shadowMapSize;
+      j["shadow_map"] = s.technique.mapSize();
       j["light_size"] = scene.light().size;
       putMetrics(j, m);
       if (topColour) putColourMetrics(j, *topColour);
@@ -381,12 +382,12 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     std::printf("scene %s  --projection %s --filter %s  %dx%d, shadow map %d², light size %g\n  --camera %s\n",
                 scene.name.c_str(), projection.c_str(), filter.c_str(), gbuffer.width, gbuffer.height,
-                s.render.shadowMapSize, scene.light().size, cameraArgument(scene.camera).c_str());
+                s.technique.mapSize(), scene.light().size, cameraArgument(scene.camera).c_str());
     std::printf("  RMSE            %8.4f\n  mean |dV|       %8.4f\n  leak %%          %8.3f  (inside the reference's umbra: %.3f)\n"
-                "  over-dark %%     %8.3f\n"
+                "  over-dark %%     %8.3f  (acne: %.3f %% of the pixels the reference sees fully lit)\n"
                 "  penumbra RMSE   %8.4f\n  split approx.   %8.4f  (RMSE of V vs cos-weighted V in the reference)\n"
                 "  pixels          %8zu\n",
-                m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.penumbraRmse, approximationRmse, m.pixels);
+                m.rmse, m.mae, m.leakPct, m.umbraLeakPct, m.overDarkPct, m.acnePct, m.penumbraRmse, approximationRmse, m.pixels);
     if (cmp.lights.size() > 1) {
       std::printf("  the metrics above combine the lights, each weighted by its unshadowed light at the pixel:\n"
                   "    light  type   RMSE     leak %%  over-dark %%  penumbra RMSE  map\n");

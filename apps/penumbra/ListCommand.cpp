@@ -1,7 +1,7 @@
 // penumbra list: scenes, projections, filters and every parameter (default, range, help).
 #include "Commands.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -57,17 +57,13 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     j["scenes"] = nlohmann::json::array();
     for (const std::string& n : builtinSceneNames()) j["scenes"].push_back({{"name", n}, {"description", builtinSceneDescription(n)}});
     j["scene_params"] = paramsJson(sceneParamDescs());
-    j["add_on_params"] = paramsJson(makeAddOns()->paramDescs());
+    j["add_on_params"] = paramsJson(makeAddOns().paramDescs());
     j["projections"] = nlohmann::json::array();
-    for (const std::string& id : projectionIds()) {
-      auto p = makeProjection(id);
-      j["projections"].push_back({{"id", id}, {"description", p->description()}, {"params", paramsJson(p->paramDescs())}});
-    }
+    for (const std::string& id : projectionIds())
+      j["projections"].push_back({{"id", id}, {"description", projectionDescription(id)}, {"params", paramsJson(projectionParams(id))}});
     j["filters"] = nlohmann::json::array();
-    for (const std::string& id : filterIds()) {
-      auto f = makeFilter(id);
-      j["filters"].push_back({{"id", id}, {"description", f->description()}, {"params", paramsJson(f->paramDescs())}});
-    }
+    for (const std::string& id : filterIds())
+      j["filters"].push_back({{"id", id}, {"description", filterDescription(id)}, {"params", paramsJson(filterParams(id))}});
     if (*json) {
       std::printf("%s\n", j.dump(2).c_str());
       return 0;
@@ -82,15 +78,13 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     }
     std::printf("\nProjections (--projection ID):\n");
     for (const std::string& id : projectionIds()) {
-      auto p = makeProjection(id);
-      std::printf("  %-10s %s\n", id.c_str(), std::string(p->description()).c_str());
-      printParams(p->paramDescs());
+      std::printf("  %-10s %s\n", id.c_str(), std::string(projectionDescription(id)).c_str());
+      printParams(projectionParams(id));
     }
     std::printf("\nFilters (--filter ID):\n");
     for (const std::string& id : filterIds()) {
-      auto f = makeFilter(id);
-      std::printf("  %-10s %s\n", id.c_str(), std::string(f->description()).c_str());
-      printParams(f->paramDescs());
+      std::printf("  %-10s %s\n", id.c_str(), std::string(filterDescription(id)).c_str());
+      printParams(filterParams(id));
     }
     return 0;
   }});

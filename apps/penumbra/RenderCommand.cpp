@@ -226,7 +226,7 @@ void addRenderCommand(CLI::App& app, std::vector<Command>& commands) {
       printMapUpdates(renderer.shadows());
     }
     std::printf("wrote %s (%dx%d, scene %s, --projection %s --filter %s)\n", o->out.c_str(), color.width, color.height,
-                renderer.scene().name.c_str(), std::string(renderer.projection().id()).c_str(), std::string(renderer.filter().id()).c_str());
+                renderer.scene().name.c_str(), renderer.technique().projection().c_str(), renderer.technique().filter().c_str());
     return 0;
   }});
 }

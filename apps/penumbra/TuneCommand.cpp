@@ -148,30 +148,35 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
     // The first scene's own choices and the defaults of compare.
     o->technique.scene = req.views.front().scene;
     const Setup scene = makeSetup(o->technique);
-    req.filters = o->filters.empty() ? std::vector<std::string>{std::string(scene.filter->id())} : o->filters;
-    req.projections = o->projections.empty() ? std::vector<std::string>{std::string(scene.projection->id())} : o->projections;
-    // --params: each key is searched somewhere, and each technique has a key to search.
-    std::vector<std::unique_ptr<Filter>> filters;
-    std::vector<std::unique_ptr<Projection>> projections;
-    for (const std::string& f : req.filters) filters.push_back(makeFilter(f));
-    for (const std::string& p : req.projections) projections.push_back(makeProjection(p));
-    const auto mapKey = [](const std::string& key) { return key == report::kMapSizeKey || key == report::kMapBudgetKey; };
-    const auto has = [](const auto& techniques, const std::string& key) {
-      return std::any_of(techniques.begin(), techniques.end(), [&](const auto& t) { return t->hasParam(key); });
+    req.filters = o->filters.empty() ? std::vector<std::string>{scene.technique.filter()} : o->filters;
+    req.projections = o->projections.empty() ? std::vector<std::string>{scene.technique.projection()} : o->projections;
+    // --params: each key is searched somewhere, and each technique has a key to search. Unknown
+    // ids are usage Errors naming them (filterParams, projectionParams).
+    const auto inTable = [](std::span<const ParamDesc> table, const std::string& key) {
+      return std::any_of(table.begin(), table.end(), [&](const ParamDesc& d) { return d.key == key; });
     };
+    const auto mapKey = [](const std::string& key) { return key == report::kMapSizeKey || key == report::kMapBudgetKey; };
+    const auto anyHas = [&](const std::vector<std::string>& ids, auto params, const std::string& key) {
+      return std::any_of(ids.begin(), ids.end(), [&](const std::string& id) { return inTable(params(id), key); });
+    };
+    const auto filterTable = [](const std::string& id) { return filterParams(id); };
+    const auto projectionTable = [](const std::string& id) { return projectionParams(id); };
+    for (const std::string& f : req.filters) (void)filterParams(f);
+    for (const std::string& p : req.projections) (void)projectionParams(p);
     for (const std::string& key : o->params)
-      if (!mapKey(key) && !has(filters, key) && !has(projections, key))
+      if (!mapKey(key) && !anyHas(req.filters, filterTable, key) && !anyHas(req.projections, projectionTable, key))
         throw usageError(fmt::format("--params {}: not a parameter of --filters {} or --projections {} (penumbra list shows "
                                      "their keys), nor {} or {}",
                                      key, joinNames(req.filters, ","), joinNames(req.projections, ","), report::kMapSizeKey,
                                      report::kMapBudgetKey));
     if (!o->params.empty() && std::none_of(o->params.begin(), o->params.end(), mapKey))
-      for (const auto& f : filters)
-        for (const auto& p : projections)
-          if (std::none_of(o->params.begin(), o->params.end(), [&](const std::string& k) { return f->hasParam(k) || p->hasParam(k); }))
+      for (const std::string& f : req.filters)
+        for (const std::string& p : req.projections)
+          if (std::none_of(o->params.begin(), o->params.end(),
+                           [&](const std::string& k) { return inTable(filterParams(f), k) || inTable(projectionParams(p), k); }))
             throw usageError(fmt::format("tune: {} · {} has no parameter to search among --params {} (give one of its keys, or "
                                          "tune it apart)",
-                                         f->id(), p->id(), joinNames(o->params, ",")));
+                                         f, p, joinNames(o->params, ",")));
     req.settings.width = scene.render.width;
     req.settings.height = scene.render.height;
     req.settings.shadowMapSize = o->technique.shadowMapSize;

@@ -57,7 +57,7 @@ void addViewCommand(CLI::App& app, std::vector<Command>& commands) {
       v.shaderTree = PENUMBRA_SOURCE_DIR;
     }
     Setup s = makeSetup(o->technique);
-    viewer::Viewer viewer(std::move(s.scene), std::move(s.projection), std::move(s.filter), s.render.shadowMapSize, std::move(v));
+    viewer::Viewer viewer(std::move(s.scene), s.technique, std::move(v));
     return viewer.run();
   }});
 }

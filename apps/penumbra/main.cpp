@@ -14,6 +14,7 @@
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace {
 
@@ -52,7 +53,19 @@ std::string printable(std::string_view message) {
   return out;
 }
 
-void printError(const char* message) { std::fprintf(stderr, "penumbra: %s\n", printable(message).c_str()); }
+// The library names its API's fields in its messages; the command line's options that set them
+// are added after the message, once each.
+std::string withOptions(std::string message) {
+  constexpr std::pair<std::string_view, std::string_view> kFields[] = {
+      {"Technique::mapSize", "--shadow-map"}, {"Technique::projection", "--projection"}, {"Technique::filter", "--filter"},
+      {"LightShadowSettings::", "the scene file's per-light \"shadow\""}};
+  std::string options;
+  for (const auto& [field, option] : kFields)
+    if (message.find(field) != std::string::npos) options += (options.empty() ? "" : ", ") + std::string(option);
+  return options.empty() ? message : message + " [" + options + "]";
+}
+
+void printError(const char* message) { std::fprintf(stderr, "penumbra: %s\n", printable(withOptions(message)).c_str()); }
 
 // Output that never arrived is a failure: `penumbra list > /dev/full` must not exit 0. stdout
 // is block-buffered when it is not a terminal, so most write errors appear only here.

@@ -221,6 +221,44 @@ struct EngineObject {
   penumbra::Aabb objectBounds;
 };
 
+// ---- Penumbra: everything the engine does for its shadows ------------------------------------
+// The technique, the casters (the engine's own buffers) and where shadows may land, then one frame
+// against the engine's camera, depth and normals. shadows.visibilityTexture() then holds V.
+void shadowLight(penumbra::Shadows& shadows, const Options& o, const penumbra::Scene& scene, const std::vector<EngineObject>& objects,
+                 GLuint vbo, GLuint ibo, const glm::mat4& view, const glm::mat4& proj, GLuint depth, GLuint normal,
+                 const penumbra::Light& light) {
+  penumbra::Technique technique(o.projection.empty() ? scene.shadow.projection : o.projection,
+                                o.filter.empty() ? scene.shadow.filter : o.filter, o.params);
+  technique.setMapSize(o.mapSize);
+  shadows.setTechnique(technique);
+  std::vector<penumbra::CasterMesh> casters;
+  std::vector<penumbra::Aabb> receivers;
+  for (const EngineObject& e : objects) {
+    if (!e.castsShadow) {
+      receivers.push_back(e.objectBounds.transformed(e.worldFromObject));
+      continue;
+    }
+    penumbra::CasterMesh c;
+    c.vertexBuffer = vbo;
+    c.stride = sizeof(EngineVertex);
+    c.positionOffset = offsetof(EngineVertex, position);
+    c.indexBuffer = ibo;
+    c.firstIndex = e.firstIndex;
+    c.count = e.indexCount;
+    c.baseVertex = e.baseVertex;
+    c.worldFromObject = e.worldFromObject;
+    c.objectBounds = e.objectBounds;
+    casters.push_back(c);
+  }
+  // Every object of the scene is here: the casters and the ground that only receives.
+  shadows.setCasters(casters, {.bounds = receivers, .complete = true});
+  penumbra::ShadowFrameInputs in;
+  in.camera = penumbra::ShadowCamera::fromMatrices(view, proj, penumbra::DepthConvention::NegativeOneToOne);
+  in.surfaces = {.width = o.width, .height = o.height, .depth = depth, .normal = normal};
+  in.lights = std::span<const penumbra::Light>(&light, 1);
+  shadows.render(in);
+}
+
 int run(const Options& o) {
   const EglContext egl;
   const penumbra::Scene scene = penumbra::loadScene(o.scene);
@@ -300,35 +338,8 @@ int run(const Options& o) {
 
   // Penumbra: the engine's buffers as casters, its textures as the surfaces.
   penumbra::Shadows shadows;
-  shadows.setTechnique(o.projection.empty() ? scene.shadow.projection : o.projection,
-                       o.filter.empty() ? scene.shadow.filter : o.filter, o.params);
-  std::vector<penumbra::CasterMesh> casters;
-  std::vector<penumbra::Aabb> receivers;
-  for (const EngineObject& e : objects) {
-    if (!e.castsShadow) {
-      receivers.push_back(e.objectBounds.transformed(e.worldFromObject));
-      continue;
-    }
-    penumbra::CasterMesh c;
-    c.vertexBuffer = vbo;
-    c.stride = sizeof(EngineVertex);
-    c.positionOffset = offsetof(EngineVertex, position);
-    c.indexBuffer = ibo;
-    c.firstIndex = e.firstIndex;
-    c.count = e.indexCount;
-    c.baseVertex = e.baseVertex;
-    c.worldFromObject = e.worldFromObject;
-    c.objectBounds = e.objectBounds;
-    casters.push_back(c);
-  }
-  shadows.setCasters(casters, receivers);
   const penumbra::Light& light = scene.light();
-  penumbra::ShadowFrameInputs in;
-  in.camera = penumbra::ShadowCamera::fromMatrices(view, proj, penumbra::DepthConvention::NegativeOneToOne);
-  in.surfaces = {.width = o.width, .height = o.height, .depth = depth, .normal = normal};
-  in.lights = std::span<const penumbra::Light>(&light, 1);
-  in.mapSize = o.mapSize;
-  shadows.render(in);
+  shadowLight(shadows, o, scene, objects, vbo, ibo, view, proj, depth, normal, light);
 
   // Forward lit pass over the pre-pass depth, V from Penumbra's texture.
   glBindFramebuffer(GL_FRAMEBUFFER, litFbo);
@@ -356,8 +367,8 @@ int run(const Options& o) {
   if (glGetError() != GL_NO_ERROR) throw std::runtime_error("a GL error in the engine's passes");
   penumbra::writePng(o.out, o.width, o.height, penumbra::flipRows<uint8_t>(rgba, o.width, o.height, 4));
   std::printf("wrote %s (%dx%d, scene %s, shadows: %s x %s by Penumbra, %.2f ms in its passes)\n", o.out.c_str(), o.width,
-              o.height, scene.name.c_str(), std::string(shadows.projection().id()).c_str(),
-              std::string(shadows.filter().id()).c_str(), shadows.timings().total());
+              o.height, scene.name.c_str(), shadows.technique().projection().c_str(),
+              shadows.technique().filter().c_str(), shadows.timings().total());
 
   const GLuint programs[] = {prepass, lit, sky};
   for (GLuint p : programs) glDeleteProgram(p);

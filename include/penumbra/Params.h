@@ -53,7 +53,8 @@ std::string formatParamValue(const ParamDesc& desc, float value);
 /// Splits "key=value"; throws a usage Error if there is no '='.
 std::pair<std::string, std::string> splitAssignment(std::string_view text);
 
-/// The current values of one ParamDesc table. Base of every Projection and Filter.
+/// The current values of one ParamDesc table: a technique's projection, filter and add-on values
+/// (penumbra/Technique.h), and the base of every projection (a light's instance is its values).
 class Parameterized {
 public:
   explicit Parameterized(std::span<const ParamDesc> descs);
@@ -68,6 +69,10 @@ public:
   int paramInt(std::string_view key) const { return static_cast<int>(param(key)); }
   /// (define, value) of every parameter that declares a GLSL constant (ParamDesc::define).
   std::vector<std::pair<std::string_view, int>> compileTimeConstants() const;
+  /// The same table with the same values.
+  bool sameValues(const Parameterized& other) const {
+    return mDescs.data() == other.mDescs.data() && mDescs.size() == other.mDescs.size() && mValues == other.mValues;
+  }
 
 private:
   size_t indexOf(std::string_view key) const;

@@ -2,11 +2,14 @@
 // Penumbra's own renderer (docs/design.md): a G-buffer pass, the shadows of the engine-facing
 // core (penumbra/Shadows.h: projection → shadow pass → prefilter → visibility) on that G-buffer,
 // then the lit pass. It is the core's first client and knows no technique.
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
+
 #include <penumbra/Image.h>
-#include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
+#include <penumbra/ShadowViews.h>
 #include <penumbra/Shadows.h>
+#include <penumbra/ShadowsDebug.h>
+#include <penumbra/Technique.h>
 #include <penumbra/Timings.h>
 
 #include <cstdint>
@@ -22,9 +25,9 @@ class ShaderLibrary;
 
 struct RenderOptions {
   int width = 640, height = 360;  ///< output size in pixels
-  int shadowMapSize = 2048;       ///< texels per side of each shadow map
   /// Texels all lights' maps share (every cascade and cube face counted); 0 = no budget, each
-  /// light gets shadowMapSize (or its own override). See ShadowFrameInputs::mapBudgetTexels.
+  /// light gets its technique's map size (Technique::mapSize, or its own override). See
+  /// ShadowFrameInputs::mapBudgetTexels.
   int64_t shadowBudgetTexels = 0;
   /// What the lit pass writes to the colour image: PN_VIEW_SHADED (0, the default),
   /// PN_VIEW_VISIBILITY, PN_VIEW_CASCADES or PN_VIEW_TEXEL_DENSITY (shaders/shared/Enums.h).
@@ -55,8 +58,10 @@ public:
   /// give it with std::move where the caller needs no copy of its own (a large model's meshes are
   /// then held once).
   void setScene(Scene scene);
-  /// Throws a usage Error if the pair cannot work for the scene's light.
-  void setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter);
+  /// The technique every light runs (a light's own shadow settings merged in). Throws a usage
+  /// Error, and keeps the technique it had, when a light of the scene cannot be shadowed with it.
+  void setTechnique(const Technique& technique);
+  const Technique& technique() const;
   /// Renders one frame. Throws Error on GL failures or an oversized shadow map.
   void render(const RenderOptions& options);
   /// Replaces the camera and the lights between frames without re-uploading geometry (the
@@ -68,8 +73,6 @@ public:
   void setPose(const Scene& posed);
 
   const Scene& scene() const;
-  Projection& projection();
-  Filter& filter();
   /// The views of light `light` in the last frame.
   const LightFrusta& frusta(size_t light = 0) const;
   /// Lights of the last frame (the scene's, each with its own maps and visibility layer).

@@ -36,69 +36,115 @@ struct ComparisonReceiver {
   vec2 uv;          // map coordinates
   int layer;        // map layer = shadow view
   float depth;      // linear light depth in [0,1] at uv
-  vec2 depthPerUv;  // the receiver plane's depth gradient in the map (linear depth per uv)
+  vec2 depthPerUv;  // the receiver plane's depth gradient in the map at uv (linear depth per uv)
+  // The plane's depth at uv + Δ is depth + dot(depthPerUv, Δ) / (1 − dot(projectivePerUv, Δ)): a
+  // plane seen through a perspective or warped view is a projective function of the map's
+  // coordinates, not a linear one (0 for an orthographic view).
+  vec2 projectivePerUv;
   float bias;       // subtracted for every tap (linear depth)
+  // Subtracted per texel of the compared texel's distance from the receiver (linear depth): the
+  // plane moved back one texel along its normal for every texel it is carried (planeReachDepth).
+  float biasPerTexel;
 };
 
 // Beyond this tangent of the angle to the light (~84 degrees, as slopeTangent clamps) a bias
 // would push through casters; steeper receivers keep this much and may show acne.
 const float kMaxReceiverTangent = 10.0;
 
-// The receiver's tangent plane as depth over map uv (Isidoro 2006, "receiver plane depth bias"):
-// the plane is stepped one texel's width along two tangents and both steps projected into the
-// map (an orthographic view: the same in closed form). Exact for orthographic, perspective and
-// warped views alike. (For a spot light depth is measured along the light's axis, not along the
-// ray, so a surface facing the light head-on can still change depth from texel to texel; the
-// angle to the ray, slopeTangent, misses that.)
+// The receiver's tangent plane over the map (Isidoro 2006, "receiver plane depth bias"), exact
+// for orthographic, perspective and warped views alike. Two tangents t1, t2 of the plane and the
+// view's clip coordinates c = clipFromWorld·(p, 1) give, for a map offset Δ from the receiver,
+// the plane point's tangent coordinates (a, b) = w·A·Δ with w = w0 / (1 − dot(Aᵀ(w1, w2), Δ)),
+// A the inverse of w0 × the map's Jacobian along the tangents (its columns
+// 0.5·(x_i·w0 − w_i·x0, y_i·w0 − w_i·y0) / w0²); the depth is affine in (a, b) (depthPlane), so
+// depth(Δ) = depth + dot(g, Δ) / (1 − dot(q, Δ)), g = w0·Aᵀ(dot(p, t1), dot(p, t2)), q = Aᵀ(w1, w2).
+// No differences of nearby projections: every term is a derivative taken in closed form. (For a
+// spot light depth is measured along the light's axis, not along the ray, so a surface facing
+// the light head-on can still change depth from texel to texel; the angle to the ray misses that.)
 // The gradient's length is bounded by kMaxReceiverTangent texels of slope per texel.
-vec2 receiverDepthGradient(int view, SurfacePoint s) {
+void receiverPlane(int view, SurfacePoint s, out vec2 depthPerUv, out vec2 projectivePerUv) {
   vec3 n = s.geoNormal;
-  vec2 depthPerUv;
-  if (!isPerspectiveView(view) && !isWarpedView(view)) {
-    // An orthographic view (the sun's) maps the world to (u, v, depth) linearly, x ↦ (a_u·x,
-    // a_v·x, p·x) + const, so the plane's step x for a step (du, dv) in the map solves
-    // [a_u; a_v; n] x = (du, dv, 0): Cramer's rule gives the same gradient in closed form, with
-    // no differences of nearby projections.
-    mat4 m = u_shadow.views[view].clipFromWorld;
-    vec3 au = 0.5 * vec3(m[0][0], m[1][0], m[2][0]);
-    vec3 av = 0.5 * vec3(m[0][1], m[1][1], m[2][1]);
-    vec3 p = u_shadow.views[view].depthPlane.xyz;
-    float det = dot(n, cross(au, av));
-    if (det == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
-    depthPerUv = vec2(dot(n, cross(p, av)), dot(n, cross(au, p))) / det;
-  } else {
-    vec3 t1 = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
-    vec3 t2 = cross(n, t1);
-    float stepM = shadowTexelWorldSize(view, s.ws);
-    vec3 c0 = shadowCoord(view, s.ws);
-    vec3 d1 = shadowCoord(view, s.ws + stepM * t1) - c0;
-    vec3 d2 = shadowCoord(view, s.ws + stepM * t2) - c0;
-    mat2 uvFromPlane = mat2(d1.xy, d2.xy);  // plane coordinates → map uv
-    if (determinant(uvFromPlane) == 0.0) return vec2(0.0);  // seen edge-on: no plane to follow
-    depthPerUv = vec2(d1.z, d2.z) * inverse(uvFromPlane);
-  }
+  vec3 t1 = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 t2 = cross(n, t1);
+  mat4 m = u_shadow.views[view].clipFromWorld;
+  vec4 c0 = m * vec4(s.ws, 1.0);
+  vec4 c1 = m * vec4(t1, 0.0);
+  vec4 c2 = m * vec4(t2, 0.0);
+  // w0 × ∂uv/∂(a, b): column i is the derivative along t_i.
+  mat2 jacobianW0 = (0.5 / c0.w) * mat2(c1.x * c0.w - c1.w * c0.x, c1.y * c0.w - c1.w * c0.y,
+                                        c2.x * c0.w - c2.w * c0.x, c2.y * c0.w - c2.w * c0.y);
+  depthPerUv = vec2(0.0);
+  projectivePerUv = vec2(0.0);
+  if (determinant(jacobianW0) == 0.0) return;  // seen edge-on: no plane to follow
+  mat2 toTangent = inverse(jacobianW0);
+  vec3 p = u_shadow.views[view].depthPlane.xyz;
+  depthPerUv = c0.w * (vec2(dot(p, t1), dot(p, t2)) * toTangent);
+  projectivePerUv = vec2(c1.w, c2.w) * toTangent;
   float maxPerUv = slopeDepthOffset(view, s.ws, kMaxReceiverTangent, 1.0) * shadowMapSize();
   float len = length(depthPerUv);
-  return len > maxPerUv ? depthPerUv * (maxPerUv / len) : depthPerUv;
+  if (len > maxPerUv) depthPerUv *= maxPerUv / len;
 }
 
-// Receiver at shadow coordinate `coord` of `view`. Each tap compares the receiver's own plane
-// at the tap (so a wide kernel on a tilted receiver neither shadows the receiver nor, on the
-// side away from the light, over-biases past real blockers), lowered by constantBias plus
-// slopeTexels texels of the plane's steepest slope: the slope-scaled bias, which covers the
-// map's flat texels (a stored depth is exact only at its texel's centre).
-ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, float constantBias, float slopeTexels) {
+// The plane's gradient alone (the biases' slope and the lookups that average boxes of the map).
+vec2 receiverDepthGradient(int view, SurfacePoint s) {
+  vec2 g, q;
+  receiverPlane(view, s, g, q);
+  return g;
+}
+
+// The denominator 1 − dot(q, Δ) is w / w0 > 0 wherever the plane is in front of the light; it is
+// kept above this near the plane's horizon in the map, where the depth runs off to infinity.
+const float kMinPlaneW = 1e-3;
+
+// The receiver plane's linear depth at map coordinate uv (before the bias).
+float receiverDepthAt(ComparisonReceiver r, vec2 uv) {
+  vec2 d = uv - r.uv;
+  return r.depth + dot(r.depthPerUv, d) / max(1.0 - dot(r.projectivePerUv, d), kMinPlaneW);
+}
+
+// The depth (linear units) that moving the receiver's plane `texels` texels of world size along
+// its normal puts between it and the light: a texel's world size t across the rays, and the
+// plane's depth change s·t over one texel, in quadrature (t·√(1 + s²) = t / cos θ for a plane at
+// θ to the light). A margin the receiver's plane does not cover — facets and curvature, a
+// concave crease whose other face a texel's centre lands on, the normal's and the positions'
+// rounding — is a distance off the plane, which a light at θ sees as that distance / cos θ.
+float planeNormalOffsetDepth(int view, vec3 ws, vec2 depthPerUv, float texels) {
+  float texelDepth = shadowTexelWorldSize(view, ws) / depthRangeM(view);
+  float slopeDepth = length(depthPerUv) / shadowMapSize();
+  return texels * sqrt(texelDepth * texelDepth + slopeDepth * slopeDepth);
+}
+
+// Receiver at shadow coordinate `coord` of `view`. Each tap compares a texel with the receiver's
+// own plane at that texel's centre — where the stored depth was rasterised — so a planar
+// receiver meets its own map exactly at every tap and a wide kernel on a tilted receiver neither
+// shadows the receiver nor, on the side away from the light, over-biases past real blockers. The
+// plane is lowered by constantBias (linear depth), slopeTexels texels of its steepest slope, and
+// planeTexels + d texels of world size along its normal (planeNormalOffsetDepth), d the compared
+// texel's distance from the receiver in texels: the margin for what a plane does not model. It
+// grows with d because what it covers does: the plane carried d texels away from the receiver
+// meets a concave crease's other face (a lit wall on the floor) up to d texels above it, and a
+// curved or faceted receiver departs from it by more the farther it is carried; at the receiver
+// itself only planeTexels remain, so contact shadows keep their root.
+ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, float constantBias, float slopeTexels,
+                                      float planeTexels) {
   ComparisonReceiver r;
   r.uv = coord.xy;
   r.layer = view;
   r.depth = coord.z;
-  r.depthPerUv = receiverDepthGradient(view, s);
-  r.bias = constantBias + slopeTexels * length(r.depthPerUv) / shadowMapSize();
+  receiverPlane(view, s, r.depthPerUv, r.projectivePerUv);
+  r.biasPerTexel = planeNormalOffsetDepth(view, s.ws, r.depthPerUv, 1.0);
+  r.bias = constantBias + slopeTexels * length(r.depthPerUv) / shadowMapSize() + planeTexels * r.biasPerTexel;
   return r;
 }
 
+// The receiver's biased depth to compare with the texel whose centre is at map coordinate uv.
+float biasedDepthAt(ComparisonReceiver r, vec2 uv) {
+  return receiverDepthAt(r, uv) - r.bias - r.biasPerTexel * length((uv - r.uv) * shadowMapSize());
+}
+
 // A kernel of taps around a receiver, placed in texels of its map: each tap is two multiply-adds
-// from its point of a unit pattern, one more pair for the receiver's plane there, and the fetch.
+// from its point of a unit pattern, the receiver's plane at the tap's texel centre (a dot product
+// and a division more for a warped or perspective view), and the fetch.
 // The whole kernel is kept on the map's outermost texel centres by moving its centre, not each tap:
 // within its reach of the edge it is shifted inward (at most its radius, ×√2 for a turned
 // pattern), and every tap is compared with the receiver's plane at the tap, so plane and map agree
@@ -108,8 +154,14 @@ ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, floa
 struct TapKernel {
   vec2 centre;         // the kernel's centre, in texels
   mat2 texelsPerUnit;  // a pattern point (unit disk or square) → texel offset: radius and rotation
-  float depth;         // the receiver's plane at the centre, minus its bias
-  vec2 depthPerUnit;   // the plane's depth change per unit of the pattern
+  vec2 receiver;       // the receiver, in texels
+  float depth;         // the receiver's plane there, minus its bias
+  vec2 depthPerTexel;  // the plane's gradient and projective term per texel (ComparisonReceiver)
+  vec2 projectivePerTexel;
+  float biasPerTexel;  // ComparisonReceiver::biasPerTexel
+  // The hardware's 2×2 comparison takes one reference depth for four texels: the plane at the tap
+  // point differs from the plane at their centres by up to half a texel of slope on each axis.
+  float bilinearMargin;
   vec2 uvPerTexel;
   int layer;
 };
@@ -124,19 +176,29 @@ TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 ma
   // The farthest tap per axis. The filters keep a kernel inside the map (their radii at most
   // maxKernelRadiusTexels, PcfFilter.h): narrowing it here, per pixel, cost pcf's pass 5 %.
   vec2 reach = abs(k.texelsPerUnit[0]) + abs(k.texelsPerUnit[1]);
-  vec2 receiver = r.uv * size;
-  k.centre = clamp(receiver, 0.5 + reach, size - 0.5 - reach);
-  vec2 depthPerTexel = r.depthPerUv / size;
-  k.depth = r.depth - r.bias + dot(depthPerTexel, k.centre - receiver);
-  k.depthPerUnit = depthPerTexel * k.texelsPerUnit;
+  k.receiver = r.uv * size;
+  k.centre = clamp(k.receiver, 0.5 + reach, size - 0.5 - reach);
+  k.depthPerTexel = r.depthPerUv / size;
+  k.projectivePerTexel = r.projectivePerUv / size;
+  k.depth = r.depth - r.bias;
+  k.biasPerTexel = r.biasPerTexel;
+  k.bilinearMargin = 0.5 * (abs(k.depthPerTexel.x) + abs(k.depthPerTexel.y));
   k.uvPerTexel = 1.0 / size;
   k.layer = r.layer;
   return k;
 }
 
-// Where the tap at pattern point `unit` falls (texels) and the receiver's biased depth there.
+// Where the tap at pattern point `unit` falls (texels).
 vec2 tapTexel(TapKernel k, vec2 unit) { return k.centre + k.texelsPerUnit * unit; }
-float tapDepth(TapKernel k, vec2 unit) { return k.depth + dot(k.depthPerUnit, unit); }
+// The receiver's biased plane at a point of the map (texels), lowered by one texel along its
+// normal per texel from the receiver (ComparisonReceiver).
+float kernelPlaneDepth(TapKernel k, vec2 texel) {
+  vec2 d = texel - k.receiver;
+  return k.depth + dot(k.depthPerTexel, d) / max(1.0 - dot(k.projectivePerTexel, d), kMinPlaneW) - k.biasPerTexel * length(d);
+}
+// The receiver's biased depth to compare with the texel that the tap at pattern point `unit`
+// reads: the plane at that texel's centre, where its depth was rasterised.
+float tapDepth(TapKernel k, vec2 unit) { return kernelPlaneDepth(k, floor(tapTexel(k, unit)) + 0.5); }
 
 // The depth stored at a tap's texel (inside the map: truncation is the floor).
 float storedDepth(sampler2DArray map, TapKernel k, vec2 texel) { return texelFetch(map, ivec3(ivec2(texel), k.layer), 0).r; }
@@ -149,7 +211,9 @@ float comparisonTap(sampler2DArray map, TapKernel k, vec2 unit) {
 // level and filter linearly both ways: zero gradients (magnification) are what any level of
 // detail would read, and give no stage a derivative to take (the pass runs as a fragment shader).
 float comparisonTap(sampler2DArrayShadow map, TapKernel k, vec2 unit) {
-  return textureGrad(map, vec4(tapTexel(k, unit) * k.uvPerTexel, float(k.layer), tapDepth(k, unit)), vec2(0.0), vec2(0.0));
+  vec2 texel = tapTexel(k, unit);
+  float depth = kernelPlaneDepth(k, texel) - k.bilinearMargin;
+  return textureGrad(map, vec4(texel * k.uvPerTexel, float(k.layer), depth), vec2(0.0), vec2(0.0));
 }
 
 // The receiver's map coordinate moved onto the outermost texel centres, its depth carried along

@@ -5,7 +5,8 @@
 // from (and over the screen, a neighbour across a silhouette is another surface): instead the
 // camera rays through the neighbouring pixels are intersected with the surface's tangent plane
 // (ray differentials) and the offsets are projected into the map. Exact for planar receivers;
-// assumes the camera's symmetric perspective projection (Camera::clipFromView).
+// assumes a symmetric perspective projection (Camera::clipFromView) or, with
+// PN_CAMERA_ORTHOGRAPHIC, an orthographic one.
 #include "common/visibility.glsl"
 
 // A pixel's footprint is never allowed to exceed this many texels: at grazing angles the ray
@@ -24,11 +25,20 @@ vec3 cameraRayDirection(vec2 ndc) {
 
 // Where the ray through ndc meets the plane through ws with normal n (ws itself if it misses).
 vec3 hitTangentPlane(vec2 ndc, vec3 ws, vec3 n) {
+#ifdef PN_CAMERA_ORTHOGRAPHIC
+  // Parallel rays along the view axis, each from its point on the clip space's z = 0 plane.
+  vec4 o4 = u_frame.worldFromClip * vec4(ndc, 0.0, 1.0);
+  vec3 o = o4.xyz / o4.w;
+  vec3 d = cameraForward();
+  float dn = dot(d, n);
+  return abs(dn) > 1e-6 ? o + (dot(ws - o, n) / dn) * d : ws;
+#else
   vec3 o = u_frame.cameraPosition.xyz;
   vec3 d = cameraRayDirection(ndc);
   float dn = dot(d, n);
   float t = abs(dn) > 1e-6 ? dot(ws - o, n) / dn : -1.0;
   return t > 0.0 ? o + t * d : ws;
+#endif
 }
 
 // Shortens each axis of a footprint in a map of mapSize texels to kMaxFootprintTexels.

@@ -35,10 +35,13 @@ bool isPerspectiveView(int view) {
 #endif
 }
 
-// xy: map uv in [0,1]; z: linear depth in [0,1].
+// xy: map uv in [0,1]; z: linear depth in [0,1]. A point beyond the view's far plane reads as on
+// it: the view holds every caster between it and the light, so what the map stores there (a
+// caster, or the far plane's clear value: none) decides, and no receiver the fit left out is
+// darkened for lying past the map's depth range.
 vec3 shadowCoord(int view, vec3 ws) {
   vec4 c = u_shadow.views[view].clipFromWorld * vec4(ws, 1.0);
-  return vec3(c.xy / c.w * 0.5 + 0.5, lightDepth(view, ws));
+  return vec3(c.xy / c.w * 0.5 + 0.5, min(lightDepth(view, ws), 1.0));
 }
 
 // psm/tsm: clipFromWorld carries a projective warp, so a texel's size depends on where it is.

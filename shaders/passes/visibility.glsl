@@ -4,8 +4,9 @@
 // run once per cascade with selectShadowView forced). Over the screen it is the fragment shader
 // of a full-screen triangle drawn into the light's visibility layer (frame/ScreenTarget.h). With
 // PN_VISIBILITY_POINTS defined the same is done, as a compute shader, for a list of world points
-// (Shadows::visibilityAt) instead of the surfaces. With PN_SURFACE_FROM_DEPTH the surface
-// positions come from the camera's depth texture.
+// (visibilityAt) instead of the surfaces. With PN_SURFACE_FROM_DEPTH the surface positions come
+// from the camera's depth texture; with PN_NORMALS_FROM_POSITIONS their normals from their
+// neighbours (common/visibility.glsl).
 #include "common/visibility.glsl"
 #include "shared/VisibilityPoints.h"
 
@@ -56,7 +57,7 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);  // the pixel's centre is at +0.5: its integer part is the pixel
   vec4 pos = surfacePosition(px);
   float v = 1.0;
-  if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, texelFetch(s_gbufGeoNormal, px, 0).xyz, px);
+  if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, surfaceGeoNormal(px, pos.xyz), px);
   o_visibility = v;
 }
 

@@ -9,7 +9,7 @@
 // Storage blocks
 #define PN_SSBO_OBJECTS 0  // ObjectGpu[]: per-object transform and material (Frame.h)
 #define PN_SSBO_TEST 1     // GLSL unit tests write their results here
-#define PN_SSBO_AUX 2      // free for a pass's own data
+#define PN_SSBO_AUX 2      // free for a pass's own data (the core's surface bounds: passes/surface_bounds.glsl)
 #define PN_SSBO_POINTS 3   // VisibilityPointGpu[]: world points for Renderer::visibilityAt (VisibilityPoints.h)
 #define PN_SSBO_POINT_VISIBILITY 4  // float[]: V at those points
 #define PN_SSBO_SAT 5      // uvec4[]: a summed-area table of depth moments (common/sat.glsl)
@@ -28,7 +28,7 @@
 #define PN_TEX_FILTER3 11
 #define PN_TEX_MIN_DEPTH PN_TEX_FILTER2  // a searching filter's min-depth pyramid (shadows/TightSearch.h)
 // The core's passes after the filter's (temporal accumulation) reuse the filter's units.
-#define PN_TEX_HISTORY PN_TEX_FILTER0           // R32F 2D array: V accumulated over earlier frames, a layer per light
+#define PN_TEX_HISTORY PN_TEX_FILTER0           // R32F 2D: the light's V accumulated over earlier frames
 #define PN_TEX_PREVIOUS_SURFACE PN_TEX_FILTER1  // RGBA32F: the previous frame's world position per pixel, w = 1 where geometry
 #define PN_TEX_PREVIOUS_NORMAL PN_TEX_FILTER2   // RGBA16F: the previous frame's geometric normal per pixel
 

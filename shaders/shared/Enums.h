@@ -10,6 +10,7 @@
 #define PN_BIAS_CONSTANT 1
 #define PN_BIAS_SLOPE 2
 #define PN_BIAS_NORMAL 3
+#define PN_BIAS_PLANE 4
 
 // Debug views of the lit pass
 #define PN_VIEW_SHADED 0

@@ -269,9 +269,9 @@ void computeDistances(const CasterBvh& bvh, SdfVolume& grid, ProgressBar& progre
 
 }  // namespace
 
-SdfVolume bake(const Scene& scene, const BakeOptions& options) {
+SdfVolume bake(std::span<const CasterGeometry> geometry, const BakeOptions& options) {
   const Clock::time_point start = Clock::now();
-  const CasterTriangles casters = casterTriangles(scene);
+  const CasterTriangles casters = casterTriangles(geometry);
   SdfVolume grid = gridForTriangles(casters, options.resolution);
   grid.stats.triangles = (casters.volume.size() + casters.sheets.size()) / 3;
   if (!grid.hasGrid()) return grid;
@@ -308,6 +308,8 @@ SdfVolume bake(const Scene& scene, const BakeOptions& options) {
 }
 
 // Makes loadOrBake the sdf filter's baker (setBaker).
-void installEmbreeBaker() { setBaker([](const Scene& scene, const BakeOptions& options) { return loadOrBake(scene, options); }); }
+void installEmbreeBaker() {
+  setBaker([](std::span<const CasterGeometry> casters, const BakeOptions& options) { return loadOrBake(casters, options); });
+}
 
 }  // namespace penumbra::sdf

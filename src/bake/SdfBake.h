@@ -14,6 +14,7 @@
 //    exact distance to their triangles instead. A 24 m floor would otherwise stretch the grid
 //    and leave the objects standing on it a voxel or two thick.
 //  - Alpha-masked materials are treated as solid (the field has no holes).
+#include "frame/CasterSet.h"
 #include "shadows/sdf/SdfVolume.h"
 
 #include <penumbra/Bake.h>
@@ -23,12 +24,18 @@
 namespace penumbra::sdf {
 
 /// Bakes without touching the cache. Throws penumbra::Error on a bad resolution or an Embree failure.
-SdfVolume bake(const Scene& scene, const BakeOptions& options = {});
+SdfVolume bake(std::span<const CasterGeometry> casters, const BakeOptions& options = {});
 
-/// The cached grid for this scene and resolution when a valid cache file exists; otherwise bakes
-/// it and stores it (temporary name, then rename). Unreadable or corrupt files are ignored and
-/// replaced. Throws penumbra::Error when the cache directory cannot be created or written.
-SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options = {});
+/// The cached grid for these casters and resolution when a valid cache file exists; otherwise
+/// bakes it and stores it (temporary name, then rename). Unreadable or corrupt files are ignored
+/// and replaced. Throws penumbra::Error when the cache directory cannot be created or written.
+SdfVolume loadOrBake(std::span<const CasterGeometry> casters, const BakeOptions& options = {});
+
+/// The same for a scene's casting objects.
+inline SdfVolume bake(const Scene& scene, const BakeOptions& options = {}) { return bake(casterGeometry(scene), options); }
+inline SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options = {}) {
+  return loadOrBake(casterGeometry(scene), options);
+}
 
 /// "<dir>/sdf-<key>.bin"
 std::filesystem::path cacheFilePath(const std::filesystem::path& dir, uint64_t key);

@@ -109,11 +109,11 @@ void store(const fs::path& path, const SdfVolume& v) {
 
 fs::path cacheFilePath(const fs::path& dir, uint64_t key) { return dir / fmt::format("sdf-{:016x}.bin", key); }
 
-SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
+SdfVolume loadOrBake(std::span<const CasterGeometry> casters, const BakeOptions& options) {
   const fs::path dir = options.useCache ? (options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir) : fs::path();
-  if (dir.empty()) return bake(scene, options);
+  if (dir.empty()) return bake(casters, options);
   const auto start = std::chrono::steady_clock::now();
-  const uint64_t key = cacheKey(scene, options.resolution);
+  const uint64_t key = cacheKey(casters, options.resolution);
   const fs::path path = cacheFilePath(dir, key);
   if (std::optional<SdfVolume> cached = load(path, key)) {
     touchCacheEntry(path);  // used: the last to be evicted
@@ -121,7 +121,7 @@ SdfVolume loadOrBake(const Scene& scene, const BakeOptions& options) {
     return std::move(*cached);
   }
   const std::uintmax_t maxBytes = defaultCacheMaxBytes();  // a bad variable stops us before the bake
-  SdfVolume v = bake(scene, options);
+  SdfVolume v = bake(casters, options);
   v.stats.cacheKey = key;
   if (v.empty()) return v;  // a scene without casters costs nothing to "bake"
   // A folder that cannot hold the field costs the cache, not the field: said, and the bake used.

@@ -33,7 +33,10 @@ gpu::FrameUniforms frameUniforms(const ShadowCamera& camera, const Light& light,
   // or 0 under reversed-Z (the near plane's ndc.z above the far plane's).
   const bool zeroToOne = camera.depth == DepthConvention::ZeroToOne;
   const glm::mat4& p = camera.clipFromView;
-  const auto ndcAt = [&p](float distanceM) { return (p[3][2] - p[2][2] * distanceM) / distanceM; };
+  const auto ndcAt = [&p](float distanceM) {  // perspective or orthographic
+    const glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -distanceM, 1.0f);
+    return clip.z / clip.w;
+  };
   const bool reversed = ndcAt(camera.fit.nearM) > ndcAt(camera.fit.farM);
   f.depthInfo = glm::vec4(zeroToOne ? 1.0f : 2.0f, zeroToOne ? 0.0f : -1.0f, reversed ? 0.0f : 1.0f, 0.0f);
   return f;

@@ -4,8 +4,8 @@
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
 
-#include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
+#include <penumbra/ShadowViews.h>
 #include <penumbra/Shadows.h>
 
 namespace penumbra::core {

@@ -3,11 +3,25 @@
 namespace penumbra::core {
 namespace {
 
-// Switches the passes assume off (blend … rasterizer discard) or set themselves (depth test,
-// clamp, culling): all are saved.
-constexpr GLenum kSwitches[] = {GL_BLEND, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_POLYGON_OFFSET_FILL,
-                                GL_RASTERIZER_DISCARD, GL_DEPTH_TEST, GL_DEPTH_CLAMP, GL_CULL_FACE};
-static_assert(std::size(kSwitches) == 8, "SavedGlState::mSwitches holds one entry per switch");
+// Switches the passes assume off (blend … alpha to coverage, clip distances) or set themselves
+// (depth test, clamp, culling): all are saved. Dithering is left alone: it applies to fixed-point
+// colour only, and every target Penumbra draws is depth or float.
+constexpr GLenum kSwitches[] = {GL_BLEND, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_POLYGON_OFFSET_FILL, GL_RASTERIZER_DISCARD,
+                                GL_COLOR_LOGIC_OP, GL_PRIMITIVE_RESTART, GL_PRIMITIVE_RESTART_FIXED_INDEX, GL_FRAMEBUFFER_SRGB,
+                                GL_SAMPLE_ALPHA_TO_COVERAGE, GL_DEPTH_TEST, GL_DEPTH_CLAMP, GL_CULL_FACE,
+                                GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE1, GL_CLIP_DISTANCE2, GL_CLIP_DISTANCE3,
+                                GL_CLIP_DISTANCE4, GL_CLIP_DISTANCE5, GL_CLIP_DISTANCE6, GL_CLIP_DISTANCE7};
+// The first ones are off in every pass (setPassDefaults); depth test, clamp and culling are set by
+// the passes that draw geometry.
+constexpr size_t kSwitchesOff = 10;  // blend … alpha to coverage
+static_assert(std::size(kSwitches) == 13 + kClipDistances, "SavedGlState::mSwitches holds one entry per switch");
+
+// glPixelStore parameters, pack then unpack, in the same order, with their defaults.
+constexpr GLenum kPackParams[] = {GL_PACK_ALIGNMENT, GL_PACK_ROW_LENGTH, GL_PACK_IMAGE_HEIGHT, GL_PACK_SKIP_PIXELS,
+                                  GL_PACK_SKIP_ROWS, GL_PACK_SKIP_IMAGES, GL_PACK_SWAP_BYTES};
+constexpr GLenum kUnpackParams[] = {GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                                    GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES, GL_UNPACK_SWAP_BYTES};
+constexpr GLint kPixelDefaults[] = {4, 0, 0, 0, 0, 0, GL_FALSE};
 
 GLint getInt(GLenum what) {
   GLint v = 0;
@@ -37,6 +51,34 @@ void restoreIndexed(GLenum target, GLuint index, GLint buffer, GLint64 start, GL
 
 }  // namespace
 
+PixelTransferState::PixelTransferState() {
+  for (size_t i = 0; i < kParams; ++i) {
+    mPack[i] = getInt(kPackParams[i]);
+    mUnpack[i] = getInt(kUnpackParams[i]);
+  }
+  mPackBuffer = getInt(GL_PIXEL_PACK_BUFFER_BINDING);
+  mUnpackBuffer = getInt(GL_PIXEL_UNPACK_BUFFER_BINDING);
+}
+
+void PixelTransferState::restore() const {
+  for (size_t i = 0; i < kParams; ++i) {
+    glPixelStorei(kPackParams[i], mPack[i]);
+    glPixelStorei(kUnpackParams[i], mUnpack[i]);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(mPackBuffer));
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(mUnpackBuffer));
+}
+
+void PixelTransferState::setDefaults() {
+  static_assert(std::size(kPackParams) == kParams && std::size(kUnpackParams) == kParams && std::size(kPixelDefaults) == kParams);
+  for (size_t i = 0; i < kParams; ++i) {
+    glPixelStorei(kPackParams[i], kPixelDefaults[i]);
+    glPixelStorei(kUnpackParams[i], kPixelDefaults[i]);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
 SavedGlState::SavedGlState() {
   mDrawFramebuffer = getInt(GL_DRAW_FRAMEBUFFER_BINDING);
   mReadFramebuffer = getInt(GL_READ_FRAMEBUFFER_BINDING);
@@ -44,6 +86,8 @@ SavedGlState::SavedGlState() {
   mVertexArray = getInt(GL_VERTEX_ARRAY_BINDING);
   mActiveTexture = getInt(GL_ACTIVE_TEXTURE);
   glGetIntegerv(GL_VIEWPORT, mViewport.data());
+  glGetDoublev(GL_DEPTH_RANGE, mDepthRange.data());
+  mFrontFace = getInt(GL_FRONT_FACE);
   mDepthFunc = getInt(GL_DEPTH_FUNC);
   mClipOrigin = getInt(GL_CLIP_ORIGIN);
   mClipDepthMode = getInt(GL_CLIP_DEPTH_MODE);
@@ -79,6 +123,8 @@ void SavedGlState::restore() const {
   glUseProgram(glIsProgram(static_cast<GLuint>(mProgram)) ? static_cast<GLuint>(mProgram) : 0);
   glBindVertexArray(static_cast<GLuint>(mVertexArray));
   glViewport(mViewport[0], mViewport[1], mViewport[2], mViewport[3]);
+  glDepthRange(mDepthRange[0], mDepthRange[1]);
+  glFrontFace(static_cast<GLenum>(mFrontFace));
   glDepthFunc(static_cast<GLenum>(mDepthFunc));
   glClipControl(static_cast<GLenum>(mClipOrigin), static_cast<GLenum>(mClipDepthMode));
   // GL 4.5 core takes one mode for both faces; the query reports it twice.
@@ -105,16 +151,18 @@ void SavedGlState::restore() const {
     glBindSampler(i, static_cast<GLuint>(mTextures[i].sampler));
   }
   glActiveTexture(static_cast<GLenum>(mActiveTexture));
+  mPixelTransfer.restore();
 }
 
 void setPassDefaults() {
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_RASTERIZER_DISCARD);
+  for (size_t i = 0; i < kSwitchesOff; ++i) glDisable(kSwitches[i]);
+  for (GLuint i = 0; i < kClipDistances; ++i) glDisable(GL_CLIP_DISTANCE0 + i);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glFrontFace(GL_CCW);
+  // Shadow passes write linear light depth through the window depth: all of [0, 1] of it.
+  glDepthRange(0.0, 1.0);
+  PixelTransferState::setDefaults();
   // Maps are addressed with uv = ndc·½ + ½ from the bottom row; the depth mode does not matter
   // (shadow passes write gl_FragDepth with depth clamping on).
   GLint depthMode = GL_NEGATIVE_ONE_TO_ONE;

@@ -1,59 +1,64 @@
 #include "core/MapUpdateSchedule.h"
 
 #include <algorithm>
-#include <map>
 
 namespace penumbra::core {
 
 void MapUpdateSchedule::reset() { *this = {}; }
 
-void MapUpdateSchedule::forgetLight(size_t light) {
-  if (light < mLights.size()) mLights[light] = {};
-}
+void MapUpdateSchedule::forget(const LightKey& light) { mLights.erase(light); }
 
 void MapUpdateSchedule::beginFrame(std::span<const LightPolicy> lights) {
-  mLights.resize(lights.size());
+  std::map<LightKey, HeldLight> held;
+  for (const LightPolicy& l : lights)
+    if (auto it = mLights.find(l.key); it != mLights.end() && l.shadowed) held.insert(mLights.extract(it));
+  mLights = std::move(held);
   struct Candidate {
     int staleness;
-    size_t light, view;
+    HeldMap* map;
   };
-  // Budget pools: every light that shares the common budget (key lights.size()), and each light
-  // with a budget of its own (key: its index).
-  std::map<size_t, std::pair<int, std::vector<Candidate>>> pools;
-  for (size_t l = 0; l < mLights.size(); ++l) {
-    if (!lights[l].shadowed) mLights[l] = {};
-    const bool budget = lights[l].updates.policy == MapUpdates::Policy::Budget;
-    auto& pool = pools[lights[l].ownBudget ? l : lights.size()];
-    if (budget) pool.first = std::max(1, lights[l].updates.budgetMaps);
-    for (size_t v = 0; v < mLights[l].maps.size(); ++v) {
-      HeldMap& m = mLights[l].maps[v];
+  // Budget pools: every light that shares the common budget (key: none), and each light with a
+  // budget of its own (key: the light's).
+  struct Pool {
+    int budget = 0;
+    std::vector<Candidate> held;
+  };
+  Pool shared;
+  std::map<LightKey, Pool> own;
+  for (const LightPolicy& l : lights) {
+    const bool budget = l.updates.policy == MapUpdates::Policy::Budget;
+    Pool& pool = l.ownBudget ? own[l.key] : shared;
+    if (budget) pool.budget = std::max(1, l.updates.budgetMaps);
+    const auto it = mLights.find(l.key);
+    if (it == mLights.end()) continue;
+    for (HeldMap& m : it->second.maps) {
       m.update = !budget;
-      if (budget) pool.second.push_back({m.staleness, l, v});
+      if (budget) pool.held.push_back({m.staleness, &m});
     }
   }
-  for (auto& [key, pool] : pools) {
-    auto& [budget, held] = pool;
+  const auto pick = [](Pool& pool) {
     // The least recently updated first; on ties, light then view order.
-    std::stable_sort(held.begin(), held.end(), [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
-    for (size_t i = 0; i < held.size() && i < static_cast<size_t>(budget); ++i) mLights[held[i].light].maps[held[i].view].update = true;
-  }
+    std::stable_sort(pool.held.begin(), pool.held.end(), [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
+    for (size_t i = 0; i < pool.held.size() && i < static_cast<size_t>(pool.budget); ++i) pool.held[i].map->update = true;
+  };
+  pick(shared);
+  for (auto& [key, pool] : own) pick(pool);
 }
 
 void MapUpdateSchedule::beginFrame(const MapUpdates& updates, const std::vector<bool>& shadowed) {
   std::vector<LightPolicy> lights;
-  for (const bool s : shadowed) lights.push_back({s, updates, false});
+  for (size_t i = 0; i < shadowed.size(); ++i) lights.push_back({LightKey{0, i}, shadowed[i], updates, false});
   beginFrame(lights);
 }
 
-int MapUpdateSchedule::staleness(size_t light) const {
+int MapUpdateSchedule::staleness(const LightKey& light) const {
   int oldest = 0;
-  if (light < mLights.size())
-    for (const HeldMap& m : mLights[light].maps) oldest = std::max(oldest, m.staleness);
+  if (const auto it = mLights.find(light); it != mLights.end())
+    for (const HeldMap& m : it->second.maps) oldest = std::max(oldest, m.staleness);
   return oldest;
 }
 
-std::vector<uint8_t> MapUpdateSchedule::apply(size_t light, LightFrusta& frusta, int mapSize) {
-  if (light >= mLights.size()) mLights.resize(light + 1);
+std::vector<uint8_t> MapUpdateSchedule::apply(const LightKey& light, LightFrusta& frusta, int mapSize) {
   HeldLight& h = mLights[light];
   std::vector<uint8_t> kept(frusta.views.size(), 0);
   if (h.mapSize != mapSize || h.maps.size() != frusta.views.size()) {  // nothing held to keep: all drawn

@@ -50,6 +50,13 @@ double lightImportance(const Light& light, const Camera& camera, float aspect, c
   }
   const glm::vec3 toLight = light.position - camera.position;
   const float distanceM = glm::length(toLight);
+  if (camera.orthographic()) {
+    // The sphere's radius against the view's half extents, unless it lies wholly behind the eye.
+    if (glm::dot(toLight, camera.forward()) < -radiusM) return kMinImportance;
+    const double halfY = camera.orthoHalfHeightM, halfX = halfY * aspect;
+    const double r = radiusM;
+    return std::clamp((std::min(r, halfX) / halfX) * (std::min(r, halfY) / halfY), kMinImportance, 1.0);
+  }
   if (distanceM <= radiusM) return 1.0;  // the camera stands in its light
   // The sphere's angular radius against the image's half extents (tan of half the fields of view).
   const double sinR = radiusM / distanceM;

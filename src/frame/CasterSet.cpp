@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstddef>
+#include <cstring>
 
 namespace penumbra {
 namespace {
@@ -39,7 +41,9 @@ void check(const CasterMesh& m, size_t i) {
   const GLint64 vertexBytes = bufferBytes(m.vertexBuffer);
   if (m.indexBuffer != 0) {
     if (!glIsBuffer(m.indexBuffer)) fail(fmt::format("indexBuffer {} is not a GL buffer", m.indexBuffer));
-    const GLint64 needed = (static_cast<GLint64>(m.firstIndex) + m.count) * static_cast<GLint64>(sizeof(uint32_t));
+    if (m.indexType != IndexType::UInt32 && m.indexType != IndexType::UInt16)
+      fail(fmt::format("indexType {} is neither IndexType::UInt32 nor IndexType::UInt16", static_cast<uint32_t>(m.indexType)));
+    const GLint64 needed = (static_cast<GLint64>(m.firstIndex) + m.count) * static_cast<GLint64>(indexBytes(m.indexType));
     if (needed > bufferBytes(m.indexBuffer))
       fail(fmt::format("indices {}..{} lie beyond index buffer {} ({} bytes)", m.firstIndex, m.firstIndex + m.count - 1,
                        m.indexBuffer, bufferBytes(m.indexBuffer)));
@@ -62,6 +66,63 @@ bool isOf(const CasterMesh& m, CasterSet::Which which) {
 }
 
 }  // namespace
+
+glm::vec3 CasterGeometry::corner(size_t t, int c) const {
+  size_t vertex = 3 * t + static_cast<size_t>(c);
+  if (!indices.empty()) {
+    if (indexType == IndexType::UInt16) {
+      uint16_t i = 0;
+      std::memcpy(&i, indices.data() + vertex * sizeof(uint16_t), sizeof(i));
+      vertex = i;
+    } else {
+      uint32_t i = 0;
+      std::memcpy(&i, indices.data() + vertex * sizeof(uint32_t), sizeof(i));
+      vertex = i;
+    }
+  }
+  glm::vec3 p(0.0f);
+  std::memcpy(&p, vertices.data() + vertex * stride + positionOffset, sizeof(p));
+  return p;
+}
+
+std::vector<CasterGeometry> casterGeometry(const Scene& scene) {
+  std::vector<CasterGeometry> out;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow) continue;
+    const Mesh& mesh = scene.meshes[o.mesh];
+    CasterGeometry g;
+    g.vertices = std::as_bytes(std::span<const glm::vec3>(mesh.positions));
+    g.stride = sizeof(glm::vec3);
+    g.positionOffset = 0;
+    g.indices = std::as_bytes(std::span<const uint32_t>(mesh.indices));
+    g.indexType = IndexType::UInt32;
+    g.worldFromObject = o.worldFromObject;
+    out.push_back(g);
+  }
+  return out;
+}
+
+void checkCasterGeometry(const CasterGeometry& g, size_t i) {
+  const auto fail = [i](const std::string& why) { throw usageError(fmt::format("caster geometry {}: {}", i, why)); };
+  if (g.stride < kPositionBytes) fail(fmt::format("stride {} is below the 12 bytes of a position", g.stride));
+  if (g.positionOffset + kPositionBytes > g.stride)
+    fail(fmt::format("positionOffset {} + 12 bytes lies beyond the stride {}", g.positionOffset, g.stride));
+  if (g.vertices.size() % g.stride != 0) fail(fmt::format("{} vertex bytes are not whole records of {}", g.vertices.size(), g.stride));
+  const size_t count = g.indices.empty() ? g.vertexCount() : g.indices.size() / indexBytes(g.indexType);
+  if (count % 3 != 0) fail(fmt::format("{} {} are not whole triangles", count, g.indices.empty() ? "vertices" : "indices"));
+  if (!g.indices.empty() && g.indices.size() % indexBytes(g.indexType) != 0) fail("the index bytes are not whole indices");
+  for (size_t k = 0; k < (g.indices.empty() ? 0 : count); ++k) {
+    uint32_t index = 0;
+    if (g.indexType == IndexType::UInt16) {
+      uint16_t i16 = 0;
+      std::memcpy(&i16, g.indices.data() + k * sizeof(uint16_t), sizeof(i16));
+      index = i16;
+    } else {
+      std::memcpy(&index, g.indices.data() + k * sizeof(uint32_t), sizeof(index));
+    }
+    if (index >= g.vertexCount()) fail(fmt::format("index {} ({}) is beyond its {} vertices", k, index, g.vertexCount()));
+  }
+}
 
 size_t CasterSet::vaoFor(const Layout& layout) {
   for (size_t i = 0; i < mLayouts.size(); ++i)
@@ -120,6 +181,7 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
     for (const uint32_t v : {m.vertexBuffer, m.stride, m.positionOffset, m.uvOffset, m.indexBuffer, m.firstIndex, m.count,
                              static_cast<uint32_t>(m.baseVertex), m.alphaTexture})
       statics.value(v);
+    if (m.indexType != IndexType::UInt32) statics.value(static_cast<uint32_t>(m.indexType));
     statics.value(m.worldFromObject);
     statics.value(m.alphaCutoff);
   }
@@ -142,8 +204,9 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
       if (m.indexBuffer != 0)
-        glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count), GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * sizeof(uint32_t)),
+        glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count),
+                                 m.indexType == IndexType::UInt16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * indexBytes(m.indexType)),
                                  m.baseVertex);
       else
         glDrawArrays(GL_TRIANGLES, static_cast<GLint>(m.firstIndex), static_cast<GLsizei>(m.count));

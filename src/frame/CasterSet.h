@@ -13,6 +13,14 @@
 
 namespace penumbra {
 
+/// The casting objects of `scene` (Object::castsShadow), in order, as CasterGeometry over the
+/// scene's own vertex and index vectors (valid while the scene is unchanged).
+std::vector<CasterGeometry> casterGeometry(const Scene& scene);
+
+/// Throws a usage Error naming caster geometry `i` when its records do not hold whole triangles
+/// of positions within its vertices (a stride below 12 bytes, an index beyond the vertices, …).
+void checkCasterGeometry(const CasterGeometry& geometry, size_t i);
+
 class CasterSet {
 public:
   /// Replaces the casters. Checks each record against the GL objects it names (buffers exist and

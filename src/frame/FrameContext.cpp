@@ -56,28 +56,34 @@ ShaderDefines FrameContext::frameDefines() const {
   return d;
 }
 
+ShaderDefines surfaceDefines(const SurfaceFacts& surface) {
+  ShaderDefines d;
+  if (surface.source == SurfaceSource::Depth) d.set("PN_SURFACE_FROM_DEPTH");
+  if (surface.normalsFromPositions) d.set("PN_NORMALS_FROM_POSITIONS");
+  if (surface.orthographicCamera) d.set("PN_CAMERA_ORTHOGRAPHIC");
+  return d;
+}
+
+ShaderDefines FrameContext::surfaceDefines() const { return penumbra::surfaceDefines(mSurface); }
+
 const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const ShaderDefines& defines) {
   ProgramDesc d;
   d.label = "visibility " + std::string(filterFile);
   const std::vector<std::string> sources = {std::string(filterFile), "passes/visibility.glsl"};
   d.defines = frameDefines();
+  for (const auto& [name, value] : mParams.compileTimeConstants()) d.defines.set(std::string(name), value);
   d.defines.merge(defines);
-  if (mSurface == SurfaceSource::Depth && !mPoints) d.defines.set("PN_SURFACE_FROM_DEPTH");
   if (mPoints) {
+    // A point list brings its own positions and normals; only the camera's kind still matters.
+    if (mSurface.orthographicCamera) d.defines.set("PN_CAMERA_ORTHOGRAPHIC");
     d.label += " (points)";
     d.defines.set("PN_VISIBILITY_POINTS");
     d.compute = sources;
     return mShaders.program(d);
   }
+  d.defines.merge(surfaceDefines());
   d.fragment = sources;
   return mShaders.program(fullScreenProgram(d));
-}
-
-const gl::Program& FrameContext::visibilityProgram(std::string_view filterFile, const Parameterized& params,
-                                                  const ShaderDefines& defines) {
-  ShaderDefines all;
-  for (const auto& [name, value] : params.compileTimeConstants()) all.set(std::string(name), value);
-  return visibilityProgram(filterFile, all.merge(defines));
 }
 
 const gl::Program& FrameContext::screenProgram(std::string_view file, const Parameterized& params) {
@@ -86,7 +92,7 @@ const gl::Program& FrameContext::screenProgram(std::string_view file, const Para
   d.label = "screen " + std::string(file);
   d.compute = {std::string(file)};
   d.defines = frameDefines();
-  if (mSurface == SurfaceSource::Depth) d.defines.set("PN_SURFACE_FROM_DEPTH");
+  d.defines.merge(surfaceDefines());
   for (const auto& [name, value] : params.compileTimeConstants()) d.defines.set(std::string(name), value);
   return mShaders.program(d);
 }

@@ -9,11 +9,12 @@
 #include "frame/ShadowMaps.h"
 #include "shader/ShaderLibrary.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 #include <penumbra/Scene.h>
 
 #include <glm/glm.hpp>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -29,6 +30,19 @@ enum class SurfaceSource {
   Depth,     ///< the camera's depth texture, unprojected with FrameUniforms::worldFromClip
 };
 
+/// What the frame's surfaces and camera are, as the screen passes' programs are built for them.
+struct SurfaceFacts {
+  SurfaceSource source = SurfaceSource::Position;
+  /// No normal texture: each pixel's geometric normal is reconstructed from its neighbours'
+  /// positions (PN_NORMALS_FROM_POSITIONS, common/visibility.glsl).
+  bool normalsFromPositions = false;
+  /// The camera is orthographic: its rays are parallel (PN_CAMERA_ORTHOGRAPHIC).
+  bool orthographicCamera = false;
+};
+/// How a screen pass reads such surfaces (common/visibility.glsl): PN_SURFACE_FROM_DEPTH,
+/// PN_NORMALS_FROM_POSITIONS, PN_CAMERA_ORTHOGRAPHIC, each where it holds.
+ShaderDefines surfaceDefines(const SurfaceFacts& surface);
+
 /// Cached shadow maps across frames (MapUpdates): how many layers renderViews restored and
 /// rendered.
 struct MapCacheState {
@@ -38,11 +52,14 @@ struct MapCacheState {
 /// Everything a frame's FrameContext refers to; owned by the core, alive for the frame.
 struct FrameResources {
   const Light& light;
-  const Scene* cpuScene;  ///< the casters' triangles on the CPU, when the caller gave them
+  /// The filter's parameter values for this light (its technique's, Technique::filterValues).
+  const Parameterized& params;
+  /// The casters' triangles on the CPU, when the caller gave them (Shadows::setCasterGeometry).
+  std::optional<std::span<const CasterGeometry>> casterGeometry;
   const LightFrusta& frusta;
   int mapSize;
   glm::ivec2 screen;
-  SurfaceSource surface;
+  SurfaceFacts surface;
   ShaderLibrary& shaders;
   const CasterSet& casters;
   gl::Buffer& filterBlock;
@@ -60,15 +77,19 @@ struct FrameResources {
 class FrameContext {
 public:
   explicit FrameContext(const FrameResources& r)
-      : mLight(r.light), mCpuScene(r.cpuScene), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
+      : mLight(r.light), mParams(r.params), mCasterGeometry(r.casterGeometry), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
         mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
         mVisibilityTarget(r.visibilityTarget) {}
 
-  /// The casters' triangles on the CPU (Shadows::setCasterGeometry); nullptr when the caller
-  /// gave none. Only techniques that bake the geometry (sdf) need them.
-  const Scene* cpuScene() const { return mCpuScene; }
+  /// The casters' triangles on the CPU (Shadows::setCasterGeometry); none when the caller gave
+  /// none. Only techniques that bake the geometry (sdf) need them.
+  std::optional<std::span<const CasterGeometry>> casterGeometry() const { return mCasterGeometry; }
   const Light& light() const { return mLight; }
+  /// The filter's parameters for this light: its technique's values (the filter holds none).
+  const Parameterized& params() const { return mParams; }
+  float param(std::string_view key) const { return mParams.param(key); }
+  int paramInt(std::string_view key) const { return mParams.paramInt(key); }
   const LightFrusta& frusta() const { return mFrusta; }
   int viewCount() const { return static_cast<int>(mFrusta.views.size()); }
   int mapSize() const { return mMapSize; }
@@ -94,20 +115,21 @@ public:
   ShadowPrograms shadowProgram(std::string_view fragment = kDepthOnlyFragment, const ShaderDefines& defines = {});
   static constexpr std::string_view kDepthOnlyFragment = "passes/shadow_depth.frag.glsl";
   /// Visibility program: the filter's GLSL file (defining shadowVisibility) + the pass's main,
-  /// built for this frame: frameDefines(), the SurfaceSource (PN_SURFACE_FROM_DEPTH), points
-  /// mode, then the filter's own `defines`. Over the screen it is a fragment program
-  /// (fullScreenProgram: the full-screen triangle drawn into the light's visibility layer);
-  /// in points mode a compute program. Each variant is compiled once (the library's cache).
+  /// built for this frame: frameDefines(), the surfaces (surfaceDefines()), points mode, the
+  /// filter's compile-time parameters (ParamDesc::define), then the filter's own `defines`. Over
+  /// the screen it is a fragment program (fullScreenProgram: the full-screen triangle drawn into
+  /// the light's visibility layer); in points mode a compute program. Each variant is compiled
+  /// once (the library's cache).
   const gl::Program& visibilityProgram(std::string_view filterFile, const ShaderDefines& defines = {});
-  /// The same with the filter's compile-time parameters (ParamDesc::define) among the defines.
-  const gl::Program& visibilityProgram(std::string_view filterFile, const Parameterized& params,
-                                       const ShaderDefines& defines = {});
   /// A screen pass of the frame's own (one GLSL file with its main) over the same surfaces as
   /// the visibility pass, built like it: frameDefines(), the SurfaceSource, `params`' constants.
   const gl::Program& screenProgram(std::string_view file, const Parameterized& params);
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
   /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
   ShaderDefines frameDefines() const;
+  /// How the screen passes read the surfaces (common/visibility.glsl): PN_SURFACE_FROM_DEPTH,
+  /// PN_NORMALS_FROM_POSITIONS, PN_CAMERA_ORTHOGRAPHIC, each where it holds.
+  ShaderDefines surfaceDefines() const;
 
   /// Renders every view into its layer of `maps` with `program`: depth cleared to 1 (far),
   /// colour cleared to `clearColor`; depth test LESS, depth clamp on (casters in front of the
@@ -145,11 +167,12 @@ public:
 
 private:
   const Light& mLight;
-  const Scene* mCpuScene;
+  const Parameterized& mParams;
+  std::optional<std::span<const CasterGeometry>> mCasterGeometry;
   const LightFrusta& mFrusta;
   int mMapSize;
   glm::ivec2 mScreen;
-  SurfaceSource mSurface;
+  SurfaceFacts mSurface;
   ShaderLibrary& mShaders;
   const CasterSet& mCasters;
   gl::Buffer& mFilterBlock;

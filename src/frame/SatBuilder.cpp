@@ -70,7 +70,7 @@ void SatBuilder::build(ShaderLibrary& shaders, const gl::Texture& depth, int mom
   const size_t elements = tableBytes / kPairBytes;
   PN_CHECK(elements <= static_cast<size_t>(std::numeric_limits<int32_t>::max()),
            fmt::format("the summed-area table of {} view(s) of {}x{} texels with {} moments has {} entries, more than "
-                       "its 32-bit index reaches; use a smaller --shadow-map",
+                       "its 32-bit index reaches; use smaller maps (Technique::mapSize)",
                        views, w, h, momentCount, elements));
   if (!mTable || mTable.size() != tableBytes) mTable = gl::Buffer("summed-area table", tableBytes);
   mPairs = pairs;

@@ -30,8 +30,8 @@ std::string glErrorText(GLenum e) {
     case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
     case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY:
-      return "GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try smaller maps, with --shadow-map or "
-             "a light's shadow.mapSize in its scene file, or a smaller --size)";
+      return "GL_OUT_OF_MEMORY (the shadow maps, the filter's tables or the image do not fit: try smaller maps (Technique::mapSize, "
+             "or a light's shadow.mapSize in its scene file: LightShadowSettings::mapSize) or a smaller image)";
     case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
     case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
     case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";

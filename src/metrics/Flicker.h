@@ -12,6 +12,7 @@
 #include <penumbra/Image.h>
 #include <penumbra/Math.h>
 #include <penumbra/Shadows.h>
+#include <penumbra/ShadowsDebug.h>
 
 #include <cstddef>
 #include <cstdint>

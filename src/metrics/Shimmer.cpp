@@ -69,7 +69,7 @@ ShimmerResult measureShimmer(Renderer& renderer, const RenderOptions& render, co
   const std::vector<float> v0 = renderer.readVisibility();
   ShimmerResult result;
   result.steps = o.steps;
-  result.texelM = firstViewTexelM(renderer.frusta(), render.shadowMapSize);
+  result.texelM = firstViewTexelM(renderer.frusta(), renderer.technique().mapSize());
   const std::vector<Camera> path = shimmerCameraPath(start, o.steps, result.texelM, o);
 
   // Frame 0's points near a shadow edge that stay in view along the whole path.

@@ -4,6 +4,8 @@
 #include <penumbra/Renderer.h>
 
 #include "core/FrameBlocks.h"
+#include "core/ShadowsAccess.h"
+#include "frame/CasterSet.h"
 #include "frame/FrameContext.h"
 #include "frame/PassTimer.h"
 #include "frame/ScreenTarget.h"
@@ -67,7 +69,7 @@ struct Renderer::Impl {
   int gbufferColors = 0;      // draw buffers of gbuffer: 5 with the triangle ids, 4 without
   gl::VertexArray emptyVao{"renderer full-screen vao"};  // the G-buffer background's (no attributes)
   int frameIndex = 0;
-  int mapSize = 0;                   // of the last frame
+  bool rendered = false;             // a frame was rendered since setScene
   bool triangleIds = false;          // of the last frame
   int debugView = PN_VIEW_SHADED;    // of the last frame
 
@@ -98,12 +100,14 @@ struct Renderer::Impl {
     size = s;
   }
 
-  /// The scene's casters (and the bounds of the objects that only receive) to the core.
+  /// The scene's casters (and the bounds of the objects that only receive: the scene is every
+  /// receiver there is) to the core, on the GPU and on the CPU (for filters that bake them).
   void sendCasters() {
     std::vector<Aabb> receivers;
     for (const Object& o : scene.objects)
       if (!o.castsShadow) receivers.push_back(scene.meshes[o.mesh].bounds().transformed(o.worldFromObject));
-    shadows.setCasters(gpuScene->casterMeshes(scene), receivers);
+    shadows.setCasters(gpuScene->casterMeshes(scene), {.bounds = receivers, .complete = true});
+    shadows.setCasterGeometry(casterGeometry(scene));
   }
 
   ShadowCamera camera() const {
@@ -124,19 +128,18 @@ Renderer::Renderer() : mImpl(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
 const Scene& Renderer::scene() const { return mImpl->scene; }
-Projection& Renderer::projection() { return mImpl->shadows.projection(); }
-Filter& Renderer::filter() { return mImpl->shadows.filter(); }
-const LightFrusta& Renderer::frusta(size_t light) const { return mImpl->shadows.frusta(light); }
+const Technique& Renderer::technique() const { return mImpl->shadows.technique(); }
+const LightFrusta& Renderer::frusta(size_t light) const { return penumbra::frusta(mImpl->shadows, light); }
 const PassTimings& Renderer::timings() const { return mImpl->timings; }
-ShaderLibrary& Renderer::shaders() { return mImpl->shadows.shaders(); }
+ShaderLibrary& Renderer::shaders() { return shaderLibrary(mImpl->shadows); }
 Shadows& Renderer::shadows() { return mImpl->shadows; }
 
 void Renderer::setScene(Scene scene) {
   scene.validate();
   mImpl->scene = std::move(scene);
   mImpl->gpuScene = std::make_unique<GpuScene>(mImpl->scene);
+  mImpl->rendered = false;
   mImpl->sendCasters();
-  mImpl->shadows.setCasterGeometry(&mImpl->scene);
 }
 
 void Renderer::setPose(const Scene& posed) {
@@ -154,15 +157,24 @@ void Renderer::setPose(const Scene& posed) {
   im.sendCasters();
 }
 
-void Renderer::setTechnique(std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter) {
-  mImpl->shadows.setTechnique(std::move(projection), std::move(filter), mImpl->gpuScene ? &mImpl->scene.light() : nullptr);
+void Renderer::setTechnique(const Technique& technique) {
+  if (mImpl->gpuScene) {
+    const bool several = mImpl->scene.lights.size() > 1;
+    for (size_t i = 0; i < mImpl->scene.lights.size(); ++i) {
+      const Light& l = mImpl->scene.lights[i];
+      const std::string which = several ? fmt::format("light {}", i) : "";
+      const Technique merged = technique.forLight(l.shadow, which);
+      if (const std::string why = l.castsShadow ? merged.problemWith(l) : ""; !why.empty())
+        throw usageError(which.empty() ? why : fmt::format("{}: {}", which, why));
+    }
+  }
+  mImpl->shadows.setTechnique(technique);
 }
 
 void Renderer::render(const RenderOptions& options) {
   PN_CHECK(mImpl->gpuScene, "render() before setScene()");
   Impl& im = *mImpl;
   im.ensureScreen({options.width, options.height});
-  im.mapSize = options.shadowMapSize;
   im.debugView = options.debugView;
 
   im.timer.beginFrame();
@@ -220,11 +232,11 @@ void Renderer::render(const RenderOptions& options) {
   in.surfaces = {im.size.x, im.size.y, im.depth.id(), im.geoNormal.id(), im.position.id()};
   PN_CHECK(!im.scene.lights.empty(), "render(): the scene has no light");
   in.lights = im.scene.lights;
-  in.mapSize = options.shadowMapSize;
   in.mapBudgetTexels = options.shadowBudgetTexels;
   in.restore = RestoreState::None;  // this renderer sets what each of its passes needs
   in.cameraCut = options.cameraCut;
   im.shadows.render(in);
+  im.rendered = true;
 
   im.timer.beginFrame();
   {
@@ -260,7 +272,7 @@ void Renderer::runLitPass() {
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
   glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityArrayTexture());
-  im.shadows.bindFrameBlocks();  // the shadow views: cascade and texel-density debug views
+  bindFrameBlocks(im.shadows);  // the shadow views: cascade and texel-density debug views
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
   glDisable(GL_DITHER);  // the colour is written as computed, as an image store would
   im.litTarget.draw(program, im.size);
@@ -268,12 +280,12 @@ void Renderer::runLitPass() {
 }
 
 std::vector<float> Renderer::visibilityAt(std::span<const SurfaceSample> points, size_t light) {
-  PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "visibilityAt() before render()");
-  return mImpl->shadows.visibilityAt(points, light);
+  PN_CHECK(mImpl->gpuScene && mImpl->rendered, "visibilityAt() before render()");
+  return penumbra::visibilityAt(mImpl->shadows, points, light);
 }
 
 std::vector<float> Renderer::computeScreenScalar(const std::string& computeShader) {
-  PN_CHECK(mImpl->gpuScene && mImpl->mapSize > 0, "computeScreenScalar() before render()");
+  PN_CHECK(mImpl->gpuScene && mImpl->rendered, "computeScreenScalar() before render()");
   Impl& im = *mImpl;
   ProgramDesc d;
   d.label = computeShader;
@@ -284,7 +296,7 @@ std::vector<float> Renderer::computeScreenScalar(const std::string& computeShade
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.geoNormal.bindUnit(PN_TEX_GBUF_GEONORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
-  im.shadows.bindFrameBlocks();
+  bindFrameBlocks(im.shadows);
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
   target.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   FrameContext::dispatch2D(program, im.size.x, im.size.y, PN_SCREEN_GROUP);
@@ -328,7 +340,7 @@ void Renderer::setCameraAndLights(const Camera& camera, const std::vector<Light>
 const gl::Texture& Renderer::colorTexture() const { return mImpl->color; }
 
 std::vector<DebugImage> Renderer::debugImages(size_t light) const {
-  std::vector<DebugImage> core = mImpl->shadows.debugImages(light);
+  std::vector<DebugImage> core = penumbra::debugImages(mImpl->shadows, light);
   std::vector<DebugImage> out = {core.front(),  // the visibility
                                  {"gbuffer-depth", &mImpl->depth, "camera depth, reversed-Z: 1 = near plane, 0 = infinitely far"},
                                  {"gbuffer-normal", &mImpl->normal, "world-space shading normal, x y z in [−1, 1]"},
@@ -404,8 +416,9 @@ void Renderer::dump(const std::string& dirName) const {
   const std::filesystem::path dir(dirName);
   const ColorImage color = readColor();
   writePng(dir / "color.png", color.width, color.height, color.rgba);
-  for (const DebugImage& d : mImpl->shadows.debugImages())
-    if (d.name == "visibility") dumpTexture(dir, d.name, *d.texture);
+  const std::vector<DebugImage> images = penumbra::debugImages(mImpl->shadows);
+  for (const DebugImage& d : images)
+    if (d.name == "visibility" && d.texture) dumpTexture(dir, d.name, *d.texture);
   dumpTexture(dir, "gbuffer-depth", mImpl->depth);
   // Normals and albedo as viewable colour images.
   const GBufferData g = readGBuffer();
@@ -421,8 +434,8 @@ void Renderer::dump(const std::string& dirName) const {
   writeVec("gbuffer-normal.png", g.normal, 0.5f, 0.5f);
   writeVec("gbuffer-geometric-normal.png", g.geoNormal, 0.5f, 0.5f);
   writeVec("gbuffer-albedo.png", g.albedo, 1.0f, 0.0f);
-  for (const DebugImage& d : mImpl->shadows.filter().debugImages())
-    if (d.texture && *d.texture) dumpTexture(dir, d.name, *d.texture);
+  for (const DebugImage& d : images)
+    if (d.name != "visibility" && d.texture && *d.texture) dumpTexture(dir, d.name, *d.texture);
 }
 
 }  // namespace penumbra

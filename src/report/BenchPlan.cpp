@@ -1,7 +1,7 @@
 #include "report/BenchPlan.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -23,16 +23,11 @@ float parseFloat(std::string_view text, std::string_view whole) {
   return v;
 }
 
-// The ParamDesc of `key` for this projection + filter, or nullopt when neither declares it.
-std::optional<ParamDesc> findDesc(std::string_view key, const Projection& projection, const Filter& filter) {
+// The ParamDesc of `key` for the scene or this technique, or nullopt when neither declares it.
+std::optional<ParamDesc> findDesc(std::string_view key, const Technique& technique) {
   for (const ParamDesc& d : sceneParamDescs())
     if (d.key == key) return d;
-  for (const ParamDesc& d : projection.paramDescs())
-    if (d.key == key) return d;
-  for (const ParamDesc& d : filter.paramDescs())
-    if (d.key == key) return d;
-  for (const ParamDesc& d : makeAddOns()->paramDescs())
-    if (d.key == key) return d;
+  if (technique.has(key)) return technique.desc(key);
   return std::nullopt;
 }
 
@@ -106,13 +101,12 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
     for (const std::string& scene : plan.scenes)
       for (const std::string& projectionId : plan.projections)
         for (const std::string& filterId : plan.filters) {
-          const std::unique_ptr<Projection> projection = makeProjection(projectionId);
-          const std::unique_ptr<Filter> filter = makeFilter(filterId);
+          const Technique technique(projectionId, filterId);
           // Cross product of the values of the sweeps that apply to this technique.
           std::vector<std::vector<std::pair<std::string, std::string>>> combos = {{}};
           for (size_t i = 0; i < plan.sweeps.size(); ++i) {
             const Sweep& sweep = plan.sweeps[i];
-            const std::optional<ParamDesc> desc = findDesc(sweep.key, *projection, *filter);
+            const std::optional<ParamDesc> desc = findDesc(sweep.key, technique);
             if (!desc) continue;
             sweepUsed[i] = true;
             std::vector<std::vector<std::pair<std::string, std::string>>> next;

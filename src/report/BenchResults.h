@@ -6,7 +6,7 @@
 
 #include "metrics/Flicker.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 #include <penumbra/Metrics.h>
 
 #include <cstddef>
@@ -38,9 +38,10 @@ struct PassStats {
 };
 
 /// The passes a technique runs every frame (the core's: docs/design.md), "contact" only when
-/// contact shadows are on: their sum is its frame cost of shadowing. The G-buffer and lit passes
-/// are the same for every technique.
-inline constexpr const char* kShadowCostPasses[] = {"shadow", "prefilter", "visibility", "contact"};
+/// contact shadows are on, "projection" only for a projection that measures the pixels (sdsm):
+/// their sum is its frame cost of shadowing. The G-buffer and lit passes are the same for every
+/// technique.
+inline constexpr const char* kShadowCostPasses[] = {"projection", "shadow", "prefilter", "visibility", "contact"};
 
 /// Per pass, the time of each timed frame (ms), in frame order.
 using FrameSamples = std::vector<std::pair<std::string, std::vector<double>>>;

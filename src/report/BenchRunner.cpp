@@ -41,9 +41,8 @@ void writeImage(const std::filesystem::path& dir, const std::string& relative, c
   writePng(dir / relative, img.width, img.height, img.rgba);
 }
 
-RenderOptions renderOptions(const BenchSettings& set, int shadowMapSize) {
-  return {.width = set.width, .height = set.height, .shadowMapSize = shadowMapSize,
-          .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
+RenderOptions renderOptions(const BenchSettings& set) {
+  return {.width = set.width, .height = set.height, .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
 }
 
 // The whole cost of the renderer's last frame: its kShadowCostPasses.
@@ -60,11 +59,14 @@ void retimeContenders(BenchResults& results, const SetupFactory& makeSetup, cons
     if (p.contenders.size() < 2) continue;  // nothing to compare: its own frames stand
     std::vector<BenchConfig> configs;
     std::vector<RenderOptions> renders;
+    std::vector<int> mapSizes;
     for (const size_t i : p.contenders) {
       configs.push_back(results.rows[i].config);
-      renders.push_back(renderOptions(set, results.rows[i].shadowMapSize));
+      renders.push_back(renderOptions(set));
+      mapSizes.push_back(results.rows[i].shadowMapSize);
     }
-    const std::vector<std::vector<double>> ms = timeInterleaved(configs, renders, makeSetup, set.warmupFrames, set.retimeRounds);
+    const std::vector<std::vector<double>> ms =
+        timeInterleaved(configs, renders, mapSizes, makeSetup, set.warmupFrames, set.retimeRounds);
     for (size_t k = 0; k < p.contenders.size(); ++k)
       results.rows[p.contenders[k]].rounds = RoundCosts{.group = p.situation->id, .ms = ms[k], .stats = timeStats(ms[k])};
     if (options.verbose || options.progress)
@@ -76,15 +78,16 @@ void retimeContenders(BenchResults& results, const SetupFactory& makeSetup, cons
 }  // namespace
 
 std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
-                                                 const SetupFactory& makeSetup, int warmupFrames, int rounds) {
-  PN_CHECK(configs.size() == renders.size(), "timeInterleaved: one render setting per configuration");
+                                                 const std::vector<int>& mapSizes, const SetupFactory& makeSetup, int warmupFrames,
+                                                 int rounds) {
+  PN_CHECK(configs.size() == renders.size() && configs.size() == mapSizes.size(),
+           "timeInterleaved: one render setting and map size per configuration");
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (size_t k = 0; k < configs.size(); ++k) {
     BenchSetup s = makeSetup(configs[k]);
     auto r = std::make_unique<Renderer>();
-    r->setScene(s.scene);
-    r->setTechnique(std::move(s.projection), std::move(s.filter));
-    r->shadows().addOns() = *s.addOns;
+    r->setScene(std::move(s.scene));
+    r->setTechnique(s.technique.setMapSize(mapSizes[k]));
     for (int w = 0; w < std::max(warmupFrames, 1); ++w) r->render(renders[k]);
     renderers.push_back(std::move(r));
   }
@@ -172,15 +175,15 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
       currentLight = light;
     }
-    const RenderOptions render = renderOptions(set, set.shadowMapSize.value_or(s.scene.shadow.mapSize));
+    if (set.shadowMapSize) s.technique.setMapSize(*set.shadowMapSize);
+    const RenderOptions render = renderOptions(set);
     const auto done = [&] {
       bar->advance(1);
       if (options.configDone) options.configDone();
     };
     const auto configStart = Clock::now();
     try {
-      renderer.setTechnique(std::move(s.projection), std::move(s.filter));
-      renderer.shadows().addOns() = *s.addOns;
+      renderer.setTechnique(s.technique);
     } catch (const Error& e) {
       if (e.kind() != ErrorKind::Usage) throw;
       results.skipped.push_back({c, e.what(), false});
@@ -211,8 +214,8 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.lights = static_cast<int>(renderer.lightCount());
       row.width = set.width;
       row.height = set.height;
-      row.shadowMapSize = render.shadowMapSize;
-      row.grantedMapSize = render.shadowMapSize;
+      row.shadowMapSize = s.technique.mapSize();
+      row.grantedMapSize = s.technique.mapSize();
       for (const LightShadowReport& l : renderer.shadows().lightReports())
         if (l.views > 0) {
           row.grantedMapSize = l.mapSize;
@@ -223,7 +226,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.frameMs = std::move(times.frameMs);
       row.shadowCost = times.shadowCost;
       row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
-      row.oneOff = renderer.filter().oneOffCosts();
+      row.oneOff = oneOffCosts(renderer.shadows());
       row.metrics = cmp.metrics;
       // One-off work (a bake) is redone as casters move: such a row is left out where they may.
       const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();

@@ -5,10 +5,8 @@
 // light.size sweep does not) and cached on disk; the image-grid images; micro-benchmarks.
 #include "report/BenchResults.h"
 
-#include <penumbra/Filter.h>
-#include <penumbra/Registry.h>
-#include <penumbra/Projection.h>
 #include <penumbra/Scene.h>
+#include <penumbra/Technique.h>
 
 #include <penumbra/Renderer.h>
 
@@ -28,9 +26,7 @@ namespace penumbra::report {
 /// scene-level params and --set rules live in one place.
 struct BenchSetup {
   Scene scene;
-  std::unique_ptr<Projection> projection;
-  std::unique_ptr<Filter> filter;
-  std::unique_ptr<Parameterized> addOns = makeAddOns();  ///< "contact.*", "temporal.*"
+  Technique technique;  ///< ids, map size (the scene's) and every parameter (add-ons included)
 };
 using SetupFactory = std::function<BenchSetup(const BenchConfig&)>;
 
@@ -66,12 +62,13 @@ WarmTimes timeWarmFrames(Renderer& renderer, const RenderOptions& render, int wa
                          double maxSeconds = std::numeric_limits<double>::infinity());
 
 /// Times configurations in interleaved rounds: each in a renderer of its own (scene and technique
-/// from `makeSetup`, rendered with its `renders` entry), `warmupFrames` untimed frames each, then
+/// from `makeSetup`, its maps of its `mapSizes` entry, rendered with its `renders` entry), `warmupFrames` untimed frames each, then
 /// `rounds` rounds of one frame of each, so that a round's times share the machine's load and a
 /// ratio taken within a round cancels it. Returns per configuration its whole cost (the
 /// kShadowCostPasses of the frame) in each round. Errors of the factory or the renderer propagate.
 std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
-                                                 const SetupFactory& makeSetup, int warmupFrames, int rounds);
+                                                 const std::vector<int>& mapSizes, const SetupFactory& makeSetup, int warmupFrames,
+                                                 int rounds);
 
 /// "city-csm-pcss" → a file-name-safe stem (letters, digits, '.', '-', '_').
 std::string fileStem(std::string_view text);

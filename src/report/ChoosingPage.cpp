@@ -5,7 +5,7 @@
 #include "report/SvgChart.h"
 
 #include <penumbra/Files.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 
 #include "report/ReportCharts.h"
 
-#include <penumbra/Registry.h>
+#include <penumbra/Technique.h>
 
 #include <fmt/format.h>
 
@@ -126,15 +126,11 @@ namespace {
 /// plan's `contact.shadows=off` row): the same configuration as the plain row, measured again.
 bool sweepsOnlyDefaults(const BenchConfig& c) {
   if (c.params.empty()) return false;
-  const std::unique_ptr<Parameterized> owners[] = {makeFilter(c.filter), makeProjection(c.projection), makeAddOns()};
+  const Technique technique(c.projection, c.filter);
   for (const auto& [key, value] : c.params) {
-    const Parameterized* owner = nullptr;
-    for (const auto& o : owners)
-      if (o->hasParam(key)) owner = o.get();
-    if (!owner) return false;  // a scene parameter (light.size, light.count): another scene
-    const auto descs = owner->paramDescs();
-    const auto d = std::find_if(descs.begin(), descs.end(), [&](const ParamDesc& desc) { return desc.key == key; });
-    if (parseParamValue(*d, value) != d->def) return false;
+    if (!technique.has(key)) return false;  // a scene parameter (light.size, light.count): another scene
+    const ParamDesc& d = technique.desc(key);
+    if (parseParamValue(d, value) != d.def) return false;
   }
   return true;
 }

@@ -4,7 +4,6 @@
 #include "frame/PassTimer.h"
 #include "reference/RayBenchmark.h"
 
-#include <penumbra/Registry.h>
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 
@@ -23,9 +22,9 @@ std::shared_ptr<reference::RayBenchmark> makeBenchmark(int width, int height) {
   const Scene scene = makeBuiltinScene("boxes");
   Renderer renderer;
   renderer.setScene(scene);
-  renderer.setTechnique(makeProjection("uniform"), makeFilter("hard"));
   constexpr int kMapSize = 512;  // any: the G-buffer does not depend on it
-  renderer.render({.width = width, .height = height, .shadowMapSize = kMapSize, .debugView = 0});
+  renderer.setTechnique(Technique("uniform", "hard").setMapSize(kMapSize));
+  renderer.render({.width = width, .height = height, .debugView = 0});
   return std::make_shared<reference::RayBenchmark>(scene, renderer.readGBuffer(), scene.light(), kReferenceBaselineSamples);
 }
 

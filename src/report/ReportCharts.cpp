@@ -1,8 +1,7 @@
 #include "report/ReportCharts.h"
 
 #include "report/Recommendation.h"
-
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <fmt/format.h>
 

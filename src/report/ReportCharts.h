@@ -21,7 +21,7 @@ namespace penumbra::report {
 inline constexpr const char* kCostName = "shadow + prefilter + visibility";
 /// Colours of the passes in the stacked bars (Okabe–Ito, apart from the filter palette's order).
 inline constexpr std::pair<const char*, const char*> kPassColors[] = {
-    {"shadow", "#56B4E9"}, {"prefilter", "#E69F00"}, {"visibility", "#009E73"}, {"contact", "#CC79A7"}};
+    {"projection", "#F0E442"}, {"shadow", "#56B4E9"}, {"prefilter", "#E69F00"}, {"visibility", "#009E73"}, {"contact", "#CC79A7"}};
 
 /// A time or size with about three significant digits, never in exponent form ("1030", "61.6", "2.87").
 std::string numberText(double v);

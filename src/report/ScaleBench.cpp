@@ -4,9 +4,9 @@
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>
-#include <penumbra/Registry.h>
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
+#include <penumbra/Technique.h>
 
 #include <fmt/format.h>
 
@@ -92,11 +92,10 @@ std::vector<ScaleRow> runScalePlan(gl::Context& /*current*/, const std::vector<d
       const int mapSize = settings.shadowMapSize.value_or(scene.shadow.mapSize);
       Renderer renderer;
       renderer.setScene(std::move(scene));
-      renderer.setTechnique(makeProjection("uniform"), makeFilter("hard"));
+      renderer.setTechnique(Technique("uniform", "hard").setMapSize(mapSize));
       RenderOptions render;
       render.width = settings.width;
       render.height = settings.height;
-      render.shadowMapSize = mapSize;
       for (int f = 0; f < settings.warmupFrames; ++f) renderer.render(render);
       std::vector<double> gbuffer, shadow;
       for (int f = 0; f < settings.timedFrames; ++f) {

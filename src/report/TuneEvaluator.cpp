@@ -246,15 +246,16 @@ std::vector<std::vector<std::vector<double>>> TuneEvaluator::timeRounds(const st
   for (const TuneView& view : mRequest.views) {
     std::vector<BenchConfig> configs;
     std::vector<RenderOptions> renders;
+    std::vector<int> mapSizes;
     for (const TuneJob& j : jobs) {
       const TuneMaps maps = mapsOf(j);
       configs.push_back(config(j, view));
-      renders.push_back({.width = width, .height = height, .shadowMapSize = maps.size, .shadowBudgetTexels = maps.budgetTexels,
-                         .debugView = 0});
+      renders.push_back({.width = width, .height = height, .shadowBudgetTexels = maps.budgetTexels, .debugView = 0});
+      mapSizes.push_back(maps.size);
     }
     const SetupFactory factory = [&](const BenchConfig& c) { return mMakeSetup(c, view.camera); };
     const auto start = Clock::now();
-    out.push_back(timeInterleaved(configs, renders, factory, mRequest.settings.warmupFrames, rounds));
+    out.push_back(timeInterleaved(configs, renders, mapSizes, factory, mRequest.settings.warmupFrames, rounds));
     const double each = std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(std::max<size_t>(jobs.size(), 1));
     for (size_t k = 0; k < jobs.size(); ++k) mProgress.advance(each);
   }

@@ -2,6 +2,7 @@
 
 #include "platform/Context.h"
 #include "report/TuneEvaluator.h"
+#include "shadows/Registry.h"
 
 #include <penumbra/Error.h>
 
@@ -159,10 +160,13 @@ TuneMapDefault defaultMaps(const BenchSetup& s, int mapSize, int width, int heig
   TuneMapDefault maps{.size = mapSize, .texels = 0};
   const SceneExtent extent = s.scene.extent();
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  Technique base = s.technique;
+  base.setMapSize(mapSize);
   for (const Light& l : s.scene.lights) {
-    if (!l.castsShadow || !s.projection->incompatibility(l).empty()) continue;
-    const int side = l.shadow.mapSize > 0 ? l.shadow.mapSize : mapSize;
-    const auto views = static_cast<int64_t>(s.projection->computeFrusta(s.scene.camera, aspect, l, extent, side).views.size());
+    const Technique t = base.forLight(l.shadow, "");  // the light's own technique, as the core runs it
+    if (!l.castsShadow || !t.problemWith(l).empty()) continue;
+    const int side = t.mapSize();
+    const auto views = static_cast<int64_t>(makeProjection(t)->computeFrusta(s.scene.camera, aspect, l, extent, side).views.size());
     maps.texels += views * side * side;
   }
   return maps;
@@ -190,8 +194,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
       std::vector<ParamDesc> descs;
       std::vector<float> current;
       TuneTechnique t;
-      for (const Parameterized* owner : {static_cast<const Parameterized*>(s.filter.get()),
-                                         static_cast<const Parameterized*>(s.projection.get())})
+      for (const Parameterized* owner : {&s.technique.filterValues(), &s.technique.projectionValues()})
         for (const ParamDesc& d : owner->paramDescs()) {
           descs.push_back(d);
           current.push_back(owner->param(d.key));
@@ -206,7 +209,7 @@ TuneResults runTune(gl::Context& context, const TuneRequest& request, const Tune
         if ((d.lights & lightBits) == 0) fixed.emplace_back(d.key);
       if (request.objective == TuneObjective::Acne)  // the filter's bias only, on the default's maps
         for (const ParamDesc& d : descs)
-          if (!isBiasKey(d.key) || !s.filter->hasParam(d.key)) fixed.emplace_back(d.key);
+          if (!isBiasKey(d.key) || s.technique.owner(d.key) != ParamOwner::Filter) fixed.emplace_back(d.key);
       if (!request.searchKeys.empty()) {  // --params: the rest stays at the default
         for (const ParamDesc& d : descs)
           if (std::find(request.searchKeys.begin(), request.searchKeys.end(), d.key) == request.searchKeys.end())

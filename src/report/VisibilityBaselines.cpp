@@ -5,11 +5,12 @@
 #include "gl/Objects.h"
 #include "micro/lookup.shared.h"
 #include "report/MicroBenchmarks.h"
+#include "core/ShadowsAccess.h"
 #include "shader/ShaderLibrary.h"
 #include "shared/Bindings.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 
@@ -31,7 +32,7 @@ constexpr double kMinShadowOverlap = 0.5;
 
 // What a kernel's constants are made from: the filter's own parameters and the view's texel.
 struct KernelInputs {
-  const Filter& filter;
+  const Parameterized& filter;  // the pass's filter's values
   float texelDepth;  // one texel's world size as linear light depth (texelDepthVariance's unit)
   int mapSize;
 };
@@ -79,7 +80,7 @@ float log2Texels(float texels) { return std::log2(std::max(texels, 1.0f)); }
 float texelsSquaredToDepth(const KernelInputs& in, float texelsSquared) { return texelsSquared * in.texelDepth * in.texelDepth; }
 
 // pcf's default is 16 Poisson taps: the box with as many taps is 4 × 4.
-int boxSide(const Filter& pcf) { return std::max(1, static_cast<int>(std::lround(std::sqrt(pcf.param("pcf.samples"))))); }
+int boxSide(const Parameterized& pcf) { return std::max(1, static_cast<int>(std::lround(std::sqrt(pcf.param("pcf.samples"))))); }
 
 // A 4 × 4 box spanning pcf's ±radius: the taps are 2·radius / 3 texels apart. pcf follows the
 // receiver's plane to every tap; the kernel's one bias grows by the slope across the radius instead.
@@ -173,13 +174,13 @@ struct PassFixture {
   ScreenTarget visibilityTarget;  // the kernels draw into `visibility`, as the pass into its layer
 
   PassFixture(const VisibilityBaselineSettings& s, const Pairing& p)
-      : options{.width = s.width, .height = s.height, .shadowMapSize = s.mapSize, .debugView = 0} {
+      : options{.width = s.width, .height = s.height, .debugView = 0} {
     Scene scene = makeBuiltinScene(s.scene);
-    std::unique_ptr<Projection> projection = makeProjection("uniform");
-    std::unique_ptr<Filter> filter = makeFilter(p.filter);
-    applyParams(p.params, scene, *projection, *filter);
+    Technique technique("uniform", p.filter);
+    technique.setMapSize(s.mapSize);
+    applySettings(p.params, scene, technique);
     renderer.setScene(scene);
-    renderer.setTechnique(std::move(projection), std::move(filter));
+    renderer.setTechnique(technique);
     renderer.render(options);
     const GBufferData g = renderer.readGBuffer();
     position = gBufferTexture("lookup kernel positions", s, g.position);
@@ -196,7 +197,7 @@ struct PassFixture {
   }
 
   const gl::Texture& map(std::string_view name) {
-    for (const DebugImage& d : renderer.filter().debugImages())
+    for (const DebugImage& d : debugImages(renderer.shadows()))
       if (d.name == name && d.texture) return *d.texture;
     throw Error(fmt::format("lookup kernel: the filter has no image '{}'", name));
   }
@@ -259,7 +260,7 @@ struct Kernel {
 
   Kernel(std::shared_ptr<PassFixture> f, const Pairing& p, const KernelDesc& k, int mapSize)
       : fixture(std::move(f)), kind(k.kind), footprint(k.footprint) {
-    const Filter& filter = fixture->renderer.filter();
+    const Parameterized& filter = fixture->renderer.technique().filterValues();
     ProgramDesc d;
     d.label = k.name;
     d.fragment = {"micro/lookup.glsl"};

@@ -27,6 +27,14 @@ std::string Camera::viewProblem() const {
 glm::mat4 Camera::viewFromWorld() const { return glm::lookAt(position, target, up); }
 
 glm::mat4 Camera::clipFromView(float aspect) const {
+  if (orthographic()) {  // reversed-Z over [near, far]: z_clip = (far − z_dist) / (far − near)
+    glm::mat4 m(1.0f);
+    m[0][0] = 1.0f / (orthoHalfHeightM * aspect);
+    m[1][1] = 1.0f / orthoHalfHeightM;
+    m[2][2] = 1.0f / (farM - nearM);
+    m[3][2] = farM / (farM - nearM);
+    return m;
+  }
   // Reversed-Z with [0,1] depth: z_clip/w_clip = near / z_dist → 1 at the near plane, 0 at
   // infinity. The far plane is not needed for precision; an infinite far keeps it simple.
   const float f = 1.0f / std::tan(0.5f * fovYRad);

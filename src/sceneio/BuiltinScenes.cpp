@@ -127,7 +127,7 @@ Scene makeGrazing() {
   return s;
 }
 
-// A city for large views (csm/psm/tsm and the aliasing measure): a 640 m ground with a grid of
+// A city for large views (csm/psm/tsm/lispsm and the aliasing measure): a 640 m ground with a grid of
 // buildings, street poles and trees, a plaza of trees and poles in front of the camera, which
 // stands at eye height looking down an avenue toward the horizon under a low sun from the side.
 Scene makeCity() {
@@ -250,7 +250,7 @@ const std::vector<Builtin>& builtins() {
       {"pen", "a pencil leaning on the floor under a spherical spot light: contact-hardening penumbra", makePen},
       {"fence", "rows of thin slats before a wall: overlapping occluders (variance light bleeding behind the wall: --camera 4,3,-6:0,0,-3.5:50)", makeFence},
       {"grazing", "a large plane (a slab's top) lit 80 degrees from its normal with a box on it: acne and peter-panning", makeGrazing},
-      {"city", "a 640 m city under a low sun, seen from eye height: perspective aliasing (csm/psm/tsm)", makeCity},
+      {"city", "a 640 m city under a low sun, seen from eye height: perspective aliasing (csm/psm/tsm/lispsm)", makeCity},
       {"room", "a room under a hanging point lamp (light 0, a 5 cm sphere) and a spot on the shelves: the table's shadow on the floor and up the left wall, the chair's, the books'; animated: the lamp swings 12 degrees from its hook",
        [] {
          Scene s = makeRoomScene();

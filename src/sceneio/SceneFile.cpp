@@ -190,6 +190,8 @@ Light readLight(Reader& r) {
   l.castsShadow = r.boolean("castsShadow", true);
   if (r.has("shadow")) {
     Reader s = r.child("shadow");
+    l.shadow.projection = s.string("projection", "");  // the light's own technique; checked where techniques are known
+    l.shadow.filter = s.string("filter", "");
     l.shadow.mapSize = s.whole("mapSize", 0, kMinMapSize, kMaxMapSize);
     readParams(s, l.shadow.params);
     if (s.has("updates")) {  // "every", "invalid" or a whole number of maps a frame

@@ -5,7 +5,7 @@
 // sentinel are described in shared/PenumbraDebug.h.
 #include "gl/Objects.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 #include <glm/glm.hpp>
 #include <vector>

@@ -1,6 +1,5 @@
 // Every technique by id. Adding one = one line here + its own files.
-#include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include "shadows/filters/EsmFilter.h"
 #include "shadows/filters/EvsmFilter.h"
@@ -16,37 +15,61 @@
 #include "shadows/filters/VssmFilter.h"
 #include "shadows/contact/ContactShadows.h"
 #include "shadows/projections/CascadedProjection.h"
+#include "shadows/projections/LightSpacePerspectiveProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
+#include "shadows/projections/SampleDistributionProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
 #include "shadows/sdf/SdfFilter.h"
 #include "shadows/temporal/TemporalAccumulation.h"
 
+#include <penumbra/Error.h>
+
 #include <fmt/format.h>
 
 #include <functional>
+#include <map>
+#include <mutex>
 
 namespace penumbra {
 namespace {
 
 template <class T>
 struct Entry {
-  std::string_view id;
+  std::string id;
   std::function<std::unique_ptr<T>()> make;
 };
 
-const std::vector<Entry<Projection>>& projections() {
-  static const std::vector<Entry<Projection>> list = {
+template <class T>
+struct Kinds {
+  std::vector<Entry<T>> entries;
+  /// One instance per id, made on first use and kept: what ids, descriptions, parameter tables
+  /// and incompatibilities are read from (no GL object is made until an instance's first frame).
+  std::map<std::string, std::unique_ptr<T>, std::less<>> prototypes;
+};
+
+// Registration (registerFilter) and the prototypes are shared by threads that make techniques
+// (tune's shards): one lock over both, recursive because a filter's constructor may read the
+// registry (a filter that wraps another takes that one's parameter table).
+std::recursive_mutex& registryMutex() {
+  static std::recursive_mutex m;
+  return m;
+}
+
+Kinds<Projection>& projections() {
+  static Kinds<Projection> kinds{{
       {"uniform", [] { return std::make_unique<UniformProjection>(); }},
       {"csm", [] { return std::make_unique<CascadedProjection>(); }},
       {"psm", [] { return std::make_unique<PerspectiveProjection>(); }},
       {"tsm", [] { return std::make_unique<TrapezoidalProjection>(); }},
-  };
-  return list;
+      {"lispsm", [] { return std::make_unique<LightSpacePerspectiveProjection>(); }},
+      {"sdsm", [] { return std::make_unique<SampleDistributionProjection>(); }},
+  }, {}};
+  return kinds;
 }
 
-const std::vector<Entry<Filter>>& filters() {
-  static const std::vector<Entry<Filter>> list = {
+Kinds<Filter>& filters() {
+  static Kinds<Filter> kinds{{
       {"hard", [] { return std::make_unique<HardFilter>(); }},
       {"pcf", [] { return std::make_unique<PcfFilter>(); }},
       {"pcss", [] { return std::make_unique<PcssFilter>(); }},
@@ -60,31 +83,81 @@ const std::vector<Entry<Filter>>& filters() {
       {"esm", [] { return std::make_unique<EsmFilter>(); }},
       {"evsm", [] { return std::make_unique<EvsmFilter>(); }},
       {"evsm-soft", [] { return std::make_unique<EvsmSoftFilter>(); }},
-  };
-  return list;
+  }, {}};
+  return kinds;
 }
 
 template <class T>
-std::vector<std::string> ids(const std::vector<Entry<T>>& list) {
+std::vector<std::string> ids(const Kinds<T>& kinds) {
+  const std::lock_guard lock(registryMutex());
   std::vector<std::string> out;
-  for (const Entry<T>& e : list) out.emplace_back(e.id);
+  for (const Entry<T>& e : kinds.entries) out.push_back(e.id);
   return out;
 }
 
 template <class T>
-std::unique_ptr<T> make(const std::vector<Entry<T>>& list, std::string_view id, const char* what) {
-  for (const Entry<T>& e : list)
-    if (e.id == id) return e.make();
-  const std::string known = joinNames(ids(list));
-  throw usageError(fmt::format("unknown {} '{}' (known: {})", what, id, known));
+const Entry<T>& entry(const Kinds<T>& kinds, std::string_view id, const char* what) {
+  for (const Entry<T>& e : kinds.entries)
+    if (e.id == id) return e;
+  std::vector<std::string> known;
+  for (const Entry<T>& e : kinds.entries) known.push_back(e.id);
+  throw usageError(fmt::format("unknown {} '{}' (known: {})", what, id, joinNames(known)));
+}
+
+template <class T>
+std::unique_ptr<T> make(const Kinds<T>& kinds, std::string_view id, const char* what) {
+  std::function<std::unique_ptr<T>()> maker;
+  {
+    const std::lock_guard lock(registryMutex());
+    maker = entry(kinds, id, what).make;
+  }
+  return maker();
+}
+
+template <class T>
+const T& prototype(Kinds<T>& kinds, std::string_view id, const char* what) {
+  const std::lock_guard lock(registryMutex());
+  auto it = kinds.prototypes.find(id);
+  if (it == kinds.prototypes.end()) it = kinds.prototypes.emplace(std::string(id), entry(kinds, id, what).make()).first;
+  return *it->second;
 }
 
 }  // namespace
 
 std::vector<std::string> projectionIds() { return ids(projections()); }
 std::vector<std::string> filterIds() { return ids(filters()); }
+std::string_view projectionDescription(std::string_view id) { return prototype(projections(), id, "projection").description(); }
+std::string_view filterDescription(std::string_view id) { return prototype(filters(), id, "filter").description(); }
+std::span<const ParamDesc> projectionParams(std::string_view id) { return prototype(projections(), id, "projection").paramDescs(); }
+std::span<const ParamDesc> filterParams(std::string_view id) { return prototype(filters(), id, "filter").params(); }
+
+std::string projectionIncompatibility(std::string_view projection, const Light& light) {
+  return prototype(projections(), projection, "projection").incompatibility(light);
+}
+std::string filterIncompatibility(std::string_view filter, std::string_view projection, const Light& light) {
+  return prototype(filters(), filter, "filter").incompatibility(projection, light);
+}
+
 std::unique_ptr<Projection> makeProjection(std::string_view id) { return make(projections(), id, "projection"); }
+
+std::unique_ptr<Projection> makeProjection(const Technique& technique) {
+  std::unique_ptr<Projection> p = makeProjection(technique.projection());
+  static_cast<Parameterized&>(*p) = technique.projectionValues();
+  return p;
+}
+
 std::unique_ptr<Filter> makeFilter(std::string_view id) { return make(filters(), id, "filter"); }
+
+void registerFilter(const std::function<std::unique_ptr<Filter>()>& make) {
+  const std::string id(make()->id());
+  const std::lock_guard lock(registryMutex());
+  Kinds<Filter>& kinds = filters();
+  for (const Entry<Filter>& e : kinds.entries)
+    if (e.id == id) throw usageError(fmt::format("registerFilter: a filter '{}' is registered already", id));
+  for (const Entry<Projection>& e : projections().entries)
+    if (e.id == id) throw usageError(fmt::format("registerFilter: '{}' is a projection's id", id));
+  kinds.entries.push_back({id, make});
+}
 
 std::span<const AddOnGroup> addOnGroups() {
   static const AddOnGroup groups[] = {{"Contact shadows", ContactShadows::params()},
@@ -92,17 +165,16 @@ std::span<const AddOnGroup> addOnGroups() {
   return groups;
 }
 
-std::unique_ptr<Parameterized> makeAddOns() {
+Parameterized makeAddOns() {
   static const std::vector<ParamDesc> all = [] {
     std::vector<ParamDesc> out;
     for (const AddOnGroup& g : addOnGroups()) out.insert(out.end(), g.params.begin(), g.params.end());
     return out;
   }();
-  return std::make_unique<Parameterized>(all);
+  return Parameterized(all);
 }
 
-void applyParams(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene,
-                 Projection& projection, Filter& filter, Parameterized* addOns) {
+void applySettings(const std::vector<std::pair<std::string, std::string>>& settings, Scene& scene, Technique& technique) {
   for (const auto& [key, value] : settings) {
     if (key == "light.count") {
       const int n = static_cast<int>(parseParamValue(sceneParamDesc(key), value));
@@ -123,15 +195,8 @@ void applyParams(const std::vector<std::pair<std::string, std::string>>& setting
         throw usageError(fmt::format("light.size={}: the first light's range is {} m; its size (sphere radius) must stay below it", value,
                                      rangeM));
       scene.lights.front().size = v;
-    } else if (projection.hasParam(key)) {
-      projection.setParam(key, std::string_view(value));
-    } else if (filter.hasParam(key)) {
-      filter.setParam(key, std::string_view(value));
-    } else if (addOns && addOns->hasParam(key)) {
-      addOns->setParam(key, std::string_view(value));
     } else {
-      throw usageError(fmt::format("unknown parameter '{}' for --projection {} --filter {} (penumbra list shows them all)",
-                                   key, projection.id(), filter.id()));
+      technique.set(key, std::string_view(value));
     }
   }
 }

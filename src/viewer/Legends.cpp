@@ -6,6 +6,7 @@
 #include "viewer/Viewer.h"
 
 #include "report/FrameComparison.h"
+#include "report/ReportCharts.h"
 #include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"
 #include "shared/Viewer.h"
@@ -114,15 +115,20 @@ std::optional<float> Viewer::drawLegend(const char* id, const ViewState& view, c
   if (!texture) {
     ImGui::TextWrapped("no '%s' with %s: shown again when a filter has it", name.c_str(), mSession.filterId().c_str());
   } else if (name == "cascades") {
-    ImGui::TextUnformatted("cascade each pixel reads (blend bands mix two):");
-    const int views = static_cast<int>(mSession.renderer().frusta().views.size());
+    ImGui::TextUnformatted("cascade each pixel reads (blend bands mix two), to the camera depth where it ends:");
+    const LightFrusta& frusta = mSession.renderer().frusta();
+    const int views = static_cast<int>(frusta.views.size());
     for (int i = 0; i < views; ++i) {
       if (i > 0) ImGui::SameLine();
       const glm::vec4 c = gpu::cascadeColor(i);
       ImGui::ColorButton(fmt::format("##c{}", i).c_str(), ImVec4(c.x, c.y, c.z, 1.0f), ImGuiColorEditFlags_NoTooltip);
       ImGui::SameLine();
-      ImGui::Text("%d", i + 1);
+      // The last cascade (or a single view) reaches as far as anything is shadowed.
+      if (i + 1 < views) ImGui::Text("%d: %s m", i + 1, report::numberText(frusta.views[static_cast<size_t>(i)].splitFarM).c_str());
+      else ImGui::Text("%d", i + 1);
     }
+    // One view warped by psm, tsm or lispsm has texels of every size: the texel-density view shows them.
+    if (views == 1 && frusta.views.front().warped) ImGui::TextUnformatted("one warped map: see texel-density for its texels");
   } else if (name == "texel-density") {
     ImGui::TextUnformatted("screen pixels per shadow-map texel (log scale)");
     colorBar([](float t) { return rgb(gpu::densityRampColor(PN_DENSITY_LOG2_LO + t * (PN_DENSITY_LOG2_HI - PN_DENSITY_LOG2_LO))); },

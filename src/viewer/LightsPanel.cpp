@@ -6,6 +6,8 @@
 #include "viewer/LightEdit.h"
 #include "viewer/Viewer.h"
 
+#include "core/ShadowsAccess.h"
+
 #include <penumbra/Error.h>
 
 #include <fmt/format.h>
@@ -206,7 +208,7 @@ void Viewer::drawLightsPanel() {
       ImGui::TextDisabled("kept %d maps last frame; oldest %d frames old", r.keptMaps, r.staleness);
   }
   if (ImGui::Button("Show its maps in the inset")) {
-    const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(mSession.shownLight());
+    const std::vector<DebugImage> own = debugImages(mSession.renderer().shadows(), mSession.shownLight());
     setView(mInset, own.size() > 1 ? own[1].name : own.front().name, "inset");  // its filter's first map, else its visibility
   }
   ImGui::PushTextWrapPos(0.0f);
@@ -218,7 +220,7 @@ void Viewer::drawLightsPanel() {
 void Viewer::drawViewLabels() {
   if (!mSession.hasFrame()) return;
   const size_t shown = mSession.shownLight();
-  const std::vector<DebugImage> own = mSession.renderer().shadows().debugImages(shown);
+  const std::vector<DebugImage> own = debugImages(mSession.renderer().shadows(), shown);
   const Light& light = mSession.scene().lights.at(std::min(shown, mSession.scene().lights.size() - 1));
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
   // Window pixels (origin lower left) → ImGui display coordinates (origin top left).
@@ -227,7 +229,9 @@ void Viewer::drawViewLabels() {
   };
   auto layerName = [&](int layer) {
     if (light.type == LightType::Point) return fmt::format("face {}", cubeFaceName(layer));
-    return fmt::format("{} {}", mSession.projectionId() == "csm" ? "cascade" : "layer", layer);
+    // Views split by camera depth (csm, sdsm) are cascades; a single view is the map's only layer.
+    const bool cascades = mSession.renderer().frusta().views.size() > 1;
+    return fmt::format("{} {}", cascades ? "cascade" : "layer", layer);
   };
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   // Inside the slot's top-left corner: the legends (Legends.cpp) sit at the main view's lower

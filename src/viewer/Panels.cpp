@@ -5,9 +5,9 @@
 #include "viewer/Viewer.h"
 
 #include "report/ImageText.h"
+#include "shadows/Registry.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -193,11 +193,10 @@ std::string Viewer::layoutText() const {
     }
   };
   addTable(sceneParamDescs());
-  for (const std::string& id : projectionIds()) addTable(makeProjection(id)->paramDescs());
+  for (const std::string& id : projectionIds()) addTable(projectionParams(id));
   for (const std::string& id : filterIds()) {
-    const std::unique_ptr<Filter> f = makeFilter(id);
-    addTable(f->paramDescs());
-    for (const DebugImage& d : f->debugImages()) texts.emplace_back(d.meaning);
+    addTable(filterParams(id));
+    for (const DebugImage& d : makeFilter(id)->debugImages()) texts.emplace_back(d.meaning);
   }
   const ImFont* font = ImGui::GetIO().FontDefault ? ImGui::GetIO().FontDefault : ImGui::GetFont();
   std::set<ImWchar> missing;
@@ -298,9 +297,9 @@ void Viewer::drawTechniquePanel() {
   ImGui::SameLine();
   if (ImGui::Button("Load") && mScenePath[0]) selectScene(mScenePath);
   if (auto p = idCombo("Projection", mSession.projectionId(), projectionIds())) selectProjection(*p);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(mSession.renderer().projection().description()).c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(projectionDescription(mSession.projectionId())).c_str());
   if (auto f = idCombo("Filter", mSession.filterId(), filterIds())) selectFilter(*f);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(mSession.renderer().filter().description()).c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(filterDescription(mSession.filterId())).c_str());
   int map = mSession.shadowMapSize();
   if (ImGui::BeginCombo("Shadow map", fmt::format("{}² texels", map).c_str())) {
     for (int size : kShadowMapSizes)

@@ -78,8 +78,11 @@ Json lightJson(const Light& l) {
   j["color"] = tidyVec(l.color);
   j["intensity"] = tidy(l.intensity);
   if (!l.castsShadow) j["castsShadow"] = false;
-  if (l.shadow.mapSize > 0 || !l.shadow.params.empty() || l.shadow.updates) {
+  if (!l.shadow.projection.empty() || !l.shadow.filter.empty() || l.shadow.mapSize > 0 || !l.shadow.params.empty() ||
+      l.shadow.updates) {
     Json s;
+    if (!l.shadow.projection.empty()) s["projection"] = l.shadow.projection;
+    if (!l.shadow.filter.empty()) s["filter"] = l.shadow.filter;
     if (l.shadow.mapSize > 0) s["mapSize"] = l.shadow.mapSize;
     for (const auto& [key, value] : l.shadow.params) s["params"][key] = value;
     if (const auto& u = l.shadow.updates; u) {  // the text a scene file reads back
@@ -133,7 +136,7 @@ Trs decomposeTransform(const glm::mat4& m) {
   return t;
 }
 
-std::string sceneFileText(const Scene& scene, const Projection& projection, const Filter& filter, int mapSize) {
+std::string sceneFileText(const Scene& scene, const Technique& technique) {
   Json j = Json::object();
   if (!scene.sourceFile.empty()) {
     std::ifstream in(scene.sourceFile, std::ios::binary);
@@ -154,14 +157,13 @@ std::string sceneFileText(const Scene& scene, const Projection& projection, cons
                  {"fovYDeg", tidy(glm::degrees(c.fovYRad))}, {"near", tidy(c.nearM)}, {"far", tidy(c.farM)}};
   j["lights"] = Json::array();
   for (const Light& l : scene.lights) j["lights"].push_back(lightJson(l));
-  Json params = paramsJson(filter, paramsJson(projection, Json::object()));
-  j["shadow"] = {{"projection", projection.id()}, {"filter", filter.id()}, {"mapSize", mapSize}, {"params", params}};
+  Json params = paramsJson(technique.filterValues(), paramsJson(technique.projectionValues(), Json::object()));
+  j["shadow"] = {{"projection", technique.projection()}, {"filter", technique.filter()}, {"mapSize", technique.mapSize()}, {"params", params}};
   return j.dump(2) + "\n";
 }
 
-void saveSceneFile(const std::filesystem::path& path, const Scene& scene, const Projection& projection,
-                   const Filter& filter, int mapSize) {
-  writeTextFile(path, sceneFileText(scene, projection, filter, mapSize));
+void saveSceneFile(const std::filesystem::path& path, const Scene& scene, const Technique& technique) {
+  writeTextFile(path, sceneFileText(scene, technique));
   try {
     loadSceneFile(path);
   } catch (const Error& e) {

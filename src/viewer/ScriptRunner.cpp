@@ -4,7 +4,7 @@
 #include "viewer/LightEdit.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <fmt/format.h>
 

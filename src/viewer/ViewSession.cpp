@@ -4,7 +4,8 @@
 
 #include <penumbra/Animation.h>
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
+#include <penumbra/Technique.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -23,30 +24,40 @@ bool isSceneParam(std::string_view key) {
 }
 
 // The scene's own `light.*` settings (makeSetup applies them for the first scene).
-void applySceneLightParams(Scene& scene, Projection& projection, Filter& filter) {
+void applySceneLightParams(Scene& scene) {
   std::vector<std::pair<std::string, std::string>> light;
   for (const auto& kv : scene.shadow.params)
     if (prefixOf(kv.first) == "light") light.push_back(kv);
-  applyParams(light, scene, projection, filter);
+  Technique unused;  // light.* keys change the scene only
+  applySettings(light, scene, unused);
 }
 
 }  // namespace
 
-ViewSession::ViewSession(gl::Context& /*current: the renderer draws on it*/, Scene scene, std::unique_ptr<Projection> projection,
-                         std::unique_ptr<Filter> filter, int shadowMapSize)
-    : mScene(std::move(scene)), mProjectionId(projection->id()), mFilterId(filter->id()),
-      mShadowMapSize(shadowMapSize) {
+ViewSession::ViewSession(gl::Context& /*current: the renderer draws on it*/, Scene scene, const Technique& technique)
+    : mScene(std::move(scene)), mTechnique(technique) {
   // What the command line set (and the scene's own values) is remembered like a widget edit.
-  for (const Parameterized* p : {static_cast<const Parameterized*>(projection.get()), static_cast<const Parameterized*>(filter.get())})
+  for (const Parameterized* p : {&technique.projectionValues(), &technique.filterValues()})
     for (const ParamDesc& d : p->paramDescs())
       if (p->param(d.key) != d.def) mRemembered[std::string(d.key)] = p->param(d.key);
+  nameLights();
   mRenderer.setScene(mScene);
-  mRenderer.setTechnique(std::move(projection), std::move(filter));
+  mRenderer.setTechnique(mTechnique);
+}
+
+void ViewSession::nameLights() {
+  uint64_t next = 1;
+  for (const Light& l : mScene.lights) next = std::max(next, l.id + 1);
+  for (Light& l : mScene.lights)
+    if (l.id == 0) l.id = next++;
 }
 
 void ViewSession::setShadowMapSize(int texels) {
-  if (texels < 16) throw usageError(fmt::format("shadow map size {}: must be at least 16", texels));
-  mShadowMapSize = texels;
+  if (texels < kMinMapSizeTexels) throw usageError(fmt::format("shadow map size {}: must be at least {}", texels, kMinMapSizeTexels));
+  Technique t = mTechnique;
+  t.setMapSize(texels);
+  mRenderer.setTechnique(t);
+  mTechnique = t;
   ++mVersion;
 }
 
@@ -58,11 +69,9 @@ Light& ViewSession::light() {
 
 void ViewSession::checkLight(const Light& light, const std::string& which) {
   if (const std::string problem = lightProblem(light); !problem.empty()) throw usageError(fmt::format("{}: {}", which, problem));
-  Renderer& r = mRenderer;
-  if (const std::string why = r.projection().incompatibility(light); !why.empty())
-    throw usageError(fmt::format("{}: --projection {} cannot shadow it: {}", which, mProjectionId, why));
-  if (const std::string why = r.filter().incompatibility(mProjectionId, light); !why.empty())
-    throw usageError(fmt::format("{}: --filter {} with --projection {} cannot shadow it: {}", which, mFilterId, mProjectionId, why));
+  if (!light.castsShadow) return;
+  if (const std::string why = mTechnique.forLight(light.shadow, which).problemWith(light); !why.empty())
+    throw usageError(fmt::format("{}: {}", which, why));
 }
 
 const Light& ViewSession::lightAt(size_t index) const {
@@ -81,6 +90,8 @@ void ViewSession::addLight(const Light& light) {
     throw usageError(fmt::format("the scene has {} lights, the most one frame shadows (kMaxShadowedLights)", mScene.lights.size()));
   checkLight(light, lightLabel(light, mScene.lights.size()));
   mScene.lights.push_back(light);
+  mScene.lights.back().id = 0;  // a light of its own, whatever it was copied from
+  nameLights();
   mSelected = mScene.lights.size() - 1;
   ++mVersion;
 }
@@ -99,7 +110,9 @@ void ViewSession::removeLight(size_t index) {
 void ViewSession::setLight(size_t index, const Light& light) {
   lightAt(index);  // throws when there is no such light
   checkLight(light, lightLabel(light, index));
+  const uint64_t id = mScene.lights[index].id;  // the same light, changed: it keeps its maps
   mScene.lights[index] = light;
+  mScene.lights[index].id = id;
   ++mVersion;
 }
 
@@ -110,51 +123,38 @@ size_t ViewSession::shownLight() const {
 
 std::vector<DebugImage> ViewSession::debugImages() const { return mRenderer.debugImages(shownLight()); }
 
-void ViewSession::applyRemembered(Parameterized& p) const {
-  for (const ParamDesc& d : p.paramDescs())
-    if (auto it = mRemembered.find(d.key); it != mRemembered.end()) p.setParam(d.key, it->second);
-}
-
 void ViewSession::rebuildTechnique(const std::string& projectionId, const std::string& filterId) {
-  std::unique_ptr<Projection> projection = makeProjection(projectionId);
-  std::unique_ptr<Filter> filter = makeFilter(filterId);
-  for (const auto& [key, value] : mScene.shadow.params) {
-    const std::string prefix = prefixOf(key);
-    if (prefix == projection->id()) projection->setParam(key, std::string_view(value));
-    if (prefix == filter->id()) filter->setParam(key, std::string_view(value));
-  }
-  applyRemembered(*projection);
-  applyRemembered(*filter);
-  // The renderer checks the pair against light 0; the others are checked here.
-  for (size_t i = 1; i < mScene.lights.size(); ++i) {
-    const Light& l = mScene.lights[i];
-    if (const std::string why = projection->incompatibility(l); !why.empty())
-      throw usageError(fmt::format("--projection {} is not supported for {}: {}", projectionId, lightLabel(l, i), why));
-    if (const std::string why = filter->incompatibility(projectionId, l); !why.empty())
-      throw usageError(fmt::format("{}: --filter {} with --projection {} is not supported: {}", lightLabel(l, i), filterId, projectionId, why));
-  }
-  mRenderer.setTechnique(std::move(projection), std::move(filter));  // throws before changing anything
-  mProjectionId = projectionId;
-  mFilterId = filterId;
+  Technique t(projectionId, filterId);
+  t.setMapSize(mTechnique.mapSize());
+  std::vector<std::pair<std::string, std::string>> own;  // the scene's settings for this technique
+  for (const auto& kv : mScene.shadow.params)
+    if (prefixOf(kv.first) == projectionId || prefixOf(kv.first) == filterId) own.push_back(kv);
+  t.setWhereOwn(own);
+  for (const auto& [key, value] : mRemembered)
+    if (t.has(key) && t.owner(key) != ParamOwner::AddOn) t.set(key, value);
+  for (const ParamDesc& d : t.addOnValues().paramDescs()) t.set(d.key, mTechnique.get(d.key));  // the add-ons stay as they are
+  mRenderer.setTechnique(t);  // checks every light; throws before changing anything
+  mTechnique = t;
   ++mVersion;
 }
 
-void ViewSession::setProjection(const std::string& id) { rebuildTechnique(id, mFilterId); }
-void ViewSession::setFilter(const std::string& id) { rebuildTechnique(mProjectionId, id); }
+void ViewSession::setProjection(const std::string& id) { rebuildTechnique(id, mTechnique.filter()); }
+void ViewSession::setFilter(const std::string& id) { rebuildTechnique(mTechnique.projection(), id); }
 
 void ViewSession::loadScene(const std::string& nameOrPath) {
   LoadOptions options;
   options.groundUnderLoneModel = true;  // as the CLI
   Scene next = penumbra::loadScene(nameOrPath, options);
-  applySceneLightParams(next, mRenderer.projection(), mRenderer.filter());
+  applySceneLightParams(next);
   // What the new scene's file sets explicitly wins over values remembered from before.
   auto previousRemembered = mRemembered;
   for (const auto& kv : next.shadow.params) mRemembered.erase(kv.first);
   Scene previous = std::move(mScene);
   mScene = std::move(next);
+  nameLights();
   try {
     mRenderer.setScene(mScene);
-    rebuildTechnique(mProjectionId, mFilterId);
+    rebuildTechnique(mTechnique.projection(), mTechnique.filter());
   } catch (...) {
     mScene = std::move(previous);
     mRemembered = std::move(previousRemembered);
@@ -189,7 +189,6 @@ void ViewSession::setTime(float timeS, bool jump) {
 }
 
 std::vector<ParamGroup> ViewSession::paramGroups() {
-  Renderer& r = mRenderer;
   // light.count is the bench's: the viewer adds and removes lights one by one instead.
   static const std::vector<ParamDesc> kScene = [] {
     std::vector<ParamDesc> out;
@@ -198,17 +197,14 @@ std::vector<ParamGroup> ViewSession::paramGroups() {
     return out;
   }();
   std::vector<ParamGroup> groups = {{"Scene", kScene},
-                                    {fmt::format("Projection: {}", mProjectionId), r.projection().paramDescs()},
-                                    {fmt::format("Filter: {}", mFilterId), r.filter().paramDescs()}};
+                                    {fmt::format("Projection: {}", mTechnique.projection()), mTechnique.projectionValues().paramDescs()},
+                                    {fmt::format("Filter: {}", mTechnique.filter()), mTechnique.filterValues().paramDescs()}};
   for (const AddOnGroup& g : addOnGroups()) groups.push_back({std::string(g.label), g.params});
   return groups;
 }
 
 float ViewSession::paramValue(const ParamDesc& desc) {
-  Renderer& r = mRenderer;
-  if (r.projection().hasParam(desc.key)) return r.projection().param(desc.key);
-  if (r.filter().hasParam(desc.key)) return r.filter().param(desc.key);
-  if (r.shadows().addOns().hasParam(desc.key)) return r.shadows().addOns().param(desc.key);
+  if (mTechnique.has(desc.key)) return mTechnique.get(desc.key);
   // Scene parameters have no getter of their own: light.size is the light's size.
   if (desc.key == "light.size" && !mScene.lights.empty()) return mScene.lights.front().size;
   if (auto it = mRemembered.find(desc.key); it != mRemembered.end()) return it->second;
@@ -218,12 +214,16 @@ float ViewSession::paramValue(const ParamDesc& desc) {
 void ViewSession::setParam(const ParamDesc& desc, float value) {
   checkParamValue(desc, value);
   if (isSceneParam(desc.key)) {
-    applyParams({{std::string(desc.key), formatParamValue(desc, value)}}, mScene, mRenderer.projection(), mRenderer.filter());
+    Technique unused;  // a scene key changes the scene only
+    applySettings({{std::string(desc.key), formatParamValue(desc, value)}}, mScene, unused);
   } else {
-    if (mRenderer.projection().hasParam(desc.key)) mRenderer.projection().setParam(desc.key, value);
-    else if (mRenderer.filter().hasParam(desc.key)) mRenderer.filter().setParam(desc.key, value);
-    else if (mRenderer.shadows().addOns().hasParam(desc.key)) mRenderer.shadows().addOns().setParam(desc.key, value);
-    else throw usageError(fmt::format("parameter '{}' belongs to neither --projection {} nor --filter {}", desc.key, mProjectionId, mFilterId));
+    if (!mTechnique.has(desc.key))
+      throw usageError(fmt::format("parameter '{}' belongs to neither projection {} nor filter {}", desc.key, mTechnique.projection(),
+                                   mTechnique.filter()));
+    Technique t = mTechnique;
+    t.set(desc.key, value);
+    mRenderer.setTechnique(t);
+    mTechnique = t;
     mRemembered[std::string(desc.key)] = value;
   }
   ++mVersion;
@@ -234,8 +234,8 @@ void ViewSession::setParam(const std::string& assignment) {
   for (const ParamGroup& g : paramGroups())
     for (const ParamDesc& d : g.descs)
       if (d.key == key) return setParam(d, parseParamValue(d, text));
-  throw usageError(fmt::format("unknown parameter '{}' for --projection {} --filter {} (penumbra list shows them all)", key,
-                               mProjectionId, mFilterId));
+  throw usageError(fmt::format("unknown parameter '{}' for projection {} and filter {} (penumbra list shows them all)", key,
+                               mTechnique.projection(), mTechnique.filter()));
 }
 
 void ViewSession::render(int width, int height, int litView) {
@@ -243,7 +243,6 @@ void ViewSession::render(int width, int height, int litView) {
   RenderOptions options;
   options.width = width;
   options.height = height;
-  options.shadowMapSize = mShadowMapSize;
   options.debugView = litView;
   options.cameraCut = std::exchange(mCameraCut, false);
   mRenderer.render(options);

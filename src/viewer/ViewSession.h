@@ -4,6 +4,7 @@
 // so a script does exactly what a click does.
 #include <penumbra/Params.h>
 #include <penumbra/Renderer.h>
+#include <penumbra/Technique.h>
 
 #include <cstdint>
 #include <map>
@@ -26,17 +27,18 @@ struct ParamGroup {
 class ViewSession {
 public:
   /// Takes a prepared scene and technique (penumbra::app::makeSetup), uploads the scene.
-  /// Throws a usage Error when the pair cannot work.
-  ViewSession(gl::Context& context, Scene scene, std::unique_ptr<Projection> projection,
-              std::unique_ptr<Filter> filter, int shadowMapSize);
+  /// Throws a usage Error when the technique cannot shadow a light of the scene.
+  ViewSession(gl::Context& context, Scene scene, const Technique& technique);
 
   Renderer& renderer() { return mRenderer; }
   const Renderer& renderer() const { return mRenderer; }
   /// The scene as viewed now (camera and lights as moved).
   const Scene& scene() const { return mScene; }
-  const std::string& projectionId() const { return mProjectionId; }
-  const std::string& filterId() const { return mFilterId; }
-  int shadowMapSize() const { return mShadowMapSize; }
+  /// The technique as set now (every light runs it, with its own settings merged in).
+  const Technique& technique() const { return mTechnique; }
+  const std::string& projectionId() const { return mTechnique.projection(); }
+  const std::string& filterId() const { return mTechnique.filter(); }
+  int shadowMapSize() const { return mTechnique.mapSize(); }
   void setShadowMapSize(int texels);
 
   /// Each throws Error (usage for unknown ids / refused pairs) and leaves the view unchanged.
@@ -108,14 +110,15 @@ public:
 
 private:
   void rebuildTechnique(const std::string& projectionId, const std::string& filterId);
-  void applyRemembered(Parameterized& p) const;
   /// Throws a usage Error naming `which` if the light is not one to add or keep.
   void checkLight(const Light& light, const std::string& which);
+  /// Gives the scene's lights that have none an id of their own (Light::id), so that each keeps
+  /// its maps when another is removed.
+  void nameLights();
 
   Renderer mRenderer;
   Scene mScene;
-  std::string mProjectionId, mFilterId;
-  int mShadowMapSize;
+  Technique mTechnique;
   /// Values the user set, by key; re-applied when a technique is rebuilt.
   std::map<std::string, float, std::less<>> mRemembered;
   uint64_t mVersion = 1;

@@ -6,7 +6,7 @@
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <GLFW/glfw3.h>
@@ -65,11 +65,10 @@ std::string title(const ViewSession& s) {
 
 bool isLitView(std::string_view name) { return findLitView(std::string(name)) != nullptr; }
 
-Viewer::Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter, int shadowMapSize,
-               ViewerOptions options)
+Viewer::Viewer(Scene scene, const Technique& technique, ViewerOptions options)
     : mOptions(std::move(options)),
       mWindow(mOptions.width, mOptions.height, "Penumbra view", {.debug = false, .verbose = mOptions.verbose}),
-      mSession(mWindow, std::move(scene), std::move(projection), std::move(filter), shadowMapSize),
+      mSession(mWindow, std::move(scene), technique),
       mDisplay(mSession.renderer().shaders()) {
   glfwSwapInterval(mOptions.vsync ? 1 : 0);
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
@@ -316,8 +315,9 @@ bool Viewer::setSplit(const std::string& filter, const std::string& projection) 
     return true;
   }
   try {
-    auto split = std::make_unique<ViewSession>(mWindow, mSession.scene(), makeProjection(projection), makeFilter(filter),
-                                               mSession.shadowMapSize());
+    Technique technique(projection, filter);
+    technique.setMapSize(mSession.shadowMapSize());
+    auto split = std::make_unique<ViewSession>(mWindow, mSession.scene(), technique);
     mSplit = std::move(split);
   } catch (const Error& e) {
     setStatus(fmt::format("split view {} · {}: {}", filter, projection, e.what()), true);
@@ -555,8 +555,7 @@ void Viewer::screenshotInset(const std::filesystem::path& path) {
 }
 
 void Viewer::saveSettings(const std::filesystem::path& path) {
-  Renderer& r = mSession.renderer();
-  saveSceneFile(path, mSession.scene(), r.projection(), r.filter(), mSession.shadowMapSize());
+  saveSceneFile(path, mSession.scene(), mSession.technique());
   setStatus(fmt::format("saved {} (penumbra render --scene {})", path.string(), path.string()), false);
 }
 

@@ -70,8 +70,7 @@ inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Techniq
 class Viewer {
 public:
   /// Opens the window (throws Error if no 4.5 context), then the session on `scene`.
-  Viewer(Scene scene, std::unique_ptr<Projection> projection, std::unique_ptr<Filter> filter, int shadowMapSize,
-         ViewerOptions options);
+  Viewer(Scene scene, const Technique& technique, ViewerOptions options);
   ~Viewer();
   Viewer(const Viewer&) = delete;
   Viewer& operator=(const Viewer&) = delete;

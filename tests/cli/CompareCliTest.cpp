@@ -24,7 +24,7 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
   const RunResult r = runPenumbra("compare --scene pen --size 96x64 --shadow-map 1024 --samples 16 --json --no-cache --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* k : {"scene", "filter", "projection", "rmse", "mae", "leak_pct", "overdark_pct", "penumbra_rmse",
+  for (const char* k : {"scene", "filter", "projection", "rmse", "mae", "leak_pct", "overdark_pct", "umbra_leak_pct", "acne_pct", "penumbra_rmse",
                         "approximation_rmse", "timings_ms", "reference_seconds", "texel_density_median",
                         "texel_density_p95", "texel_density_near_median", "undersampled_pct"})
     EXPECT_TRUE(j.contains(k)) << k;
@@ -33,6 +33,9 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
   EXPECT_TRUE(j["timings_ms"].contains("visibility"));
   EXPECT_GT(j["rmse"].get<double>(), 0.0);
   EXPECT_LT(j["rmse"].get<double>(), 0.5);
+  // acne is a share of the fully lit pixels, so never more than all over-dark pixels are of all pixels.
+  EXPECT_GE(j["acne_pct"].get<double>(), 0.0);
+  EXPECT_LE(j["acne_pct"].get<double>() / 100.0 * j["pixels"].get<double>(), j["overdark_pct"].get<double>() / 100.0 * j["pixels"].get<double>() + 0.5);
   for (const char* f : {"technique.png", "reference.png", "heatmap.png", "approximation.png", "sheet.png"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/imgs/" + f)) << f;
 }

@@ -153,7 +153,8 @@ TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
   EXPECT_TRUE(rec.contains("umbra_leak_pct"));
   EXPECT_EQ(rec["shadow_map"], j["default"]["shadow_map"]);  // the map size is not searched
   for (const auto& [key, value] : rec["params"].items())
-    EXPECT_TRUE(key == "hard.bias" || key == "hard.constantBias" || key == "hard.slopeBias" || key == "hard.normalOffsetTexels")
+    EXPECT_TRUE(key == "hard.bias" || key == "hard.constantBias" || key == "hard.slopeBias" || key == "hard.normalOffsetTexels" ||
+                key == "hard.planeBiasTexels")
         << key;
 }
 

@@ -9,7 +9,7 @@
 #include "viewer/DebugDisplay.h"
 
 #include <penumbra/ImageIO.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>
@@ -36,10 +36,15 @@ constexpr double kMinGreyStdDev = 8.0;
 // in some channel. The same technique renders the same picture (0 pixels); every filter pair on
 // `pen` with a 256² map differs in ≥ 0.05% of the view (69 pixels of 102 400 for vsm vs msm, the
 // closest pair: over pen's single occluder Chebyshev's bound is already exact, so four moments
-// change only the pencil's outline; next, hard vs second-depth, 0.3%: the same depth test with
-// and without a bias, which only a coarse map makes visible).
+// change only the pencil's outline). One pair is exempt: hard vs second-depth, the same depth
+// test against the nearest and the second-nearest surface. Under hard's default bias (the
+// receiver's own plane at each texel, identicalWhenExact) both are exact on pen and differ in
+// 0.01 % of the pixels, as they should.
 constexpr int kPixelDeltaLevels = 8;
 constexpr double kMinDifferingShare = 0.0003;
+bool identicalWhenExact(const std::string& a, const std::string& b) {
+  return (a == "hard" && b == "second-depth") || (a == "second-depth" && b == "hard");
+}
 
 bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
@@ -164,7 +169,9 @@ TEST(ViewerCli, ScreenshotsOfEveryFilterAndProjectionAreNotBlankAndFiltersDiffer
   for (auto a = filters.begin(); a != filters.end(); ++a)
     for (auto b = std::next(a); b != filters.end(); ++b) {
       const double share = differingShare(a->second, b->second);
-      EXPECT_GE(share, kMinDifferingShare) << "filters " << a->first << " and " << b->first << " give the same picture";
+      if (!identicalWhenExact(a->first, b->first)) {
+        EXPECT_GE(share, kMinDifferingShare) << "filters " << a->first << " and " << b->first << " give the same picture";
+      }
       std::printf("differing pixels %-12s vs %-12s %6.2f%%\n", a->first.c_str(), b->first.c_str(), 100.0 * share);
     }
 }

@@ -28,14 +28,14 @@ using namespace penumbra::test;
 
 namespace {
 
-struct Technique {
+struct Case {
   std::string projection;
   int mapSize;
   std::vector<std::pair<std::string, std::string>> params;
 };
 
-std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const Technique& t, const std::string& filter = "hard") {
-  return makeTestRenderer(scene, t.projection, filter, t.params);
+std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const Case& t, const std::string& filter = "hard") {
+  return makeTestRenderer(scene, t.projection, filter, t.params, t.mapSize);
 }
 
 // Where a test may leave images for a person to look at (unset: nowhere).
@@ -55,7 +55,7 @@ std::map<std::string, TexelDensityStats> cityDensities(const glm::vec3& position
   std::map<std::string, TexelDensityStats> out;
   for (const std::string& projection : projections) {
     auto r = makeRenderer(city, {projection, kMap, {}});
-    r->render({width, height, kMap});
+    r->render({.width = width, .height = height});
     const TexelDensityStats& s = out[projection] =
         texelDensityStats(computeTexelDensity(*r), r->readGBuffer(), city.camera.position);
     std::printf("  %-8s median %.3f, near median %.3f screen px per texel\n", projection.c_str(), s.median, s.nearMedian);
@@ -83,7 +83,7 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   s.camera.fovYRad = 0.9f;
   constexpr int kW = 160, kH = 120, kMap = 512;
   auto r = makeRenderer(s, {"uniform", kMap, {}});
-  r->render({kW, kH, kMap});
+  r->render({.width = kW, .height = kH});
   const std::vector<float> d = computeTexelDensity(*r);
   const ShadowView& v = r->frusta().views[0];
   const float pixelM = 2.0f * kHeightM * std::tan(0.5f * s.camera.fovYRad) / static_cast<float>(kH);
@@ -92,7 +92,8 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   const float measured = d[static_cast<size_t>(kH / 2) * kW + kW / 2];
   EXPECT_NEAR(measured, expected, 0.01f * expected) << "extent " << v.extent.x << " x " << v.extent.y;
   // Double the map: a texel covers a quarter of the pixels.
-  r->render({kW, kH, 2 * kMap});
+  setMapSize(*r, 2 * kMap);
+  r->render({.width = kW, .height = kH});
   const float finer = computeTexelDensity(*r)[static_cast<size_t>(kH / 2) * kW + kW / 2];
   const ShadowView& v2 = r->frusta().views[0];
   EXPECT_NEAR(finer, (v2.extent.x / (2 * kMap)) * (v2.extent.y / (2 * kMap)) / (pixelM * pixelM), 0.01f * finer);
@@ -102,27 +103,29 @@ TEST(Aliasing, TexelDensityMatchesTheClosedFormOnAFlatFloor) {
   EXPECT_NEAR(st.median, expected, 0.1f * expected);
 }
 
-// The table: city at 1280×720, equal texel budgets (uniform/psm/tsm one 2048² map, csm
-// four 1024² maps). Near-camera density (median screen pixels per texel within 20 m) must drop
-// at least 4× for csm and tsm, 2× for psm (whose light direction here, from the side and a
-// little behind, favours it).
+// The table: city at 1280×720, equal texel budgets (uniform/psm/tsm/lispsm one 2048² map,
+// csm and sdsm four 1024² maps). Near-camera density (median screen pixels per texel within 20 m)
+// must drop at least 4× for csm, tsm and lispsm, 2× for psm (whose light direction here, from the
+// side and a little behind, favours it); sdsm, with csm's memory, must at least halve csm's.
 TEST(Aliasing, CityTexelDensityTable) {
   const Scene city = makeBuiltinScene("city");
-  const std::vector<Technique> techniques = {
+  const std::vector<Case> techniques = {
       {"uniform", 2048, {}},
       {"psm", 2048, {}},
       {"tsm", 2048, {}},
+      {"lispsm", 2048, {}},
       {"csm", 1024, {{"csm.cascades", "4"}}},
+      {"sdsm", 1024, {{"sdsm.cascades", "4"}}},
   };
   std::map<std::string, TexelDensityStats> stats;
   std::printf("\n  projection  map          median        p95   near_median  undersampled_pct\n");
-  for (const Technique& t : techniques) {
+  for (const Case& t : techniques) {
     auto r = makeRenderer(city, t);
-    r->render({1280, 720, t.mapSize});
+    r->render({.width = 1280, .height = 720});
     const std::vector<float> d = computeTexelDensity(*r);
     const TexelDensityStats s = texelDensityStats(d, r->readGBuffer(), city.camera.position);
     stats[t.projection] = s;
-    const std::string budget = t.projection == "csm" ? "4x1024^2" : "1x2048^2";
+    const std::string budget = t.mapSize == 1024 ? "4x1024^2" : "1x2048^2";
     std::printf("  %-10s  %-9s %10.4f %10.3f %12.4f %12.1f\n", t.projection.c_str(), budget.c_str(), s.median, s.p95,
                 s.nearMedian, s.undersampledPct);
     RecordProperty(t.projection + "_texel_density_near_median", fmt::format("{:.4f}", s.nearMedian));
@@ -137,6 +140,8 @@ TEST(Aliasing, CityTexelDensityTable) {
   EXPECT_LE(stats["csm"].nearMedian * 4.0, uniform);
   EXPECT_LE(stats["tsm"].nearMedian * 4.0, uniform);
   EXPECT_LE(stats["psm"].nearMedian * 2.0, uniform);
+  EXPECT_LE(stats["lispsm"].nearMedian * 4.0, uniform);
+  EXPECT_LE(stats["sdsm"].nearMedian * 2.0, stats["csm"].nearMedian);
 }
 
 // tsm from city's bench, looking down and away from the sun (`--camera 1.5,1.7,310:4.3,0,305.5:40`):
@@ -169,10 +174,10 @@ TEST(Aliasing, CsmStabilisationStopsShimmer) {
   const Scene city = makeBuiltinScene("city");
   ShimmerOptions o;
   o.steps = 50;
-  const RenderOptions render{192, 108, 512};
+  const RenderOptions render{.width = 192, .height = 108};
   double pct[2] = {0.0, 0.0};
   for (int stabilize = 0; stabilize <= 1; ++stabilize) {
-    auto r = makeRenderer(city, {"csm", render.shadowMapSize, {{"csm.stabilize", stabilize ? "on" : "off"}}});
+    auto r = makeRenderer(city, {"csm", 512, {{"csm.stabilize", stabilize ? "on" : "off"}}});
     const ShimmerResult s = measureShimmer(*r, render, o);
     std::printf("  csm.stabilize=%s: shimmer_pct %.4f over %zu edge points, %d steps of %.4f m texels\n",
                 stabilize ? "on" : "off", s.shimmerPct, s.edgePoints, s.steps, s.texelM);
@@ -224,7 +229,7 @@ TEST(Aliasing, PsmLightBehindCameraProbePixels) {
 TEST(Aliasing, CascadeAndTexelDensityDebugViews) {
   const Scene city = makeBuiltinScene("city");
   auto r = makeRenderer(city, {"csm", 512, {}});
-  RenderOptions o{192, 108, 512};
+  RenderOptions o{.width = 192, .height = 108};
   o.debugView = PN_VIEW_CASCADES;
   r->render(o);
   const ColorImage cascades = r->readColor();

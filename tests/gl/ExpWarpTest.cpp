@@ -287,11 +287,10 @@ TEST(ExpWarps, NoNanOrInfAtTheExponentLimitsInRenderedMaps) {
   };
   constexpr int kW = 128, kH = 72, kMap = 512;
   for (const auto& [filter, params] : configs) {
-    const std::unique_ptr<Renderer> r = makeTestRenderer(scene, "uniform", filter, params);
+    const std::unique_ptr<Renderer> r = makeTestRenderer(scene, "uniform", filter, params, kMap);
     RenderOptions o;
     o.width = kW;
     o.height = kH;
-    o.shadowMapSize = kMap;
     r->render(o);
     std::string what = filter;
     for (const auto& [k, v] : params) what += " " + k + "=" + v;

@@ -13,7 +13,7 @@ namespace {
 constexpr int kW = 160, kH = 90, kMap = 256;
 
 RenderOptions frame(bool triangleIds) {
-  return {.width = kW, .height = kH, .shadowMapSize = kMap, .triangleIds = triangleIds};
+  return {.width = kW, .height = kH, .triangleIds = triangleIds};
 }
 
 size_t coveredPixels(const GBufferData& g) {
@@ -43,7 +43,7 @@ TEST(GBuffer, BackgroundIsWrittenEveryFrame) {
   down.camera.position = {0.0f, 3.0f, 0.5f};  // steeply down at the ground: no sky in view
   down.camera.target = {0.0f, 0.0f, 0.0f};
 
-  const auto reused = makeTestRenderer(scene, "uniform", "hard");
+  const auto reused = makeTestRenderer(scene, "uniform", "hard", {}, kMap);
   reused->setCameraAndLights(down.camera, down.lights);
   reused->render(frame(true));
   const GBufferData before = reused->readGBuffer();
@@ -51,7 +51,7 @@ TEST(GBuffer, BackgroundIsWrittenEveryFrame) {
   reused->render(frame(true));
   const GBufferData after = reused->readGBuffer();
 
-  const auto fresh = makeTestRenderer(scene, "uniform", "hard");
+  const auto fresh = makeTestRenderer(scene, "uniform", "hard", {}, kMap);
   fresh->render(frame(true));
   const GBufferData first = fresh->readGBuffer();
 
@@ -80,7 +80,7 @@ TEST(GBuffer, BackgroundIsWrittenEveryFrame) {
 // empty; with them every covered pixel names a triangle and background names none.
 TEST(GBuffer, TriangleIdsOnlyWhenAsked) {
   const Scene scene = makeBuiltinScene("boxes");
-  const auto r = makeTestRenderer(scene, "uniform", "hard");
+  const auto r = makeTestRenderer(scene, "uniform", "hard", {}, kMap);
   r->render(frame(false));
   const GBufferData without = r->readGBuffer();
   const std::vector<float> vWithout = r->readVisibility();

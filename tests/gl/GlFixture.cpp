@@ -12,28 +12,31 @@ gl::HeadlessContext& glContext() {
 }
 
 std::unique_ptr<Renderer> makeTestRenderer(const Scene& sceneIn, const std::string& projection,
-                                           const std::string& filter, const Params& params) {
+                                           const std::string& filter, const Params& params, int mapSize) {
   Scene scene = sceneIn;
-  auto p = makeProjection(projection);
-  auto f = makeFilter(filter);
-  const std::unique_ptr<Parameterized> addOns = makeAddOns();
-  applyParams(params, scene, *p, *f, addOns.get());
+  Technique technique(projection, filter);
+  technique.setMapSize(mapSize);
+  applySettings(params, scene, technique);
   glContext();  // made current before the renderer
   auto renderer = std::make_unique<Renderer>();
   renderer->setScene(scene);
-  renderer->setTechnique(std::move(p), std::move(f));
-  renderer->shadows().addOns() = *addOns;
+  renderer->setTechnique(technique);
   return renderer;
+}
+
+void setMapSize(Renderer& renderer, int mapSize) {
+  Technique t = renderer.technique();
+  t.setMapSize(mapSize);
+  renderer.setTechnique(t);
 }
 
 RenderResult renderScene(const Scene& scene, const std::string& projection, const std::string& filter,
                          const Params& params, int width, int height, int mapSize) {
-  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, projection, filter, params);
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, projection, filter, params, mapSize);
   Renderer& renderer = *owned;
   RenderOptions o;
   o.width = width;
   o.height = height;
-  o.shadowMapSize = mapSize;
   renderer.render(o);
   RenderResult r;
   r.visibility = renderer.readVisibility();

@@ -3,7 +3,8 @@
 // that render a scene with a technique and read the visibility back.
 #include "platform/Context.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
+#include "core/ShadowsAccess.h"
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 
@@ -33,7 +34,9 @@ using Params = std::vector<std::pair<std::string, std::string>>;
 /// A renderer holding `scene` (with the scene-level settings applied) and the technique, ready
 /// to render: for tests that need more than renderScene reads back.
 std::unique_ptr<Renderer> makeTestRenderer(const Scene& scene, const std::string& projection, const std::string& filter,
-                                           const Params& params = {});
+                                           const Params& params = {}, int mapSize = kDefaultMapSize);
+/// Gives the renderer's technique maps of `mapSize` texels per side.
+void setMapSize(Renderer& renderer, int mapSize);
 
 /// Renders `scene` with the given technique and "key=value" settings.
 RenderResult renderScene(const Scene& scene, const std::string& projection, const std::string& filter,

@@ -20,11 +20,11 @@ TEST(LitPass, OnlySunsShadesAsTheGeneralProgram) {
   dark.intensity = 0.0f;
   dark.castsShadow = false;
   withPoint.lights.push_back(dark);
-  const RenderOptions o{.width = 160, .height = 90, .shadowMapSize = 256, .triangleIds = false};
+  const RenderOptions o{.width = 160, .height = 90, .triangleIds = false};
 
-  const auto suns = makeTestRenderer(scene, "uniform", "hard");
+  const auto suns = makeTestRenderer(scene, "uniform", "hard", {}, 256);
   suns->render(o);
-  const auto general = makeTestRenderer(withPoint, "uniform", "hard");
+  const auto general = makeTestRenderer(withPoint, "uniform", "hard", {}, 256);
   general->render(o);
   ASSERT_EQ(general->lightCount(), 2u);
   const ColorImage a = suns->readColor(), b = general->readColor();

@@ -27,14 +27,13 @@ RenderOptions smallFrame() {
   RenderOptions o;
   o.width = kW;
   o.height = kH;
-  o.shadowMapSize = kMap;
   return o;
 }
 
 std::vector<float> renderAlone(const Scene& night, size_t light) {
   Scene alone = night;
   alone.lights = {night.lights[light]};
-  const auto renderer = makeTestRenderer(alone, "uniform", "pcf");
+  const auto renderer = makeTestRenderer(alone, "uniform", "pcf", {}, kMap);
   renderer->render(smallFrame());
   return renderer->readVisibility();
 }
@@ -49,7 +48,7 @@ TEST(ManyLights, EachLightIsShadowedAsIfAloneAndTheCombinationAddsNoError) {
   ro.samples = 36;
   double firstAlone = 0.0;
   for (const int n : {4, 8}) {
-    const auto renderer = makeTestRenderer(night, "uniform", "pcf", {{"light.count", std::to_string(n)}});
+    const auto renderer = makeTestRenderer(night, "uniform", "pcf", {{"light.count", std::to_string(n)}}, kMap);
     renderer->render(smallFrame());
     ASSERT_EQ(renderer->lightCount(), static_cast<size_t>(n));
     const GBufferData g = renderer->readGBuffer();
@@ -79,16 +78,16 @@ TEST(ManyLights, EachLightIsShadowedAsIfAloneAndTheCombinationAddsNoError) {
   }
 }
 
-// A new technique remakes the lights' copies of it; each still reads its own layer (the bench
+// A new technique remakes each light's state of it; each still reads its own layer (the bench
 // switching filters on `room` read a 1-pixel V for light 1 after the first filter).
 TEST(ManyLights, EveryLightKeepsItsLayerWhenTheTechniqueChanges) {
   const Scene room = makeBuiltinScene("room");
   ASSERT_GE(room.lights.size(), 2u);
-  const auto renderer = makeTestRenderer(room, "uniform", "hard");
+  const auto renderer = makeTestRenderer(room, "uniform", "hard", {}, kMap);
   renderer->render(smallFrame());
   const std::vector<float> hard = renderer->readVisibility(1);
   for (const std::string filter : {"pcf", "hard"}) {
-    renderer->setTechnique(makeProjection("uniform"), makeFilter(filter));
+    renderer->setTechnique(Technique("uniform", filter).setMapSize(kMap));
     renderer->render(smallFrame());
     for (size_t light = 0; light < room.lights.size(); ++light)
       EXPECT_EQ(renderer->readVisibility(light).size(), static_cast<size_t>(kW) * kH) << filter << ", light " << light;

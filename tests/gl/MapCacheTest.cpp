@@ -23,15 +23,15 @@ using namespace penumbra::test;
 namespace {
 
 constexpr int kW = 96, kH = 64, kMap = 512;
-const RenderOptions kRender{kW, kH, kMap};
+const RenderOptions kRender{.width = kW, .height = kH};
 // Where pixels are counted: enough of them that one pixel is not a percent.
-const RenderOptions kRenderLarger{2 * kW, 2 * kH, kMap};
+const RenderOptions kRenderLarger{.width = 2 * kW, .height = 2 * kH};
 
 const MapUpdates kEvery{}, kWhenInvalid{MapUpdates::Policy::WhenInvalid};
 
 std::unique_ptr<Renderer> renderer(const Scene& scene, const std::string& projection, const std::string& filter,
                                    const MapUpdates& updates) {
-  auto r = makeTestRenderer(scene, projection, filter);
+  auto r = makeTestRenderer(scene, projection, filter, {}, kMap);
   r->shadows().setMapUpdates(updates);
   return r;
 }
@@ -244,6 +244,6 @@ TEST(MapCache, EachLightFollowsItsOwnPolicy) {
     r->render(kRender);
     ADD_FAILURE() << "a budget of 0 maps was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("light 2: shadow.updates"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("light 2: LightShadowSettings::updates: MapUpdates::budgetMaps = 0"), std::string::npos) << e.what();
   }
 }

@@ -263,16 +263,15 @@ TEST(PcssBenchmark, VisibilityTimeAsTheLightGrows) {
   RenderOptions o;
   o.width = 256;
   o.height = 144;
-  o.shadowMapSize = kMapSize;
   constexpr int kWarmup = 2, kFrames = 15;
   auto minVisibilityMs = [&](const std::string& filter, const std::vector<std::pair<std::string, std::string>>& params,
                                 float lightSize) {
     scene.lights.front().size = lightSize;
-    auto p = makeProjection("uniform");
-    auto f = makeFilter(filter);
-    applyParams(params, scene, *p, *f);
+    Technique technique("uniform", filter);
+    technique.setMapSize(kMapSize);
+    applySettings(params, scene, technique);
     renderer.setScene(scene);
-    renderer.setTechnique(std::move(p), std::move(f));
+    renderer.setTechnique(technique);
     for (int i = 0; i < kWarmup; ++i) renderer.render(o);  // includes the shaders' JIT compile
     std::vector<double> ms;
     for (int i = 0; i < kFrames; ++i) {

@@ -46,12 +46,11 @@ const gl::Texture* findImage(const Renderer& r, const std::string& name) {
 }
 
 Frame renderPen(const std::string& filter) {
-  const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter);
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter, {}, kMapSize);
   Renderer& renderer = *owned;
   RenderOptions o;
   o.width = kWidth;
   o.height = kHeight;
-  o.shadowMapSize = kMapSize;
   renderer.render(o);
   Frame f;
   const gl::Texture* depth = findImage(renderer, "blocker-depth");
@@ -105,7 +104,7 @@ bool outOfSearchReach(const Scene& scene, const ShadowView& v, const glm::vec3& 
 }
 
 void checkPen(const std::string& filter, double maxSpuriousFraction) {
-  const float maxRadiusTexels = makeFilter(filter)->param(filter + ".maxRadiusTexels");
+  const float maxRadiusTexels = Technique("uniform", filter).get(filter + ".maxRadiusTexels");
   const Scene scene = makeBuiltinScene("pen");
   const Frame f = renderPen(filter);
   ASSERT_FALSE(f.blockerDepth.empty());
@@ -169,12 +168,11 @@ TEST(PenumbraDebugView, VssmBlockerDepthAndPenumbraWidthOnPen) { checkPen("vssm"
 // The images follow the screen size; frames at one size create no GL object.
 TEST(PenumbraDebugView, ImagesFollowResizeWithoutGlObjectGrowth) {
   for (const std::string filter : {"pcss", "vssm"}) {
-    const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter);
+    const std::unique_ptr<Renderer> owned = makeTestRenderer(makeBuiltinScene("pen"), "uniform", filter, {}, 256);
     Renderer& renderer = *owned;
     RenderOptions o;
     o.width = 96;
     o.height = 64;
-    o.shadowMapSize = 256;
     renderer.render(o);
     const int afterFirst = gl::liveObjectCount();
     for (int i = 0; i < 3; ++i) renderer.render(o);

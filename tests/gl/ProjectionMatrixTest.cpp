@@ -26,7 +26,7 @@ struct Outcome {
 
 Outcome run(const Scene& scene, const std::string& projection, const std::string& filter) {
   Outcome o;
-  const std::string reason = makeFilter(filter)->incompatibility(projection, scene.light());
+  const std::string reason = filterIncompatibility(filter, projection, scene.light());
   if (!reason.empty()) {
     o.refused = true;
     o.why = reason;
@@ -35,7 +35,7 @@ Outcome run(const Scene& scene, const std::string& projection, const std::string
     Renderer r;
     r.setScene(scene);
     try {
-      r.setTechnique(makeProjection(projection), makeFilter(filter));
+      r.setTechnique(Technique(projection, filter));
       ADD_FAILURE() << filter << " × " << projection << ": incompatible but accepted";
     } catch (const Error& e) {
       EXPECT_EQ(e.kind(), ErrorKind::Usage);

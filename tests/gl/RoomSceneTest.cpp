@@ -82,8 +82,8 @@ TEST(RoomScene, EveryFilterAgreesWithTheReferenceUnderThePointLamp) {
   std::vector<SurfaceSample> points;
   for (const Probe& p : kProbes) points.push_back({p.wsPosition, p.wsNormal, {0, 0}});
   for (const auto& [filter, tolerance] : kToleranceV) {
-    const auto renderer = makeTestRenderer(room, "uniform", filter);
-    renderer->render({.width = kWidth, .height = kHeight, .shadowMapSize = kMapSize});
+    const auto renderer = makeTestRenderer(room, "uniform", filter, {}, kMapSize);
+    renderer->render({.width = kWidth, .height = kHeight});
     ASSERT_EQ(renderer->lightCount(), room.lights.size()) << filter;
     const std::vector<float> v = renderer->visibilityAt(points, 0);
     ASSERT_EQ(v.size(), points.size()) << filter;

@@ -3,7 +3,7 @@
 // both stages must compute the same V, for every filter.
 #include "GlFixture.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -24,8 +24,8 @@ struct StageAgreement {
 };
 
 StageAgreement drawnAgainstPoints(const Scene& scene, const std::string& projection, const std::string& filter) {
-  auto r = makeTestRenderer(scene, projection, filter);
-  r->render({96, 64, 512});
+  auto r = makeTestRenderer(scene, projection, filter, {}, 512);
+  r->render({.width = 96, .height = 64});
   const GBufferData g = r->readGBuffer();
   const std::vector<float> image = r->readVisibility();
   std::vector<SurfaceSample> points;

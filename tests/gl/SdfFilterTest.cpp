@@ -55,7 +55,7 @@ TEST(SdfFilter, ShaderDistanceMatchesTheBake) {
 
   SdfFilter filter;
   filter.setField(volume);
-  const gpu::SdfUniforms u = filter.uniforms();
+  const gpu::SdfUniforms u = filter.uniforms(Technique("uniform", "sdf").filterValues());
   gl::Buffer block("sdf probe block", sizeof(u), &u);
   block.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FILTER);
   const gpu::FrameUniforms frame{};
@@ -193,21 +193,26 @@ TEST(SdfFilter, FieldIsUploadedOncePerScene) {
   Scene scene = loadScene("pen");
   const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", "sdf");
   Renderer& renderer = *owned;
-  auto& filter = dynamic_cast<SdfFilter&>(renderer.filter());
   RenderOptions o;
   o.width = 64;
   o.height = 36;
   renderer.render(o);
+  auto& filter = dynamic_cast<SdfFilter&>(filterOf(renderer.shadows()));  // light 0's, made by its first frame
   renderer.render(o);
   EXPECT_EQ(filter.fieldUploads(), 1);
-  filter.setParam("sdf.k", 4.0f);  // a march parameter: no new field
+  const auto set = [&renderer](const char* key, float value) {
+    Technique t = renderer.technique();
+    t.set(key, value);
+    renderer.setTechnique(t);
+  };
+  set("sdf.k", 4.0f);  // a march parameter: no new field
   renderer.render(o);
   EXPECT_EQ(filter.fieldUploads(), 1);
   scene.objects.back().worldFromObject[3][1] += 0.1f;  // the pencil moved: a new field
   renderer.setScene(scene);
   renderer.render(o);
   EXPECT_EQ(filter.fieldUploads(), 2);
-  filter.setParam("sdf.resolution", 64.0f);
+  set("sdf.resolution", 64.0f);
   renderer.render(o);
   EXPECT_EQ(filter.fieldUploads(), 3);
 }

@@ -162,14 +162,13 @@ TEST(SecondDepth, OpenMeshRendersAndStillCasts) {
 TEST(SecondDepth, MapStoresTheMidpointOfTwoPeeledLayers) {
   Scene scene = makeBuiltinScene("boxes");  // closed boxes and spheres: two layers where they are
   floorCasts(scene);
-  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", "second-depth");
+  const std::unique_ptr<Renderer> owned = makeTestRenderer(scene, "uniform", "second-depth", {}, 512);
   Renderer& renderer = *owned;
   RenderOptions o;
   o.width = o.height = 64;
-  o.shadowMapSize = 512;
   renderer.render(o);
   std::map<std::string, std::vector<float>> maps;
-  for (const DebugImage& d : renderer.filter().debugImages()) {
+  for (const DebugImage& d : filterOf(renderer.shadows()).debugImages()) {
     std::vector<float>& m = maps[d.name];
     m.resize(static_cast<size_t>(d.texture->width()) * static_cast<size_t>(d.texture->height()));
     const bool depth = d.name != "shadow-map";  // the midpoint: a colour texture

@@ -61,7 +61,6 @@ struct EngineSurfaces {
     in.camera = ShadowCamera::fromMatrices(view, proj, DepthConvention::NegativeOneToOne);
     in.surfaces = {.width = kSize, .height = kSize, .depth = depth.id(), .normal = normal.id()};
     in.lights = std::span<const Light>(&light, 1);
-    in.mapSize = 256;
     return in;
   }
 };
@@ -88,8 +87,9 @@ TEST(ShadowsApi, EngineDepthAndBuffersGiveTheShadowUnderTheCaster) {
   const EngineScene scene;
   const EngineSurfaces surfaces;
   Shadows shadows;
-  shadows.setTechnique("uniform", "hard");
-  shadows.setCasters(std::span<const CasterMesh>(&scene.caster, 1), std::array<Aabb, 1>{Aabb{{-3, 0, -3}, {3, 0, 3}}});
+  shadows.setTechnique(Technique("uniform", "hard").setMapSize(256));
+  const Aabb ground{{-3, 0, -3}, {3, 0, 3}};
+  shadows.setCasters(std::span<const CasterMesh>(&scene.caster, 1), {.bounds = std::span<const Aabb>(&ground, 1)});
   const Light sun = overheadSun();
   shadows.render(surfaces.inputs(sun));
   const std::vector<float> v = shadows.readVisibility();
@@ -106,7 +106,7 @@ TEST(ShadowsApi, RestoresTheCallersGlState) {
   const EngineScene scene;
   const EngineSurfaces surfaces;
   Shadows shadows;
-  shadows.setTechnique("csm", "pcss");  // shadow, prefilter and visibility passes all run
+  shadows.setTechnique(Technique("csm", "pcss").setMapSize(256));  // shadow, prefilter and visibility passes all run
   shadows.setCasters(std::span<const CasterMesh>(&scene.caster, 1));
 
   // The engine's state: unusual values everywhere Penumbra works.
@@ -135,6 +135,14 @@ TEST(ShadowsApi, RestoresTheCallersGlState) {
   glBindSampler(0, sampler.id());
   glBindImageTexture(1, unit9.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
   glActiveTexture(GL_TEXTURE5);
+  glDepthRange(0.25, 0.5);
+  glFrontFace(GL_CW);
+  for (const GLenum cap : {GL_FRAMEBUFFER_SRGB, GL_PRIMITIVE_RESTART, GL_CLIP_DISTANCE2, GL_COLOR_LOGIC_OP}) glEnable(cap);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 7);
+  gl::Buffer pbo("engine pixel buffer", 256);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo.id());
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pbo.id());
 
   const Light sun = overheadSun();
   shadows.render(surfaces.inputs(sun));
@@ -176,6 +184,15 @@ TEST(ShadowsApi, RestoresTheCallersGlState) {
   EXPECT_EQ(integer(GL_SAMPLER_BINDING), GLint(sampler.id()));
   EXPECT_EQ(integer(GL_TEXTURE_BINDING_2D), 0);
   EXPECT_EQ(integer(GL_TEXTURE_BINDING_2D_ARRAY), 0);
+  std::array<GLdouble, 2> range{};
+  glGetDoublev(GL_DEPTH_RANGE, range.data());
+  EXPECT_EQ(range, (std::array<GLdouble, 2>{0.25, 0.5}));
+  EXPECT_EQ(integer(GL_FRONT_FACE), GL_CW);
+  for (const GLenum cap : {GL_FRAMEBUFFER_SRGB, GL_PRIMITIVE_RESTART, GL_CLIP_DISTANCE2, GL_COLOR_LOGIC_OP}) EXPECT_TRUE(glIsEnabled(cap)) << cap;
+  EXPECT_EQ(integer(GL_PACK_ALIGNMENT), 1);
+  EXPECT_EQ(integer(GL_UNPACK_ROW_LENGTH), 7);
+  EXPECT_EQ(integer(GL_PIXEL_UNPACK_BUFFER_BINDING), GLint(pbo.id()));
+  EXPECT_EQ(integer(GL_PIXEL_PACK_BUFFER_BINDING), GLint(pbo.id()));
 
   // Back to what the rest of the test binary expects.
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -189,6 +206,13 @@ TEST(ShadowsApi, RestoresTheCallersGlState) {
   glBindSampler(0, 0);
   glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
   glActiveTexture(GL_TEXTURE0);
+  glDepthRange(0.0, 1.0);
+  glFrontFace(GL_CCW);
+  for (const GLenum cap : {GL_FRAMEBUFFER_SRGB, GL_PRIMITIVE_RESTART, GL_CLIP_DISTANCE2, GL_COLOR_LOGIC_OP}) glDisable(cap);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
 TEST(ShadowsApi, ReleasesEveryObjectItMade) {
@@ -198,7 +222,7 @@ TEST(ShadowsApi, ReleasesEveryObjectItMade) {
   const int before = gl::liveObjectCount();
   {
     Shadows shadows;
-    shadows.setTechnique("csm", "vssm");
+    shadows.setTechnique(Technique("csm", "vssm").setMapSize(256));
     shadows.setCasters(std::span<const CasterMesh>(&scene.caster, 1));
     const Light sun = overheadSun();
     shadows.render(surfaces.inputs(sun));
@@ -240,17 +264,17 @@ TEST(ShadowsApi, NamesTheCallersMistakes) {
   m = usageErrorFrom([&] { shadows.render(in); });
   EXPECT_NE(m.find("no light (ShadowFrameInputs::lights is empty)"), std::string::npos) << m;
   in = surfaces.inputs(sun);
-  in.surfaces.normal = 0;
+  in.surfaces.depth = 0;
   m = usageErrorFrom([&] { shadows.render(in); });
-  EXPECT_NE(m.find("needs a normal texture"), std::string::npos) << m;
+  EXPECT_NE(m.find("ShadowSurfaces::depth and ShadowSurfaces::position are both 0"), std::string::npos) << m;
   in = surfaces.inputs(sun);
   in.surfaces.depth = 31337;
   m = usageErrorFrom([&] { shadows.render(in); });
   EXPECT_NE(m.find("ShadowSurfaces::depth = 31337 is not a GL texture"), std::string::npos) << m;
-  m = usageErrorFrom([&] { shadows.setTechnique("uniform", "pcf", {{"pcss.blockerSamples", "8"}}); });
+  m = usageErrorFrom([&] { shadows.setTechnique(Technique("uniform", "pcf", {{"pcss.blockerSamples", "8"}})); });
   EXPECT_NE(m.find("unknown parameter 'pcss.blockerSamples'"), std::string::npos) << m;
   // A GL error the caller left behind is reported as the caller's.
-  shadows.setTechnique("uniform", "hard");
+  shadows.setTechnique(Technique("uniform", "hard").setMapSize(256));
   glBindTexture(0x1234, 0);
   try {
     shadows.render(surfaces.inputs(sun));

@@ -15,7 +15,7 @@ using namespace penumbra::test;
 namespace {
 
 constexpr int kW = 160, kH = 90, kMapSize = 1024;
-const RenderOptions kRender{kW, kH, kMapSize};
+const RenderOptions kRender{.width = kW, .height = kH};
 
 std::vector<float> renderFrames(Renderer& r, int frames) {
   for (int i = 0; i < frames; ++i) r.render(kRender);
@@ -48,14 +48,14 @@ size_t countDiffering(const std::vector<float>& a, const std::vector<float>& b) 
 // accumulated V differs; off again, V is the plain filter's to the bit.
 TEST(Temporal, OffLeavesEveryFrameAsItWas) {
   const Scene boxes = makeBuiltinScene("boxes");
-  auto r = makeTestRenderer(boxes, "uniform", "pcss", {{"pcss.filterSamples", "8"}, {"pcss.blockerSamples", "8"}});
+  auto r = makeTestRenderer(boxes, "uniform", "pcss", {{"pcss.filterSamples", "8"}, {"pcss.blockerSamples", "8"}}, kMapSize);
   const std::vector<float> first = renderFrames(*r, 1);
   EXPECT_EQ(countDiffering(first, renderFrames(*r, 1)), 0u) << "a still scene renders the same V every frame";
-  r->shadows().addOns().setParam("temporal.accumulate", "on");
+  r->setTechnique(Technique(r->technique()).set("temporal.accumulate", "on"));
   const std::vector<float> accumulated = renderFrames(*r, 4);
   EXPECT_GT(countDiffering(first, accumulated), 20u) << "the pattern turns per frame and the frames average";
   EXPECT_GT(r->shadows().techniqueMemoryBytes(), 0u);
-  r->shadows().addOns().setParam("temporal.accumulate", "off");
+  r->setTechnique(Technique(r->technique()).set("temporal.accumulate", "off"));
   EXPECT_EQ(countDiffering(first, renderFrames(*r, 1)), 0u) << "off again: the plain filter, bit for bit";
 }
 
@@ -70,9 +70,9 @@ TEST(Temporal, StillSceneConvergesTowardTheManyTapFilter) {
   many.push_back({"pcf.samples", "64"});
   on.push_back({"pcf.samples", "8"});
   on.push_back({"temporal.accumulate", "on"});
-  const std::vector<float> vFew = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", few), 1);
-  const std::vector<float> vMany = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", many), 1);
-  const std::vector<float> vAcc = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", on), 40);
+  const std::vector<float> vFew = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", few, kMapSize), 1);
+  const std::vector<float> vMany = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", many, kMapSize), 1);
+  const std::vector<float> vAcc = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", on, kMapSize), 40);
   const double rmseFew = penumbraRmse(vFew, vMany), rmseAcc = penumbraRmse(vAcc, vMany);
   std::printf("  RMSE against 64 taps in its penumbra: 8 taps %.4f, 8 taps accumulated over 40 frames %.4f\n", rmseFew, rmseAcc);
   RecordProperty("rmse_8_taps", std::to_string(rmseFew));
@@ -95,7 +95,7 @@ TEST(Temporal, DisoccludedSurfacesStartAfreshAndTheClampRemovesAVanishedShadow) 
   constexpr uint32_t kFloorId = 1, kBoxAId = kBoxA + 1;
   Scene gone = boxes;
   gone.objects[kBoxA].worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -10.0f, 0.0f)) * gone.objects[kBoxA].worldFromObject;
-  auto plain = makeTestRenderer(boxes, "uniform", "hard");
+  auto plain = makeTestRenderer(boxes, "uniform", "hard", {}, kMapSize);
   const std::vector<float> vBefore = renderFrames(*plain, 1);
   const GBufferData gBefore = plain->readGBuffer();
   plain->setPose(gone);
@@ -111,7 +111,7 @@ TEST(Temporal, DisoccludedSurfacesStartAfreshAndTheClampRemovesAVanishedShadow) 
   for (size_t c = 0; c < 3; ++c) {
     Params params = configs[c];
     params.push_back({"temporal.accumulate", "on"});
-    auto r = makeTestRenderer(boxes, "uniform", "hard", params);
+    auto r = makeTestRenderer(boxes, "uniform", "hard", params, kMapSize);
     renderFrames(*r, 8);
     r->setPose(gone);
     const std::vector<float> v = renderFrames(*r, 1);
@@ -151,8 +151,8 @@ TEST(Temporal, ACameraCutThroughTheRendererDropsTheHistory) {
   many.push_back({"pcf.samples", "64"});
   on.push_back({"pcf.samples", "8"});
   on.push_back({"temporal.accumulate", "on"});
-  const std::vector<float> vMany = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", many), 1);
-  auto continued = makeTestRenderer(boxes, "uniform", "pcf", on), cut = makeTestRenderer(boxes, "uniform", "pcf", on);
+  const std::vector<float> vMany = renderFrames(*makeTestRenderer(boxes, "uniform", "pcf", many, kMapSize), 1);
+  auto continued = makeTestRenderer(boxes, "uniform", "pcf", on, kMapSize), cut = makeTestRenderer(boxes, "uniform", "pcf", on, kMapSize);
   const std::vector<float> vContinued = renderFrames(*continued, 13);
   renderFrames(*cut, 12);
   RenderOptions cutFrame = kRender;

@@ -15,21 +15,25 @@ CasterTriangles::CasterTriangles(const Scene& scene) {
   }
 }
 
+float rayTriangle(const glm::vec3& o, const glm::vec3& d, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 e1 = b - a, e2 = c - a;
+  const glm::vec3 p = glm::cross(d, e2);
+  const float det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-12f) return -1.0f;
+  const float inv = 1.0f / det;
+  const glm::vec3 s = o - a;
+  const float u = glm::dot(s, p) * inv;
+  if (u < 0.0f || u > 1.0f) return -1.0f;
+  const glm::vec3 q = glm::cross(s, e1);
+  const float v = glm::dot(d, q) * inv;
+  if (v < 0.0f || u + v > 1.0f) return -1.0f;
+  return glm::dot(e2, q) * inv;
+}
+
 float CasterTriangles::nearestHit(const glm::vec3& o, const glm::vec3& d, float tMin, float tMax) const {
   float nearest = tMax;
-  for (size_t i = 0; i + 2 < mV.size(); i += 3) {  // Möller–Trumbore
-    const glm::vec3 e1 = mV[i + 1] - mV[i], e2 = mV[i + 2] - mV[i];
-    const glm::vec3 p = glm::cross(d, e2);
-    const float det = glm::dot(e1, p);
-    if (std::abs(det) < 1e-12f) continue;
-    const float inv = 1.0f / det;
-    const glm::vec3 s = o - mV[i];
-    const float u = glm::dot(s, p) * inv;
-    if (u < 0.0f || u > 1.0f) continue;
-    const glm::vec3 q = glm::cross(s, e1);
-    const float v = glm::dot(d, q) * inv;
-    if (v < 0.0f || u + v > 1.0f) continue;
-    const float t = glm::dot(e2, q) * inv;
+  for (size_t i = 0; i + 2 < mV.size(); i += 3) {
+    const float t = rayTriangle(o, d, mV[i], mV[i + 1], mV[i + 2]);
     if (t > tMin && t < nearest) nearest = t;
   }
   return nearest;

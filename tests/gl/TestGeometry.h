@@ -13,6 +13,10 @@
 
 namespace penumbra::test {
 
+/// Where a ray from `o` along `d` meets triangle (a, b, c) (Möller–Trumbore): the distance in
+/// units of |d|, or -1 when it misses (or runs parallel to the triangle's plane).
+float rayTriangle(const glm::vec3& o, const glm::vec3& d, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+
 class CasterTriangles {
 public:
   explicit CasterTriangles(const Scene& scene);

@@ -19,8 +19,8 @@ constexpr double kMaxAcneFraction = 0.001;  // the issue's 0.1 %
 constexpr double kMaxContactGapTexels = 2.0;
 
 report::BenchSetup setupFor(const report::BenchConfig& c, const std::string& /*camera: the scene's own*/) {
-  report::BenchSetup s{makeBuiltinScene(c.scene), makeProjection(c.projection), makeFilter(c.filter)};
-  applyParams(c.params, s.scene, *s.projection, *s.filter, s.addOns.get());
+  report::BenchSetup s{makeBuiltinScene(c.scene), Technique(c.projection, c.filter)};
+  applySettings(c.params, s.scene, s.technique);
   return s;
 }
 

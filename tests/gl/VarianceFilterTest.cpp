@@ -365,12 +365,12 @@ TEST(VarianceFilters, FootprintFollowsThePointAsTheCameraMoves) {
   const Scene pen = makeBuiltinScene("pen");
   ShimmerOptions o;
   o.steps = 8;
-  const RenderOptions render{256, 144, kMapSize};
+  const RenderOptions render{.width = 256, .height = 144};
   constexpr double kMaxShimmerPct = 0.1;
   for (const char* filter : {"vsm", "msm"}) {
     for (const char* footprint : {"off", "on"}) {
       const std::string key = std::string(filter) + ".footprint";
-      const std::unique_ptr<Renderer> r = makeTestRenderer(pen, "uniform", filter, {{key, footprint}});
+      const std::unique_ptr<Renderer> r = makeTestRenderer(pen, "uniform", filter, {{key, footprint}}, kMapSize);
       const ShimmerResult s = measureShimmer(*r, render, o);
       std::printf("  pen %s %s=%s: shimmer_pct %.3f over %zu edge points\n", filter, key.c_str(), footprint,
                   s.shimmerPct, s.edgePoints);
@@ -400,12 +400,11 @@ double quantile(std::vector<double> v, double q) {
 PairedTimes pairedVisibilityMs(const Scene& sceneA, const std::string& filterA, const Params& paramsA,
                                const Scene& sceneB, const std::string& filterB, const Params& paramsB, int mapSize) {
   constexpr int kWarmUp = 2, kPairs = 21;
-  const std::unique_ptr<Renderer> a = makeTestRenderer(sceneA, "uniform", filterA, paramsA);
-  const std::unique_ptr<Renderer> b = makeTestRenderer(sceneB, "uniform", filterB, paramsB);
+  const std::unique_ptr<Renderer> a = makeTestRenderer(sceneA, "uniform", filterA, paramsA, mapSize);
+  const std::unique_ptr<Renderer> b = makeTestRenderer(sceneB, "uniform", filterB, paramsB, mapSize);
   RenderOptions o;
   o.width = 320;
   o.height = 180;
-  o.shadowMapSize = mapSize;
   for (int i = 0; i < kWarmUp; ++i) {  // includes the shaders' JIT compile
     a->render(o);
     b->render(o);
@@ -473,11 +472,10 @@ TEST(VarianceFilters, DISABLED_BenchmarkFenceBehindTheWallPasses) {
   const char* passes[] = {"shadow", "prefilter", "visibility"};
   for (const auto& [width, height, mapSize] : {std::tuple{kFenceW, kFenceH, kMapSize}, std::tuple{256, 256, 2048}}) {
     std::vector<std::unique_ptr<Renderer>> renderers;
-    for (const Variant& v : list) renderers.push_back(makeTestRenderer(scene, "uniform", v.filter, v.params));
+    for (const Variant& v : list) renderers.push_back(makeTestRenderer(scene, "uniform", v.filter, v.params, mapSize));
     RenderOptions o;
     o.width = width;
     o.height = height;
-    o.shadowMapSize = mapSize;
     std::vector<std::vector<std::vector<double>>> ms(list.size(), std::vector<std::vector<double>>(std::size(passes)));
     for (int round = 0; round < kWarmUp + kRounds; ++round)
       for (size_t k = 0; k < list.size(); ++k) {

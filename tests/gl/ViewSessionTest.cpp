@@ -18,24 +18,24 @@ using namespace penumbra::viewer;
 
 namespace {
 ViewSession makeSession() {
-  return ViewSession(test::glContext(), makeBuiltinScene("pen"), makeProjection("uniform"), makeFilter("hard"), 256);
+  return ViewSession(test::glContext(), makeBuiltinScene("pen"), Technique("uniform", "hard").setMapSize(256));
 }
 }  // namespace
 
 TEST(ViewSession, SwitchingFiltersKeepsTheValuesTheUserSet) {
   ViewSession s = makeSession();
   s.setParam("hard.constantBias=0.001");
-  EXPECT_FLOAT_EQ(s.renderer().filter().param("hard.constantBias"), 0.001f);
+  EXPECT_FLOAT_EQ(s.renderer().technique().get("hard.constantBias"), 0.001f);
   for (const std::string& id : filterIds()) {
     s.setFilter(id);
     EXPECT_EQ(s.filterId(), id);
-    EXPECT_EQ(s.renderer().filter().id(), id);
+    EXPECT_EQ(s.renderer().technique().filter(), id);
   }
   s.setFilter("hard");
-  EXPECT_FLOAT_EQ(s.renderer().filter().param("hard.constantBias"), 0.001f);
+  EXPECT_FLOAT_EQ(s.renderer().technique().get("hard.constantBias"), 0.001f);
   s.setProjection(projectionIds().back());
-  EXPECT_EQ(s.renderer().projection().id(), projectionIds().back());
-  EXPECT_FLOAT_EQ(s.renderer().filter().param("hard.constantBias"), 0.001f);
+  EXPECT_EQ(s.renderer().technique().projection(), projectionIds().back());
+  EXPECT_FLOAT_EQ(s.renderer().technique().get("hard.constantBias"), 0.001f);
 }
 
 TEST(ViewSession, FailuresLeaveTheViewAsItWas) {
@@ -43,7 +43,7 @@ TEST(ViewSession, FailuresLeaveTheViewAsItWas) {
   const uint64_t v = s.version();
   EXPECT_THROW(s.setFilter("blurry"), Error);
   EXPECT_EQ(s.filterId(), "hard");
-  EXPECT_EQ(s.renderer().filter().id(), "hard");
+  EXPECT_EQ(s.renderer().technique().filter(), "hard");
   EXPECT_THROW(s.loadScene("/no/such/scene.json"), Error);
   EXPECT_EQ(s.scene().name, "pen");
   EXPECT_THROW(s.setParam("hard.nothing=1"), Error);
@@ -85,7 +85,7 @@ TEST(ViewSession, RendersAndListsDebugImages) {
 // camera cut, playback's step does not, nor a jump with the camera not following; the frame takes
 // the mark and clears it.
 TEST(ViewSession, JumpsOfAFollowedCameraAreCameraCuts) {
-  ViewSession s(test::glContext(), makeBuiltinScene("city"), makeProjection("uniform"), makeFilter("hard"), 256);
+  ViewSession s(test::glContext(), makeBuiltinScene("city"), Technique("uniform", "hard").setMapSize(256));
   ASSERT_TRUE(s.animatesCamera());
   EXPECT_FALSE(s.cameraCutPending());
   s.setTime(1.0f / 30.0f, false);

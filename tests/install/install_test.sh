@@ -7,7 +7,10 @@
 #     scene matches `penumbra render` of the same scene and technique within the stated bounds;
 #  4. a program that links Penumbra::reference and Penumbra::bake (find_package with every
 #     component) builds and scores two known points; pkg-config's penumbra.pc links a program;
-#  5. add_subdirectory with the tools and tests off configures only libraries.
+#  5. engine code that uses glm's .r/.g/.b and .s/.t names beside <penumbra/Shadows.h>, and
+#     docs/embedding.md's minimal integration, build with find_package and with pkg-config (the
+#     package imposes no compile definition);
+#  6. add_subdirectory with the tools and tests off configures only libraries.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR PENUMBRA_BINARY IMAGE_DIFF_BINARY
 set -euo pipefail
 build=$1 source=$2 penumbra=$3 imagediff=$4
@@ -25,6 +28,11 @@ links=$(grep -h 'INTERFACE_LINK_LIBRARIES' "$tmp/prefix/lib/cmake/Penumbra/Penum
 echo "$links" | sed 's/^ */  /'
 if echo "$links" | grep -Eiw 'egl|glfw|glfw3|imgui|embree|tbb|openexr|imath|penumbra_reference|penumbra_bake|turbojpeg|draco|meshoptimizer'; then
   echo "FAIL: Penumbra::shadows links one of EGL, GLFW, ImGui, Embree, TBB, OpenEXR" >&2
+  exit 1
+fi
+
+if grep -h 'INTERFACE_COMPILE_DEFINITIONS' "$tmp"/prefix/lib/cmake/Penumbra/Penumbra_*Targets.cmake; then
+  echo "FAIL: an exported target imposes a compile definition on its users" >&2
   exit 1
 fi
 
@@ -60,6 +68,17 @@ echo "  $flags"
 # shellcheck disable=SC2086
 c++ -std=c++20 "$tmp/pc.cpp" -o "$tmp/pc" $flags
 "$tmp/pc"
+
+echo "== engine code: glm's colour and texture names, the minimal integration (find_package, then pkg-config)"
+cmake -S "$source/tests/install/engine_consumer" -B "$tmp/engine-consumer" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$tmp/prefix" > "$tmp/engine-consumer-configure.log"
+cmake --build "$tmp/engine-consumer" > "$tmp/engine-consumer-build.log" || { cat "$tmp/engine-consumer-build.log" >&2; exit 1; }
+"$tmp/engine-consumer/engine_consumer"
+flags=$(PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig" pkg-config --cflags --libs penumbra)
+if echo "$flags" | grep -q -- '-D'; then echo "FAIL: penumbra.pc defines something for its users: $flags" >&2; exit 1; fi
+# shellcheck disable=SC2086
+c++ -std=c++20 "$source/tests/install/engine_consumer/main.cpp" -o "$tmp/engine-consumer-pc" $flags
+"$tmp/engine-consumer-pc"
 
 echo "== add_subdirectory with PENUMBRA_BUILD_TOOLS=OFF"
 cmake -S "$source/examples/engine" -B "$tmp/subdir" -G Ninja -DPENUMBRA_SOURCE="$source" > "$tmp/subdir.log"

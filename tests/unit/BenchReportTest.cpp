@@ -7,7 +7,7 @@
 #include "report/SvgChart.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <gtest/gtest.h>
 

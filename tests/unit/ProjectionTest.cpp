@@ -1,12 +1,14 @@
 // Projections on the CPU: the practical split scheme, every projection mapping the visible part
 // of the camera frustum into its clip volume (warps included), csm's snapping, and that every
 // caster that can shadow a visible receiver lies inside the light's clip volume.
+#include "ProjectionSamples.h"
 #include "shadows/projections/CascadedProjection.h"
 #include "shadows/projections/LightSpace.h"
+#include "shadows/projections/LightSpacePerspectiveProjection.h"
 #include "shadows/projections/PerspectiveProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 #include <random>
 
 using namespace penumbra;
+using penumbra::test::visibleSurfaceSamples;
 
 namespace {
 
@@ -161,15 +164,15 @@ TEST(Projection, WarpsMapTheFrustumIntoTheUnitCubeForEveryLightDirection) {
       {"low oblique", right + fwd + glm::vec3(0, -0.15f, 0)}};
   for (const auto& [label, dir] : lights) {
     const Scene s = sceneWithSun("city", dir);
-    for (const char* projection : {"psm", "tsm", "csm"}) expectFrustumInsideClip(s, projection, "city, sun " + label);
+    for (const char* projection : {"psm", "tsm", "lispsm", "csm"}) expectFrustumInsideClip(s, projection, "city, sun " + label);
     const Scene b = sceneWithSun("boxes", dir);
-    for (const char* projection : {"psm", "tsm"}) expectFrustumInsideClip(b, projection, "boxes, sun " + label);
+    for (const char* projection : {"psm", "tsm", "lispsm"}) expectFrustumInsideClip(b, projection, "boxes, sun " + label);
   }
 }
 
 TEST(Projection, PsmAndTsmWarpTheCityAndPsmClassifiesTheLight) {
   const Scene city = makeBuiltinScene("city");
-  for (const char* id : {"psm", "tsm"}) {
+  for (const char* id : {"psm", "tsm", "lispsm"}) {
     auto p = makeProjection(id);
     const LightFrusta f = p->computeFrusta(city.camera, kAspect, city.light(), city.extent(), 2048);
     ASSERT_EQ(f.views.size(), 1u);
@@ -245,9 +248,10 @@ TEST(Projection, HullAreaCentroid) {
 // or no warp, `grazing`) the body filled 5 % of the map's height and shadows came out 11× blockier.
 TEST(Projection, TrapezoidFillsTheMap) {
   constexpr float kMinSpanNdc = 1.9f;  // of 2; the margins take 2 · 2 texels of 1024
-  for (const char* name : {"grazing", "boxes", "fence", "city"}) {
+  for (const char* name : {"grazing", "boxes", "fence", "city"})
+  for (const char* id : {"tsm", "lispsm"}) {
     const Scene scene = makeBuiltinScene(name);
-    auto p = makeProjection("tsm");
+    auto p = makeProjection(id);
     const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), kMapSize).views.at(0);
     const float farM = std::max(shadowFarDistance(scene.camera, scene.extent()), 2.0f * scene.camera.nearM);
     const std::vector<glm::vec3> body = receiverBody(scene.camera, kAspect, scene.camera.nearM, farM, scene.extent(), scene.light());
@@ -259,7 +263,7 @@ TEST(Projection, TrapezoidFillsTheMap) {
       lo = glm::min(lo, glm::vec2(c) / c.w);
       hi = glm::max(hi, glm::vec2(c) / c.w);
     }
-    std::printf("%-8s tsm: the receivers span %.3f x %.3f of the map's 2 x 2 (NDC)\n", name, hi.x - lo.x, hi.y - lo.y);
+    std::printf("%-8s %-6s: the receivers span %.3f x %.3f of the map's 2 x 2 (NDC)\n", name, id, hi.x - lo.x, hi.y - lo.y);
     EXPECT_GE(hi.x - lo.x, kMinSpanNdc) << name;
     EXPECT_GE(hi.y - lo.y, kMinSpanNdc) << name;
   }
@@ -314,43 +318,6 @@ TEST(Projection, CsmSnappingKeepsTheMatrixForSubTexelMoves) {
 
 namespace {
 
-// Points on the scene's triangles (area-weighted) that the camera frustum contains.
-std::vector<glm::vec3> visibleSurfaceSamples(const Scene& scene, int count, uint32_t seed) {
-  struct Tri { glm::vec3 a, b, c; };
-  std::vector<Tri> tris;
-  std::vector<float> cumulative;
-  float total = 0.0f;
-  const glm::mat4 clip = scene.camera.clipFromView(kAspect) * scene.camera.viewFromWorld();
-  const float farM = shadowFarDistance(scene.camera, scene.extent());
-  for (const Object& o : scene.objects) {
-    const Mesh& m = scene.meshes[o.mesh];
-    for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-      Tri t{glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i]], 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 1]], 1.0f)),
-            glm::vec3(o.worldFromObject * glm::vec4(m.positions[m.indices[i + 2]], 1.0f))};
-      total += 0.5f * glm::length(glm::cross(t.b - t.a, t.c - t.a));
-      tris.push_back(t);
-      cumulative.push_back(total);
-    }
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<glm::vec3> out;
-  for (int tries = 0; tries < count * 400 && static_cast<int>(out.size()) < count; ++tries) {
-    const size_t k = static_cast<size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * total) - cumulative.begin());
-    const Tri& t = tris[std::min(k, tris.size() - 1)];
-    float r1 = u(rng), r2 = u(rng);
-    if (r1 + r2 > 1.0f) { r1 = 1.0f - r1; r2 = 1.0f - r2; }
-    const glm::vec3 p = t.a + r1 * (t.b - t.a) + r2 * (t.c - t.a);
-    const glm::vec4 c = clip * glm::vec4(p, 1.0f);
-    const float depth = -(scene.camera.viewFromWorld() * glm::vec4(p, 1.0f)).z;
-    if (c.w <= 0.0f || depth > farM || depth < scene.camera.nearM) continue;
-    if (std::abs(c.x / c.w) > 1.0f || std::abs(c.y / c.w) > 1.0f) continue;
-    out.push_back(p);
-  }
-  return out;
-}
-
 // World-space triangles (three points each) of the scene's shadow casters.
 std::vector<glm::vec3> casterTriangles(const Scene& scene) {
   std::vector<glm::vec3> tri;
@@ -398,7 +365,7 @@ void expectCastersInsideClip(const Scene& scene, const std::string& projection) 
   const glm::mat4 view = scene.camera.viewFromWorld();
   int hits = 0, outside = 0;
   std::string first;
-  for (const glm::vec3& r : visibleSurfaceSamples(scene, 1000, 5)) {
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, kAspect, 1000, 5)) {
     const float depth = -(view * glm::vec4(r, 1.0f)).z;
     std::vector<size_t> views;
     for (size_t i = 0; i < f.views.size(); ++i) {
@@ -425,7 +392,7 @@ TEST(Projection, UniformFrustumHoldsEveryCasterOfAVisibleReceiver) {
 }
 
 TEST(Projection, LargeViewProjectionsHoldEveryCasterOfAVisibleReceiver) {
-  for (const char* projection : {"csm", "psm", "tsm"})
+  for (const char* projection : {"csm", "psm", "tsm", "lispsm"})
     for (const char* name : {"boxes", "fence", "pen"}) expectCastersInsideClip(makeBuiltinScene(name), projection);
 }
 
@@ -467,7 +434,7 @@ NeededFit measureNeededFit(const Scene& scene, const ShadowView& v) {
   NeededFit n;
   Aabb xy;
   float widestTan = 0.0f;
-  for (const glm::vec3& r : visibleSurfaceSamples(scene, 4000, 17)) {
+  for (const glm::vec3& r : visibleSurfaceSamples(scene, kAspect, 4000, 17)) {
     const glm::vec3 ls = glm::vec3(v.viewFromWorld * glm::vec4(r, 1.0f));
     xy.extend(ls);
     const float tanR = std::max(std::abs(ls.x), std::abs(ls.y)) / -ls.z;
@@ -530,4 +497,109 @@ TEST(Projection, UniformFitIsTight) {
     EXPECT_TRUE(worldDepthRatio > kDepthSlack || std::max(worldExtentRatio.x, worldExtentRatio.y) > kExtentSlack)
         << scene.name << ": the whole scene is no larger than the fit; pick a scene where tightness matters";
   }
+}
+
+// ---- lispsm -------------------------------------------------------------------------------
+
+// Wimmer et al.'s optimum: with the view perpendicular to the light, n_opt = z_n + √(z_n·z_f)
+// (P's depth d is the view's, z_f = z_n + d); at any other angle the camera depths of P's planes
+// along its axis are z0 and z0 + d·sin γ and n_opt is divided by sin γ; along the light, infinite.
+TEST(Projection, LispsmOptimalNearFollowsWimmer) {
+  EXPECT_NEAR(lispsmOptimalNear(1.0f, 99.0f, 1.0f), 1.0f + 10.0f, 1e-4f);
+  EXPECT_NEAR(lispsmOptimalNear(0.5f, 49.5f, 1.0f), 0.5f + 5.0f, 1e-4f);
+  const float s = std::sin(0.3f);
+  EXPECT_NEAR(lispsmOptimalNear(2.0f, 40.0f, s), (2.0f + std::sqrt(2.0f * (2.0f + 40.0f * s))) / s, 1e-3f);
+  EXPECT_TRUE(std::isinf(lispsmOptimalNear(1.0f, 10.0f, 0.0f)));
+  // Monotonic: the closer the view to the light, the farther P's centre (the weaker the warp).
+  float previous = 0.0f;
+  for (float g : {1.5f, 1.0f, 0.5f, 0.1f, 0.01f}) {
+    const float n = lispsmOptimalNear(1.0f, 100.0f, std::sin(g));
+    EXPECT_GT(n, previous) << g;
+    previous = n;
+  }
+}
+
+namespace {
+
+// What the lispsm map does along P's axis, measured from its matrix alone: the change of the map's
+// coordinate along the axis per metre at P's near plane over that at its far plane. P's perspective
+// y = A − B/a (a: distance from P's centre) gives ((n + d) / n)².
+struct LispsmMeasure {
+  double nearOverFarRate = 0.0;
+  double n = 0.0, d = 0.0;  ///< n_opt and d, computed here from the scene as Wimmer et al. define them
+  bool warped = false;
+};
+
+LispsmMeasure measureLispsm(const Scene& scene, int mapSize = kMapSize) {
+  auto p = makeProjection("lispsm");
+  const ShadowView v = p->computeFrusta(scene.camera, kAspect, scene.light(), scene.extent(), mapSize).views.at(0);
+  LispsmMeasure m;
+  m.warped = v.warped;
+  const Camera& cam = scene.camera;
+  const float farM = std::max(shadowFarDistance(cam, scene.extent()), 2.0f * cam.nearM);
+  const std::vector<glm::vec3> body = receiverBody(cam, kAspect, cam.nearM, farM, scene.extent(), scene.light());
+  // P's axis in the world: the view direction without its part along the light.
+  const glm::vec3 l = glm::normalize(scene.light().direction), fwd = cam.forward();
+  const double sinGamma = glm::length(glm::cross(fwd, l));
+  const glm::vec3 axis = glm::normalize(fwd - glm::dot(fwd, l) * l);
+  double sMin = 1e30, sMax = -1e30, z0 = 1e30;
+  for (const glm::vec3& q : body) {
+    sMin = std::min(sMin, static_cast<double>(glm::dot(q - cam.position, axis)));
+    sMax = std::max(sMax, static_cast<double>(glm::dot(q - cam.position, axis)));
+    z0 = std::min(z0, static_cast<double>(glm::dot(q - cam.position, fwd)));
+  }
+  z0 = std::max(z0, static_cast<double>(cam.nearM));
+  m.d = sMax - sMin;
+  m.n = (z0 + std::sqrt(z0 * (z0 + m.d * sinGamma))) / sinGamma;
+  // The map's coordinate along P's axis: the warp's y (P's axis is the map's y).
+  const auto mapY = [&](double s) {
+    const glm::dvec4 c = glm::dmat4(v.clipFromWorld) * glm::dvec4(glm::dvec3(cam.position) + glm::dvec3(axis) * s, 1.0);
+    return c.y / c.w;
+  };
+  const double h = 1e-3 * m.d;
+  const double rateNear = (mapY(sMin + h) - mapY(sMin - h)) / (2.0 * h);
+  const double rateFar = (mapY(sMax + h) - mapY(sMax - h)) / (2.0 * h);
+  m.nearOverFarRate = rateNear / rateFar;
+  return m;
+}
+
+}  // namespace
+
+// The map itself carries Wimmer et al.'s warp parameter: along P's axis its texels grow from the
+// near plane to the far plane by ((n_opt + d) / n_opt)², n_opt from the camera/light angle.
+TEST(Projection, LispsmWarpsWithTheOptimalNear) {
+  for (const char* name : {"city", "boxes", "fence", "grazing"}) {
+    const LispsmMeasure m = measureLispsm(makeBuiltinScene(name));
+    ASSERT_TRUE(m.warped) << name;
+    const double expected = std::pow((m.n + m.d) / m.n, 2.0);
+    std::printf("%-8s lispsm: n_opt %.2f m, d %.2f m: texels grow x%.3f along P's axis (expected x%.3f)\n", name, m.n, m.d,
+                m.nearOverFarRate, expected);
+    EXPECT_NEAR(m.nearOverFarRate / expected, 1.0, 0.01) << name;
+  }
+}
+
+// View and light along one line (the sun straight behind the camera, or straight ahead): no
+// warp helps, n_opt is infinite and lispsm is `uniform`'s unwarped fit. Approaching that line, the
+// warp weakens continuously toward it (n_opt grows as 1/sin γ: slowly, x1.6 at 10⁻⁴ rad on city).
+TEST(Projection, LispsmFallsBackToUniformAlongTheView) {
+  const Scene city = makeBuiltinScene("city");
+  const glm::vec3 fwd = city.camera.forward();
+  for (const glm::vec3& dir : {fwd, -fwd}) {
+    const Scene s = sceneWithSun("city", dir);
+    auto p = makeProjection("lispsm");
+    const ShadowView v = p->computeFrusta(s.camera, kAspect, s.light(), s.extent(), kMapSize).views.at(0);
+    EXPECT_FALSE(v.warped) << "sun along " << (dir == fwd ? "the view" : "the view, toward the camera");
+    expectFrustumInsideClip(s, "lispsm", "city, sun along the view");
+  }
+  const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0, 1, 0)));
+  double previous = 1e30;
+  for (float angle : {0.5f, 0.1f, 0.01f, 1e-3f, 1e-4f, 1e-5f}) {
+    const Scene s = sceneWithSun("city", std::cos(angle) * fwd + std::sin(angle) * right);
+    const LispsmMeasure m = measureLispsm(s);
+    ASSERT_TRUE(m.warped) << angle;
+    std::printf("sun %.4f rad from the view: texels grow x%.3f along P's axis\n", angle, m.nearOverFarRate);
+    EXPECT_LT(m.nearOverFarRate, previous) << angle;
+    previous = m.nearOverFarRate;
+  }
+  EXPECT_LT(previous, 1.1);  // 10⁻⁵ rad from the view: all but uniform
 }

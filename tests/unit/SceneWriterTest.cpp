@@ -3,7 +3,7 @@
 #include "viewer/SceneWriter.h"
 
 #include <penumbra/Error.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -56,15 +56,15 @@ TEST(SceneWriter, EveryBuiltinSceneRoundTrips) {
     Scene s = makeBuiltinScene(name);
     s.camera.position += glm::vec3(0.5f, 0.25f, 0.0f);  // as moved in the viewer
     s.lights.front().size *= 1.5f;
-    auto projection = makeProjection(projectionIds().back());
-    auto filter = makeFilter(filterIds().back());
-    const ParamDesc& d = filter->paramDescs().empty() ? projection->paramDescs().front() : filter->paramDescs().front();
-    Parameterized& owner = filter->paramDescs().empty() ? static_cast<Parameterized&>(*projection) : *filter;
+    Technique technique(projectionIds().back(), filterIds().back());
+    technique.setMapSize(1024);
+    const std::span<const ParamDesc> filterTable = technique.filterValues().paramDescs();
+    const ParamDesc& d = filterTable.empty() ? technique.projectionValues().paramDescs().front() : filterTable.front();
     const float changed = d.isChoice() ? d.max : d.min;  // a non-default value
-    owner.setParam(d.key, changed);
+    technique.set(d.key, changed);
 
     const auto path = tempFile(name + ".json");
-    saveSceneFile(path, s, *projection, *filter, 1024);
+    saveSceneFile(path, s, technique);
     const Scene back = loadSceneFile(path);
     ASSERT_EQ(back.objects.size(), s.objects.size()) << name;
     for (size_t i = 0; i < s.objects.size(); ++i) {
@@ -89,8 +89,8 @@ TEST(SceneWriter, EveryBuiltinSceneRoundTrips) {
     if (la.type == LightType::Spot) {
       EXPECT_NEAR(glm::length(lb.position - la.position), 0.0f, kEpsM) << name;
     }
-    EXPECT_EQ(back.shadow.projection, projection->id());
-    EXPECT_EQ(back.shadow.filter, filter->id());
+    EXPECT_EQ(back.shadow.projection, technique.projection());
+    EXPECT_EQ(back.shadow.filter, technique.filter());
     EXPECT_EQ(back.shadow.mapSize, 1024);
     bool found = false;
     for (const auto& [key, value] : back.shadow.params)
@@ -109,23 +109,20 @@ TEST(SceneWriter, FileScenesKeepTheirObjectsAsWritten) {
                 {"name": "ball", "shape": "sphere", "radius": 0.3, "translate": [0, 1, 0]}]})";
   Scene s = loadSceneFile(src);
   s.lights.front().size = 0.04f;
-  auto projection = makeProjection("uniform");
-  auto filter = makeFilter("hard");
-  const std::string text = sceneFileText(s, *projection, *filter, 512);
+  const Technique technique = Technique("uniform", "hard").setMapSize(512);
+  const std::string text = sceneFileText(s, technique);
   EXPECT_NE(text.find("\"radius\": 0.3"), std::string::npos) << text;  // the original object, not a re-derived one
   EXPECT_NE(text.find("\"size\": 0.04"), std::string::npos) << text;
   const auto out = tempFile("saved.json");
-  saveSceneFile(out, s, *projection, *filter, 512);
+  saveSceneFile(out, s, technique);
   EXPECT_NEAR(loadSceneFile(out).light().size, 0.04f, 1e-7f);
 }
 
 TEST(SceneWriter, MeshesWithoutAFileFormAreRefusedByName) {
   Scene s = makeBuiltinScene("boxes");
   s.meshes[s.objects[1].mesh].name = "teapot";
-  auto projection = makeProjection("uniform");
-  auto filter = makeFilter("hard");
   try {
-    sceneFileText(s, *projection, *filter, 512);
+    sceneFileText(s, Technique("uniform", "hard"));
     ADD_FAILURE() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("teapot"), std::string::npos) << e.what();
@@ -163,11 +160,11 @@ TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
   point.intensity = 25.0f;
   point.shadow.mapSize = 256;
   point.shadow.updates = MapUpdates{MapUpdates::Policy::WhenInvalid};
+  point.shadow.projection = "uniform";  // its own technique's ids
+  point.shadow.filter = "pcss";
   s.lights = {sun, spot, point};
-  auto projection = makeProjection("uniform");
-  auto filter = makeFilter("pcf");
   const auto path = tempFile("lights.json");
-  saveSceneFile(path, s, *projection, *filter, 1024);
+  saveSceneFile(path, s, Technique("uniform", "pcf").setMapSize(1024));
   const Scene back = loadSceneFile(path);
   ASSERT_EQ(back.lights.size(), s.lights.size());
   for (size_t i = 0; i < s.lights.size(); ++i) {
@@ -191,6 +188,8 @@ TEST(SceneWriter, EveryLightFieldOfSeveralLightsRoundTrips) {
     EXPECT_NEAR(b.intensity, a.intensity, 1e-5f) << which;
     EXPECT_EQ(b.castsShadow, a.castsShadow) << which;
     EXPECT_EQ(b.shadow.mapSize, a.shadow.mapSize) << which;
+    EXPECT_EQ(b.shadow.projection, a.shadow.projection) << which;
+    EXPECT_EQ(b.shadow.filter, a.shadow.filter) << which;
     EXPECT_EQ(b.shadow.params, a.shadow.params) << which;
     EXPECT_EQ(b.shadow.updates, a.shadow.updates) << which;
   }

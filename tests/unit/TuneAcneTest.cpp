@@ -5,7 +5,7 @@
 
 #include <penumbra/Error.h>
 #include <penumbra/Metrics.h>
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <gtest/gtest.h>
 
@@ -43,10 +43,10 @@ TEST(TuneAcne, BiasKeysAndBiasSize) {
   for (const char* key : {"pcf.radiusTexels", "pcf.kernel", "csm.lambda", "uniform.marginTexels"})
     EXPECT_FALSE(isBiasKey(key)) << key;
 
-  const std::unique_ptr<Filter> f = makeFilter("hard");
+  const Parameterized f(filterParams("hard"));
   std::vector<float> current;
-  for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
-  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, TuneMapDefault{});
+  for (const ParamDesc& d : f.paramDescs()) current.push_back(f.param(d.key));
+  const std::vector<TuneDim> space = tuneSpace(f.paramDescs(), current, TuneMapDefault{});
   TuneCandidate lo = defaultCandidate(space), hi = lo;
   for (size_t d = 0; d < space.size(); ++d) {
     lo[d] = space[d].lo;

@@ -2,7 +2,7 @@
 // the successive-halving cut, the Pareto front and the budget pick.
 #include "report/TuneSearch.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 
 #include <gtest/gtest.h>
 
@@ -16,19 +16,19 @@ using namespace penumbra::report;
 namespace {
 
 std::vector<TuneDim> pcfSpace(int mapSize = 2048) {
-  const std::unique_ptr<Filter> f = makeFilter("pcf");
+  const Parameterized f(filterParams("pcf"));
   std::vector<float> current;
-  for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
-  return tuneSpace(f->paramDescs(), current, {.size = mapSize, .texels = int64_t{mapSize} * mapSize});
+  for (const ParamDesc& d : f.paramDescs()) current.push_back(f.param(d.key));
+  return tuneSpace(f.paramDescs(), current, {.size = mapSize, .texels = int64_t{mapSize} * mapSize});
 }
 
 // csm's own parameters (no filter), `cascades` maps of 2048² by default.
 std::vector<TuneDim> csmSpace(std::span<const std::string> fixed = {}) {
-  const std::unique_ptr<Projection> p = makeProjection("csm");
+  const Parameterized p(projectionParams("csm"));
   std::vector<float> current;
-  for (const ParamDesc& d : p->paramDescs()) current.push_back(p->param(d.key));
+  for (const ParamDesc& d : p.paramDescs()) current.push_back(p.param(d.key));
   constexpr int kSide = 2048;
-  return tuneSpace(p->paramDescs(), current, {.size = kSide, .texels = int64_t{4} * kSide * kSide}, fixed);
+  return tuneSpace(p.paramDescs(), current, {.size = kSide, .texels = int64_t{4} * kSide * kSide}, fixed);
 }
 
 TunePoint point(double costMs, double error, double memoryMiB) {
@@ -61,11 +61,11 @@ TEST(TuneSearch, SpaceTakesItsRangesFromTheParameterTable) {
 }
 
 TEST(TuneSearch, FixedKeysAndZeroMapSizeAreLeftOut) {
-  const std::unique_ptr<Filter> f = makeFilter("pcf");
+  const Parameterized f(filterParams("pcf"));
   std::vector<float> current;
-  for (const ParamDesc& d : f->paramDescs()) current.push_back(f->param(d.key));
+  for (const ParamDesc& d : f.paramDescs()) current.push_back(f.param(d.key));
   const std::vector<std::string> fixed = {"pcf.kernel"};
-  const std::vector<TuneDim> space = tuneSpace(f->paramDescs(), current, TuneMapDefault{}, fixed);
+  const std::vector<TuneDim> space = tuneSpace(f.paramDescs(), current, TuneMapDefault{}, fixed);
   for (const TuneDim& d : space) {
     EXPECT_NE(d.desc.key, "pcf.kernel");
     EXPECT_NE(d.desc.key, kMapSizeKey);

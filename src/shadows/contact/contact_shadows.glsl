@@ -24,11 +24,11 @@ layout(binding = PN_IMG_VISIBILITY, r32f) uniform image2D i_visibility;
 float behindSurface(vec3 p, ivec2 q) {
   vec4 surface = surfacePosition(q);
   if (surface.w < 0.5) return -1.0;  // background: nothing there
-  vec3 eye = u_frame.cameraPosition.xyz;
+  vec3 eye = cameraEyeFor(p);
   vec3 d = p - eye;
   float sampleM = length(d);
   d /= sampleM;
-  vec3 n = texelFetch(s_gbufGeoNormal, q, 0).xyz;
+  vec3 n = surfaceGeoNormal(q, surface.xyz);
   float dn = dot(d, n);
   const float kEdgeOn = 1e-3;  // |cos| below which the plane gives no usable intersection
   float surfaceM = abs(dn) > kEdgeOn ? dot(surface.xyz - eye, n) / dn : distance(surface.xyz, eye);
@@ -53,7 +53,7 @@ float contactHitM(vec3 ws, vec3 n, ivec2 px) {
     ivec2 q = clamp(ivec2((ndc * 0.5 + 0.5) * vec2(u_frame.screen.xy)), ivec2(0), u_frame.screen.xy - 1);
     if (q == px) continue;  // the receiver's own pixel
     float behind = behindSurface(p, q);
-    if (behind > u_contact.march.w * distance(p, u_frame.cameraPosition.xyz) && behind < u_contact.march.y) return t;
+    if (behind > u_contact.march.w * pixelScaleAt(p) && behind < u_contact.march.y) return t;
   }
   return -1.0;
 }
@@ -65,7 +65,7 @@ void main() {
   if (v <= 0.0) return;  // already dark (or facing away): nothing to add
   vec4 pos = surfacePosition(px);
   if (pos.w < 0.5) return;
-  vec3 n = normalize(texelFetch(s_gbufGeoNormal, px, 0).xyz);
+  vec3 n = normalize(surfaceGeoNormal(px, pos.xyz));
   float hitM = contactHitM(pos.xyz, n, px);
   // Dark at the contact, fading out toward the march's end: an occluder farther along the ray
   // casts a wider penumbra (and is the shadow map's to resolve), so a hard V = 0 there would

@@ -28,7 +28,7 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("esm.anisotropy"),
 };
 
-ExpWarpMaps::Warp esmWarp(const Filter& f) {
+ExpWarpMaps::Warp esmWarp(const FrameContext& f) {
   ExpWarpMaps::Warp w;
   w.positive = f.param("esm.exponent");
   w.components = 1;
@@ -40,7 +40,7 @@ ExpWarpMaps::Warp esmWarp(const Filter& f) {
 
 EsmFilter::EsmFilter() : Filter(kParams) {}
 
-void EsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "esm warp", esmWarp(*this)); }
+void EsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "esm warp", esmWarp(frame)); }
 
 void EsmFilter::prefilter(FrameContext& frame) {
   (void)frame;
@@ -49,8 +49,8 @@ void EsmFilter::prefilter(FrameContext& frame) {
 
 void EsmFilter::computeVisibility(FrameContext& frame) {
   gpu::EsmUniforms u{};
-  u.params = glm::vec4(param("esm.exponent"), param("esm.filterTexels"), 0.0f, 0.0f);
-  u.mode = glm::ivec4(paramInt("esm.anisotropy"), paramInt("esm.footprint"), 0, 0);
+  u.params = glm::vec4(frame.param("esm.exponent"), frame.param("esm.filterTexels"), 0.0f, 0.0f);
+  u.mode = glm::ivec4(frame.paramInt("esm.anisotropy"), frame.paramInt("esm.footprint"), 0, 0);
   frame.setFilterBlock(u);
   mMaps.bindForFiltering();
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/esm.glsl"));

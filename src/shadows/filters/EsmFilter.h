@@ -3,7 +3,7 @@
 // trilinear + anisotropic filtering over the pixel footprint, V = E[p] / p(t) (docs/esm.md).
 #include "shadows/filters/ExpWarpMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

@@ -29,7 +29,7 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("evsm.anisotropy"),
 };
 
-ExpWarpMaps::Warp evsmWarp(const Filter& f) {
+ExpWarpMaps::Warp evsmWarp(const FrameContext& f) {
   ExpWarpMaps::Warp w;
   w.components = f.paramInt("evsm.components") == 0 ? 2 : 4;
   w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm.storage"));
@@ -42,7 +42,7 @@ ExpWarpMaps::Warp evsmWarp(const Filter& f) {
 
 EvsmFilter::EvsmFilter() : Filter(kParams) {}
 
-void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(*this)); }
+void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(frame)); }
 
 void EvsmFilter::prefilter(FrameContext& frame) {
   (void)frame;
@@ -50,11 +50,11 @@ void EvsmFilter::prefilter(FrameContext& frame) {
 }
 
 void EvsmFilter::computeVisibility(FrameContext& frame) {
-  const ExpWarpMaps::Warp w = evsmWarp(*this);
+  const ExpWarpMaps::Warp w = evsmWarp(frame);
   gpu::EvsmUniforms u{};
   u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), static_cast<float>(w.components));
-  u.params = glm::vec4(param("evsm.minVariance"), param("evsm.bleedReduction"), param("evsm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("evsm.anisotropy"), paramInt("evsm.footprint"), 0, 0);
+  u.params = glm::vec4(frame.param("evsm.minVariance"), frame.param("evsm.bleedReduction"), frame.param("evsm.filterTexels"), 0.0f);
+  u.mode = glm::ivec4(frame.paramInt("evsm.anisotropy"), frame.paramInt("evsm.footprint"), 0, 0);
   frame.setFilterBlock(u);
   mMaps.bindForFiltering();
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm.glsl"));

@@ -4,7 +4,7 @@
 // pixel footprint, Chebyshev's bound on each warp (docs/evsm.md).
 #include "shadows/filters/ExpWarpMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

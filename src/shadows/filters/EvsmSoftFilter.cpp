@@ -28,7 +28,7 @@ constexpr ParamDesc kParams[] = {
 
 constexpr int kComponents = 4;
 
-ExpWarpMaps::Warp softWarp(const Filter& f) {
+ExpWarpMaps::Warp softWarp(const FrameContext& f) {
   ExpWarpMaps::Warp w;
   w.components = kComponents;
   w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm-soft.storage"));
@@ -41,25 +41,25 @@ ExpWarpMaps::Warp softWarp(const Filter& f) {
 
 EvsmSoftFilter::EvsmSoftFilter() : Filter(kParams) {}
 
-void EvsmSoftFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm-soft moments", softWarp(*this)); }
+void EvsmSoftFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm-soft moments", softWarp(frame)); }
 
 void EvsmSoftFilter::prefilter(FrameContext& frame) {
   mMaps.buildMips();
-  mTightSearch.build(frame, paramInt("evsm-soft.tightSearch") != 0, mMaps.depth());
+  mTightSearch.build(frame, frame.paramInt("evsm-soft.tightSearch") != 0, mMaps.depth());
 }
 
 void EvsmSoftFilter::computeVisibility(FrameContext& frame) {
-  const ExpWarpMaps::Warp w = softWarp(*this);
+  const ExpWarpMaps::Warp w = softWarp(frame);
   gpu::EvsmSoftUniforms u{};
   u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), 0.0f);
-  u.params = glm::vec4(param("evsm-soft.minVariance"), param("evsm-soft.bleedReduction"),
-                       param("evsm-soft.minRadiusTexels"), param("evsm-soft.maxRadiusTexels"));
-  u.mode = glm::ivec4(paramInt("evsm-soft.anisotropy"), paramInt("evsm-soft.mipSplit"), 0, 0);
+  u.params = glm::vec4(frame.param("evsm-soft.minVariance"), frame.param("evsm-soft.bleedReduction"),
+                       frame.param("evsm-soft.minRadiusTexels"), frame.param("evsm-soft.maxRadiusTexels"));
+  u.mode = glm::ivec4(frame.paramInt("evsm-soft.anisotropy"), frame.paramInt("evsm-soft.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
   mMaps.bindForFiltering();
   mPenumbraDebug.bind(frame);
   ShaderDefines defines;
-  mTightSearch.bind(paramInt("evsm-soft.tightSearch") != 0, defines);
+  mTightSearch.bind(frame.paramInt("evsm-soft.tightSearch") != 0, defines);
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/evsm_soft.glsl", defines));
 }
 

@@ -6,7 +6,7 @@
 #include "shadows/TightSearch.h"
 #include "shadows/filters/ExpWarpMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

@@ -2,7 +2,7 @@
 // hard: one comparison per pixel with a chosen bias; the baseline every other filter softens.
 #include "frame/ShadowMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

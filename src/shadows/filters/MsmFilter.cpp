@@ -25,7 +25,7 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("msm.anisotropy"),
 };
 
-bool quantized(const Filter& f) { return f.paramInt("msm.storage") != kStorageFloat32; }
+bool quantized(const FrameContext& f) { return f.paramInt("msm.storage") != kStorageFloat32; }
 
 }  // namespace
 
@@ -33,7 +33,7 @@ MsmFilter::MsmFilter() : Filter(kParams) {}
 
 void MsmFilter::renderShadowMaps(FrameContext& frame) {
   constexpr int kFullMipChain = 0;
-  const bool q = quantized(*this);
+  const bool q = quantized(frame);
   mMaps.ensure("msm moments", frame.mapSize(), frame.viewCount(), q ? GL_RGBA16 : GL_RGBA32F, kFullMipChain);
   ShaderDefines defines;
   defines.set("PN_MOMENT_COUNT", 4);
@@ -54,12 +54,12 @@ void MsmFilter::prefilter(FrameContext& frame) {
 
 void MsmFilter::computeVisibility(FrameContext& frame) {
   gpu::MsmUniforms u{};
-  u.params = glm::vec4(param("msm.bias"), param("msm.depthBias"), param("msm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("msm.anisotropy"), 0, 0, 0);
+  u.params = glm::vec4(frame.param("msm.bias"), frame.param("msm.depthBias"), frame.param("msm.filterTexels"), 0.0f);
+  u.mode = glm::ivec4(frame.paramInt("msm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl", *this));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm.glsl"));
 }
 
 std::vector<DebugImage> MsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},

@@ -3,7 +3,7 @@
 // the Hamburger 4MSM lower bound (docs/msm.md).
 #include "frame/ShadowMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

@@ -32,17 +32,17 @@ void MsmSoftFilter::renderShadowMaps(FrameContext& frame) {
 
 void MsmSoftFilter::prefilter(FrameContext& frame) {
   mSat.build(frame.shaders(), mMaps.depth(), kMoments);
-  mTightSearch.build(frame, paramInt("msm-soft.tightSearch") != 0, mMaps.depth());
+  mTightSearch.build(frame, frame.paramInt("msm-soft.tightSearch") != 0, mMaps.depth());
 }
 
 void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   gpu::MsmSoftUniforms u{};
-  u.params = glm::vec4(param("msm-soft.bias"), param("msm-soft.depthBias"), param("msm-soft.minRadiusTexels"),
-                       param("msm-soft.maxRadiusTexels"));
+  u.params = glm::vec4(frame.param("msm-soft.bias"), frame.param("msm-soft.depthBias"), frame.param("msm-soft.minRadiusTexels"),
+                       frame.param("msm-soft.maxRadiusTexels"));
   frame.setFilterBlock(u);
   mSat.bindTable();
   ShaderDefines defines;
-  mTightSearch.bind(paramInt("msm-soft.tightSearch") != 0, defines);
+  mTightSearch.bind(frame.paramInt("msm-soft.tightSearch") != 0, defines);
   frame.dispatchScreen(frame.visibilityProgram("shadows/filters/msm_soft.glsl", defines));
 }
 

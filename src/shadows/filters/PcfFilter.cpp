@@ -24,9 +24,11 @@ constexpr ParamDesc kParams[] = {
      16.0f, 1.0f, kMaxPoissonTaps, 1.0f, {}, "PN_PCF_SAMPLES"},
     {"pcf.hardwareCompare", "Hardware compare", "on: each tap is the hardware's bilinear 2x2 comparison (sampler2DShadow), smoother edges for the same tap count", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
-     0.0002f, 0.0f, 0.05f, 0.0f},
-    {"pcf.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)", "texels",
+    {"pcf.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range), added to the plane bias", "depth range",
+     0.0f, 0.0f, 0.05f, 0.0f},
+    {"pcf.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope, added to the plane bias", "texels",
+     0.0f, 0.0f, 16.0f, 0.0f},
+    {"pcf.planeBiasTexels", "Plane bias", "every tap compares the receiver's own plane at its texel's centre, moved back along the receiver's normal by this many texels of world size plus the tap texel's distance from the receiver in texels", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -50,10 +52,10 @@ void PcfFilter::renderShadowMaps(FrameContext& frame) {
 
 void PcfFilter::computeVisibility(FrameContext& frame) {
   gpu::PcfUniforms u{};
-  const float radiusTexels = std::min(param("pcf.radiusTexels"), maxKernelRadiusTexels(frame.mapSize()));
-  u.params = glm::vec4(radiusTexels, param("pcf.constantBias"), param("pcf.slopeBias"), 0.0f);
+  const float radiusTexels = std::min(frame.param("pcf.radiusTexels"), maxKernelRadiusTexels(frame.mapSize()));
+  u.params = glm::vec4(radiusTexels, frame.param("pcf.constantBias"), frame.param("pcf.slopeBias"), frame.param("pcf.planeBiasTexels"));
   frame.setFilterBlock(u);
-  const bool hardware = paramInt("pcf.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcf.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
   // One view: the box kernel's size is known here (cascades hold the radius in metres, so theirs
@@ -61,7 +63,7 @@ void PcfFilter::computeVisibility(FrameContext& frame) {
   if (frame.viewCount() == 1) defines.set("PN_PCF_BOX_HALF_SIDE", static_cast<int>(std::ceil(radiusTexels)));
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   if (hardware) mCompare.bind(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", *this, defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcf.glsl", defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER0);
 }
 

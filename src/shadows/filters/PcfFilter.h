@@ -3,7 +3,7 @@
 #include "gl/Objects.h"
 #include "frame/ShadowMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 #include <numbers>
 #include <string_view>

@@ -25,10 +25,12 @@ constexpr ParamDesc kParams[] = {
      96.0f, 1.0f, 512.0f, 0.0f},
     {"pcss.hardwareCompare", "Hardware compare", "on: each filter tap is the hardware's bilinear 2x2 comparison (sampler2DShadow)", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
-    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range)", "depth range",
-     0.0002f, 0.0f, 0.05f, 0.0f},
+    {"pcss.constantBias", "Constant bias", "depth offset in linear light-depth units (fraction of the map's depth range), added to the plane bias", "depth range",
+     0.0f, 0.0f, 0.05f, 0.0f},
     tightSearchParam("pcss.tightSearch"),
-    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope; every tap also follows the receiver's plane (receiver-plane depth bias)", "texels",
+    {"pcss.slopeBias", "Slope bias", "slope-scaled offset in texels of the receiver plane's depth slope, added to the plane bias", "texels",
+     0.0f, 0.0f, 16.0f, 0.0f},
+    {"pcss.planeBiasTexels", "Plane bias", "every tap compares the receiver's own plane at its texel's centre, moved back along the receiver's normal by this many texels of world size plus the tap texel's distance from the receiver in texels", "texels",
      1.0f, 0.0f, 16.0f, 0.0f},
 };
 
@@ -42,25 +44,26 @@ void PcssFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void PcssFilter::prefilter(FrameContext& frame) {
-  mTightSearch.build(frame, paramInt("pcss.tightSearch") != 0, mMaps.depth());
+  mTightSearch.build(frame, frame.paramInt("pcss.tightSearch") != 0, mMaps.depth());
 }
 
 void PcssFilter::computeVisibility(FrameContext& frame) {
   gpu::PcssUniforms u{};
   const float mapRadius = maxKernelRadiusTexels(frame.mapSize());
-  u.params = glm::vec4(param("pcss.constantBias"), param("pcss.slopeBias"), std::min(param("pcss.minRadiusTexels"), mapRadius),
-                       std::min(param("pcss.maxRadiusTexels"), mapRadius));
+  u.params = glm::vec4(frame.param("pcss.constantBias"), frame.param("pcss.slopeBias"), std::min(frame.param("pcss.minRadiusTexels"), mapRadius),
+                       std::min(frame.param("pcss.maxRadiusTexels"), mapRadius));
+  u.bias = glm::vec4(frame.param("pcss.planeBiasTexels"), 0.0f, 0.0f, 0.0f);
   frame.setFilterBlock(u);
-  const bool hardware = paramInt("pcss.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcss.hardwareCompare") != 0;
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
-  mTightSearch.bind(paramInt("pcss.tightSearch") != 0, defines);
+  mTightSearch.bind(frame.paramInt("pcss.tightSearch") != 0, defines);
   // One map at two units: raw depths for the blocker search, comparisons for the filter.
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
   mMaps.depth().bindUnit(PN_TEX_FILTER1);
   if (hardware) mCompare.bind(PN_TEX_FILTER1);
   mPenumbraDebug.bind(frame);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", *this, defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/pcss.glsl", defines));
   if (hardware) ComparisonSampler::unbind(PN_TEX_FILTER1);
 }
 

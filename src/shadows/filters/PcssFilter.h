@@ -5,7 +5,7 @@
 #include "shadows/TightSearch.h"
 #include "shadows/filters/PcfFilter.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

@@ -41,13 +41,13 @@ void SmrtFilter::prefilter(FrameContext& frame) { mNearest.build(frame, true, mM
 
 void SmrtFilter::computeVisibility(FrameContext& frame) {
   gpu::SmrtUniforms u{};
-  u.params = glm::vec4(param("smrt.constantBias"), param("smrt.slopeBias"), param("smrt.thicknessM"), 0.0f);
-  u.spatial = glm::vec4(param("smrt.filterRadiusPx"), 0.0f, 0.0f, 0.0f);
+  u.params = glm::vec4(frame.param("smrt.constantBias"), frame.param("smrt.slopeBias"), frame.param("smrt.thicknessM"), 0.0f);
+  u.spatial = glm::vec4(frame.param("smrt.filterRadiusPx"), 0.0f, 0.0f, 0.0f);
   frame.setFilterBlock(u);
   ShaderDefines defines;
   mNearest.bind(true, defines);
   mMaps.depth().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/smrt.glsl", *this, defines));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/smrt.glsl", defines));
   if (u.spatial.x > 0.0f && !frame.pointsMode()) filterSpatially(frame);
 }
 
@@ -55,7 +55,7 @@ void SmrtFilter::filterSpatially(FrameContext& frame) {
   const glm::ivec2 screen = frame.screen();
   if (mMeans.width() != screen.x || mMeans.height() != screen.y)
     mMeans = gl::Texture("smrt spatial filter means", {GL_TEXTURE_2D, GL_R32F, screen.x, screen.y, 1, 1});
-  const gl::Program& program = frame.screenProgram("shadows/filters/smrt_filter.glsl", *this);
+  const gl::Program& program = frame.screenProgram("shadows/filters/smrt_filter.glsl", frame.params());
   mMeans.bindImage(PN_IMG_AUX0, GL_READ_WRITE);
   for (int copy = 0; copy < 2; ++copy) {  // the means along the edges, then back into the layer
     glProgramUniform1i(program.id(), PN_LOC_SWITCH, copy);

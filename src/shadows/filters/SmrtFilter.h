@@ -3,7 +3,7 @@
 #include "frame/ShadowMaps.h"
 #include "shadows/TightSearch.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

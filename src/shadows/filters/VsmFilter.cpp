@@ -39,12 +39,12 @@ void VsmFilter::prefilter(FrameContext& frame) {
 
 void VsmFilter::computeVisibility(FrameContext& frame) {
   gpu::VsmUniforms u{};
-  u.params = glm::vec4(param("vsm.minVariance"), param("vsm.bleedReduction"), param("vsm.filterTexels"), 0.0f);
-  u.mode = glm::ivec4(paramInt("vsm.anisotropy"), 0, 0, 0);
+  u.params = glm::vec4(frame.param("vsm.minVariance"), frame.param("vsm.bleedReduction"), frame.param("vsm.filterTexels"), 0.0f);
+  u.mode = glm::ivec4(frame.paramInt("vsm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
   MipBuilder::setTrilinear(mMaps.color());
   mMaps.color().bindUnit(PN_TEX_FILTER0);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl", *this));
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vsm.glsl"));
 }
 
 std::vector<DebugImage> VsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},

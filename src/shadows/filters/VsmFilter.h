@@ -3,7 +3,7 @@
 // filtering over the pixel footprint, Chebyshev's one-tailed bound (docs/vsm.md).
 #include "frame/ShadowMaps.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 

@@ -30,10 +30,10 @@ constexpr ParamDesc kParams[] = {
 
 VssmFilter::VssmFilter() : Filter(kParams) {}
 
-bool VssmFilter::fromSat() const { return paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
+bool VssmFilter::fromSat(const FrameContext& frame) { return frame.paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
 
 void VssmFilter::renderShadowMaps(FrameContext& frame) {
-  if (fromSat()) {
+  if (fromSat(frame)) {
     // Linear depth only: the SAT build forms z and z² itself, in exact fixed point.
     mMaps.ensure("vssm depth", frame.mapSize(), frame.viewCount());
     frame.renderViews(mMaps, frame.shadowProgram());
@@ -46,21 +46,21 @@ void VssmFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void VssmFilter::prefilter(FrameContext& frame) {
-  if (fromSat())
+  if (fromSat(frame))
     mSat.build(frame.shaders(), mMaps.depth(), 2);
   else
     MipBuilder::build(mMaps.color());
   // From the depth map, or from the moments' z (channel r) with source=mip.
-  mTightSearch.build(frame, paramInt("vssm.tightSearch") != 0, fromSat() ? mMaps.depth() : mMaps.color());
+  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, fromSat(frame) ? mMaps.depth() : mMaps.color());
 }
 
 void VssmFilter::computeVisibility(FrameContext& frame) {
   gpu::VssmUniforms u{};
-  u.params = glm::vec4(param("vssm.minVariance"), param("vssm.bleedReduction"), param("vssm.minRadiusTexels"),
-                       param("vssm.maxRadiusTexels"));
-  u.mode = glm::ivec4(paramInt("vssm.anisotropy"), paramInt("vssm.mipSplit"), 0, 0);
+  u.params = glm::vec4(frame.param("vssm.minVariance"), frame.param("vssm.bleedReduction"), frame.param("vssm.minRadiusTexels"),
+                       frame.param("vssm.maxRadiusTexels"));
+  u.mode = glm::ivec4(frame.paramInt("vssm.anisotropy"), frame.paramInt("vssm.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
-  if (fromSat()) {
+  if (fromSat(frame)) {
     mSat.bindTable();
   } else {
     MipBuilder::setTrilinear(mMaps.color());
@@ -68,13 +68,13 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
   }
   mPenumbraDebug.bind(frame);
   ShaderDefines defines;
-  mTightSearch.bind(paramInt("vssm.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", *this, defines));
+  mTightSearch.bind(frame.paramInt("vssm.tightSearch") != 0, defines);
+  frame.dispatchScreen(frame.visibilityProgram("shadows/filters/vssm.glsl", defines));
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
   std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
-  if (!fromSat()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
+  if (mMaps.color()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

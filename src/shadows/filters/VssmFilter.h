@@ -6,7 +6,7 @@
 #include "shadows/PenumbraDebugImages.h"
 #include "shadows/TightSearch.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 namespace penumbra {
 
@@ -24,7 +24,7 @@ public:
   std::vector<DebugImage> debugImages() const override;
 
 private:
-  bool fromSat() const;
+  static bool fromSat(const FrameContext& frame);
   ShadowMapArray mMaps;
   SatBuilder mSat;
   PenumbraDebugImages mPenumbraDebug;

@@ -12,6 +12,16 @@ layout(binding = PN_TEX_FILTER0) uniform sampler2DArray s_shadowMap;
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   const int mode = PN_HARD_BIAS;
+  if (mode == PN_BIAS_PLANE) {
+    // The receiver's own plane at the centre of the texel it reads, where that texel's depth was
+    // rasterised: a planar receiver meets its map exactly, whatever its slope and the texel's size.
+    vec3 coord = shadowCoord(view, s.ws);
+    if (!insideMap(coord)) return 1.0;
+    ComparisonReceiver r = comparisonReceiver(view, s, coord, 0.0, 0.0, u_hard.bias.w);
+    ivec3 texel = mapTexel(s_shadowMap, coord.xy, view);
+    float depth = biasedDepthAt(r, (vec2(texel.xy) + 0.5) / shadowMapSize());
+    return compareDepth(depth, texelFetch(s_shadowMap, texel, 0).r);
+  }
   vec3 ws = s.ws;
   if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * shadowTexelWorldSize(view, s.ws));
   vec3 coord = shadowCoord(view, ws);

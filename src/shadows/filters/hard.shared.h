@@ -7,7 +7,7 @@ PN_GPU_BEGIN
 
 // The bias mode (hard.bias, PN_BIAS_*) is compiled in as PN_HARD_BIAS.
 struct HardUniforms {
-  vec4 bias;   // x: constant (linear depth units), y: slope scale (× texel size · tan θ), z: normal offset (texels), w: unused
+  vec4 bias;   // x: constant (linear depth units), y: slope scale (× texel size · tan θ), z: normal offset (texels), w: plane bias (texels of world size along the receiver's normal)
 };
 
 PN_GPU_END

@@ -15,15 +15,17 @@ float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
   if (!insideMap(coord)) return 1.0;
-  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcf.params.y, u_pcf.params.z);
   // The radius is in texels of view 0 (the finest cascade) and held in metres across the other
-  // views, so the blur does not widen at every cascade split (one view: the ratio is 1).
+  // views, so the blur does not widen at every cascade split (one view: the ratio is 1). A point
+  // light's cube faces are no cascades: each has the same texels at a given distance, and view 0
+  // seen from another face's point can lie behind the light (a negative ratio).
   float radiusTexels = u_pcf.params.x;
   vec2 radiusUv = vec2(radiusTexels / shadowMapSize());
-  if (view != 0) {
+  if (view != 0 && !isPointLight()) {
     radiusUv *= shadowMetresPerUv(0, s.ws) / shadowMetresPerUv(view, s.ws);
     radiusTexels = max(radiusUv.x, radiusUv.y) * shadowMapSize();
   }
+  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcf.params.y, u_pcf.params.z, u_pcf.params.w);
 #if PN_PCF_KERNEL == PN_KERNEL_BOX
 #ifdef PN_PCF_BOX_HALF_SIDE
   return percentageCloserBox(s_shadowMap, r, radiusUv, PN_PCF_BOX_HALF_SIDE);

@@ -12,7 +12,7 @@ PN_GPU_BEGIN
 // The kernel (pcf.kernel, PN_KERNEL_*) and the Poisson taps (pcf.samples) are compiled in as
 // PN_PCF_KERNEL and PN_PCF_SAMPLES.
 struct PcfUniforms {
-  vec4 params;   // x: radius (texels), y: constant bias (linear depth), z: slope bias (texels), w: unused
+  vec4 params;   // x: radius (texels), y: constant bias (linear depth), z: slope bias (texels), w: plane bias (texels)
 };
 
 PN_GPU_END

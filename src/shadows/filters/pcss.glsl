@@ -53,7 +53,7 @@ float shadowVisibility(SurfacePoint s) {
     return 1.0;
   }
   float lightSize = u_frame.light.radiance.w;
-  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcss.params.x, u_pcss.params.y);
+  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_pcss.params.x, u_pcss.params.y, u_pcss.bias.x);
   float texelUv = 1.0 / shadowMapSize();
   vec2 maxRadiusUv = vec2(u_pcss.params.w * texelUv);
   mat2 rotation = pixelRotation(s.pixel, samplingFrame());

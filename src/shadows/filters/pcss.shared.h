@@ -8,10 +8,11 @@ PN_GPU_BEGIN
 // PN_PCSS_BLOCKER_SAMPLES, PN_PCSS_FILTER_SAMPLES and PN_PCSS_PATTERN.
 struct PcssUniforms {
   vec4 params;   // x: constant bias (linear depth), y: slope bias (texels), z: min filter radius (texels), w: max radius (texels)
+  vec4 bias;     // x: plane bias (texels), yzw: unused
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::PcssUniforms) == 16, "std140 size of PcssUniforms");
+static_assert(sizeof(penumbra::gpu::PcssUniforms) == 32, "std140 size of PcssUniforms");
 #endif

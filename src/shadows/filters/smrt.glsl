@@ -144,7 +144,7 @@ float shadowVisibility(SurfacePoint s) {
   if (!insideMap(coord)) return 1.0;
   float lightSize = u_frame.light.radiance.w;
   if (isPositionalLight() && distance(u_frame.light.position.xyz, s.ws) <= lightSize) return 1.0;  // inside the light
-  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_smrt.params.x, u_smrt.params.y);
+  ComparisonReceiver r = comparisonReceiver(view, s, coord, u_smrt.params.x, u_smrt.params.y, 0.0);
 
   // Where the march ends: at the nearest surface in the light's footprint. The footprint on the
   // near plane holds every caster a ray can meet; the pyramid's minimum over it is the nearest

@@ -43,28 +43,42 @@ glm::vec2 sliceBoundingSphere(float a, float b, float k2) {
 
 ShadowView stabilizedSunCascade(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                                 float a, float b, int mapSize, float marginTexels) {
-  const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
-  const glm::vec2 sphere = sliceBoundingSphere(a, b, tx * tx + ty * ty);
+  glm::vec2 sphere;
+  if (camera.orthographic()) {  // a box slice: its centre, and the half diagonal
+    const float hy = camera.orthoHalfHeightM, hx = hy * aspect, hz = 0.5f * (b - a);
+    sphere = {0.5f * (a + b), std::sqrt(hx * hx + hy * hy + hz * hz)};
+  } else {
+    const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
+    sphere = sliceBoundingSphere(a, b, tx * tx + ty * ty);
+  }
   // Half-size of the square: the sphere's radius plus the margin in texels of this map.
   const float half = sphere.y / (1.0f - 2.0f * marginTexels / static_cast<float>(mapSize));
-  const float texelM = 2.0f * half / static_cast<float>(mapSize);
-  ShadowView v;
-  v.viewFromWorld = sunViewMatrix(scene, light);  // fixed basis: independent of the camera
+  const glm::mat4 viewFromWorld = sunViewMatrix(scene, light);  // fixed basis: independent of the camera
   const glm::vec3 centre = camera.position + camera.forward() * sphere.x;
-  const glm::vec3 ls(v.viewFromWorld * glm::vec4(centre, 1.0f));
+  return snappedSunView(scene, viewFromWorld, glm::vec2(viewFromWorld * glm::vec4(centre, 1.0f)), glm::vec2(half), mapSize);
+}
+
+}  // namespace
+
+ShadowView snappedSunView(const SceneExtent& scene, const glm::mat4& viewFromWorld, const glm::vec2& centre,
+                          const glm::vec2& half, int mapSize) {
+  ShadowView v;
+  v.viewFromWorld = viewFromWorld;
   // Snap the centre to the texel grid: the map moves only by whole texels.
-  const glm::vec2 snapped = glm::round(glm::vec2(ls) / texelM) * texelM;
+  const glm::vec2 texelM = 2.0f * half / static_cast<float>(mapSize);
+  const glm::vec2 snapped = glm::round(centre / texelM) * texelM;
   const Aabb sceneLs = scene.bounds().transformed(v.viewFromWorld);
   const float pad = (sceneLs.hi.z - sceneLs.lo.z) * kDepthPaddingFraction + 1e-4f;
   v.nearM = -sceneLs.hi.z - pad;
   v.farM = -sceneLs.lo.z + pad;
   v.perspective = false;
-  v.extent = glm::vec2(2.0f * half);
+  v.extent = 2.0f * half;
   // The orthographic matrix written out rather than from its bounds (glm::ortho's r − l would
   // round differently for every snapped centre): scale 1/half is the same bits every frame and
   // the translation is −snapped/half = a whole number of texels (2/mapSize in NDC each).
   glm::mat4 ortho(1.0f);
-  ortho[0][0] = ortho[1][1] = 1.0f / half;
+  ortho[0][0] = 1.0f / half.x;
+  ortho[1][1] = 1.0f / half.y;
   ortho[2][2] = -1.0f / (v.farM - v.nearM);
   ortho[3] = glm::vec4(-snapped / half, -v.nearM / (v.farM - v.nearM), 1.0f);
   v.clipFromWorld = ortho * v.viewFromWorld;
@@ -82,8 +96,6 @@ ShadowView fittedCascade(const Camera& camera, float aspect, const Light& light,
   const std::vector<glm::vec3> casters = casterExtrusion(body, light, scene.casterBounds());
   return fitLightView(scene, light, body, casters, marginFraction);
 }
-
-}  // namespace
 
 std::vector<float> practicalSplits(float nearM, float farM, int cascades, float lambda) {
   PN_CHECK(nearM > 0.0f && farM > nearM && cascades >= 1, "practicalSplits: need 0 < near < far and ≥ 1 cascade");

@@ -10,7 +10,7 @@
 // Artifacts: a resolution step at each split (hidden by the band), N shadow passes.
 #include "shadows/projections/LightSpace.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <vector>
 
@@ -28,6 +28,20 @@ float stableFarDistance(float farM);
 /// the camera's near plane: where stabilised cascades start.
 float stableNearDistance(float nearM, float cameraNearM);
 
+/// A sun's orthographic view in the basis viewFromWorld (sunViewMatrix: fixed in the world) of
+/// half-size `half` (m, per axis) around `centre` (light-view xy, m), the centre snapped to whole
+/// texels of a mapSize map so that the map moves by whole texels only; depth over the whole
+/// scene (a range that does not move with the camera keeps the stored depths, and the biases in
+/// metres, the same from frame to frame). The same half-size gives the same bits every frame.
+ShadowView snappedSunView(const SceneExtent& scene, const glm::mat4& viewFromWorld, const glm::vec2& centre,
+                          const glm::vec2& half, int mapSize);
+
+/// One unwarped light view fitted to the slice of the camera frustum between view depths a and b
+/// (m): the visible receivers there and the casters that can shadow them (fitLightView); the
+/// slice's frustum when it sees no part of the scene, so the map stays valid.
+ShadowView fittedCascade(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene, float a, float b,
+                         float marginFraction);
+
 class CascadedProjection final : public Projection {
 public:
   CascadedProjection();
@@ -35,7 +49,7 @@ public:
   std::string_view description() const override {
     return "cascaded maps over practical splits of the view depth; stabilised, with a blend band";
   }
-  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  /// A point light shines every way: its views are the six cube faces of the uniform projection.
   std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;

@@ -16,9 +16,16 @@ glm::mat4 lightViewMatrix(const glm::vec3& eye, const glm::vec3& forward) {
 
 std::array<glm::vec3, 8> frustumCorners(const Camera& camera, float aspect, float nearM, float farM) {
   const glm::mat4 worldFromView = glm::inverse(camera.viewFromWorld());
-  const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
   std::array<glm::vec3, 8> c;
   int i = 0;
+  if (camera.orthographic()) {  // a box: the same half extents at every depth
+    const float hy = camera.orthoHalfHeightM, hx = hy * aspect;
+    for (float d : {nearM, farM})
+      for (float sy : {-1.0f, 1.0f})
+        for (float sx : {-1.0f, 1.0f}) c[static_cast<size_t>(i++)] = glm::vec3(worldFromView * glm::vec4(sx * hx, sy * hy, -d, 1.0f));
+    return c;
+  }
+  const float ty = std::tan(0.5f * camera.fovYRad), tx = ty * aspect;
   for (float d : {nearM, farM})
     for (float sy : {-1.0f, 1.0f})
       for (float sx : {-1.0f, 1.0f}) c[static_cast<size_t>(i++)] = glm::vec3(worldFromView * glm::vec4(sx * tx * d, sy * ty * d, -d, 1.0f));
@@ -104,6 +111,12 @@ std::vector<HalfSpace> lightPyramidHalfSpaces(const glm::mat4& lightFromWorld, f
 }
 
 std::vector<HalfSpace> frustumHalfSpaces(const Camera& camera, float aspect, float nearM, float farM) {
+  if (camera.orthographic()) {  // a box: |x| <= hx, |y| <= hy, nearM <= depth <= farM
+    const double hy = camera.orthoHalfHeightM, hx = hy * static_cast<double>(aspect);
+    const std::vector<HalfSpace> box = {{{0, 0, -1}, -static_cast<double>(nearM)}, {{0, 0, 1}, static_cast<double>(farM)},
+                                        {{1, 0, 0}, hx}, {{-1, 0, 0}, hx}, {{0, 1, 0}, hy}, {{0, -1, 0}, hy}};
+    return toWorld(box, camera.viewFromWorld());
+  }
   const double ty = std::tan(0.5 * static_cast<double>(camera.fovYRad)), tx = ty * static_cast<double>(aspect);
   return toWorld(pyramidInView(tx, ty, nearM, farM), camera.viewFromWorld());
 }
@@ -207,6 +220,15 @@ std::vector<glm::vec3> casterExtrusion(std::span<const glm::vec3> body, const Li
     for (const glm::vec3& p : body) out.push_back(p + (L - p) * best);
   }
   return out;
+}
+
+ViewRegion wholeViewRegion(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene) {
+  ViewRegion r;
+  r.nearM = camera.nearM;
+  r.farM = std::max(shadowFarDistance(camera, scene), 2.0f * r.nearM);
+  r.body = receiverBody(camera, aspect, r.nearM, r.farM, scene, light);
+  r.casters = casterExtrusion(r.body, light, scene.casterBounds());
+  return r;
 }
 
 glm::mat4 sunViewMatrix(const SceneExtent& scene, const Light& light) {

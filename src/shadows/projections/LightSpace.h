@@ -1,7 +1,7 @@
 #pragma once
 // Light-space helpers shared by the projections: the light's view basis, the visible receiver
 // region, and the depth plane that maps distance along the light axis to [0,1].
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <array>
 #include <string>
@@ -14,7 +14,8 @@ namespace penumbra {
 /// which only the uniform projection makes. Empty for other lights.
 inline std::string pointLightIncompatibility(const Light& light) {
   return light.type == LightType::Point
-             ? "a point light shines every way: its shadows are six cube faces, which --projection uniform makes"
+             ? "a point light shines every way: its shadows are six cube faces, which only the uniform projection makes "
+               "(a light's own LightShadowSettings::projection = \"uniform\" gives it one beside the others' technique)"
              : std::string();
 }
 
@@ -40,7 +41,7 @@ glm::vec4 linearDepthPlane(const glm::mat4& viewFromWorld, float nearM, float fa
 Aabb visibleReceiversInLightSpace(const glm::mat4& lightFromWorld, const Camera& camera, float aspect,
                                   const SceneExtent& scene);
 
-// ---- Convex bodies for the large-view projections (csm, psm, tsm) -----------------------------
+// ---- Convex bodies for the large-view projections (csm, psm, tsm, lispsm) ---------------------
 
 /// A closed half-space {p : dot(n, p) + d >= 0}. Double precision: vertex enumeration intersects
 /// nearly parallel planes (a long thin frustum against a flat ground box).
@@ -78,6 +79,15 @@ std::vector<HalfSpace> lightPyramidHalfSpaces(const glm::mat4& lightFromWorld, f
 /// that convex body. Empty when the slice sees no part of the scene.
 std::vector<glm::vec3> receiverBody(const Camera& camera, float aspect, float nearM, float farM, const SceneExtent& scene,
                                     const Light& light);
+
+/// What the one-map warped projections (psm, tsm, lispsm) fit: the receiver body over the camera's
+/// whole shadowed depth range (near plane to shadowFarDistance, at least twice the near plane) and
+/// the casters that can shadow it (casterExtrusion).
+struct ViewRegion {
+  std::vector<glm::vec3> body, casters;
+  float nearM = 0.0f, farM = 0.0f;
+};
+ViewRegion wholeViewRegion(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene);
 
 /// Points P such that conv(body ∪ P) holds every point inside `casters` that lies between a point
 /// of `body` and the light (the casters that can shadow the body). Sun: each vertex moved toward

@@ -154,9 +154,10 @@ PerspectiveProjection::PerspectiveProjection() : Projection(kParams) {}
 LightFrusta PerspectiveProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
                                                  const SceneExtent& scene, int mapSize) const {
   const float marginFraction = param("psm.marginTexels") / static_cast<float>(mapSize);
-  const float nearM = camera.nearM, farM = std::max(shadowFarDistance(camera, scene), 2.0f * nearM);
-  const std::vector<glm::vec3> body = receiverBody(camera, aspect, nearM, farM, scene, light);
-  const std::vector<glm::vec3> casters = casterExtrusion(body, light, scene.casterBounds());
+  const ViewRegion region = wholeViewRegion(camera, aspect, light, scene);
+  const std::vector<glm::vec3>& body = region.body;
+  const std::vector<glm::vec3>& casters = region.casters;
+  const float nearM = region.nearM;
   LightFrusta f;
   f.views.push_back(fitLightView(scene, light, body, casters, marginFraction));
   if (body.empty()) return f;

@@ -13,7 +13,7 @@
 // direction; the map changes with every camera move (edges crawl).
 #include "shadows/projections/LightSpace.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
 #include <span>
 
@@ -51,7 +51,7 @@ public:
   std::string_view description() const override {
     return "one map taken in the camera's post-perspective space (virtual camera slide-back)";
   }
-  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  /// A point light shines every way: its views are the six cube faces of the uniform projection.
   std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;

@@ -47,39 +47,14 @@ struct TrapezoidFit {
 std::optional<TrapezoidFit> fitTrapezoid(const std::vector<glm::vec2>& hull, const glm::vec2& top,
                                          const glm::vec2& focus, const glm::vec2& u, float mapFraction,
                                          float marginFraction) {
-  const glm::vec2 v(-u.y, u.x);
-  // Top and base edges: perpendicular to u, touching the receivers' region.
-  float sMin = std::numeric_limits<float>::max(), sMax = -sMin;
-  for (const glm::vec2& h : hull) {
-    sMin = std::min(sMin, glm::dot(h - top, u));
-    sMax = std::max(sMax, glm::dot(h - top, u));
-  }
-  const float lambda = sMax - sMin;
+  const glm::vec2 extent = extentAlong(hull, top, u);
+  const float lambda = extent.y - extent.x;
   if (lambda <= 0.0f) return std::nullopt;
-  const float delta = std::clamp(glm::dot(focus - top, u) - sMin, 0.0f, lambda);
+  const float delta = std::clamp(glm::dot(focus - top, u) - extent.x, 0.0f, lambda);
   const float eta = std::clamp(trapezoidApexDistance(lambda, delta, mapFraction), kMinApexOverHeight * lambda,
                                kMaxApexOverHeight * lambda);
-  const glm::vec2 q = top + u * (sMin - eta);
-
-  // Sides: the widest tangents from the apex to the region.
-  float tMin = std::numeric_limits<float>::max(), tMax = -tMin;
-  for (const glm::vec2& h : hull) {
-    const float t = glm::dot(h - q, v) / glm::dot(h - q, u);
-    tMin = std::min(tMin, t);
-    tMax = std::max(tMax, t);
-  }
-  const float widen = (tMax - tMin) * marginFraction + 1e-6f;
-  tMin -= widen;
-  tMax += widen;
-  // The margin along u: the top edge moves toward the apex, the base away from it, each by
-  // marginFraction of the map measured in warped y = A − B/a (dy/da = B/a², B = 2η(η+λ)/λ):
-  // Δ = 2·marginFraction / (dy/da) at a = η and at a = η + λ. Both tend to marginFraction·λ as the
-  // apex recedes (no warp); a margin proportional to η instead grew with it (at the apex clamp of
-  // 1e4·λ the base edge landed 40λ away and the scene filled a sliver of the map).
-  const float topMargin = marginFraction * lambda * eta / (eta + lambda);
-  const float baseMargin = marginFraction * lambda * (eta + lambda) / eta;
   TrapezoidFit fit;
-  fit.warp = trapezoidWarp(q, u, eta - topMargin, lambda + topMargin + baseMargin, tMin, tMax);
+  fit.warp = trapezoidAround(hull, top, u, eta, marginFraction);
   // A plane homography H (rows x, y, w over (x, y, 1)) scales areas by det(H) / w³.
   const glm::dmat3 h(glm::dvec3(fit.warp[0][0], fit.warp[0][1], fit.warp[0][3]),
                      glm::dvec3(fit.warp[1][0], fit.warp[1][1], fit.warp[1][3]),
@@ -150,16 +125,52 @@ glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float
   return m;
 }
 
+glm::vec2 extentAlong(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u) {
+  glm::vec2 range(std::numeric_limits<float>::max(), -std::numeric_limits<float>::max());
+  for (const glm::vec2& h : hull) {
+    const float s = glm::dot(h - top, u);
+    range = {std::min(range.x, s), std::max(range.y, s)};
+  }
+  return range;
+}
+
+glm::mat4 trapezoidAround(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u, float eta,
+                          float marginFraction) {
+  const glm::vec2 v(-u.y, u.x);
+  // Top and base edges: perpendicular to u, touching the region.
+  const glm::vec2 extent = extentAlong(hull, top, u);
+  const float lambda = extent.y - extent.x;
+  const glm::vec2 q = top + u * (extent.x - eta);
+  // Sides: the widest tangents from the apex to the region.
+  float tMin = std::numeric_limits<float>::max(), tMax = -tMin;
+  for (const glm::vec2& h : hull) {
+    const float t = glm::dot(h - q, v) / glm::dot(h - q, u);
+    tMin = std::min(tMin, t);
+    tMax = std::max(tMax, t);
+  }
+  const float widen = (tMax - tMin) * marginFraction + 1e-6f;
+  tMin -= widen;
+  tMax += widen;
+  // The margin along u: the top edge moves toward the apex, the base away from it, each by
+  // marginFraction of the map measured in warped y = A − B/a (dy/da = B/a², B = 2η(η+λ)/λ):
+  // Δ = 2·marginFraction / (dy/da) at a = η and at a = η + λ. Both tend to marginFraction·λ as the
+  // apex recedes (no warp); a margin proportional to η instead grew with it (at the apex clamp of
+  // 1e4·λ the base edge landed 40λ away and the scene filled a sliver of the map).
+  const float topMargin = marginFraction * lambda * eta / (eta + lambda);
+  const float baseMargin = marginFraction * lambda * (eta + lambda) / eta;
+  return trapezoidWarp(q, u, eta - topMargin, lambda + topMargin + baseMargin, tMin, tMax);
+}
+
 TrapezoidalProjection::TrapezoidalProjection() : Projection(kParams) {}
 
 LightFrusta TrapezoidalProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
                                                  const SceneExtent& scene, int mapSize) const {
   const float marginFraction = param("tsm.marginTexels") / static_cast<float>(mapSize);
-  const float nearM = camera.nearM, farM = std::max(shadowFarDistance(camera, scene), 2.0f * nearM);
-  std::vector<glm::vec3> body = receiverBody(camera, aspect, nearM, farM, scene, light);
-  const std::vector<glm::vec3> casters = casterExtrusion(body, light, scene.casterBounds());
+  const ViewRegion region = wholeViewRegion(camera, aspect, light, scene);
+  const std::vector<glm::vec3>& body = region.body;
+  const float nearM = region.nearM, farM = region.farM;
   LightFrusta f;
-  ShadowView base = fitLightView(scene, light, body, casters, 0.0f);
+  ShadowView base = fitLightView(scene, light, body, region.casters, 0.0f);
   f.views.push_back(base);
   if (body.empty()) return f;
 

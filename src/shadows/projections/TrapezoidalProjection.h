@@ -11,8 +11,9 @@
 // sides; as the camera turns the trapezoid changes every frame (no snapping: edges crawl).
 #include "shadows/projections/LightSpace.h"
 
-#include <penumbra/Projection.h>
+#include "frame/Projection.h"
 
+#include <span>
 #include <vector>
 
 namespace penumbra {
@@ -24,7 +25,7 @@ public:
   std::string_view description() const override {
     return "one map warped by a trapezoid around the view frustum in light space (80% focus rule)";
   }
-  /// A point light shines every way: its views are the six cube faces of --projection uniform.
+  /// A point light shines every way: its views are the six cube faces of the uniform projection.
   std::string incompatibility(const Light& light) const override { return pointLightIncompatibility(light); }
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
@@ -36,6 +37,17 @@ public:
 /// Returned as a 4×4 acting on the unwarped light clip coordinates (clip z/w is set to 0.5: the
 /// depth written is the linear light depth, not this).
 glm::mat4 trapezoidWarp(const glm::vec2& q, const glm::vec2& u, float eta, float lambda, float tMin, float tMax);
+
+/// The extent (smallest, largest) of `hull` along the unit direction u, measured from `top`.
+glm::vec2 extentAlong(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u);
+
+/// The trapezoid (a perspective frustum of the light's image plane) around the points `hull`,
+/// centred on the line through `top` along the unit direction u: its top and base edges
+/// perpendicular to u touch the region, its apex lies on the line `eta` before the top edge and
+/// its sides are the widest tangents from the apex; `marginFraction` of the map is added on every
+/// side, in warped units. Shared by tsm (η from the 80% rule) and lispsm (η = n_opt).
+glm::mat4 trapezoidAround(std::span<const glm::vec2> hull, const glm::vec2& top, const glm::vec2& u, float eta,
+                          float marginFraction);
 
 /// The 80% rule: distance η of the apex behind the top edge so that a point δ past the top edge
 /// (of a trapezoid of height λ) maps to `mapFraction` of the way across the map:

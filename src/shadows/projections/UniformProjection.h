@@ -2,8 +2,8 @@
 // uniform: one shadow map fitted to the receivers the camera can see and the casters that can
 // shadow them. Orthographic for the sun, perspective for spot lights; near/far tight.
 // Its texel density is uniform in light space, so near the camera (in large views) one texel
-// covers many pixels: the aliasing that csm/psm/tsm reduce.
-#include <penumbra/Projection.h>
+// covers many pixels: the aliasing that csm/psm/tsm/lispsm reduce.
+#include "frame/Projection.h"
 
 namespace penumbra {
 

@@ -56,18 +56,18 @@ std::string SdfFilter::incompatibility(std::string_view, const Light&) const {
 }
 
 void SdfFilter::renderShadowMaps(FrameContext& frame) {
-  const int resolution = paramInt("sdf.resolution");
-  PN_CHECK(frame.cpuScene() != nullptr,
+  const int resolution = frame.paramInt("sdf.resolution");
+  PN_CHECK(frame.casterGeometry().has_value(),
            "sdf bakes the casters' triangles on the CPU: give them to Penumbra (Shadows::setCasterGeometry)");
-  const Scene& scene = *frame.cpuScene();
-  const uint64_t key = sdf::cacheKey(scene, resolution);
+  const std::span<const CasterGeometry> casters = *frame.casterGeometry();
+  const uint64_t key = sdf::cacheKey(casters, resolution);
   if (mHaveField && key == mKey) return;
   sdf::BakeOptions options;
   options.resolution = resolution;
   options.verbose = true;  // every bake reports its time and memory on stderr; a cache hit is silent
   const sdf::Baker& baker = sdf::baker();
   PN_CHECK(baker, kNoBaker);
-  setField(baker(scene, options));
+  setField(baker(casters, options));
   mKey = key;
 }
 
@@ -97,7 +97,7 @@ void SdfFilter::setField(const sdf::SdfVolume& volume) {
   glTextureSubImage2D(mSlice.id(), 0, 0, 0, dims.x, dims.y, GL_RED, GL_FLOAT, volume.hasGrid() ? data + slice : data);
 }
 
-gpu::SdfUniforms SdfFilter::uniforms() const {
+gpu::SdfUniforms SdfFilter::uniforms(const Parameterized& p) const {
   gpu::SdfUniforms u{};
   u.gridLo = glm::vec4(mGrid.lo, mGrid.voxelM);
   u.gridSize = glm::vec4(mGrid.size(), mGrid.hasGrid() ? 1.0f : 0.0f);
@@ -113,8 +113,8 @@ gpu::SdfUniforms SdfFilter::uniforms() const {
     u.castersLo = glm::vec4(casters.lo - pad, 0.0f);
     u.castersHi = glm::vec4(casters.hi + pad, 0.0f);
   }
-  u.march = glm::vec4(param("sdf.k"), param("sdf.epsilon"), param("sdf.startOffset"), kPointLightK);
-  u.mode = glm::ivec4(paramInt("sdf.maxSteps"), paramInt("sdf.kMode"), paramInt("sdf.estimator"), paramInt("sdf.penumbra"));
+  u.march = glm::vec4(p.param("sdf.k"), p.param("sdf.epsilon"), p.param("sdf.startOffset"), kPointLightK);
+  u.mode = glm::ivec4(p.paramInt("sdf.maxSteps"), p.paramInt("sdf.kMode"), p.paramInt("sdf.estimator"), p.paramInt("sdf.penumbra"));
   const size_t sheetTriangles = mGrid.sheets.size() / 3;
   PN_ASSERT(sheetTriangles <= static_cast<size_t>(PN_SDF_MAX_SHEET_TRIANGLES));
   u.sheetInfo = glm::ivec4(static_cast<int>(sheetTriangles), 0, 0, 0);
@@ -124,7 +124,7 @@ gpu::SdfUniforms SdfFilter::uniforms() const {
 
 void SdfFilter::computeVisibility(FrameContext& frame) {
   PN_ASSERT(mHaveField);
-  frame.setFilterBlock(uniforms());
+  frame.setFilterBlock(uniforms(frame.params()));
   mField.bindUnit(PN_TEX_FILTER0);
   frame.dispatchScreen(frame.visibilityProgram("shadows/sdf/sdf.glsl"));
 }

@@ -1,13 +1,13 @@
 #pragma once
 // sdf: soft shadows by sphere tracing a signed distance field of the casters (docs/sdf.md).
 // No shadow map: renderShadowMaps only makes sure the field of the current scene is on the GPU
-// (made once per scene by the installed baker, sdf::setBaker: src/bake/ bakes it with Embree and
-// caches it on disk); the visibility pass marches it toward the light.
+// (made once per set of caster triangles by the installed baker, sdf::setBaker: src/bake/ bakes it
+// with Embree and caches it on disk); the visibility pass marches it toward the light.
 #include "gl/Objects.h"
 #include "shadows/sdf/SdfVolume.h"
 #include "shadows/sdf/sdf.shared.h"
 
-#include <penumbra/Filter.h>
+#include "frame/Filter.h"
 
 #include <cstdint>
 
@@ -22,7 +22,7 @@ public:
   }
   /// Refused when no baker is installed (sdf::setBaker): Penumbra::shadows has none of its own.
   std::string incompatibility(std::string_view projectionId, const Light& light) const override;
-  /// Uploads the scene's field as an R32F 3D texture the first time, and again only when the
+  /// Uploads the casters' field as an R32F 3D texture the first time, and again only when the
   /// casters' geometry or sdf.resolution changes (one hash of the casters per frame).
   void renderShadowMaps(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
@@ -36,12 +36,12 @@ public:
   const sdf::SdfVolume& field() const { return mGrid; }
   const gl::Texture& fieldTexture() const { return mField; }
   /// Uploads `volume` as the field (what renderShadowMaps does after loading or baking). For
-  /// tests and tools: the next frame still checks the scene's key and replaces it.
+  /// tests and tools: the next frame still checks the casters' key and replaces it.
   void setField(const sdf::SdfVolume& volume);
   /// How many fields were uploaded so far (one per scene: the per-frame check is a hash).
   int fieldUploads() const { return mUploads; }
-  /// The visibility pass's uniform block for the current field and parameters.
-  gpu::SdfUniforms uniforms() const;
+  /// The visibility pass's uniform block for the current field and the parameters `p`.
+  gpu::SdfUniforms uniforms(const Parameterized& p) const;
 
 private:
   sdf::SdfVolume mGrid;

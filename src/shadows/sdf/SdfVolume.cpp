@@ -2,6 +2,8 @@
 // and what any baker shares. The Embree bake itself is in src/bake/.
 #include "shadows/sdf/SdfVolume.h"
 
+#include "frame/CasterSet.h"
+
 #include "base/Hash.h"
 
 #include <penumbra/Error.h>
@@ -108,15 +110,16 @@ glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, const g
   return a + ab * (vb * inv) + ac * (vc * inv);
 }
 
-CasterTriangles casterTriangles(const Scene& scene) {
+CasterTriangles casterTriangles(std::span<const CasterGeometry> casters) {
   CasterTriangles out;
-  out.volume.reserve(3 * scene.triangleCount());
+  size_t triangles = 0;
+  for (const CasterGeometry& g : casters) triangles += g.triangleCount();
+  out.volume.reserve(3 * triangles);
   std::vector<glm::vec3> object;
-  for (const Object& o : scene.objects) {
-    if (!o.castsShadow) continue;
-    const Mesh& mesh = scene.meshes[o.mesh];
+  for (const CasterGeometry& g : casters) {
     object.clear();
-    for (uint32_t index : mesh.indices) object.push_back(glm::vec3(o.worldFromObject * glm::vec4(mesh.positions[index], 1.0f)));
+    for (size_t t = 0; t < g.triangleCount(); ++t)
+      for (int c = 0; c < 3; ++c) object.push_back(glm::vec3(g.worldFromObject * glm::vec4(g.corner(t, c), 1.0f)));
     const bool sheet = !object.empty() && out.sheets.size() + object.size() <= 3 * static_cast<size_t>(kMaxSheetTriangles) && isFlat(object);
     std::vector<glm::vec3>& into = sheet ? out.sheets : out.volume;
     into.insert(into.end(), object.begin(), object.end());
@@ -124,7 +127,13 @@ CasterTriangles casterTriangles(const Scene& scene) {
   return out;
 }
 
-SdfVolume gridFor(const Scene& scene, int resolution) { return gridForTriangles(casterTriangles(scene), resolution); }
+SdfVolume gridFor(std::span<const CasterGeometry> casters, int resolution) {
+  return gridForTriangles(casterTriangles(casters), resolution);
+}
+
+CasterTriangles casterTriangles(const Scene& scene) { return casterTriangles(casterGeometry(scene)); }
+SdfVolume gridFor(const Scene& scene, int resolution) { return gridFor(casterGeometry(scene), resolution); }
+uint64_t cacheKey(const Scene& scene, int resolution) { return cacheKey(casterGeometry(scene), resolution); }
 
 Aabb SdfVolume::gridCasterBounds() const {
   Aabb b;
@@ -177,15 +186,15 @@ float triangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& 
   return glm::length(p - closestPointOnTriangle(p, a, b, c));
 }
 
-uint64_t cacheKey(const Scene& scene, int resolution) {
+uint64_t cacheKey(std::span<const CasterGeometry> casters, int resolution) {
   Hasher hash;
   hash.text("penumbra sdf");
   hash.value(kSdfCodeVersion);
   hash.value(resolution);
   hash.value(kPadVoxels);
-  const CasterTriangles casters = casterTriangles(scene);
-  hash.array(std::span<const glm::vec3>(casters.volume));
-  hash.array(std::span<const glm::vec3>(casters.sheets));
+  const CasterTriangles triangles = casterTriangles(casters);
+  hash.array(std::span<const glm::vec3>(triangles.volume));
+  hash.array(std::span<const glm::vec3>(triangles.sheets));
   return hash.digest();
 }
 

@@ -5,6 +5,7 @@
 // with installEmbreeBaker(); an engine may install its own (setBaker) or none (sdf is then refused).
 #include "shadows/sdf/sdf.shared.h"
 
+#include <penumbra/Casters.h>
 #include <penumbra/Math.h>
 #include <penumbra/Scene.h>
 
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace penumbra::sdf {
@@ -96,19 +98,24 @@ struct SdfVolume {
 /// Unsigned distance from p to triangle abc (m).
 float triangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
-/// The world-space triangles of the scene's shadow casters (objects with castsShadow), three
-/// vertices each, split into those baked into the grid and the flat sheets (see above).
+/// The world-space triangles of the casters, three vertices each, split into those baked into the
+/// grid and the flat sheets (see above): each caster (a CasterGeometry) is flat or not as a whole.
 struct CasterTriangles {
   std::vector<glm::vec3> volume, sheets;
 };
-CasterTriangles casterTriangles(const Scene& scene);
+CasterTriangles casterTriangles(std::span<const CasterGeometry> casters);
 
-/// The grid a bake of `scene` at `resolution` would use (dims, lo, voxelM, sheets; no
+/// The grid a bake of the casters at `resolution` would use (dims, lo, voxelM, sheets; no
 /// distances): cubic voxels, kPadVoxels of padding around the bounds of the grid's casters.
-SdfVolume gridFor(const Scene& scene, int resolution);
+SdfVolume gridFor(std::span<const CasterGeometry> casters, int resolution);
 
 /// Hash of the casters' world-space triangles, the resolution and kSdfCodeVersion: equal keys
 /// bake equal grids. Costs one pass over the casters' vertices (~1 ms per 100k triangles).
+uint64_t cacheKey(std::span<const CasterGeometry> casters, int resolution);
+
+/// The same for a scene's casting objects (Object::castsShadow, in order).
+CasterTriangles casterTriangles(const Scene& scene);
+SdfVolume gridFor(const Scene& scene, int resolution);
 uint64_t cacheKey(const Scene& scene, int resolution);
 
 /// Exposed for tests: the point of triangle abc closest to p (degenerate triangles allowed).
@@ -118,8 +125,8 @@ glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, const g
 /// then set from the sheets' bounds, so that epsilons and offsets in voxels keep a scale).
 SdfVolume gridForTriangles(const CasterTriangles& casters, int resolution);
 
-/// What makes a scene's field: bakes it, or loads it from a cache. Throws penumbra::Error.
-using Baker = std::function<SdfVolume(const Scene& scene, const BakeOptions& options)>;
+/// What makes the casters' field: bakes it, or loads it from a cache. Throws penumbra::Error.
+using Baker = std::function<SdfVolume(std::span<const CasterGeometry> casters, const BakeOptions& options)>;
 /// Installs the baker the sdf filter uses (an empty one uninstalls). Not thread-safe: install it
 /// once at start-up.
 void setBaker(Baker baker);

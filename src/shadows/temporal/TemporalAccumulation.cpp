@@ -44,78 +44,70 @@ std::span<const ParamDesc> TemporalAccumulation::params() { return kParams; }
 
 bool TemporalAccumulation::enabled(const Parameterized& addOns) { return addOns.paramInt("temporal.accumulate") != 0; }
 
-void TemporalAccumulation::reset() {
-  mHistory[0] = gl::Texture();
-  mHistory[1] = gl::Texture();
-  mSurface = gl::Texture();
-  mNormal = gl::Texture();
-  mValid.clear();
-  mWritten.clear();
-  mHavePrevious = false;
-  mHistoryFrames = 0;
-}
-
-int TemporalAccumulation::beginFrame(const Parameterized& addOns, const TemporalFrame& f) {
-  if (!enabled(addOns)) {
-    reset();
+int TemporalAccumulation::beginFrame(bool on, const TemporalFrame& f) {
+  mFrame = f;
+  if (!on) {
+    mSurface = gl::Texture();
+    mNormal = gl::Texture();
+    mHavePrevious = false;
+    mHistoryFrames = 0;
     return 0;
   }
-  const bool resized = !mHistory[0] || mHistory[0].width() != f.screen.x || mHistory[0].height() != f.screen.y ||
-                       mHistory[0].layers() != f.layers;
-  if (resized) {
-    reset();
-    for (int i = 0; i < 2; ++i) {
-      mHistory[i] = gl::Texture(i == 0 ? "temporal history 0" : "temporal history 1",
-                                {GL_TEXTURE_2D_ARRAY, GL_R32F, f.screen.x, f.screen.y, f.layers, 1});
-      mHistory[i].setSampling(GL_NEAREST, GL_NEAREST);
-    }
+  if (!mSurface || mSurface.width() != f.screen.x || mSurface.height() != f.screen.y) {
     mSurface = gl::Texture("temporal previous surface", {GL_TEXTURE_2D, GL_RGBA32F, f.screen.x, f.screen.y, 1, 1});
     mSurface.setSampling(GL_NEAREST, GL_NEAREST);
     mNormal = gl::Texture("temporal previous normal", {GL_TEXTURE_2D, GL_RGBA16F, f.screen.x, f.screen.y, 1, 1});
     mNormal.setSampling(GL_NEAREST, GL_NEAREST);
+    mHavePrevious = false;
   }
-  if (!mHavePrevious || f.cut || f.techniqueKey != mPrevious.techniqueKey) {
-    mValid.assign(static_cast<size_t>(f.layers), 0);
-    mHistoryFrames = 0;
-  }
-  mWritten.assign(static_cast<size_t>(f.layers), 0);
-  mFrame = f;
+  mFresh = !mHavePrevious || f.cut;
+  if (mFresh) mHistoryFrames = 0;
   mFrameCount = (mFrameCount + 1) % kSamplingPeriod;
   return mFrameCount + 1;  // never 0 while on: 0 is the still pattern
 }
 
-void TemporalAccumulation::apply(FrameContext& frame, const Parameterized& addOns) {
+void TemporalAccumulation::apply(FrameContext& frame, const Parameterized& addOns, TemporalHistory& history,
+                                 uint64_t techniqueKey) {
+  PN_ASSERT(mSurface);
+  const glm::ivec2 screen = frame.screen();
+  if (!history.images[0] || history.images[0].width() != screen.x || history.images[0].height() != screen.y) {
+    for (int i = 0; i < 2; ++i) {
+      history.images[i] = gl::Texture(i == 0 ? "temporal history 0" : "temporal history 1", {GL_TEXTURE_2D, GL_R32F, screen.x, screen.y, 1, 1});
+      history.images[i].setSampling(GL_NEAREST, GL_NEAREST);
+    }
+    history.valid = false;
+  }
+  const bool valid = history.valid && !mFresh && history.techniqueKey == techniqueKey;
+  history.techniqueKey = techniqueKey;
   const int layer = frame.visibilityLayer();
-  PN_ASSERT(mHistory[0] && layer < mHistory[0].layers());
   gpu::TemporalUniforms u{};
   u.previousClipFromWorld = mPrevious.clipFromWorld;
   u.blend = glm::vec4(addOns.param("temporal.alpha"), addOns.param("temporal.tolerancePx"), mFrame.pixelFootprintPerM,
-                      mValid[static_cast<size_t>(layer)] ? 1.0f : 0.0f);
+                      valid ? 1.0f : 0.0f);
   u.clip = glm::vec4(addOns.param("temporal.clamp"), addOns.param("temporal.clipSigma"), addOns.param("temporal.snapV"), 0.0f);
   u.layer = glm::ivec4(layer, 0, 0, 0);
   frame.setFilterBlock(u);
-  const gl::Texture& written = mHistory[mWrite];
-  mHistory[1 - mWrite].bindUnit(PN_TEX_HISTORY);
+  const gl::Texture& written = history.images[mWrite];
+  history.images[1 - mWrite].bindUnit(PN_TEX_HISTORY);
   mSurface.bindUnit(PN_TEX_PREVIOUS_SURFACE);
   mNormal.bindUnit(PN_TEX_PREVIOUS_NORMAL);
-  written.bindImageLayer(PN_IMG_OUTPUT, GL_WRITE_ONLY, layer);
+  written.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   frame.dispatchScreen(frame.screenProgram("shadows/temporal/temporal_accumulate.glsl", addOns), true);
-  glCopyImageSubData(written.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, frame.visibility().id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+  glCopyImageSubData(written.id(), GL_TEXTURE_2D, 0, 0, 0, 0, frame.visibility().id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
                      layer, written.width(), written.height(), 1);
-  mWritten[static_cast<size_t>(layer)] = 1;
+  history.written = true;
 }
 
-void TemporalAccumulation::skip(int layer) {
-  if (!mWritten.empty()) mWritten[static_cast<size_t>(layer)] = 0;
-}
-
-void TemporalAccumulation::endFrame(FrameContext& frame, const Parameterized& addOns) {
-  if (!mHistory[0]) return;
+void TemporalAccumulation::endFrame(FrameContext& frame, const Parameterized& addOns, std::span<TemporalHistory* const> histories) {
+  if (!mSurface) return;
   mSurface.bindImage(PN_IMG_OUTPUT, GL_WRITE_ONLY);
   mNormal.bindImage(PN_IMG_AUX0, GL_WRITE_ONLY);
   FrameContext::dispatch2D(frame.screenProgram("shadows/temporal/temporal_surface.glsl", addOns), mSurface.width(),
                            mSurface.height(), PN_SCREEN_GROUP);
-  mValid = mWritten;
+  for (TemporalHistory* h : histories) {
+    h->valid = h->written;
+    h->written = false;
+  }
   mWrite = 1 - mWrite;
   mPrevious = mFrame;
   mHavePrevious = true;

@@ -7,8 +7,8 @@
 // frame before lies near the floor's plane, but faces elsewhere. The
 // history is then held to this frame's 3×3 neighbourhood of V (its min/max, or mean ± γσ) and
 // blended: V = mix(history, V_now, α), α rising to 1 where V_now and the history differ by more
-// than temporal.snapV (beside an edge the neighbourhood's range is all of [0, 1]). The result goes to the history array's next layer; the
-// core copies it into the visibility layer. Surfaces that move (no motion vectors here) are
+// than temporal.snapV (beside an edge the neighbourhood's range is all of [0, 1]). The result goes to the light's other
+// history image; the core copies it into the visibility layer. Surfaces that move (no motion vectors here) are
 // found again only within the tolerance; the neighbourhood clamp bounds the lag elsewhere.
 #include "common/visibility.glsl"
 #include "shadows/temporal/temporal.shared.h"
@@ -17,7 +17,7 @@ layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std140, binding = PN_UBO_FILTER) uniform TemporalBlock { TemporalUniforms u_temporal; };
 layout(binding = PN_IMG_VISIBILITY, r32f) uniform readonly image2D i_visibility;  // this frame's V
 layout(binding = PN_IMG_OUTPUT, r32f) uniform writeonly image2D i_accumulated;
-layout(binding = PN_TEX_HISTORY) uniform sampler2DArray s_history;
+layout(binding = PN_TEX_HISTORY) uniform sampler2D s_history;  // this light's V of the frames before
 layout(binding = PN_TEX_PREVIOUS_SURFACE) uniform sampler2D s_previousSurface;
 layout(binding = PN_TEX_PREVIOUS_NORMAL) uniform sampler2D s_previousNormal;
 
@@ -34,7 +34,7 @@ bool reprojectedHistory(vec3 ws, vec3 n, out float history) {
   vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * vec2(u_frame.screen.xy) - 0.5;  // texel-centre coordinates
   ivec2 base = ivec2(floor(at));
   vec2 f = at - vec2(base);
-  float toleranceM = u_temporal.blend.y * u_temporal.blend.z * distance(ws, u_frame.cameraPosition.xyz);
+  float toleranceM = u_temporal.blend.y * u_temporal.blend.z * pixelScaleAt(ws);
   float sum = 0.0, weightSum = 0.0;
   for (int i = 0; i < 4; ++i) {
     ivec2 q = base + ivec2(i & 1, i >> 1);
@@ -44,7 +44,7 @@ bool reprojectedHistory(vec3 ws, vec3 n, out float history) {
         dot(texelFetch(s_previousNormal, q, 0).xyz, n) < kMinNormalCos)
       continue;
     float w = ((i & 1) == 1 ? f.x : 1.0 - f.x) * ((i >> 1) == 1 ? f.y : 1.0 - f.y);
-    sum += w * texelFetch(s_history, ivec3(q, u_temporal.layer.x), 0).r;
+    sum += w * texelFetch(s_history, q, 0).r;
     weightSum += w;
   }
   const float kMinWeight = 1e-3;  // below it the surviving texels are too far off to interpolate from
@@ -85,7 +85,7 @@ void main() {
   vec4 pos = surfacePosition(px);
   float history;
   if (pos.w > 0.5 && u_temporal.blend.w > 0.5 &&
-      reprojectedHistory(pos.xyz, normalize(texelFetch(s_gbufGeoNormal, px, 0).xyz), history))
+      reprojectedHistory(pos.xyz, normalize(surfaceGeoNormal(px, pos.xyz)), history))
   {
     history = clampToNeighbourhood(history, px);
     // A change far beyond the filter's noise (a shadow arriving or leaving whole) is taken at

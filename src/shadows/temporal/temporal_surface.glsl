@@ -12,5 +12,5 @@ void main() {
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
   vec4 pos = surfacePosition(px);
   imageStore(i_surface, px, pos.w > 0.5 ? vec4(pos.xyz, 1.0) : vec4(0.0));
-  imageStore(i_normal, px, vec4(normalize(texelFetch(s_gbufGeoNormal, px, 0).xyz), 0.0));
+  imageStore(i_normal, px, pos.w > 0.5 ? vec4(normalize(surfaceGeoNormal(px, pos.xyz)), 0.0) : vec4(0.0));
 }

@@ -1,19 +1,24 @@
 #pragma once
 // The softness axis: what the shadow map stores and how visibility is computed from it.
 // A filter is one class + one GLSL file (src/shadows/filters/), registered in one line
-// (src/shadows/Registry.cpp). It renders its maps, optionally prefilters them, and writes the
-// visibility texture (R32F, 1 = lit): the contract read by everything downstream.
+// (src/shadows/Registry.cpp). An instance is one light's GPU storage (its maps, mips and tables)
+// and the passes over it: it renders its maps, optionally prefilters them, and writes the
+// visibility (R32F, 1 = lit), the contract read by everything downstream. Its parameter values
+// are not its own: they are the light's technique's (FrameContext::param), so one light's
+// settings never reach another light's maps.
+#include <penumbra/Light.h>
 #include <penumbra/Params.h>
-#include <penumbra/Scene.h>
+#include <penumbra/Timings.h>
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace penumbra {
 
-class FrameContext;  // src/render/FrameContext.h: what a filter may use during a frame
+class FrameContext;  // frame/FrameContext.h: what a filter may use during a frame
 
 namespace gl { class Texture; }
 
@@ -35,19 +40,17 @@ inline constexpr std::string_view kShadowMapImage = "shadow-map";
 inline constexpr std::string_view kShadowMapMeaning = "linear light depth of the nearest caster: 0 = near plane, 1 = far plane";
 inline constexpr std::string_view kMomentsImage = "moments";
 
-/// Work a filter does once and keeps while the casters do not move (a baked distance field): in
-/// no frame's time, and valid only for static casters: a caster that moves makes it again.
-struct OneOffCost {
-  std::string what;      ///< what was made, e.g. "distance-field bake, 128 voxels on the longest side"
-  double seconds = 0.0;  ///< what making it took (read from a cache: what the original work took)
-  bool cached = false;   ///< this time it came from an on-disk cache (seconds is still the work's)
-};
-
-class Filter : public Parameterized {
+class Filter {
 public:
-  using Parameterized::Parameterized;
+  /// `params`: the filter's parameter table, static (its values live in techniques).
+  explicit Filter(std::span<const ParamDesc> params) : mParams(params) {}
+  virtual ~Filter() = default;
+  Filter(const Filter&) = delete;
+  Filter& operator=(const Filter&) = delete;
+
   virtual std::string_view id() const = 0;
   virtual std::string_view description() const = 0;
+  std::span<const ParamDesc> params() const { return mParams; }
   /// Empty when this filter works with the given projection and light; otherwise the reason,
   /// shown to the user (a pair that cannot work is refused, never rendered wrong).
   virtual std::string incompatibility(std::string_view projectionId, const Light& light) const {
@@ -58,12 +61,15 @@ public:
   virtual void renderShadowMaps(FrameContext& frame) = 0;
   /// Builds mip chains / summed-area tables from the maps (timed as the "prefilter" pass).
   virtual void prefilter(FrameContext& frame) { (void)frame; }
-  /// Writes V for every G-buffer pixel into the frame's visibility image.
+  /// Writes V for every surface pixel into the frame's visibility layer.
   virtual void computeVisibility(FrameContext& frame) = 0;
   virtual std::vector<DebugImage> debugImages() const { return {}; }
   /// What the filter made once for the current casters (after a frame); none for techniques
   /// that redo all their work every frame.
   virtual std::vector<OneOffCost> oneOffCosts() const { return {}; }
+
+private:
+  std::span<const ParamDesc> mParams;
 };
 
 }  // namespace penumbra

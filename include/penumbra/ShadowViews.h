@@ -1,12 +1,9 @@
 #pragma once
-// The aliasing axis: where the light's view(s) are placed and how they are warped.
-// Pure C++ (no GL), so every projection is unit-testable on the CPU.
-#include <penumbra/Params.h>
-#include <penumbra/Scene.h>
+// A light's views as its shadow maps were drawn: one for a sun's or a spot's map, a cascade each,
+// six cube faces for a point light (ShadowsDebug.h's frusta() hands them out; the projections
+// make them).
+#include <penumbra/Math.h>
 
-#include <memory>
-#include <string>
-#include <string_view>
 #include <vector>
 
 namespace penumbra {
@@ -33,23 +30,6 @@ struct ShadowView {
 struct LightFrusta {
   std::vector<ShadowView> views;  ///< 1 for uniform/psm/tsm, one per cascade for csm
   float blendBandM = 0.0f;        ///< csm: width of the blend band between cascades
-};
-
-class Projection : public Parameterized {
-public:
-  using Parameterized::Parameterized;
-  virtual std::string_view id() const = 0;
-  virtual std::string_view description() const = 0;
-  /// Empty when this projection can place views for `light`; otherwise the reason, shown to the
-  /// user (a pair that cannot work is refused, never rendered wrong).
-  virtual std::string incompatibility(const Light& light) const {
-    (void)light;
-    return {};
-  }
-  /// The light's view(s) for this camera. `aspect` = width / height of the image; `mapSize` =
-  /// texels per side of each map (fits add margins and snap in whole texels).
-  virtual LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light,
-                                    const SceneExtent& scene, int mapSize) const = 0;
 };
 
 }  // namespace penumbra
