@@ -6,7 +6,7 @@
 #include "shadows/projections/LightSpace.h"
 #include "shadows/projections/SampleDistributionProjection.h"
 
-#include <penumbra/Registry.h>
+#include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>
