@@ -257,8 +257,8 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         const ColorImage error = colourErrorImage(grey, refs[l.index].visibilityRgb, refs[l.index].litMask, width, height);
         const ColorImage sheet = colourErrorSheet(
             error, *colour[l.index],
-            fmt::format("{} · {} on {}, light {}: colour error against the RGB reference", renderer.filter().id(),
-                        renderer.projection().id(), scene.name, l.index));
+            fmt::format("{} · {} on {}, light {}: colour error against the RGB reference", renderer.technique().filter(),
+                        renderer.technique().projection(), scene.name, l.index));
         writePng(dir / "heatmap-colour.png", sheet.width, sheet.height, sheet.rgba);
       }
     }
