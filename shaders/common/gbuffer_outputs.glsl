@@ -9,6 +9,5 @@ layout(location = 2) out vec4 o_geoNormal;  // xyz geometric normal
 layout(location = 3) out vec4 o_albedo;     // rgb linear base colour
 #if PN_GBUFFER_TRIANGLES
 // (object index + 1, triangle index in the object's mesh); 0 = none (background).
-// gl_PrimitiveID counts from 0 in each draw, and GpuScene draws one object's whole mesh per call.
 layout(location = 4) out uvec2 o_triangle;
 #endif

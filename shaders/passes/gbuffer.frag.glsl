@@ -9,6 +9,11 @@
 in vec3 v_wsPosition;
 in vec3 v_wsNormal;
 in vec2 v_uv;
+#if PN_GBUFFER_TRIANGLES
+// gl_PrimitiveID counts from 0 in each draw; GpuScene draws an object's mesh in one draw, or in
+// pieces on a software rasteriser (gl/Draw.h), and gives each piece's first triangle here.
+layout(location = PN_LOC_FIRST_TRIANGLE) uniform uint u_firstTriangle;
+#endif
 
 void main() {
   alphaTest(v_uv);
@@ -24,6 +29,6 @@ void main() {
   o_geoNormal = vec4(g, 0.0);
   o_albedo = vec4(materialBaseColor(v_uv), 1.0);
 #if PN_GBUFFER_TRIANGLES
-  o_triangle = uvec2(uint(u_object) + 1u, uint(gl_PrimitiveID));
+  o_triangle = uvec2(uint(u_object) + 1u, u_firstTriangle + uint(gl_PrimitiveID));
 #endif
 }

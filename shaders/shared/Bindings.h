@@ -43,6 +43,7 @@
 #define PN_LOC_VIEW 1    // int: shadow view (cascade) being rendered
 #define PN_LOC_LEVEL 2   // int: mip level / pass-specific integer
 #define PN_LOC_SWITCH 3  // int: a pass-specific switch (0 = off)
+#define PN_LOC_FIRST_TRIANGLE 4  // uint: the draw's first triangle in its mesh (gl::drawTriangles' pieces)
 
 // Limits
 #define PN_MAX_SHADOW_VIEWS 8  // csm allows up to 8 cascades

@@ -1,6 +1,7 @@
 #include "frame/CasterSet.h"
 
 #include "base/Hash.h"
+#include "gl/Draw.h"
 
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
@@ -204,12 +205,10 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
       if (m.indexBuffer != 0)
-        glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(m.count),
-                                 m.indexType == IndexType::UInt16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(static_cast<uintptr_t>(m.firstIndex) * indexBytes(m.indexType)),
-                                 m.baseVertex);
+        gl::drawTriangles(m.indexType == IndexType::UInt16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT, m.firstIndex, m.count,
+                          m.baseVertex);
       else
-        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(m.firstIndex), static_cast<GLsizei>(m.count));
+        gl::drawTriangleArrays(m.firstIndex, m.count);
     }
   }
 }

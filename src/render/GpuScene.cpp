@@ -1,5 +1,6 @@
 #include "render/GpuScene.h"
 
+#include "gl/Draw.h"
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
 
@@ -134,7 +135,7 @@ void GpuScene::setTransforms(const Scene& scene) {
   mObjects.upload(mObjectData.data(), mObjectData.size() * sizeof(gpu::ObjectGpu));
 }
 
-void GpuScene::draw(GLuint program) const {
+void GpuScene::draw(GLuint program, GLint firstTriangleLocation) const {
   // What a layout without normals or uvs reads: a zero normal (flat, gbuffer.frag.glsl) and uv 0.
   glVertexAttrib3f(1, 0.0f, 0.0f, 0.0f);
   glVertexAttrib2f(2, 0.0f, 0.0f);
@@ -146,8 +147,10 @@ void GpuScene::draw(GLuint program) const {
     bound = d.layout;
     glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
     glBindTextureUnit(PN_TEX_BASECOLOR, d.texture);
-    glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(d.firstIndex * sizeof(uint32_t)), d.baseVertex);
+    gl::drawTriangles(GL_UNSIGNED_INT, d.firstIndex, d.indexCount, d.baseVertex, [&](size_t firstTriangle) {
+      if (firstTriangleLocation >= 0)
+        glProgramUniform1ui(program, firstTriangleLocation, static_cast<GLuint>(firstTriangle));
+    });
   }
   glBindVertexArray(0);
 }

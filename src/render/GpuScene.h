@@ -23,8 +23,10 @@ public:
   /// Re-uploads the objects' transforms from `scene` (the scene this was made from, posed at
   /// another time: the same objects, meshes and materials).
   void setTransforms(const Scene& scene);
-  /// Draws every object with the bound program (the G-buffer pass).
-  void draw(GLuint program) const;
+  /// Draws every object with the bound program (the G-buffer pass). With `firstTriangleLocation`
+  /// (a uint uniform of the program, or -1) the program learns each draw's first triangle in its
+  /// mesh, as a mesh drawn in pieces (gl/Draw.h) needs for triangle ids.
+  void draw(GLuint program, GLint firstTriangleLocation = -1) const;
   /// The objects that cast shadows, as records over these buffers (alpha-masked materials with
   /// their texture), for Shadows::setCasters.
   std::vector<CasterMesh> casterMeshes(const Scene& scene) const;

@@ -207,7 +207,7 @@ void Renderer::render(const RenderOptions& options) {
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     program.use();
-    im.gpuScene->draw(program.id());
+    im.gpuScene->draw(program.id(), im.triangleIds ? PN_LOC_FIRST_TRIANGLE : -1);
     ProgramDesc b;
     b.label = "gbuffer background";
     b.vertex = {"passes/fullscreen.vert.glsl"};

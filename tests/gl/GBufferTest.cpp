@@ -2,6 +2,8 @@
 // attachment on every frame (they are drawn, not cleared), and the triangle ids are recorded
 // only when a frame asks for them, without changing anything else.
 #include "GlFixture.h"
+#include "gl/Debug.h"
+#include "gl/Draw.h"
 
 #include <penumbra/Scene.h>
 
@@ -94,6 +96,29 @@ TEST(GBuffer, TriangleIdsOnlyWhenAsked) {
   for (size_t i = 0; i < with.triangle.size(); ++i) wrong += (with.triangle[i].x > 0) != with.covered(i) ? 1 : 0;
   EXPECT_GT(coveredPixels(with), with.position.size() / 2);
   EXPECT_EQ(wrong, 0u) << "pixels whose triangle id disagrees with their coverage";
+}
+
+// A software rasteriser gets large draws in pieces with a flush between them (what bounds its
+// binning memory, docs/scenes.md#memory); the pieces draw the same triangles in the same order, so
+// the G-buffer, the shadow map and V are the same bits as one draw a mesh.
+TEST(GBuffer, DrawsInPiecesGiveTheSamePictureAsOneDrawAMesh) {
+  const Scene scene = makeBuiltinScene("boxes");
+  auto renderWith = [&](size_t triangles) {
+    gl::setTrianglesPerSubmission(triangles);
+    const auto r = makeTestRenderer(scene, "uniform", "pcf", {}, kMap);
+    r->render(frame(true));
+    std::pair<GBufferData, std::vector<float>> out{r->readGBuffer(), r->readVisibility()};
+    gl::setTrianglesPerSubmission(std::nullopt);
+    return out;
+  };
+  const auto whole = renderWith(0);
+  const auto pieces = renderWith(1);  // a flush after every triangle: the most pieces there can be
+  ASSERT_GT(coveredPixels(whole.first), size_t(kW * kH / 2));
+  expectSameSurfaces(pieces.first, whole.first);
+  EXPECT_EQ(pieces.first.triangle, whole.first.triangle);
+  EXPECT_EQ(pieces.second, whole.second) << "V differs: the shadow map's pieces drew something else";
+  EXPECT_EQ(gl::trianglesPerSubmission(),
+            gl::isSoftwareRenderer(gl::glString(GL_RENDERER)) ? gl::kSoftwareTrianglesPerSubmission : 0u);
 }
 
 }  // namespace penumbra::test
