@@ -10,7 +10,7 @@
 #include "report/BenchRunner.h"
 #include "report/FrameComparison.h"
 #include "report/ImageKey.h"
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 #include "report/Sheet.h"
 #include "report/SequenceComparison.h"
 
@@ -75,7 +75,7 @@ void putColourMetrics(nlohmann::json& j, const ColourMetrics& m) {
 
 /// The colour error image under a title band: what it shows, its scale and the colour metrics.
 ColorImage colourErrorSheet(const ColorImage& error, const ColourMetrics& m, const std::string& title) {
-  const report::TextPainter text(14.0f);
+  const text::TextPainter text(14.0f);
   const std::string lines[] = {
       title,
       "V - V_ref per colour channel: mid grey = exact; a channel brighter = too much of that colour,",

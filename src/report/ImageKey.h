@@ -2,7 +2,7 @@
 // Keys written on the lab's pictures (compare's heatmap.png, approximation.png, texel-density.png
 // and sheet.png): what the picture shows, a colour bar with its tick labels in their unit, and
 // what grey means, drawn in a band under the picture so that the file reads on its own.
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 
 #include <penumbra/Image.h>
 
@@ -14,6 +14,11 @@
 #include <vector>
 
 namespace penumbra::report {
+
+using text::Rgb;
+using text::TextPainter;
+using text::fillRect;
+using text::strokeRect;
 
 /// A colour scale and the words around it.
 struct ColorKey {

@@ -1,7 +1,7 @@
 #include "report/Sheet.h"
 
 #include "report/ImageKey.h"
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Metrics.h>

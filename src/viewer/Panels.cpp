@@ -4,7 +4,7 @@
 // the range spans orders of magnitude), each showing its unit. Nothing here knows a technique.
 #include "viewer/Viewer.h"
 
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 #include "shadows/Registry.h"
 
 #include <penumbra/Error.h>
@@ -169,7 +169,7 @@ void plot(const char* label, const std::deque<float>& history, const char* unit)
 }  // namespace
 
 void Viewer::loadFont() {
-  const std::span<const unsigned char> font = report::embeddedFont();
+  const std::span<const unsigned char> font = text::embeddedFont();
   ImFontConfig config;
   config.FontDataOwnedByAtlas = false;  // the bytes live in the binary
   std::snprintf(config.Name, sizeof(config.Name), "DejaVu Sans, %.0f px", static_cast<double>(kFontPx));
@@ -201,7 +201,7 @@ std::string Viewer::layoutText() const {
   const ImFont* font = ImGui::GetIO().FontDefault ? ImGui::GetIO().FontDefault : ImGui::GetFont();
   std::set<ImWchar> missing;
   for (const std::string& t : texts)
-    for (const int c : report::utf8Codepoints(t))
+    for (const int c : text::utf8Codepoints(t))
       if (c > 0xFFFF || !font->FindGlyphNoFallback(static_cast<ImWchar>(c))) missing.insert(static_cast<ImWchar>(c));
   std::string missingText;
   for (const ImWchar c : missing) missingText += fmt::format(" U+{:04X}", static_cast<unsigned>(c));

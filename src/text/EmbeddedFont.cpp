@@ -1,6 +1,6 @@
 // The bytes of DejaVu Sans (fonts-dejavu-core), included at build time (the file CMake found:
 // PENUMBRA_FONT_FILE), so the pictures' text and the viewer's labels need no font at run time.
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 
 #ifndef PENUMBRA_FONT_FILE
 #error "PENUMBRA_FONT_FILE (the path of DejaVuSans.ttf) is set by CMakeLists.txt"
@@ -19,10 +19,10 @@ __asm__(".section .rodata\n"
 extern "C" const unsigned char penumbra_font_begin[];
 extern "C" const unsigned char penumbra_font_end[];
 
-namespace penumbra::report {
+namespace penumbra::text {
 
 std::span<const unsigned char> embeddedFont() {
   return {penumbra_font_begin, static_cast<size_t>(penumbra_font_end - penumbra_font_begin)};
 }
 
-}  // namespace penumbra::report
+}  // namespace penumbra::text

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-namespace penumbra::report {
+namespace penumbra::text {
 
 /// The embedded font file's bytes (DejaVu Sans, TrueType).
 std::span<const unsigned char> embeddedFont();
@@ -49,4 +49,4 @@ void fillRect(ColorImage& image, int x, int y, int width, int height, const Rgb&
 /// Draws a rectangle's outline `thickness` pixels wide inside its bounds.
 void strokeRect(ColorImage& image, int x, int y, int width, int height, int thickness, const Rgb& rgb);
 
-}  // namespace penumbra::report
+}  // namespace penumbra::text

@@ -1,4 +1,4 @@
-#include "report/ImageText.h"
+#include "text/ImageText.h"
 
 #include <penumbra/Error.h>
 
@@ -21,7 +21,7 @@
 #pragma GCC diagnostic pop
 #endif
 
-namespace penumbra::report {
+namespace penumbra::text {
 namespace {
 
 // Decodes one UTF-8 sequence at text[i] and advances i; invalid bytes read as U+FFFD.
@@ -144,4 +144,4 @@ void strokeRect(ColorImage& image, int x, int y, int width, int height, int t, c
   fillRect(image, x + width - t, y, t, height, rgb);
 }
 
-}  // namespace penumbra::report
+}  // namespace penumbra::text
