@@ -29,14 +29,16 @@ struct VisibilityMetrics {
   double bias = 0.0;          ///< mean (V − V_ref): > 0 = too bright on average
   double leakPct = 0.0;       ///< % of pixels with V − V_ref > kLeakThresholdV
   double overDarkPct = 0.0;   ///< % of pixels with V_ref − V > kLeakThresholdV
-  /// % of pixels that leak inside the reference's umbra (V_ref <= kPenumbraLowV): light where no
-  /// part of the light is visible. Separates light bleeding (variance methods' overlapping
-  /// occluders) from an edge that is merely too sharp or too soft, which leaks at V_ref > 0.
+  /// % of pixels that leak inside the reference's umbra (V_ref <= kPenumbraLowV at the pixel's
+  /// footprint, below): light where no part of the light is visible. Separates light bleeding
+  /// (variance methods' overlapping occluders) and detached shadows from an edge that is merely
+  /// too sharp or too soft, which leaks at V_ref > 0.
   double umbraLeakPct = 0.0;
   double penumbraRmse = 0.0;  ///< RMSE over penumbra pixels only (0 when there are none)
-  /// Acne: % of the fully lit pixels (V_ref >= kPenumbraHighV) that V darkens by more than
-  /// kLeakThresholdV — self-shadowing, the over-darkening a bias exists to remove. Unlike the
-  /// other percentages, of the fully lit pixels, not of the mask (0 when there are none).
+  /// Acne: % of the fully lit pixels (V_ref >= kPenumbraHighV at the pixel's footprint, below)
+  /// that V darkens by more than kLeakThresholdV — self-shadowing, the over-darkening a bias
+  /// exists to remove. Unlike the other percentages, of the fully lit pixels, not of the mask (0
+  /// when there are none).
   double acnePct = 0.0;
   size_t pixels = 0;          ///< pixels in the mask
   size_t leakPixels = 0, overDarkPixels = 0, penumbraPixels = 0, umbraLeakPixels = 0;
@@ -44,11 +46,22 @@ struct VisibilityMetrics {
 };
 
 /// Compares V with V_ref where mask ≠ 0 (ReferenceResult::litMask). An empty mask means every
-/// pixel. Throws penumbra::Error when the sizes differ. All zeros when the mask selects nothing.
-/// Also measures the split approximation: compareVisibility(ref.visibility,
-/// ref.visibilityCosWeighted, ref.litMask).rmse is its error in units of V.
+/// pixel. Throws penumbra::Error when the sizes differ (or width does not divide them). All zeros
+/// when the mask selects nothing. Also measures the split approximation:
+/// compareVisibility(ref.visibility, ref.visibilityCosWeighted, ref.litMask).rmse is its error in
+/// units of V.
+///
+/// With the image's width, acne and umbra leaks are judged at each pixel's footprint: V_ref is
+/// the light's visibility at the pixel's centre, so a point light's hard edge that crosses a
+/// pixel leaves it V_ref = 1 or 0 although the edge runs through it, and any anti-aliased V
+/// (a filter's kernel, a texel's blend) rightly lands between. A pixel therefore counts as fully
+/// lit (umbra) only where V_ref is so at it and at its 8 neighbours inside the mask: the band
+/// excluded is one pixel, the reference's own resolution, however wide a technique's kernel is.
+/// Acne away from the reference's shadow edges, and a detached shadow's gap wider than a pixel,
+/// count in full; the edge's pixels keep counting in rmse, leak_pct and overdark_pct. width 0: the
+/// arrays are samples, not an image, and each is its own footprint.
 VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const float> vRef,
-                                    std::span<const uint8_t> mask);
+                                    std::span<const uint8_t> mask, int width = 0);
 
 /// V against an RGB V_ref (ReferenceResult::visibilityRgb, a scene with translucent casters)
 /// over the mask's pixels: the RMSE over all three channels and each channel's own. A one-channel

@@ -7,15 +7,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace penumbra {
 
+namespace {
+
+// V_ref at pixel i's footprint (compareVisibility): the extremes of V_ref over the pixel and its 8
+// neighbours inside the mask and the image; a list of samples (width 0): the pixel alone.
+struct Footprint {
+  float lowest, highest;
+};
+
+Footprint footprint(std::span<const float> vRef, std::span<const uint8_t> mask, size_t i, int width) {
+  Footprint f{vRef[i], vRef[i]};
+  if (width <= 0) return f;
+  const auto w = static_cast<ptrdiff_t>(width), h = static_cast<ptrdiff_t>(vRef.size()) / w;
+  const ptrdiff_t x = static_cast<ptrdiff_t>(i) % w, y = static_cast<ptrdiff_t>(i) / w;
+  for (ptrdiff_t ny = std::max<ptrdiff_t>(y - 1, 0); ny <= std::min(y + 1, h - 1); ++ny)
+    for (ptrdiff_t nx = std::max<ptrdiff_t>(x - 1, 0); nx <= std::min(x + 1, w - 1); ++nx) {
+      const auto j = static_cast<size_t>(ny * w + nx);
+      if (!mask.empty() && mask[j] == 0) continue;
+      f.lowest = std::min(f.lowest, vRef[j]);
+      f.highest = std::max(f.highest, vRef[j]);
+    }
+  return f;
+}
+
+}  // namespace
+
 VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const float> vRef,
-                                    std::span<const uint8_t> mask) {
+                                    std::span<const uint8_t> mask, int width) {
   PN_CHECK(v.size() == vRef.size(),
            fmt::format("metrics: V has {} pixels but V_ref has {}", v.size(), vRef.size()));
   PN_CHECK(mask.empty() || mask.size() == v.size(),
            fmt::format("metrics: the mask has {} pixels but V has {}", mask.size(), v.size()));
+  PN_CHECK(width >= 0 && (width == 0 || v.size() % static_cast<size_t>(width) == 0),
+           fmt::format("metrics: {} pixels are not rows of width {}", v.size(), width));
   VisibilityMetrics m;
   double sumSquares = 0.0, sumAbs = 0.0, sum = 0.0, penumbraSquares = 0.0;
   for (size_t i = 0; i < v.size(); ++i) {
@@ -25,12 +53,13 @@ VisibilityMetrics compareVisibility(std::span<const float> v, std::span<const fl
     sum += delta;
     sumAbs += std::abs(delta);
     sumSquares += delta * delta;
+    const Footprint f = footprint(vRef, mask, i, width);
     if (delta > kLeakThresholdV) {
       ++m.leakPixels;
-      if (vRef[i] <= kPenumbraLowV) ++m.umbraLeakPixels;
+      if (f.highest <= kPenumbraLowV) ++m.umbraLeakPixels;
     }
     if (-delta > kLeakThresholdV) ++m.overDarkPixels;
-    if (vRef[i] >= kPenumbraHighV) {
+    if (f.lowest >= kPenumbraHighV) {
       ++m.fullyLitPixels;
       if (-delta > kLeakThresholdV) ++m.acnePixels;
     }

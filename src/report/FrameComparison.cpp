@@ -39,7 +39,7 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     l.castsShadow = lights[i].castsShadow;
     l.visibility = renderer.readVisibility(i);
     l.map = renderer.shadows().lightReports().at(i);
-    if (l.castsShadow) l.metrics = compareVisibility(l.visibility, refs[i].visibility, refs[i].litMask);
+    if (l.castsShadow) l.metrics = compareVisibility(l.visibility, refs[i].visibility, refs[i].litMask, gbuffer.width);
     c.lights.push_back(std::move(l));
   }
   for (size_t i = 0; i < lights.size(); ++i)
@@ -50,7 +50,7 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     shadowed.push_back({c.lights[i].visibility, refs[i].visibility, refs[i].visibilityCosWeighted, refs[i].litMask, weights[i]});
   }
   c.combined = combineLights(shadowed);
-  c.metrics = compareVisibility(c.combined.v, c.combined.vRef, c.combined.mask);
+  c.metrics = compareVisibility(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width);
   if (images) {
     c.technique = renderer.readColor();
     std::vector<std::vector<float>> refVisibility;

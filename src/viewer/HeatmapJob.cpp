@@ -91,7 +91,7 @@ void HeatmapJob::run(Scene scene, GBufferData g, std::vector<float> v, ColorImag
       mProgress = static_cast<float>(y1) / static_cast<float>(g.height);
     }
     HeatmapResult result;
-    result.metrics = compareVisibility(v, vRef, mask);
+    result.metrics = compareVisibility(v, vRef, mask, g.width);
     result.image = errorHeatmap(v, vRef, mask, g.width, g.height, color.rgba.empty() ? nullptr : &color, report::kLabHeatmap);
     result.samplesPerPixel = spp;
     result.vRef = std::move(vRef);

@@ -55,6 +55,40 @@ TEST(Metrics, UmbraLeaksAreLeaksWhereTheReferenceIsAtMostPenumbraLow) {
   EXPECT_NEAR(m.umbraLeakPct, 50.0, 1e-9);
 }
 
+// A 6×4 image: a point light's hard edge between columns 2 and 3 (lit left, umbra right), one
+// masked-out umbra pixel at (0, 0). A filter softens the edge: columns 2 and 3 get V 0.6 and 0.4.
+// Those pixels straddle the edge (V_ref 1 or 0 at their centres only), so with the image's width
+// they are neither fully lit nor umbra; acne at (0, 3) and a leak at (5, 3), away from the
+// edge, still count, and so does the lit pixel beside the masked one.
+TEST(Metrics, AcneAndUmbraAreJudgedAtThePixelsFootprint) {
+  constexpr int kW = 6, kH = 4;
+  std::vector<float> ref(kW * kH), v(kW * kH);
+  std::vector<uint8_t> mask(kW * kH, 1);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const size_t i = static_cast<size_t>(y * kW + x);
+      ref[i] = x < 3 ? 1.0f : 0.0f;
+      v[i] = x == 2 ? 0.6f : x == 3 ? 0.4f : ref[i];
+    }
+  mask[0] = 0;
+  ref[0] = 0.0f;
+  v[1] = 0.5f;            // acne beside the masked pixel: its neighbour does not count
+  v[3 * kW + 0] = 0.7f;   // acne two pixels from the edge
+  v[3 * kW + 5] = 0.25f;  // a leak two pixels inside the umbra
+  const VisibilityMetrics footprint = compareVisibility(v, ref, mask, kW);
+  EXPECT_EQ(footprint.fullyLitPixels, 7u);  // columns 0 and 1 less the masked pixel
+  EXPECT_EQ(footprint.acnePixels, 2u);
+  EXPECT_EQ(footprint.umbraLeakPixels, 1u);  // columns 4 and 5: 8 umbra pixels, one leaks
+  EXPECT_EQ(footprint.overDarkPixels, 6u);   // the edge's 4 lit pixels still over-dark, and 2 acne
+  EXPECT_EQ(footprint.leakPixels, 5u);
+  // As samples (no width) every pixel is its own footprint: the edge's pixels count as acne and leaks.
+  const VisibilityMetrics samples = compareVisibility(v, ref, mask);
+  EXPECT_EQ(samples.fullyLitPixels, 11u);
+  EXPECT_EQ(samples.acnePixels, 6u);
+  EXPECT_EQ(samples.umbraLeakPixels, 5u);
+  EXPECT_THROW(compareVisibility(v, ref, mask, 5), Error);  // 24 pixels are not rows of 5
+}
+
 TEST(Metrics, PenumbraBoundsAreStrict) {
   const std::vector<float> ref = {0.02f, 0.98f, 0.03f};
   const std::vector<float> v = {0.52f, 0.48f, 0.33f};
