@@ -45,7 +45,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       "bench", "time and measure every technique against the reference; write results.csv, results.json, report.html");
   sub->add_option("--scenes", o->scenes, "built-in scene names or scene files, comma-separated (default: every built-in scene)")
       ->delimiter(',');
-  sub->add_option("--filters", o->filters, "filter ids, comma-separated (default: every filter)")->delimiter(',');
+  sub->add_option("--filters", o->filters, "filter ids or technique folders, comma-separated (default: every filter)")
+      ->delimiter(',')
+      ->transform(techniqueFolderFilter());
   sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: every projection)")->delimiter(',');
   sub->add_option("--sweep", o->sweeps,
                   "key=from:to:count or key=a,b,..., repeatable: run each technique that has the parameter at "

@@ -43,7 +43,9 @@ std::string defaultSizeText() { return fmt::format("{}x{}", RenderOptions{}.widt
 void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--scene", o.scene, "built-in scene name (penumbra list shows them), scene .json file, or model file (.gltf, .glb, .obj)")
       ->capture_default_str();
-  app.add_option("--filter", o.filter, "shadow filter id (default: the scene's own, else hard)");
+  app.add_option("--filter", o.filter,
+                 "shadow filter id, or the path of a technique folder (docs/own-technique.md) (default: the scene's own, else hard)")
+      ->transform(techniqueFolderFilter());
   app.add_option("--projection", o.projection, "light projection id (default: the scene's own, else uniform)");
   app.add_option("--set", o.sets, "parameter override key=value, repeatable (e.g. hard.bias=slope, light.size=0.1)");
   app.add_option("--size", o.size, "image size WxH in pixels")->capture_default_str();
@@ -131,6 +133,19 @@ void addCacheCapOption(CLI::App& app, std::optional<std::uintmax_t>& mib, const 
 std::optional<std::uintmax_t> cacheCapBytes(const std::optional<std::uintmax_t>& mib) {
   constexpr std::uintmax_t kBytesPerMiB = std::uintmax_t{1} << 20;
   return mib ? std::optional(*mib * kBytesPerMiB) : std::nullopt;
+}
+
+CLI::Validator techniqueFolderFilter() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          text = resolveFilter(text);
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      },
+      "ID|FOLDER");
 }
 
 CLI::Validator finiteNumber(double lo, double hi, bool aboveLo) {

@@ -119,6 +119,10 @@ uint64_t parseMemorySize(const std::string& text);
 /// finite and in range while the command line is read (render and compare).
 void addTimeOptions(CLI::App& app, CLI::Option* frames, float& fps, float& timeS, const std::string& timeHelp);
 
+/// Turns a --filter value that names a technique folder (a path) into the id it registers
+/// (penumbra::resolveFilter); a folder that fails to load fails the parse with its message.
+CLI::Validator techniqueFolderFilter();
+
 /// The check of a floating-point option: a finite number in [lo, hi] ((lo, hi] with `aboveLo`).
 /// CLI::Range and CLI::PositiveNumber let NaN through (every comparison with it is false).
 CLI::Validator finiteNumber(double lo, double hi, bool aboveLo = false);

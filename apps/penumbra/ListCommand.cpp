@@ -1,5 +1,6 @@
 // penumbra list: scenes, projections, filters and every parameter (default, range, help).
 #include "Commands.h"
+#include "Common.h"
 
 #include "shadows/Registry.h"
 #include <penumbra/SceneIO.h>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 namespace penumbra::app {
@@ -52,7 +54,11 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
   auto json = std::make_shared<bool>(false);
   CLI::App* sub = app.add_subcommand("list", "list scenes, projections, filters and their parameters");
   sub->add_flag("--json", *json, "print one JSON object instead of text");
-  commands.push_back({sub, [json] {
+  auto folders = std::make_shared<std::vector<std::string>>();
+  sub->add_option("--filter", *folders, "a technique folder to load and list with the built-in filters, repeatable")
+      ->transform(techniqueFolderFilter());
+  commands.push_back({sub, [json, folders] {
+    (void)folders;  // loaded and registered while the command line was parsed
     nlohmann::json j;
     j["scenes"] = nlohmann::json::array();
     for (const std::string& n : builtinSceneNames()) j["scenes"].push_back({{"name", n}, {"description", builtinSceneDescription(n)}});
@@ -63,7 +69,11 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
       j["projections"].push_back({{"id", id}, {"description", projectionDescription(id)}, {"params", paramsJson(projectionParams(id))}});
     j["filters"] = nlohmann::json::array();
     for (const std::string& id : filterIds())
-      j["filters"].push_back({{"id", id}, {"description", filterDescription(id)}, {"params", paramsJson(filterParams(id))}});
+    {
+      nlohmann::json f = {{"id", id}, {"description", filterDescription(id)}, {"params", paramsJson(filterParams(id))}};
+      if (const std::filesystem::path folder = techniqueFolder(id); !folder.empty()) f["folder"] = folder.string();
+      j["filters"].push_back(f);
+    }
     if (*json) {
       std::printf("%s\n", j.dump(2).c_str());
       return 0;
@@ -84,6 +94,8 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     std::printf("\nFilters (--filter ID):\n");
     for (const std::string& id : filterIds()) {
       std::printf("  %-10s %s\n", id.c_str(), std::string(filterDescription(id)).c_str());
+      if (const std::filesystem::path folder = techniqueFolder(id); !folder.empty())
+        std::printf("             (technique folder %s)\n", folder.string().c_str());
       printParams(filterParams(id));
     }
     return 0;

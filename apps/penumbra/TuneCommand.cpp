@@ -73,7 +73,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
                   "search only these keys, comma-separated (parameter keys, shadow.mapSize, shadow.budgetTexels); the "
                   "rest stays at the default. csm.cascades without shadow.budgetTexels keeps the default's map memory")
       ->delimiter(',');
-  sub->add_option("--filters", o->filters, "filter ids to tune, comma-separated (default: the scene's own)")->delimiter(',');
+  sub->add_option("--filters", o->filters, "filter ids or technique folders to tune, comma-separated (default: the scene's own)")
+      ->delimiter(',')
+      ->transform(techniqueFolderFilter());
   sub->add_option("--projections", o->projections, "projection ids, comma-separated (default: the scene's own)")
       ->delimiter(',');
   sub->add_option("--budget-ms", o->budgetMs,

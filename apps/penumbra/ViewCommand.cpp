@@ -32,7 +32,7 @@ void addViewCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--script", o->script, "run the actions in this file (listed below; docs/viewer.md), then exit");
   sub->add_option("--shader-dir", o->shaderDir,
                   "source tree to hot-reload shaders from (default: this build's source tree, if present)");
-  sub->add_flag("--no-hot-reload", o->noHotReload, "use the shaders built into the binary only");
+  sub->add_flag("--no-hot-reload", o->noHotReload, "use the shaders built into the binary only, and leave a technique folder's GLSL as it was first read");
   sub->add_flag("--hide-ui", o->hideUi, "start with the panels hidden (F1 or Tab toggles them)");
   sub->add_flag("--no-vsync", o->noVsync, "do not wait for the display's refresh between frames");
   sub->footer("--size is the window size. Keys: F1/Tab panels, C orbit/fly camera, right-drag light, F5 reload shaders,\n"
@@ -49,6 +49,7 @@ void addViewCommand(CLI::App& app, std::vector<Command>& commands) {
     v.showUi = !o->hideUi;
     v.vsync = !o->noVsync && !v.scripted && v.frames == 0;  // scripts and frame counts run flat out
     v.verbose = o->technique.verbose;
+    v.reloadTechniqueFolders = !o->noHotReload;
     if (!o->shaderDir.empty()) {
       if (!std::filesystem::is_directory(std::filesystem::path(o->shaderDir) / "shaders"))
         throw usageError(fmt::format("--shader-dir {}: no shaders/ folder there", o->shaderDir));

@@ -9,6 +9,7 @@
 #include <penumbra/Light.h>
 #include <penumbra/Params.h>
 
+#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
@@ -26,6 +27,23 @@ std::string_view filterDescription(std::string_view id);
 /// Its parameter table (ParamDesc); throws a usage Error for an unknown id.
 std::span<const ParamDesc> projectionParams(std::string_view id);
 std::span<const ParamDesc> filterParams(std::string_view id);
+
+/// Loads a technique folder (docs/own-technique.md: technique.json and its GLSL) and registers
+/// it as a filter under the id its description gives; returns that id. Loading a folder again
+/// returns its id; its description is read once per process (its GLSL at every compile). Throws
+/// a usage Error naming the file and the field at fault, or an id another technique has.
+std::string loadTechniqueFolder(const std::filesystem::path& folder);
+/// The filter a --filter argument names: a registered id as it is; a path (it holds a '/', or
+/// names a folder) loaded with loadTechniqueFolder; anything else as it is (unknown ids are
+/// refused where they are used).
+std::string resolveFilter(std::string_view text);
+/// The folder a filter was loaded from (absolute); empty for a built-in or a registered filter.
+std::filesystem::path techniqueFolder(std::string_view filterId);
+/// What names the filter on a command line in another process: its folder for a technique
+/// folder's id (a printed command loads it again), else the id.
+std::string filterArgument(std::string_view filterId);
+/// The GLSL files of every technique folder loaded: what a viewer watches to reload.
+std::vector<std::filesystem::path> techniqueFolderFiles();
 
 /// A parameter group any filter can take: a pass the core runs after the filter's own.
 struct AddOnGroup {

@@ -2,6 +2,8 @@
 
 #include "platform/Context.h"
 
+#include <penumbra/Technique.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -84,7 +86,7 @@ std::string shellWord(const std::string& word) {
 std::string compareCommand(const BenchResults& results, const BenchRow& row) {
   const BenchConfig& c = row.config;
   std::string cmd = fmt::format("penumbra compare --scene {} --projection {} --filter {}", shellWord(c.scene),
-                                shellWord(c.projection), shellWord(c.filter));
+                                shellWord(c.projection), shellWord(filterArgument(c.filter)));
   for (const auto& [key, value] : c.params) cmd += " --set " + shellWord(key + "=" + value);
   cmd += fmt::format(" --size {}x{} --shadow-map {} --samples {}", row.width, row.height, row.shadowMapSize,
                      results.settings.referenceSamples);

@@ -2,6 +2,7 @@
 
 #include "report/SvgChart.h"
 
+#include <penumbra/Technique.h>
 #include <penumbra/Files.h>
 
 #include <fmt/format.h>
@@ -200,7 +201,7 @@ std::string tuneViewsText(const TuneRequest& request) {
 }
 
 std::string tuneSetLine(const TuneRow& r) {
-  std::string line = fmt::format("--projection {} --filter {} --shadow-map {}", r.projection, r.filter, r.mapSize);
+  std::string line = fmt::format("--projection {} --filter {} --shadow-map {}", r.projection, filterArgument(r.filter), r.mapSize);
   if (r.budgetTexels > 0) line += fmt::format(" --shadow-budget {}", r.budgetTexels);
   for (const auto& [k, v] : r.params) line += fmt::format(" --set {}={}", k, v);
   return line;

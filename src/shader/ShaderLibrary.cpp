@@ -118,6 +118,13 @@ std::string remapShaderLog(std::string_view log, const std::vector<std::string>&
 ShaderLibrary::ShaderLibrary() = default;
 
 std::optional<std::string> ShaderLibrary::source(std::string_view key) const {
+  // An absolute path is a file of the user's (a technique folder's GLSL): read where it is, every
+  // time, so a reload sees its edits; its log lines name that path.
+  if (const std::filesystem::path path(key); path.is_absolute()) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return std::nullopt;
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }
   if (mSourceTree) {
     for (const char* top : {"shaders", "src"}) {
       std::ifstream f(*mSourceTree / top / std::string(key), std::ios::binary);

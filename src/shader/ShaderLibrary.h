@@ -58,6 +58,8 @@ public:
   ShaderLibrary();
   /// Reads sources from this tree (its shaders/ and src/) before the embedded copies.
   void setSourceTree(std::filesystem::path root) { mSourceTree = std::move(root); }
+  /// A key's text: an absolute path is read from that file (a technique folder's GLSL), any
+  /// other key from the source tree, then the embedded copies.
   std::optional<std::string> source(std::string_view key) const;
   std::vector<std::string> keys() const;
 

@@ -20,6 +20,7 @@
 #include "shadows/projections/SampleDistributionProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
+#include "shadows/folder/FolderTechnique.h"
 #include "shadows/sdf/SdfFilter.h"
 #include "shadows/temporal/TemporalAccumulation.h"
 
@@ -157,6 +158,66 @@ void registerFilter(const std::function<std::unique_ptr<Filter>()>& make) {
   for (const Entry<Projection>& e : projections().entries)
     if (e.id == id) throw usageError(fmt::format("registerFilter: '{}' is a projection's id", id));
   kinds.entries.push_back({id, make});
+}
+
+namespace {
+
+/// Every technique folder loaded, kept for the life of the process: the registry's entries, the
+/// techniques' ParamDesc tables and the lights' instances point into them.
+std::vector<std::unique_ptr<FolderDescription>>& folders() {
+  static std::vector<std::unique_ptr<FolderDescription>> loaded;
+  return loaded;
+}
+
+}  // namespace
+
+std::string loadTechniqueFolder(const std::filesystem::path& folder) {
+  std::unique_ptr<FolderDescription> d = readFolderDescription(folder);
+  const std::lock_guard lock(registryMutex());
+  for (const std::unique_ptr<FolderDescription>& f : folders()) {
+    if (f->folder == d->folder) return f->id;
+    if (f->id == d->id)
+      throw usageError(fmt::format("{}: id: '{}' is the id of the technique folder {} too", (folder / "technique.json").string(), d->id,
+                                   f->folder.string()));
+  }
+  for (const Entry<Filter>& e : filters().entries)
+    if (e.id == d->id) throw usageError(fmt::format("{}: id: '{}' is a built-in filter's id", (folder / "technique.json").string(), d->id));
+  for (const Entry<Projection>& e : projections().entries)
+    if (e.id == d->id) throw usageError(fmt::format("{}: id: '{}' is a projection's id", (folder / "technique.json").string(), d->id));
+  const FolderDescription& kept = *folders().emplace_back(std::move(d));
+  registerFilter([&kept] { return makeFolderFilter(kept); });
+  return kept.id;
+}
+
+std::filesystem::path techniqueFolder(std::string_view filterId) {
+  const std::lock_guard lock(registryMutex());
+  for (const std::unique_ptr<FolderDescription>& f : folders())
+    if (f->id == filterId) return f->folder;
+  return {};
+}
+
+std::string filterArgument(std::string_view filterId) {
+  const std::filesystem::path folder = techniqueFolder(filterId);
+  return folder.empty() ? std::string(filterId) : folder.string();
+}
+
+std::vector<std::filesystem::path> techniqueFolderFiles() {
+  const std::lock_guard lock(registryMutex());
+  std::vector<std::filesystem::path> out;
+  for (const std::unique_ptr<FolderDescription>& f : folders()) out.push_back(f->visibilityFile);
+  return out;
+}
+
+std::string resolveFilter(std::string_view text) {
+  {
+    const std::lock_guard lock(registryMutex());
+    for (const Entry<Filter>& e : filters().entries)
+      if (e.id == text) return e.id;
+  }
+  std::error_code ec;
+  const std::filesystem::path path(text);
+  if (text.find('/') != std::string_view::npos || std::filesystem::is_directory(path, ec)) return loadTechniqueFolder(path);
+  return std::string(text);
 }
 
 std::span<const AddOnGroup> addOnGroups() {

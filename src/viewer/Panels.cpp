@@ -489,7 +489,8 @@ void Viewer::drawToolsPanel() {
     ImGui::Checkbox("Auto reload", &mAutoReload);
     ImGui::SameLine();
     if (ImGui::Button("Reload shaders (F5)")) reloadShaders();
-    ImGui::TextDisabled("from %s", mWatcher->sourceTree().string().c_str());
+    if (!mWatcher->sourceTree().empty()) ImGui::TextDisabled("from %s", mWatcher->sourceTree().string().c_str());
+    for (const std::filesystem::path& f : techniqueFolderFiles()) ImGui::TextDisabled("and %s", f.string().c_str());
     for (const std::string& e : mWatcher->errors()) {
       ImGui::PushTextWrapPos(0.0f);
       ImGui::TextColored(kErrorColor, "%s", e.c_str());

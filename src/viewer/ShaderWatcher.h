@@ -1,7 +1,8 @@
 #pragma once
 // Shader hot reload: watches the source tree's copies of the embedded shader files (the
-// ShaderLibrary reads the tree first once setSourceTree() is called) and recompiles every
-// cached program when one changes. A program that fails keeps its last good version; the
+// ShaderLibrary reads the tree first once setSourceTree() is called) and the GLSL of every
+// technique folder loaded (docs/own-technique.md), and recompiles every cached program when one
+// changes. A program that fails keeps its last good version; the
 // errors are kept for the viewer to show.
 #include "shader/ShaderLibrary.h"
 
@@ -15,7 +16,8 @@ namespace penumbra::viewer {
 
 class ShaderWatcher {
 public:
-  /// Points `shaders` at `sourceTree` (the folder holding shaders/ and src/).
+  /// Points `shaders` at `sourceTree` (the folder holding shaders/ and src/); an empty path
+  /// watches the technique folders only.
   ShaderWatcher(ShaderLibrary& shaders, std::filesystem::path sourceTree);
   const std::filesystem::path& sourceTree() const { return mTree; }
 

@@ -72,7 +72,8 @@ Viewer::Viewer(Scene scene, const Technique& technique, ViewerOptions options)
       mDisplay(mSession.renderer().shaders()) {
   glfwSwapInterval(mOptions.vsync ? 1 : 0);
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
-  if (mOptions.shaderTree) mWatcher = std::make_unique<ShaderWatcher>(mSession.renderer().shaders(), *mOptions.shaderTree);
+  if (mOptions.shaderTree || (mOptions.reloadTechniqueFolders && !techniqueFolderFiles().empty()))
+    mWatcher = std::make_unique<ShaderWatcher>(mSession.renderer().shaders(), mOptions.shaderTree.value_or(std::filesystem::path()));
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory

@@ -35,6 +35,8 @@ struct ViewerOptions {
   bool scripted = false;           ///< --script given: exit after its last action; failures are fatal
   bool showUi = true;
   std::optional<std::filesystem::path> shaderTree;  ///< hot reload from this source tree
+  /// Reload the technique folders' GLSL when it is saved (with or without a shader tree).
+  bool reloadTechniqueFolders = true;
   bool vsync = true;
   bool verbose = false;
 };
