@@ -8,6 +8,7 @@
 #include "viewer/ShaderWatcher.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/Technique.h>
 
 #include <gtest/gtest.h>
 
@@ -75,4 +76,46 @@ TEST(ShaderHotReload, BrokenEditKeepsLastGoodProgramAndFixRecovers) {
   EXPECT_EQ(gl::liveObjectCount(), objects);
   EXPECT_EQ(watcher.reloads(), 2);
   std::filesystem::remove_all(tree);
+}
+
+// A technique folder's GLSL (docs/own-technique.md) is watched with no source tree: the library
+// reads it from its absolute path at every build, so a saved edit is the next program, and a
+// broken one is reported at that path and line.
+TEST(ShaderHotReload, ATechniqueFoldersGlslIsReloadedOnSave) {
+  test::glContext();
+  const auto folder = std::filesystem::temp_directory_path() / ("penumbra-hotreload-folder-" + std::to_string(getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "technique.json") << R"({"id": "hot-reload-test", "description": "a test", "maps": ["depth"]})";
+  const auto file = std::filesystem::canonical(folder) / "visibility.glsl";
+  const std::string shader = "layout(local_size_x = 1) in;\nlayout(std430, binding = 0) buffer B { float v; };\nvoid main() { v = 1.0; }\n";
+  writeShader(file, shader, 0);
+  ASSERT_EQ(loadTechniqueFolder(folder), "hot-reload-test");
+
+  ShaderLibrary library;
+  viewer::ShaderWatcher watcher(library, {});  // no source tree: the folders only
+  ProgramDesc desc;
+  desc.label = "technique folder reload test";
+  desc.compute = {file.string()};
+  const GLuint first = library.program(desc).id();
+
+  std::string broken = shader;
+  broken.insert(broken.find('\n', broken.find('\n') + 1) + 1, "this is not GLSL;\n");
+  writeShader(file, broken, 2);
+  std::this_thread::sleep_for(viewer::ShaderWatcher::kPollInterval + std::chrono::milliseconds(50));
+  EXPECT_TRUE(watcher.poll());
+  ASSERT_EQ(watcher.errors().size(), 1u);
+  EXPECT_NE(watcher.errors()[0].find(file.string() + ":3:"), std::string::npos) << watcher.errors()[0];
+  EXPECT_EQ(library.program(desc).id(), first);
+  try {
+    gl::throwIfGlError("the deliberately broken shader");
+  } catch (const Error&) {
+  }
+
+  writeShader(file, shader + "// saved again\n", 4);
+  std::this_thread::sleep_for(viewer::ShaderWatcher::kPollInterval + std::chrono::milliseconds(50));
+  EXPECT_TRUE(watcher.poll());
+  EXPECT_TRUE(watcher.errors().empty());
+  EXPECT_NE(library.program(desc).id(), first);
+  std::filesystem::remove_all(folder);
 }
