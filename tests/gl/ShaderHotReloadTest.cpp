@@ -30,6 +30,15 @@ void writeShader(const std::filesystem::path& file, const std::string& text, int
   std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(secondsAhead));
 }
 
+/// The test context's debug callback records the driver's compile error as a GL error; it
+/// belongs to the test that broke a shader on purpose, not to the next one that checks for errors.
+void forgetDeliberateCompileError() {
+  try {
+    gl::throwIfGlError("the deliberately broken shader");
+  } catch (const Error&) {
+  }
+}
+
 }  // namespace
 
 TEST(ShaderHotReload, BrokenEditKeepsLastGoodProgramAndFixRecovers) {
@@ -60,12 +69,7 @@ TEST(ShaderHotReload, BrokenEditKeepsLastGoodProgramAndFixRecovers) {
   EXPECT_NE(errors[0].find(std::string(kKey) + ":3:"), std::string::npos) << errors[0];
   EXPECT_EQ(library.program(desc).id(), first);
   EXPECT_EQ(gl::liveObjectCount(), objects);
-  // The test context's debug callback records the driver's compile error as a GL error; it
-  // belongs to this test, not to the next one that checks for errors.
-  try {
-    gl::throwIfGlError("the deliberately broken shader");
-  } catch (const Error&) {
-  }
+  forgetDeliberateCompileError();
 
   // Fixed: poll() notices the new time after its interval and builds a new program.
   writeShader(file, original + "\n// edited\n", 4);
@@ -107,10 +111,7 @@ TEST(ShaderHotReload, ATechniqueFoldersGlslIsReloadedOnSave) {
   ASSERT_EQ(watcher.errors().size(), 1u);
   EXPECT_NE(watcher.errors()[0].find(file.string() + ":3:"), std::string::npos) << watcher.errors()[0];
   EXPECT_EQ(library.program(desc).id(), first);
-  try {
-    gl::throwIfGlError("the deliberately broken shader");
-  } catch (const Error&) {
-  }
+  forgetDeliberateCompileError();
 
   writeShader(file, shader + "// saved again\n", 4);
   std::this_thread::sleep_for(viewer::ShaderWatcher::kPollInterval + std::chrono::milliseconds(50));
