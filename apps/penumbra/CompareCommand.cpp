@@ -281,6 +281,22 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       });
     }
     const std::string projection = renderer.technique().projection(), filter = renderer.technique().filter();
+    // A paged projection whose pool could not hold a frame's pages says so (coarser levels served them).
+    {
+      int missing = 0, pool = 0;
+      const auto count = [&](const std::vector<LightShadowReport>& reports) {
+        for (const LightShadowReport& r : reports) {
+          missing = std::max(missing, r.pages.missing);
+          pool = std::max(pool, r.pages.poolPages);
+        }
+      };
+      count(renderer.shadows().lightReports());
+      if (sequence)
+        for (const report::SequenceFrame& f : sequence->frames) count(f.lights);
+      if (missing > 0)
+        std::fprintf(stderr, "penumbra: the page pool (%d pages) was full: up to %d needed pages a frame were read from coarser levels "
+                     "(virtual.poolPages raises it)\n", pool, missing);
+    }
     if (o->json) {
       nlohmann::json j;
       j["scene"] = scene.name;
@@ -331,6 +347,44 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         j["staleness_max"] = c.maxStaleness;
         j["staleness_mean"] = c.meanStaleness;
       }
+      // A paged projection (virtual): its pages in the last frame, summed over the lights, and
+      // with --frames one entry a frame.
+      bool paged = false;
+      LightShadowReport::Pages pages;
+      for (const report::LightComparison& l : cmp.lights) {
+        const LightShadowReport::Pages& p = l.map.pages;
+        paged = paged || p.poolPages > 0;
+        pages.needed += p.needed;
+        pages.drawn += p.drawn;
+        pages.resident += p.resident;
+        pages.missing += p.missing;
+        pages.poolPages += p.poolPages;
+        pages.poolBytes += p.poolBytes;
+      }
+      if (paged) {
+        j["pages_needed"] = pages.needed;
+        j["pages_drawn"] = pages.drawn;
+        j["pages_resident"] = pages.resident;
+        j["pages_missing"] = pages.missing;
+        j["pool_pages"] = pages.poolPages;
+        j["pool_mb"] = static_cast<double>(pages.poolBytes) / (1024.0 * 1024.0);
+        if (sequence) {
+          for (const char* key : {"pages_needed", "pages_drawn", "pages_resident", "pages_missing"}) j[key] = nlohmann::json::array();
+          for (const report::SequenceFrame& f : sequence->frames) {
+            LightShadowReport::Pages sum;
+            for (const LightShadowReport& r : f.lights) {
+              sum.needed += r.pages.needed;
+              sum.drawn += r.pages.drawn;
+              sum.resident += r.pages.resident;
+              sum.missing += r.pages.missing;
+            }
+            j["pages_needed"].push_back(sum.needed);
+            j["pages_drawn"].push_back(sum.drawn);
+            j["pages_resident"].push_back(sum.resident);
+            j["pages_missing"].push_back(sum.missing);
+          }
+        }
+      }
       j["lights"] = nlohmann::json::array();
       for (const report::LightComparison& l : cmp.lights) {
         nlohmann::json jl;
@@ -355,6 +409,14 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
           jl["map_updates"] = mapUpdatesName(l.map.updates);
           jl["maps_kept"] = l.map.keptMaps;
           jl["staleness"] = l.map.staleness;
+          if (l.map.pages.poolPages > 0) {
+            jl["pages_needed"] = l.map.pages.needed;
+            jl["pages_drawn"] = l.map.pages.drawn;
+            jl["pages_resident"] = l.map.pages.resident;
+            jl["pages_missing"] = l.map.pages.missing;
+            jl["pool_pages"] = l.map.pages.poolPages;
+            jl["pool_mb"] = static_cast<double>(l.map.pages.poolBytes) / (1024.0 * 1024.0);
+          }
         }
         j["lights"].push_back(std::move(jl));
       }
@@ -406,6 +468,11 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         std::printf("  colour RMSE     %8.4f  (over RGB; red %.4f, green %.4f, blue %.4f) against light %zu's RGB reference\n",
                     colour[l.index]->rmse, colour[l.index]->channelRmse[0], colour[l.index]->channelRmse[1],
                     colour[l.index]->channelRmse[2], l.index);
+    for (const report::LightComparison& l : cmp.lights)
+      if (l.map.pages.poolPages > 0)
+        std::printf("  pages           light %zu: %d needed, %d drawn, %d resident in the last frame; pool %d pages, %.1f MiB\n", l.index,
+                    l.map.pages.needed, l.map.pages.drawn, l.map.pages.resident, l.map.pages.poolPages,
+                    static_cast<double>(l.map.pages.poolBytes) / (1024.0 * 1024.0));
     std::printf("  texel density   median %.3f, p95 %.3f, near median %.3f screen px per texel; %.1f%% undersampled\n",
                 densityStats.median, densityStats.p95, densityStats.nearMedian, densityStats.undersampledPct);
     if (sequence)

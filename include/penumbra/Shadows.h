@@ -144,6 +144,16 @@ struct LightShadowReport {
   MapUpdates updates;        ///< the policy its maps followed (its own, or Shadows')
   int keptMaps = 0;          ///< MapUpdates::Budget: its maps left as an earlier frame drew them
   int staleness = 0;         ///< the oldest of its maps (frames since drawn; 0 = all drawn this frame)
+  /// A paged projection (virtual; 0 otherwise): its pages in this frame. Pages are drawn where
+  /// this frame's pixels need them and kept across frames until their casters or the light move.
+  struct Pages {
+    int needed = 0;       ///< pages this frame's pixels need
+    int drawn = 0;        ///< pages drawn this frame
+    int resident = 0;     ///< valid pages the pool holds after the frame
+    int missing = 0;      ///< needed pages the full pool could not hold (coarser levels served them)
+    int poolPages = 0;    ///< the pool's capacity
+    int64_t poolBytes = 0;  ///< the pool's memory (with the static casters' copy under cached map updates)
+  } pages;
   int64_t texels() const { return static_cast<int64_t>(views) * mapSize * mapSize; }
 };
 

@@ -9,6 +9,9 @@
 #include "common/sampling.glsl"
 #include "common/visibility.glsl"
 
+#if defined(PN_HARDWARE_COMPARE) && defined(PN_VIRTUAL_PAGES)
+#error "a paged map is read texel by texel: the hardware's 2x2 comparison would straddle pages"
+#endif
 #ifdef PN_HARDWARE_COMPARE
 #define PN_COMPARISON_MAP sampler2DArrayShadow
 #else
@@ -27,7 +30,7 @@ float compareDepth(float receiverDepth, float storedDepth) { return receiverDept
 
 // The texel of `map` (layer `layer`) under uv, clamped to the map's edge.
 ivec3 mapTexel(sampler2DArray map, vec2 uv, int layer) {
-  ivec2 size = textureSize(map, 0).xy;
+  ivec2 size = mapTexels(map);
   return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), layer);
 }
 
@@ -201,7 +204,7 @@ float kernelPlaneDepth(TapKernel k, vec2 texel) {
 float tapDepth(TapKernel k, vec2 unit) { return kernelPlaneDepth(k, floor(tapTexel(k, unit)) + 0.5); }
 
 // The depth stored at a tap's texel (inside the map: truncation is the floor).
-float storedDepth(sampler2DArray map, TapKernel k, vec2 texel) { return texelFetch(map, ivec3(ivec2(texel), k.layer), 0).r; }
+float storedDepth(sampler2DArray map, TapKernel k, vec2 texel) { return fetchMapDepth(map, ivec3(ivec2(texel), k.layer)); }
 
 // One comparison at pattern point `unit`: the nearest texel's stored depth …
 float comparisonTap(sampler2DArray map, TapKernel k, vec2 unit) {
@@ -226,10 +229,13 @@ vec3 coordInsideMap(int view, SurfacePoint s, vec3 coord, ivec2 mapSize) {
   return vec3(inside, coord.z + dot(receiverDepthGradient(view, s), inside - coord.xy));
 }
 
+// The hardware-comparison map's size (never paged).
+ivec2 mapTexels(sampler2DArrayShadow map) { return textureSize(map, 0).xy; }
+
 // Percentage-closer filtering over a (2·halfSide + 1)² grid spanning ±radiusUv on each axis.
 float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int halfSide) {
   int taps = boxTapCount(halfSide);
-  TapKernel k = tapKernel(r, radiusUv, mat2(1.0), textureSize(map, 0).xy);
+  TapKernel k = tapKernel(r, radiusUv, mat2(1.0), mapTexels(map));
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) lit += comparisonTap(map, k, boxTap(i, halfSide));
   return lit / float(taps);
@@ -239,7 +245,7 @@ float percentageCloserBox(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radi
 // (per axis), turned by `rotation`.
 float percentageCloserPoisson(PN_COMPARISON_MAP map, ComparisonReceiver r, vec2 radiusUv, int taps, mat2 rotation) {
   int n = clamp(taps, 1, kPoissonDiskSize);
-  TapKernel k = tapKernel(r, radiusUv, rotation, textureSize(map, 0).xy);
+  TapKernel k = tapKernel(r, radiusUv, rotation, mapTexels(map));
   float lit = 0.0;
   for (int i = 0; i < n; ++i) lit += comparisonTap(map, k, kPoissonDisk[i]);
   return lit / float(n);

@@ -125,9 +125,121 @@ int cubeFace(vec3 d) {
   return d.z > 0.0 ? 4 : 5;
 }
 
-// The view that covers ws: a point light's face by direction, a cascade by camera depth.
+bool insideMap(vec3 coord) { return all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(1.0))); }
+
+#ifdef PN_VIRTUAL_PAGES
+// A paged projection (`virtual`, docs/virtual.md): each view is one level of a clipmap around the
+// camera, a virtual map of PN_PAGES_PER_SIDE² pages of PN_PAGE_SIZE² texels whose extent doubles
+// from level to level; only the pages this frame's pixels need are drawn, into tiles of a pool
+// (the filter's map: PN_POOL_TILES_PER_SIDE² tiles a layer), and a page table (a layer per level)
+// says which tile holds each page. Filters address the virtual map as any other (mapTexel,
+// shadowMapSize, the view's clipFromWorld) and read it through fetchMapDepth.
+#include "shared/VirtualPages.h"
+layout(std140, binding = PN_UBO_PAGES) uniform PagesBlock { PagesUniforms u_pages; };
+layout(binding = PN_TEX_PAGE_TABLE) uniform usampler2DArray s_pageTable;
+
+// Below this cosine a surface seen or lit edge-on counts as at this angle (its footprint is finite).
+const float kMinLevelCosine = 0.02;
+
+// The width (m) of a camera pixel at ws, across its ray: a pixel at angle φ off the camera's axis
+// subtends k²·cos³φ steradians (k: the width per metre on the axis), so at distance d it is
+// d·k·cos^1.5 φ wide (its square's side).
+float virtualPixelWidthM(vec3 ws) {
+#ifdef PN_CAMERA_ORTHOGRAPHIC
+  return u_pages.lod.y;
+#else
+  float d = max(distance(ws, u_frame.cameraPosition.xyz), 1e-6);
+  float cosOffAxis = clamp(cameraViewDepth(ws) / d, 0.0, 1.0);
+  return d * u_pages.lod.y * cosOffAxis * sqrt(cosOffAxis);
+#endif
+}
+
+// The level a pixel at ws on a surface of normal n asks for, before rounding: the finest level
+// whose texels, seen from the camera, each cover at most one pixel is its floor. The pixel's
+// footprint on its surface (width² / cos of the camera's angle to it) projected along the light's
+// rays onto the map's plane (× cos of the light's angle) holds w²·ratio m², and a texel of level
+// l is t_l = t_0·2^l wide: log2(w·√ratio / t_0), moved by the level bias. n = vec3(0): no surface
+// known (the pixel faces camera and light alike).
+float virtualLevelValue(vec3 ws, vec3 n) {
+  float ratio = 1.0;
+  if (dot(n, n) > 0.0) {
+    vec3 nn = normalize(n);
+#ifdef PN_CAMERA_ORTHOGRAPHIC
+    vec3 toEye = vec3(u_frame.viewFromWorld[0][2], u_frame.viewFromWorld[1][2], u_frame.viewFromWorld[2][2]);
+#else
+    vec3 toEye = normalize(u_frame.cameraPosition.xyz - ws);
+#endif
+    ratio = max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine);
+  }
+  return log2(virtualPixelWidthM(ws)) + 0.5 * log2(ratio) - u_pages.lod.x + u_pages.lod.z;
+}
+
+// The level read for a level value: its floor among the levels, or the first coarser level whose
+// square holds ws (a point far off, or seen at a grazing angle).
+int virtualLevelAt(vec3 ws, float value) {
+  int l = int(clamp(floor(value), 0.0, float(shadowViewCount() - 1)));
+  while (l < shadowViewCount() - 1 && !insideMap(shadowCoord(l, ws))) ++l;
+  return l;
+}
+
+int virtualLevelFor(vec3 ws, vec3 n) { return virtualLevelAt(ws, virtualLevelValue(ws, n)); }
+
+// A point's map uv in level `to` from its uv in level `from`. The levels share the light's
+// rotation and depth plane (their views look from the world's origin): clip.xy = k·(light-space
+// xy) + t with k = 2 / extent, t the view's translation.
+vec2 virtualUvInLevel(vec2 uv, int from, int to) {
+  vec2 kFrom = 2.0 / u_shadow.views[from].extent.xy, kTo = 2.0 / u_shadow.views[to].extent.xy;
+  vec2 tFrom = u_shadow.views[from].clipFromWorld[3].xy, tTo = u_shadow.views[to].clipFromWorld[3].xy;
+  return ((uv * 2.0 - 1.0 - tFrom) * (kTo / kFrom) + tTo) * 0.5 + 0.5;
+}
+
+// The depth at texel `texel` of level `level`, read from `pool` through the page table. A page
+// that is not resident (not needed by this frame's pixels, or the pool was full) is served by the
+// first coarser level that holds the point in a resident page; none does: the far plane (1).
+float pagedDepth(sampler2DArray pool, ivec2 texel, int level) {
+  const int size = PN_PAGE_SIZE * PN_PAGES_PER_SIDE;
+  vec2 uv = (vec2(texel) + 0.5) / float(size);
+  for (int l = level; l < shadowViewCount(); ++l) {
+    ivec2 t = l == level ? texel : ivec2(floor(virtualUvInLevel(uv, level, l) * float(size)));
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(size)))) continue;
+    uint entry = texelFetch(s_pageTable, ivec3(t / PN_PAGE_SIZE, l), 0).r;
+    if (entry == 0u) continue;
+    int tile = int(entry - 1u);
+    const int perLayer = PN_POOL_TILES_PER_SIDE * PN_POOL_TILES_PER_SIDE;
+    ivec2 tileXY = ivec2(tile % PN_POOL_TILES_PER_SIDE, (tile % perLayer) / PN_POOL_TILES_PER_SIDE);
+    return texelFetch(pool, ivec3(tileXY * PN_PAGE_SIZE + t % PN_PAGE_SIZE, tile / perLayer), 0).r;
+  }
+  return 1.0;
+}
+#endif
+
+// The depth map's texels per side: a paged map's virtual size, else the texture's.
+ivec2 mapTexels(sampler2DArray map) {
+#ifdef PN_VIRTUAL_PAGES
+  return ivec2(PN_PAGE_SIZE * PN_PAGES_PER_SIDE);
+#else
+  return textureSize(map, 0).xy;
+#endif
+}
+
+// The linear depth a depth map stores at texel.xy of view texel.z (inside the map): every
+// filter's texel read, so that a paged map is read through its page table.
+float fetchMapDepth(sampler2DArray map, ivec3 texel) {
+#ifdef PN_VIRTUAL_PAGES
+  return pagedDepth(map, texel.xy, texel.z);
+#else
+  return texelFetch(map, texel, 0).r;
+#endif
+}
+
+// The view that covers ws: a point light's face by direction, a cascade by camera depth, a
+// clipmap's level by the pixel's size there.
 int shadowViewFor(vec3 ws) {
+#ifdef PN_VIRTUAL_PAGES
+  return virtualLevelFor(ws, vec3(0.0));
+#else
   return isPointLight() ? cubeFace(ws - u_frame.light.position.xyz) : shadowViewAtDepth(cameraViewDepth(ws));
+#endif
 }
 
 // Set by the visibility pass while it evaluates one side of a cascade blend (-1: by depth).
@@ -176,4 +288,4 @@ ShadowViewBlend shadowViewBlend(vec3 ws) {
   return b;
 }
 
-bool insideMap(vec3 coord) { return all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(1.0))); }
+

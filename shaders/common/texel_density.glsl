@@ -5,7 +5,7 @@
 // over-sampled. It is the square of the classic aliasing ratio d_i = d_s · (r_s cos α_i)/(r_i cos α_s)
 // (Stamminger & Drettakis, Perspective Shadow Maps, 2002), measured instead of modelled. A compute
 // pass has no dFdx, so J comes from the neighbouring G-buffer positions (finite differences),
-// evaluated in the pixel's own cascade.
+// evaluated in the pixel's own cascade (a clipmap's level: virtualLevelFor).
 #include "common/shadow.glsl"
 
 // A surface seen edge-on by the light maps a texel onto a line: cap the ratio there.
@@ -45,7 +45,11 @@ float screenPixelsPerTexel(sampler2D positions, ivec2 px) {
   if (p.w < 0.5 || !neighbourOffset(positions, px, ivec2(1, 0), p.xyz, dx) ||
       !neighbourOffset(positions, px, ivec2(0, 1), p.xyz, dy))
     return -1.0;
+#ifdef PN_VIRTUAL_PAGES
+  int view = virtualLevelFor(p.xyz, cross(dx, dy));  // the level the visibility pass reads there
+#else
   int view = shadowViewAtDepth(cameraViewDepth(p.xyz));
+#endif
   vec2 t = shadowTexelCoord(view, p.xyz);
   vec2 jx = shadowTexelCoord(view, p.xyz + dx) - t;
   vec2 jy = shadowTexelCoord(view, p.xyz + dy) - t;

@@ -8,6 +8,11 @@ layout(location = 2) in vec2 a_uv;
 
 layout(location = PN_LOC_OBJECT) uniform int u_object;
 layout(location = PN_LOC_VIEW) uniform int u_view;
+#ifdef PN_PAGED_SHADOW_PASS
+// A paged map's page (frame/VirtualPages.cpp): its part of the view's clip square blown up to
+// the whole viewport (the page's tile of the pool).
+layout(location = PN_LOC_PAGE) uniform vec4 u_page;
+#endif
 
 out vec3 v_wsPosition;
 out vec3 v_wsNormal;
@@ -24,5 +29,8 @@ void main() {
   // An orthographic shadow view (w = 1): clip z is the linear light depth itself, which the
   // rasteriser interpolates exactly (affine) and clamps to [0, 1] (depth clamping is on).
   gl_Position.z = dot(u_shadow.views[u_view].depthPlane, ws);
+#endif
+#ifdef PN_PAGED_SHADOW_PASS
+  gl_Position.xy = gl_Position.xy * u_page.xy + u_page.zw * gl_Position.w;
 #endif
 }

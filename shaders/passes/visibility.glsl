@@ -11,7 +11,13 @@
 #include "shared/VisibilityPoints.h"
 
 float blendedVisibility(SurfacePoint s) {
+#ifdef PN_VIRTUAL_PAGES
+  // A clipmap's level by the pixel's footprint on its surface, as the page marking chose it.
+  ShadowViewBlend b = ShadowViewBlend(virtualLevelFor(s.ws, s.geoNormal), 0, 0.0);
+  b.second = b.first;
+#else
   ShadowViewBlend b = shadowViewBlend(s.ws);
+#endif
   g_forcedShadowView = b.first;
   float v = clamp(shadowVisibility(s), 0.0, 1.0);
   if (b.weight > 0.0) {

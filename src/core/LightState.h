@@ -10,6 +10,7 @@
 #include "frame/Filter.h"
 #include "frame/Projection.h"
 #include "frame/ScreenTarget.h"
+#include "frame/VirtualPages.h"
 #include "gl/Objects.h"
 #include "shadows/temporal/TemporalAccumulation.h"
 #include "shared/Frame.h"
@@ -32,6 +33,9 @@ struct LightState {
   Technique technique;
   std::unique_ptr<Projection> projection;  ///< made from `technique` (its values)
   std::unique_ptr<Filter> filter;          ///< of technique.filter(): the light's maps
+  /// A paged projection's pages (Projection::pageLayout): which are resident where, the page
+  /// table; none for whole maps.
+  std::unique_ptr<VirtualPages> pages;
   TemporalHistory history;                 ///< V accumulated over earlier frames
   gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
   gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};

@@ -109,10 +109,14 @@ void Shadows::render(const ShadowFrameInputs& in) {
     st.mapSize = sizes[i];
     im.renderLight(st, in, all, still);
     const bool shadows = st.light.castsShadow;
-    im.reports[i] = {st.light.id, requests[i].requestedMapSize, sizes[i], shadows ? static_cast<int>(st.frusta.views.size()) : 0,
+    im.reports[i] = {st.light.id, requests[i].requestedMapSize, st.mapSize, shadows ? static_cast<int>(st.frusta.views.size()) : 0,
                      requests[i].importance, im.updatesOf(st.light),
                      shadows ? static_cast<int>(std::count(st.keptViews.begin(), st.keptViews.end(), uint8_t{1})) : 0,
-                     shadows ? im.schedule.staleness(st.key) : 0};
+                     shadows ? im.schedule.staleness(st.key) : 0, {}};
+    if (shadows && st.pages) {
+      const PageStats& p = st.pages->stats();
+      im.reports[i].pages = {p.needed, p.drawn, p.resident, p.missing, p.poolPages, p.poolBytes};
+    }
   }
   if (accumulates) {
     ScopedPass pass(im.timer, "temporal");

@@ -21,6 +21,11 @@ struct ShadowsAccess {
   static ShaderLibrary& shaders(Shadows& shadows);
   static std::vector<float> visibilityAt(Shadows& shadows, std::span<const SurfaceSample> points, size_t light);
   static void bindFrameBlocks(const Shadows& shadows, size_t light);
+  /// What a pass that reads lights[light]'s views must be built with besides them (a paged
+  /// projection's layout: common/shadow.glsl); empty for whole maps or before a frame has it.
+  static ShaderDefines viewDefines(const Shadows& shadows, size_t light);
+  /// lights[light]'s pages (a paged projection), nullptr for whole maps.
+  static const VirtualPages* pages(const Shadows& shadows, size_t light);
   /// lights[light]'s visibility, then its filter's maps (only the visibility, without a texture,
   /// before a frame has the light).
   static std::vector<DebugImage> debugImages(const Shadows& shadows, size_t light);

@@ -49,6 +49,16 @@ void ShadowsAccess::bindFrameBlocks(const Shadows& shadows, size_t light) {
   Shadows::Impl::bindBlocks(shadows.mImpl->stateAt(light, "bindFrameBlocks"));
 }
 
+ShaderDefines ShadowsAccess::viewDefines(const Shadows& shadows, size_t light) {
+  const Shadows::Impl& im = *shadows.mImpl;
+  if (light >= im.states.size() || !im.states[light]->pages) return {};
+  return im.states[light]->pages->defines();
+}
+
+const VirtualPages* ShadowsAccess::pages(const Shadows& shadows, size_t light) {
+  return ShadowsAccess::light(shadows, light, "pages").pages.get();
+}
+
 std::vector<DebugImage> ShadowsAccess::debugImages(const Shadows& shadows, size_t light) {
   const Shadows::Impl& im = *shadows.mImpl;
   // Before a frame has the light: its visibility, without a texture yet.

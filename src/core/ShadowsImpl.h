@@ -118,11 +118,12 @@ struct Shadows::Impl {
     if (geometry) cpu = std::span<const CasterGeometry>(*geometry);
     return FrameContext({s.light, s.technique.filterValues(), cpu, s.frusta, s.mapSize, screen, surface, shaders, casters,
                          filterBlock, timer, &visibility, static_cast<int>(s.layer),
-                         updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews, &layerTargets[s.layer]});
+                         updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews, &layerTargets[s.layer], s.pages.get()});
   }
   static void bindBlocks(const core::LightState& s) {
     s.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
     s.shadowBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_SHADOW);
+    if (s.pages) s.pages->bind();
   }
 
   /// Each light's technique this frame, checked against the light: the one place a light's
@@ -200,12 +201,30 @@ struct Shadows::Impl {
                                 bindSurfaces(in.surfaces);
                               },
                               [] { unbindSurfaces(); });
+    // A paged projection's views are virtual maps of its own size, drawn page by page where the
+    // pixels need them; its pages keep their own cache (VirtualPages), outside map budgets.
+    const std::optional<PageLayout> layout = s.projection->pageLayout();
+    if (!layout) s.pages.reset();
+    else if (!s.pages) s.pages = std::make_unique<VirtualPages>();
+    if (layout) s.mapSize = layout->virtualSize;
     s.frusta = s.projection->computeFrustaFromPixels(in.camera.fit, in.camera.aspect, s.light, fitExtent(s.light, all, still),
                                                      s.mapSize, pixels);
-    s.keptViews = schedule.apply(s.key, s.frusta, s.mapSize);
+    s.keptViews = layout ? std::vector<uint8_t>{} : schedule.apply(s.key, s.frusta, s.mapSize);
     s.shadowBlock.upload(core::shadowUniforms(s.frusta, s.mapSize));
     bindBlocks(s);
+    if (layout) {
+      // A pixel's width per metre of distance, 2·tan(fovY/2) / height (orthographic: its width).
+      const float pixelWidthPerM = 2.0f / (in.camera.clipFromView[1][1] * static_cast<float>(screen.y));
+      s.pages->beginFrame(*layout, s.frusta, pixelWidthPerM, updatesOf(s.light).cached());
+    }
     FrameContext ctx = frameContext(s);
+    if (s.pages) {
+      ScopedPass pass(timer, "projection");
+      bindSurfaces(in.surfaces);
+      s.pages->mark(ctx);
+      unbindSurfaces();
+      gl::throwIfGlError("the page marking pass");
+    }
     {
       ScopedPass pass(timer, "shadow");
       s.filter->renderShadowMaps(ctx);

@@ -192,7 +192,7 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
   if (!objects.empty()) mObjects.upload(objects.data(), objects.size() * sizeof(gpu::ObjectGpu));
 }
 
-void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) const {
+void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which, std::span<const uint8_t> only) const {
   mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
   for (const bool masked : {false, true}) {
     const GLuint program = masked ? maskedProgram : opaqueProgram;
@@ -200,7 +200,7 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
     for (size_t i = 0; i < mDraws.size(); ++i) {
       const CasterMesh& m = mDraws[i].mesh;
       if ((m.alphaTexture != 0) != masked) continue;
-      if (!isOf(m, which)) continue;
+      if (!isOf(m, which) || (!only.empty() && only[i] == 0)) continue;
       glBindVertexArray(mVaos[mDraws[i].vao].id());
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);
@@ -211,6 +211,22 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which) co
         gl::drawTriangleArrays(m.firstIndex, m.count);
     }
   }
+}
+
+std::vector<CasterSet::Placement> CasterSet::placements() const {
+  std::vector<Placement> out;
+  out.reserve(mDraws.size());
+  for (const Draw& d : mDraws) {
+    const CasterMesh& m = d.mesh;
+    Hasher h;
+    for (const uint32_t v : {m.vertexBuffer, m.stride, m.positionOffset, m.uvOffset, m.indexBuffer, m.firstIndex, m.count,
+                             static_cast<uint32_t>(m.baseVertex), m.alphaTexture, static_cast<uint32_t>(m.indexType)})
+      h.value(v);
+    h.value(m.worldFromObject);
+    h.value(m.alphaCutoff);
+    out.push_back({m.objectBounds.transformed(m.worldFromObject), m.dynamic, h.digest()});
+  }
+  return out;
 }
 
 std::vector<SceneExtent::Body> CasterSet::bodies(Which which) const {

@@ -32,13 +32,23 @@ public:
   /// the last program and vertex array bound.
   /// `which`: every caster, or only the static or only the dynamic ones (CasterMesh::dynamic).
   enum class Which { All, Static, Dynamic };
-  void draw(GLuint opaqueProgram, GLuint maskedProgram, Which which = Which::All) const;
+  /// `only`: when not empty, one entry per caster (in order); casters whose entry is 0 are skipped
+  /// (a paged map's page draws the casters over it alone).
+  void draw(GLuint opaqueProgram, GLuint maskedProgram, Which which = Which::All, std::span<const uint8_t> only = {}) const;
   /// A hash of the static casters (their records and placements, in order): it changes when one
   /// is added, removed, moved or altered. For cached maps.
   uint64_t staticKey() const { return mStaticKey; }
   /// The world bounds of each caster of `which`, in order (for SceneExtent).
   std::vector<SceneExtent::Body> bodies(Which which = Which::All) const;
   size_t size() const { return mDraws.size(); }
+  /// Caster i (in order) as a paged map tracks it: its world bounds, whether it is dynamic and a
+  /// hash of its record and placement (changes when it moves or changes).
+  struct Placement {
+    Aabb bounds;
+    bool dynamic = false;
+    uint64_t key = 0;
+  };
+  std::vector<Placement> placements() const;
 
 private:
   struct Layout {

@@ -57,6 +57,11 @@ public:
     (void)projectionId; (void)light;
     return {};
   }
+  /// Whether it reads its depth maps only through the shared addressing (common/shadow.glsl:
+  /// mapTexel, fetchMapDepth), which a paged projection's maps (FrameContext::paged) answer
+  /// through their page table. Filters that build mips, summed-area tables or moments over whole
+  /// maps cannot read paged ones: the registry refuses such pairs.
+  virtual bool readsPagedMaps() const { return false; }
   /// Rasterises the shadow map(s), one per view of FrameContext::frusta().
   virtual void renderShadowMaps(FrameContext& frame) = 0;
   /// Builds mip chains / summed-area tables from the maps (timed as the "prefilter" pass).

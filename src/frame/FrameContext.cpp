@@ -1,5 +1,7 @@
 #include "frame/FrameContext.h"
 
+#include "frame/VirtualPages.h"
+
 #include <algorithm>
 #include <iterator>
 
@@ -19,6 +21,7 @@ FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragme
   d.vertex = {"passes/geometry.vert.glsl"};
   d.fragment = {std::string(fragment)};
   d.defines = defines;
+  if (mPages) d.defines.set("PN_PAGED_SHADOW_PASS");
   bool orthographic = true;
   for (const ShadowView& v : mFrusta.views) orthographic = orthographic && !v.perspective && !v.warped;
   if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
@@ -53,6 +56,7 @@ ShaderDefines FrameContext::frameDefines() const {
   if (allPerspective != nonePerspective) d.set("PN_VIEWS_PERSPECTIVE", allPerspective ? 1 : 0);
   if (allWarped != noneWarped) d.set("PN_VIEWS_WARPED", allWarped ? 1 : 0);
   d.set("PN_CASCADE_BLEND", viewCount() > 1 && mFrusta.blendBandM > 0.0f ? 1 : 0);
+  if (mPages) d.merge(mPages->defines());
   return d;
 }
 
@@ -135,6 +139,11 @@ PassReads passReads(GLuint program) {
 
 }  // namespace
 
+void FrameContext::ensureMaps(ShadowMapArray& maps, const std::string& label) {
+  if (mPages) maps.ensure(label + " (page pool)", mPages->poolSide(), mPages->poolLayers());
+  else maps.ensure(label, mMapSize, viewCount());
+}
+
 void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor) {
   // Clip z in [0, 1] is the window depth: what PN_LINEAR_RASTER_DEPTH's clip z (the linear light
   // depth) needs; with gl_FragDepth written it does not matter. The caller's mode comes back.
@@ -152,6 +161,20 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
   // A pass that samples another map (depth peeling) depends on what the dynamic casters drew
   // there: it is never cached.
   const PassReads reads[] = {passReads(programs.opaque->id()), passReads(programs.masked->id())};
+  if (mPages) {
+    // Pages are cached by their own rules (VirtualPages): what each depends on besides its place.
+    PN_CHECK(!maps.color() && !reads[0].otherTextures && !reads[1].otherTextures && !reads[0].filterBlock && !reads[1].filterBlock,
+             "a paged map is drawn by the depth-only shadow pass");
+    Hasher pass;
+    for (const GLuint id : {programs.opaque->id(), programs.masked->id()}) pass.value(id);
+    pass.value(clearColor);
+    pass.value(mCasters.staticKey());
+    mPages->render(*this, maps, programs.opaque->id(), programs.masked->id(), mCasters, pass.digest());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_DEPTH_CLAMP);
+    glClipControl(static_cast<GLenum>(origin), static_cast<GLenum>(depthMode));
+    return;
+  }
   const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures;
   // What every layer's content depends on besides its own view: the shadow pass's programs (and
   // the filter block where they read it), the clear colour, the map size and the static casters.
@@ -215,6 +238,7 @@ void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {
 }
 
 void FrameContext::dispatchScreen(const gl::Program& program, bool readVisibility) const {
+  if (mPages) mPages->bind();
   if (mPoints) {
     mPoints->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINTS);
     mPointVisibility->bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_POINT_VISIBILITY);

@@ -20,6 +20,8 @@
 
 namespace penumbra {
 
+class VirtualPages;  // frame/VirtualPages.h: a paged projection's pages
+
 /// The light's kind as the shaders name it: PN_LIGHT_SUN, PN_LIGHT_SPOT or PN_LIGHT_POINT.
 int shaderLightKind(const Light& light);
 
@@ -72,6 +74,8 @@ struct FrameResources {
   std::span<const uint8_t> keptViews = {};
   /// The visibility pass's target: this frame's light's layer of `visibility` (ScreenTarget).
   const ScreenTarget* visibilityTarget = nullptr;
+  /// A paged projection's pages (marked for this frame); nullptr: whole maps.
+  VirtualPages* pages = nullptr;
 };
 
 class FrameContext {
@@ -80,7 +84,7 @@ public:
       : mLight(r.light), mParams(r.params), mCasterGeometry(r.casterGeometry), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
         mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
-        mVisibilityTarget(r.visibilityTarget) {}
+        mVisibilityTarget(r.visibilityTarget), mPages(r.pages) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); none when the caller gave
   /// none. Only techniques that bake the geometry (sdf) need them.
@@ -92,7 +96,16 @@ public:
   int paramInt(std::string_view key) const { return mParams.paramInt(key); }
   const LightFrusta& frusta() const { return mFrusta; }
   int viewCount() const { return static_cast<int>(mFrusta.views.size()); }
+  /// Texels per side of each view's map (a paged projection's: its virtual size).
   int mapSize() const { return mMapSize; }
+  /// The views are paged (a virtual projection): their maps are a pool of pages read through a
+  /// page table (common/shadow.glsl: fetchMapDepth), so no filter may read them as whole
+  /// textures (mips, summed-area tables, pyramids, hardware 2x2 comparisons).
+  bool paged() const { return mPages != nullptr; }
+  /// Makes `maps` the storage the views are drawn into (depth only): a layer of mapSize()² per
+  /// view, or for paged views the pool of pages.
+  void ensureMaps(ShadowMapArray& maps, const std::string& label);
+  const CasterSet& casters() const { return mCasters; }
   glm::ivec2 screen() const { return mScreen; }
   ShaderLibrary& shaders() { return mShaders; }
   PassTimer& timer() { return mTimer; }
@@ -137,7 +150,8 @@ public:
   /// maps each layer whose key (its view's matrix and depth plane, the programs, the filter
   /// block, the clear colour, the static casters) is unchanged is restored from its cache and
   /// only the dynamic casters are drawn over it. A layer the frame keeps (FrameResources::
-  /// keptViews) is left as it is, once it has been drawn.
+  /// keptViews) is left as it is, once it has been drawn. Paged views: the pages the frame
+  /// needs that are not resident and valid are drawn into their tiles (VirtualPages::render).
   void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
@@ -182,6 +196,7 @@ private:
   MapCacheState* mMapCache;
   std::span<const uint8_t> mKeptViews;
   const ScreenTarget* mVisibilityTarget;
+  VirtualPages* mPages;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

@@ -10,6 +10,7 @@
 #include <penumbra/ShadowViews.h>
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -30,6 +31,19 @@ public:
   /// light view). An empty Aabb for a slice that holds no pixel.
   virtual std::vector<Aabb> sliceBounds(const glm::mat4& spaceFromWorld, std::span<const float> sliceNearM,
                                         std::span<const float> sliceFarM) = 0;
+};
+
+/// How a paged projection's views are stored (frame/VirtualPages, docs/virtual.md): each view is a
+/// virtual map of virtualSize² texels cut into pages of pageSize² texels, of which only the pages
+/// this frame's pixels need are drawn, into a pool of poolPages tiles kept across frames.
+struct PageLayout {
+  int virtualSize = 16384;  ///< texels per side of each view's virtual map (a multiple of pageSize)
+  int pageSize = 128;       ///< texels per side of a page
+  int poolPages = 1024;     ///< pages the pool holds (its fixed memory: poolPages · pageSize² depths)
+  float marginTexels = 4.0f;  ///< texels around each pixel's texel whose pages are marked with it
+  float levelBias = 0.0f;     ///< levels added to each pixel's choice (+ = coarser, fewer pages)
+  int pagesPerSide() const { return virtualSize / pageSize; }
+  bool operator==(const PageLayout&) const = default;
 };
 
 class Projection : public Parameterized {
@@ -56,6 +70,9 @@ public:
     (void)pixels;
     return computeFrusta(camera, aspect, light, scene, mapSize);
   }
+  /// A paged projection's storage: its views are virtual maps (of layout.virtualSize texels, not
+  /// the technique's map size) drawn page by page where pixels need them. None: whole maps.
+  virtual std::optional<PageLayout> pageLayout() const { return std::nullopt; }
 };
 
 }  // namespace penumbra

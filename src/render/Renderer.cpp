@@ -261,6 +261,7 @@ void Renderer::runLitPass() {
   d.defines.set("PN_LIT_LIGHTS", static_cast<int>(im.scene.lights.size()));
   if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
     d.defines.set("PN_ONLY_SUNS");
+  if (im.debugView != PN_VIEW_SHADED && im.shadows.lightCount() > 0) d.defines.merge(ShadowsAccess::viewDefines(im.shadows, 0));
   const gl::Program& program = shaders().program(fullScreenProgram(d));
   std::vector<gpu::LightGpu> lights;
   for (const Light& l : im.scene.lights) lights.push_back(core::lightGpu(l));
@@ -290,6 +291,7 @@ std::vector<float> Renderer::computeScreenScalar(const std::string& computeShade
   ProgramDesc d;
   d.label = computeShader;
   d.compute = {computeShader};
+  if (im.shadows.lightCount() > 0) d.defines = ShadowsAccess::viewDefines(im.shadows, 0);  // the first light's views, as bound
   const gl::Program& program = shaders().program(d);
   gl::Texture target("screen scalar", {GL_TEXTURE_2D, GL_R32F, im.size.x, im.size.y, 1, 1});
   im.position.bindUnit(PN_TEX_GBUF_POSITION);

@@ -61,6 +61,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     poseScene(posed, frame.timeS);
     renderer.setPose(posed);
     renderer.render(render);
+    frame.lights = renderer.shadows().lightReports();
     const std::vector<glm::mat4> placed = transforms(posed);
     const auto f0 = static_cast<size_t>(f);
     if (!shared || shared->frames.size() <= f0) {

@@ -28,6 +28,7 @@ struct SequenceFrame {
   VisibilityMetrics metrics;  ///< the combined V against the combined V_ref
   FlickerCounts flicker;      ///< from the frame before into this one, every shadowed light's (empty for the first)
   LagCounts lag;              ///< this frame's changing pixels, every shadowed light's (empty for the first)
+  std::vector<LightShadowReport> lights;  ///< what each light got in this frame (map, pages)
 };
 
 /// One shadow-casting light's flicker and lag over the sequence (its own V against its own V_ref).

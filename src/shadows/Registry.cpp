@@ -20,6 +20,7 @@
 #include "shadows/projections/SampleDistributionProjection.h"
 #include "shadows/projections/TrapezoidalProjection.h"
 #include "shadows/projections/UniformProjection.h"
+#include "shadows/projections/VirtualProjection.h"
 #include "shadows/folder/FolderTechnique.h"
 #include "shadows/sdf/SdfFilter.h"
 #include "shadows/temporal/TemporalAccumulation.h"
@@ -65,6 +66,7 @@ Kinds<Projection>& projections() {
       {"tsm", [] { return std::make_unique<TrapezoidalProjection>(); }},
       {"lispsm", [] { return std::make_unique<LightSpacePerspectiveProjection>(); }},
       {"sdsm", [] { return std::make_unique<SampleDistributionProjection>(); }},
+      {"virtual", [] { return std::make_unique<VirtualProjection>(); }},
   }, {}};
   return kinds;
 }
@@ -136,7 +138,12 @@ std::string projectionIncompatibility(std::string_view projection, const Light& 
   return prototype(projections(), projection, "projection").incompatibility(light);
 }
 std::string filterIncompatibility(std::string_view filter, std::string_view projection, const Light& light) {
-  return prototype(filters(), filter, "filter").incompatibility(projection, light);
+  const Filter& f = prototype(filters(), filter, "filter");
+  if (prototype(projections(), projection, "projection").pageLayout() && !f.readsPagedMaps())
+    return "its maps are paged (only the pages pixels need, in a pool, read through a page table); this filter builds mip "
+           "chains, summed-area tables, moments or fields over whole maps, which pages do not make (hard, pcf, pcss and smrt "
+           "read paged maps)";
+  return f.incompatibility(projection, light);
 }
 
 std::unique_ptr<Projection> makeProjection(std::string_view id) { return make(projections(), id, "projection"); }

@@ -6,11 +6,13 @@
 namespace penumbra {
 
 void TightSearch::build(FrameContext& frame, bool on, const gl::Texture& map) {
-  if (on) mPyramid.build(frame.shaders(), map);
+  // A paged map's storage is a pool of pages in no spatial order: no pyramid is built over it.
+  mBuilt = on && !frame.paged();
+  if (mBuilt) mPyramid.build(frame.shaders(), map);
 }
 
 void TightSearch::bind(bool on, ShaderDefines& defines) const {
-  if (!on) return;
+  if (!on || !mBuilt) return;
   defines.set("PN_TIGHT_SEARCH");
   mPyramid.pyramid().bindUnit(PN_TEX_MIN_DEPTH);
 }

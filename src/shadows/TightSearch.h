@@ -26,14 +26,16 @@ constexpr ParamDesc tightSearchParam(std::string_view key) {
 
 class TightSearch {
 public:
-  /// Prefilter step: rebuilds the pyramid of `map` (linear depth in channel r) when `on`.
+  /// Prefilter step: rebuilds the pyramid of `map` (linear depth in channel r) when `on` and the
+  /// map is not paged (FrameContext::paged: its pool has no pyramid; the search is then off).
   void build(FrameContext& frame, bool on, const gl::Texture& map);
-  /// Before the visibility dispatch: when `on`, sets PN_TIGHT_SEARCH and binds the pyramid at
+  /// Before the visibility dispatch: when `on` and built, sets PN_TIGHT_SEARCH and binds the pyramid at
   /// PN_TEX_MIN_DEPTH, where common/penumbra.glsl reads it.
   void bind(bool on, ShaderDefines& defines) const;
 
 private:
   MinDepthPyramid mPyramid;
+  bool mBuilt = false;
 };
 
 }  // namespace penumbra

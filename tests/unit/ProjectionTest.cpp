@@ -145,7 +145,8 @@ TEST(Projection, CsmViewsFollowTheSplits) {
 // the scene's bounds may fall outside it; its guarantee is tested on surface points below.
 TEST(Projection, EveryProjectionMapsTheVisibleFrustumIntoItsClipVolume) {
   for (const std::string& projection : projectionIds()) {
-    if (projection == "uniform") continue;
+    // virtual: each level covers only the pixels whose footprint suits its texels (VirtualLevels below).
+    if (projection == "uniform" || projection == "virtual") continue;
     expectFrustumInsideClip(makeBuiltinScene("boxes"), projection, "boxes");
     expectFrustumInsideClip(makeBuiltinScene("city"), projection, "city");
     expectFrustumInsideClip(makeBuiltinScene("pen"), projection, "pen (spot)");
@@ -602,4 +603,31 @@ TEST(Projection, LispsmFallsBackToUniformAlongTheView) {
     previous = m.nearOverFarRate;
   }
   EXPECT_LT(previous, 1.1);  // 10⁻⁵ rad from the view: all but uniform
+}
+
+// virtual's clipmap: levels twice as wide as the one before, each around the camera with its corner
+// on its page grid, all with the light's rotation and one depth plane; the last level holds every
+// receiver the camera sees (a pixel beyond a level reads a coarser one).
+TEST(Projection, VirtualLevelsDoubleAroundTheCameraOnTheirPageGrids) {
+  const Scene city = makeBuiltinScene("city");
+  auto p = makeProjection("virtual");
+  const LightFrusta f = p->computeFrusta(city.camera, kAspect, city.light(), city.extent(), kMapSize);
+  const int pagesPerSide = p->paramInt("virtual.virtualSize") / p->paramInt("virtual.pageSize");
+  ASSERT_EQ(f.views.size(), static_cast<size_t>(p->paramInt("virtual.levels")));
+  for (size_t i = 0; i < f.views.size(); ++i) {
+    const ShadowView& v = f.views[i];
+    EXPECT_FLOAT_EQ(v.extent.x, p->param("virtual.firstLevelM") * std::exp2(static_cast<float>(i)));
+    EXPECT_EQ(v.viewFromWorld, f.views[0].viewFromWorld);
+    EXPECT_EQ(v.depthPlane, f.views[0].depthPlane);
+    const glm::vec4 camera = v.clipFromWorld * glm::vec4(city.camera.position, 1.0f);
+    EXPECT_LT(std::abs(camera.x), 1.0f) << "level " << i;
+    EXPECT_LT(std::abs(camera.y), 1.0f) << "level " << i;
+    // The corner (clip −1) lies on the page grid: a whole number of pages from the light-space origin.
+    const double pageM = static_cast<double>(v.extent.x) / pagesPerSide;
+    const double corner = -(static_cast<double>(v.clipFromWorld[3].x) + 1.0) * 0.5 * v.extent.x;
+    EXPECT_NEAR(corner / pageM, std::round(corner / pageM), 1e-3) << "level " << i;
+  }
+  const std::vector<glm::vec3> body = receiverBody(city.camera, kAspect, city.camera.nearM, city.camera.farM, city.extent(), city.light());
+  ASSERT_FALSE(body.empty());
+  for (const glm::vec3& s : samplesIn(body, 400, 11)) EXPECT_TRUE(insideClip(f.views.back(), s).inside);
 }

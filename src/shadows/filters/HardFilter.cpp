@@ -29,7 +29,7 @@ constexpr ParamDesc kParams[] = {
 HardFilter::HardFilter() : Filter(kParams) {}
 
 void HardFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.ensure("hard shadow map", frame.mapSize(), frame.viewCount());
+  frame.ensureMaps(mMaps, "hard shadow map");
   frame.renderViews(mMaps, frame.shadowProgram());
 }
 

@@ -9,6 +9,7 @@ namespace penumbra {
 class HardFilter final : public Filter {
 public:
   HardFilter();
+  bool readsPagedMaps() const override { return true; }
   std::string_view id() const override { return "hard"; }
   std::string_view description() const override {
     return "one depth comparison per pixel; bias none | constant | slope-scaled | normal offset";

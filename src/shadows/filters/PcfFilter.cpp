@@ -46,7 +46,7 @@ void ComparisonSampler::bind(GLuint unit) {
 PcfFilter::PcfFilter() : Filter(kParams) {}
 
 void PcfFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.ensure("pcf shadow map", frame.mapSize(), frame.viewCount());
+  frame.ensureMaps(mMaps, "pcf shadow map");
   frame.renderViews(mMaps, frame.shadowProgram());
 }
 
@@ -55,7 +55,7 @@ void PcfFilter::computeVisibility(FrameContext& frame) {
   const float radiusTexels = std::min(frame.param("pcf.radiusTexels"), maxKernelRadiusTexels(frame.mapSize()));
   u.params = glm::vec4(radiusTexels, frame.param("pcf.constantBias"), frame.param("pcf.slopeBias"), frame.param("pcf.planeBiasTexels"));
   frame.setFilterBlock(u);
-  const bool hardware = frame.paramInt("pcf.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcf.hardwareCompare") != 0 && !frame.paged();  // a paged map is read texel by texel
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
   // One view: the box kernel's size is known here (cascades hold the radius in metres, so theirs

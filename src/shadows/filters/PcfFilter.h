@@ -36,6 +36,7 @@ private:
 class PcfFilter final : public Filter {
 public:
   PcfFilter();
+  bool readsPagedMaps() const override { return true; }
   std::string_view id() const override { return "pcf"; }
   std::string_view description() const override {
     return "percentage-closer filtering: average of depth comparisons over a box or rotated Poisson kernel";

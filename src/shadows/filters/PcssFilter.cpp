@@ -39,7 +39,7 @@ constexpr ParamDesc kParams[] = {
 PcssFilter::PcssFilter() : Filter(kParams) {}
 
 void PcssFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.ensure("pcss shadow map", frame.mapSize(), frame.viewCount());
+  frame.ensureMaps(mMaps, "pcss shadow map");
   frame.renderViews(mMaps, frame.shadowProgram());
 }
 
@@ -54,7 +54,7 @@ void PcssFilter::computeVisibility(FrameContext& frame) {
                        std::min(frame.param("pcss.maxRadiusTexels"), mapRadius));
   u.bias = glm::vec4(frame.param("pcss.planeBiasTexels"), 0.0f, 0.0f, 0.0f);
   frame.setFilterBlock(u);
-  const bool hardware = frame.paramInt("pcss.hardwareCompare") != 0;
+  const bool hardware = frame.paramInt("pcss.hardwareCompare") != 0 && !frame.paged();  // a paged map is read texel by texel
   ShaderDefines defines;
   if (hardware) defines.set("PN_HARDWARE_COMPARE");
   mTightSearch.bind(frame.paramInt("pcss.tightSearch") != 0, defines);

@@ -12,6 +12,7 @@ namespace penumbra {
 class PcssFilter final : public Filter {
 public:
   PcssFilter();
+  bool readsPagedMaps() const override { return true; }
   std::string_view id() const override { return "pcss"; }
   std::string_view description() const override {
     return "percentage-closer soft shadows: blocker search, penumbra width from the light size, PCF of that width";

@@ -33,7 +33,7 @@ constexpr ParamDesc kParams[] = {
 SmrtFilter::SmrtFilter() : Filter(kParams) {}
 
 void SmrtFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.ensure("smrt shadow map", frame.mapSize(), frame.viewCount());
+  frame.ensureMaps(mMaps, "smrt shadow map");
   frame.renderViews(mMaps, frame.shadowProgram());
 }
 

@@ -10,6 +10,7 @@ namespace penumbra {
 class SmrtFilter final : public Filter {
 public:
   SmrtFilter();
+  bool readsPagedMaps() const override { return true; }
   std::string_view id() const override { return "smrt"; }
   std::string_view description() const override {
     return "shadow-map ray tracing: rays toward points of the light's area, marched through the map with a thickness test";

@@ -20,7 +20,7 @@ float shadowVisibility(SurfacePoint s) {
     ComparisonReceiver r = comparisonReceiver(view, s, coord, 0.0, 0.0, u_hard.bias.w);
     ivec3 texel = mapTexel(s_shadowMap, coord.xy, view);
     float depth = biasedDepthAt(r, (vec2(texel.xy) + 0.5) / shadowMapSize());
-    return compareDepth(depth, texelFetch(s_shadowMap, texel, 0).r);
+    return compareDepth(depth, fetchMapDepth(s_shadowMap, texel));
   }
   vec3 ws = s.ws;
   if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * shadowTexelWorldSize(view, s.ws));
@@ -30,6 +30,6 @@ float shadowVisibility(SurfacePoint s) {
   if (mode != PN_BIAS_NONE) bias = u_hard.bias.x;
   // Across one texel, a plane tilted by θ from the light changes depth by texel · tan θ.
   if (mode == PN_BIAS_SLOPE) bias += slopeDepthOffset(view, s.ws, slopeTangent(s), u_hard.bias.y);
-  float stored = texelFetch(s_shadowMap, ivec3(coord.xy * shadowMapSize(), view), 0).r;
+  float stored = fetchMapDepth(s_shadowMap, mapTexel(s_shadowMap, coord.xy, view));
   return coord.z - bias <= stored ? 1.0 : 0.0;
 }

@@ -30,7 +30,7 @@ int patternTapCount(int taps) {
 // False when there is none: the receiver is fully lit.
 bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out float blockerDepth) {
   int taps = patternTapCount(PN_PCSS_BLOCKER_SAMPLES);
-  TapKernel k = tapKernel(r, radiusUv, patternRotation(rotation), textureSize(s_depthMap, 0).xy);
+  TapKernel k = tapKernel(r, radiusUv, patternRotation(rotation), mapTexels(s_depthMap));
   float sum = 0.0;
   int blockers = 0;
   for (int i = 0; i < taps; ++i) {

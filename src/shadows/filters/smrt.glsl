@@ -54,7 +54,7 @@ int marchView(int view, vec3 p, out vec3 coord) {
 }
 
 // The linear depth the map of `view` stores at uv.
-float marchStoredDepth(int view, vec2 uv) { return texelFetch(s_depthMap, mapTexel(s_depthMap, uv, view), 0).r; }
+float marchStoredDepth(int view, vec2 uv) { return fetchMapDepth(s_depthMap, mapTexel(s_depthMap, uv, view)); }
 
 // Whether the surface the map of `view` stores at coord.xy (linear depth `stored`) can cast on the
 // receiver r: it lies in front of the receiver's tangent plane there by more than r's bias (pcf's
@@ -150,6 +150,7 @@ float shadowVisibility(SurfacePoint s) {
   // near plane holds every caster a ray can meet; the pyramid's minimum over it is the nearest
   // surface there, and as no caster is nearer, the footprint at that depth holds them all:
   // kNearestRounds such rounds shrink the region to the casters around the receiver.
+#ifdef PN_TIGHT_SEARCH
   const vec2 kWholeMapUv = vec2(1.0);  // a region this wide reads the pyramid's top level
   vec2 regionUv = min(blockerSearchRadiusUv(view, s.ws, lightSize), kWholeMapUv);
   float endDepth = minDepthOverBox(s_minDepth, view, coord.xy, regionUv, shadowMapSize());
@@ -157,6 +158,11 @@ float shadowVisibility(SurfacePoint s) {
     regionUv = min(lightFootprintRadiusUv(view, s.ws, viewDistanceM(view, endDepth), lightSize), regionUv);
     endDepth = max(endDepth, minDepthOverBox(s_minDepth, view, coord.xy, regionUv, shadowMapSize()));
   }
+#else
+  // No pyramid (a paged map: TightSearch builds none over its pool): the march runs to the near
+  // plane, every caster in front of the receiver within its reach.
+  float endDepth = 0.0;
+#endif
   if (endDepth >= coord.z - r.bias) return 1.0;  // nothing in front of the receiver that a ray can meet
 
   mat2 rotation = pixelRotation(s.pixel, samplingFrame());

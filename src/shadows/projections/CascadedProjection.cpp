@@ -17,7 +17,7 @@ constexpr std::string_view kOnOff[] = {"off", "on"};
 
 constexpr ParamDesc kParams[] = {
     {"csm.cascades", "Cascades", "number of cascades (one shadow map each, same resolution)", "maps", 4.0f, 1.0f,
-     static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
+     static_cast<float>(PN_MAX_CASCADES), 1.0f},
     {"csm.lambda", "Split λ", "practical split blend: 0 = uniform slices, 1 = logarithmic slices", "fraction", 0.9f, 0.0f, 1.0f, 0.0f},
     {"csm.stabilize", "Stabilise", "sun: bounding-sphere cascades snapped to whole texels so edges do not shimmer", "",
      1.0f, 0.0f, 1.0f, 1.0f, kOnOff, {}, kSunLightBit},

@@ -16,7 +16,7 @@ constexpr std::string_view kOnOff[] = {"off", "on"};
 
 constexpr ParamDesc kParams[] = {
     {"sdsm.cascades", "Cascades", "number of cascades (one shadow map each, same resolution)", "maps", 4.0f, 1.0f,
-     static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
+     static_cast<float>(PN_MAX_CASCADES), 1.0f},
     {"sdsm.stabilize", "Stabilise", "sun: depth range in quarter octaves, cascade sides in eighth octaves, centres snapped to whole texels, so edges do not crawl", "",
      1.0f, 0.0f, 1.0f, 1.0f, kOnOff},
     {"sdsm.blendBandM", "Blend band", "camera depth (m) before each split where two cascades are mixed; at most half the shortest cascade", "m",

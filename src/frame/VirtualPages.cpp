@@ -1,0 +1,311 @@
+#include "frame/VirtualPages.h"
+
+#include "base/Hash.h"
+#include "frame/FrameContext.h"
+#include "gl/Debug.h"
+#include "shared/Bindings.h"
+#include "shared/VirtualPages.h"
+
+#include <penumbra/Error.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace penumbra {
+namespace {
+
+constexpr int kCoordBits = 28;  // per page axis: ±2^27 pages of a level's grid
+constexpr int64_t kCoordBias = int64_t{1} << (kCoordBits - 1);
+constexpr uint64_t kCoordMask = (uint64_t{1} << kCoordBits) - 1;
+
+}  // namespace
+
+uint64_t VirtualPages::packPage(int level, int64_t x, int64_t y) {
+  // level + 1 in the top bits: no page packs to 0, the free tile's mark.
+  return (static_cast<uint64_t>(level + 1) << (2 * kCoordBits)) | (static_cast<uint64_t>(x + kCoordBias) & kCoordMask) << kCoordBits |
+         (static_cast<uint64_t>(y + kCoordBias) & kCoordMask);
+}
+
+void VirtualPages::unpackPage(uint64_t page, int& level, int64_t& x, int64_t& y) const {
+  level = static_cast<int>(page >> (2 * kCoordBits)) - 1;
+  x = static_cast<int64_t>((page >> kCoordBits) & kCoordMask) - kCoordBias;
+  y = static_cast<int64_t>(page & kCoordMask) - kCoordBias;
+}
+
+glm::dvec4 VirtualPages::pageRect(int level, int64_t x, int64_t y) const {
+  const double pageM = mLevelExtentM[static_cast<size_t>(level)] / mLayout.pagesPerSide();
+  return {static_cast<double>(x) * pageM, static_cast<double>(y) * pageM, static_cast<double>(x + 1) * pageM,
+          static_cast<double>(y + 1) * pageM};
+}
+
+void VirtualPages::dropAll() {
+  for (Tile& t : mTiles) t = {};
+  mTileOf.clear();
+}
+
+void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frusta, float pixelWidthPerM, bool keepStatic) {
+  const int levels = static_cast<int>(frusta.views.size());
+  if (!(layout == mLayout) || levels != mLevels || keepStatic != mKeepStatic || mTiles.empty()) {
+    mLayout = layout;
+    mLevels = levels;
+    mKeepStatic = keepStatic;
+    const int maxSide = gl::maxTextureSize();
+    mTilesPerSide = std::min(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(layout.poolPages)))), maxSide / layout.pageSize);
+    mPoolLayers = (layout.poolPages + mTilesPerSide * mTilesPerSide - 1) / (mTilesPerSide * mTilesPerSide);
+    mTiles.assign(static_cast<size_t>(layout.poolPages), {});
+    mTileOf.clear();
+    mStaticCopy = {};
+    const int pages = layout.pagesPerSide();
+    const size_t entries = static_cast<size_t>(levels) * static_cast<size_t>(pages) * static_cast<size_t>(pages);
+    mPageTable = gl::Texture("virtual page table", {GL_TEXTURE_2D_ARRAY, GL_R32UI, pages, pages, levels, 1});
+    mPageTable.setSampling(GL_NEAREST, GL_NEAREST);
+    mTable.assign(entries, 0u);
+    mUploadedTable.assign(entries, 1u);  // differs from every table: the first frame uploads
+    mFlags = gl::Buffer("virtual page flags", entries * sizeof(uint32_t));
+    mList = gl::Buffer("virtual page list", (entries + 1) * sizeof(uint32_t));
+    mBlock = gl::Buffer("virtual pages block", sizeof(gpu::PagesUniforms));
+    gl::throwIfGlError(fmt::format("the virtual pages' tables ({} levels of {}² pages)", levels, pages).c_str());
+  }
+  mPixelWidthPerM = pixelWidthPerM;
+  // What every page depends on besides the casters and the pass: the light's rotation, the depth
+  // range and each level's size. A level's place (its corner on its page grid) moves with the
+  // camera and changes no page.
+  Hasher h;
+  h.value(frusta.views.front().viewFromWorld);
+  h.value(frusta.views.front().depthPlane);
+  mLightFromWorld = frusta.views.front().viewFromWorld;
+  mLevelExtentM.assign(static_cast<size_t>(levels), 0.0);
+  mLevelOrigin.assign(static_cast<size_t>(levels), glm::i64vec2(0));
+  for (int l = 0; l < levels; ++l) {
+    const ShadowView& v = frusta.views[static_cast<size_t>(l)];
+    h.value(v.extent);
+    const double extent = v.extent.x;
+    const double pageM = extent / layout.pagesPerSide();
+    // clip.x = 2·(x − lo) / extent − 1 with the view's eye at the origin: its translation t = −2·lo / extent − 1.
+    const glm::dvec2 lo = -(glm::dvec2(v.clipFromWorld[3]) + 1.0) * (0.5 * extent);
+    mLevelExtentM[static_cast<size_t>(l)] = extent;
+    mLevelOrigin[static_cast<size_t>(l)] = glm::i64vec2(glm::round(lo / pageM));
+  }
+  if (const uint64_t key = h.digest(); key != mContentKey) {
+    mContentKey = key;
+    dropAll();
+  }
+  gpu::PagesUniforms u{};
+  u.lod = glm::vec4(static_cast<float>(std::log2(mLevelExtentM.front() / layout.virtualSize)), pixelWidthPerM, layout.levelBias,
+                    layout.marginTexels);
+  mBlock.upload(u);
+  ++mFrame;
+  mStats = {};
+  mStats.poolPages = layout.poolPages;
+  mStats.levels = levels;
+}
+
+ShaderDefines VirtualPages::defines() const {
+  ShaderDefines d;
+  d.set("PN_VIRTUAL_PAGES");
+  d.set("PN_PAGE_SIZE", mLayout.pageSize);
+  d.set("PN_PAGES_PER_SIDE", mLayout.pagesPerSide());
+  d.set("PN_POOL_TILES_PER_SIDE", mTilesPerSide);
+  return d;
+}
+
+void VirtualPages::bind() const {
+  mBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_PAGES);
+  mPageTable.bindUnit(PN_TEX_PAGE_TABLE);
+}
+
+void VirtualPages::invalidateUnder(const Aabb& world) {
+  if (world.empty()) return;
+  const Aabb box = world.transformed(mLightFromWorld);
+  for (Tile& t : mTiles) {
+    if (t.page == 0) continue;
+    int level;
+    int64_t x, y;
+    unpackPage(t.page, level, x, y);
+    const glm::dvec4 r = pageRect(level, x, y);
+    if (r.x > box.hi.x || r.z < box.lo.x || r.y > box.hi.y || r.w < box.lo.y) continue;
+    if (mKeepStatic) t.dynamicStale = true;
+    else t.valid = false;
+  }
+}
+
+int VirtualPages::takeTile(uint64_t page) {
+  // A free tile, else the one needed least recently, but never one this frame needs.
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(mTiles.size()); ++i) {
+    const Tile& t = mTiles[static_cast<size_t>(i)];
+    if (t.page == 0) {
+      best = i;
+      break;
+    }
+    if (t.lastNeeded < mFrame && (best < 0 || t.lastNeeded < mTiles[static_cast<size_t>(best)].lastNeeded)) best = i;
+  }
+  if (best < 0) return -1;
+  Tile& t = mTiles[static_cast<size_t>(best)];
+  if (t.page != 0) mTileOf.erase(t.page);
+  t = {};
+  t.page = page;
+  mTileOf[page] = best;
+  return best;
+}
+
+void VirtualPages::mark(FrameContext& frame) {
+  // Dynamic casters that moved (or came or went) since the last frame: the pages under where they
+  // were and where they are now must be drawn again.
+  std::vector<CasterSet::Placement> now = frame.casters().placements();
+  const bool sameSet = now.size() == mPlacements.size();
+  for (size_t i = 0; i < std::max(now.size(), mPlacements.size()); ++i) {
+    const CasterSet::Placement* a = i < mPlacements.size() ? &mPlacements[i] : nullptr;
+    const CasterSet::Placement* b = i < now.size() ? &now[i] : nullptr;
+    if (sameSet && a->key == b->key) continue;
+    if (a && a->dynamic) invalidateUnder(a->bounds);
+    if (b && b->dynamic) invalidateUnder(b->bounds);
+  }
+  mPlacements = std::move(now);
+
+  const uint32_t zero = 0;
+  glClearNamedBufferData(mFlags.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferSubData(mList.id(), GL_R32UI, 0, sizeof(uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  bind();
+  mFlags.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_PAGE_FLAGS);
+  mList.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_PAGE_LIST);
+  const gl::Program& program = frame.screenProgram("passes/virtual_pages.comp.glsl", frame.params());
+  FrameContext::dispatch2D(program, frame.screen().x, frame.screen().y, PN_SCREEN_GROUP);
+  uint32_t count = 0;
+  mList.download(&count, sizeof(count));
+  std::vector<uint32_t> list(count);
+  if (count > 0) mList.download(list.data(), count * sizeof(uint32_t), sizeof(uint32_t));
+
+  const int pages = mLayout.pagesPerSide();
+  mDraws.clear();
+  mStats.needed = static_cast<int>(count);
+  for (const uint32_t index : list) {
+    const int level = static_cast<int>(index / static_cast<uint32_t>(pages * pages));
+    const int y = static_cast<int>(index / static_cast<uint32_t>(pages)) % pages, x = static_cast<int>(index % static_cast<uint32_t>(pages));
+    const glm::i64vec2 origin = mLevelOrigin[static_cast<size_t>(level)];
+    const uint64_t page = packPage(level, origin.x + x, origin.y + y);
+    auto it = mTileOf.find(page);
+    const int tile = it != mTileOf.end() ? it->second : takeTile(page);
+    if (tile < 0) {
+      ++mStats.missing;
+      continue;
+    }
+    Tile& t = mTiles[static_cast<size_t>(tile)];
+    t.lastNeeded = mFrame;
+    if (!t.valid) mDraws.push_back({tile, true});
+    else if (t.dynamicStale) mDraws.push_back({tile, false});
+  }
+}
+
+void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaqueProgram, GLuint maskedProgram,
+                          const CasterSet& casters, uint64_t passKey) {
+  (void)frame;
+  // A new pass (programs, static casters) or new pool storage: this frame's pages are drawn anew, the others dropped.
+  Hasher h;
+  h.value(passKey);
+  h.value(pool.depth().id());
+  if (const uint64_t key = h.digest(); key != mPassKey) {
+    mPassKey = key;
+    mDraws.clear();
+    for (size_t i = 0; i < mTiles.size(); ++i) {
+      Tile& t = mTiles[i];
+      if (t.page == 0) continue;
+      if (t.lastNeeded == mFrame) {
+        t.valid = false;
+        mDraws.push_back({static_cast<int>(i), true});
+      } else {
+        mTileOf.erase(t.page);
+        t = {};
+      }
+    }
+  }
+  if (mKeepStatic && !mStaticCopy)
+    mStaticCopy = gl::Texture("virtual pages' static casters", {GL_TEXTURE_2D_ARRAY, pool.depth().desc().format, pool.size(), pool.size(),
+                                                                pool.layers(), 1});
+  if (!mKeepStatic) mStaticCopy = {};
+
+  // Each caster's light-space rectangle: a page draws the casters over it alone.
+  std::vector<glm::dvec4> rects;
+  rects.reserve(mPlacements.size());
+  for (const CasterSet::Placement& p : mPlacements) {
+    const Aabb b = p.bounds.transformed(mLightFromWorld);
+    rects.emplace_back(b.lo.x, b.lo.y, b.hi.x, b.hi.y);
+  }
+  mCasterMask.assign(mPlacements.size(), 0);
+  const int ps = mLayout.pageSize, pages = mLayout.pagesPerSide(), perLayer = mTilesPerSide * mTilesPerSide;
+  const float clearDepth = 1.0f;
+  mDrawnPages.clear();
+  glEnable(GL_SCISSOR_TEST);
+  for (const Draw& d : mDraws) {
+    Tile& t = mTiles[static_cast<size_t>(d.tile)];
+    int level;
+    int64_t gx, gy;
+    unpackPage(t.page, level, gx, gy);
+    const glm::i64vec2 origin = mLevelOrigin[static_cast<size_t>(level)];
+    const int lx = static_cast<int>(gx - origin.x), ly = static_cast<int>(gy - origin.y);
+    mDrawnPages.emplace_back(level, lx, ly);
+    const glm::dvec4 r = pageRect(level, gx, gy);
+    for (size_t i = 0; i < rects.size(); ++i)
+      mCasterMask[i] = rects[i].x <= r.z && rects[i].z >= r.x && rects[i].y <= r.w && rects[i].w >= r.y ? 1 : 0;
+    const int layer = d.tile / perLayer, inLayer = d.tile % perLayer;
+    const int tx = (inLayer % mTilesPerSide) * ps, ty = (inLayer / mTilesPerSide) * ps;
+    gl::Framebuffer& fb = pool.framebuffer(layer);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    glViewport(tx, ty, ps, ps);
+    glScissor(tx, ty, ps, ps);
+    // The page's part of the level's clip square, [a, a + 2/P] with a = −1 + 2·lx/P, blown up to [−1, 1].
+    const glm::vec4 page(static_cast<float>(pages), static_cast<float>(pages), static_cast<float>(pages - 2 * lx - 1),
+                         static_cast<float>(pages - 2 * ly - 1));
+    for (const GLuint program : {opaqueProgram, maskedProgram}) {
+      glProgramUniform1i(program, PN_LOC_VIEW, level);
+      glProgramUniform4fv(program, PN_LOC_PAGE, 1, &page.x);
+    }
+    if (d.whole) {
+      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+      if (mKeepStatic) {
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Static, mCasterMask);
+        glCopyImageSubData(pool.depth().id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty, layer, mStaticCopy.id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty,
+                           layer, ps, ps, 1);
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, mCasterMask);
+      } else {
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::All, mCasterMask);
+      }
+    } else {
+      glCopyImageSubData(mStaticCopy.id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty, layer, pool.depth().id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty,
+                         layer, ps, ps, 1);
+      casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, mCasterMask);
+    }
+    t.valid = true;
+    t.dynamicStale = false;
+  }
+  glDisable(GL_SCISSOR_TEST);
+  mStats.drawn = static_cast<int>(mDraws.size());
+
+  // The page table: every valid page whose square is on its level's grid this frame (pages of
+  // earlier frames serve too, until evicted); a page a dynamic caster left stale is left out.
+  std::fill(mTable.begin(), mTable.end(), 0u);
+  for (size_t i = 0; i < mTiles.size(); ++i) {
+    const Tile& t = mTiles[i];
+    if (t.page == 0 || !t.valid) continue;
+    ++mStats.resident;
+    if (t.dynamicStale) continue;
+    int level;
+    int64_t gx, gy;
+    unpackPage(t.page, level, gx, gy);
+    const glm::i64vec2 origin = mLevelOrigin[static_cast<size_t>(level)];
+    const int64_t lx = gx - origin.x, ly = gy - origin.y;
+    if (lx < 0 || ly < 0 || lx >= pages || ly >= pages) continue;
+    mTable[(static_cast<size_t>(level) * static_cast<size_t>(pages) + static_cast<size_t>(ly)) * static_cast<size_t>(pages) +
+           static_cast<size_t>(lx)] = static_cast<uint32_t>(i) + 1u;
+  }
+  if (mTable != mUploadedTable) {
+    glTextureSubImage3D(mPageTable.id(), 0, 0, 0, 0, pages, pages, mLevels, GL_RED_INTEGER, GL_UNSIGNED_INT, mTable.data());
+    mUploadedTable = mTable;
+  }
+  mStats.poolBytes = static_cast<int64_t>(pool.depth().storageBytes()) + (mStaticCopy ? static_cast<int64_t>(mStaticCopy.storageBytes()) : 0);
+}
+
+}  // namespace penumbra

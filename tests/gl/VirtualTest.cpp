@@ -1,0 +1,188 @@
+// The virtual projection (paged shadow maps, docs/virtual.md): a still camera and light draw no
+// page after the first frame; a moving dynamic caster redraws only pages under where it was and
+// is, and leaves no stale shadow; city's camera walk draws few of its resident pages a frame; a
+// full pool is reported and coarser levels serve; filters that cannot read pages are refused.
+#include "GlFixture.h"
+
+#include <penumbra/Animation.h>
+#include <penumbra/Error.h>
+#include <penumbra/Metrics.h>
+#include <penumbra/Reference.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr int kW = 160, kH = 96;
+const RenderOptions kRender{.width = kW, .height = kH};
+const MapUpdates kEvery{}, kWhenInvalid{MapUpdates::Policy::WhenInvalid};
+
+std::unique_ptr<Renderer> virtualRenderer(const Scene& scene, const std::string& filter, const MapUpdates& updates, const Params& params = {}) {
+  auto r = makeTestRenderer(scene, "virtual", filter, params);
+  r->shadows().setMapUpdates(updates);
+  return r;
+}
+
+const LightShadowReport::Pages& pages(Renderer& r) { return r.shadows().lightReports().front().pages; }
+
+// Whether page (level, x, y) of a grid of pagesPerSide² pages meets the light's view of `world`
+// (its box's rectangle in the level's map, unbounded along the light).
+bool pageUnder(const LightFrusta& f, const glm::ivec3& page, const Aabb& world, int pagesPerSide) {
+  const Aabb clip = world.transformed(f.views[static_cast<size_t>(page.x)].clipFromWorld);
+  const auto at = [&](float c) { return (c * 0.5f + 0.5f) * static_cast<float>(pagesPerSide); };
+  return at(clip.lo.x) <= static_cast<float>(page.y + 1) && at(clip.hi.x) >= static_cast<float>(page.y) &&
+         at(clip.lo.y) <= static_cast<float>(page.z + 1) && at(clip.hi.y) >= static_cast<float>(page.z);
+}
+
+Aabb objectBounds(const Scene& s, size_t i) { return s.meshes[s.objects[i].mesh].bounds().transformed(s.objects[i].worldFromObject); }
+
+}  // namespace
+
+TEST(Virtual, StillCameraAndLightDrawNoPageAfterTheFirstFrame) {
+  Scene boxes = makeBuiltinScene("boxes");
+  boxes.animation = {};
+  for (const MapUpdates& updates : {kEvery, kWhenInvalid}) {
+    auto r = virtualRenderer(boxes, "hard", updates);
+    r->render(kRender);
+    const LightShadowReport::Pages first = pages(*r);
+    std::printf("%s: first frame %d pages needed, %d drawn, %d resident (pool %d, %.1f MiB)\n", mapUpdatesName(updates).c_str(),
+                first.needed, first.drawn, first.resident, first.poolPages, static_cast<double>(first.poolBytes) / 1048576.0);
+    EXPECT_GT(first.needed, 0);
+    EXPECT_EQ(first.drawn, first.needed);
+    EXPECT_EQ(first.missing, 0);
+    const std::vector<float> v = r->readVisibility();
+    for (int f = 1; f < 3; ++f) {
+      r->render(kRender);
+      EXPECT_EQ(pages(*r).drawn, 0) << "frame " << f;
+      EXPECT_EQ(pages(*r).needed, first.needed) << "frame " << f;
+      EXPECT_EQ(pages(*r).resident, first.resident) << "frame " << f;
+      EXPECT_EQ(r->readVisibility(), v) << "frame " << f;
+    }
+  }
+}
+
+// boxes' rolling ball (dynamic) under a still sun and a still camera: each frame after the first
+// draws at least one page and no more than the pages under the ball's bounds then and now, and
+// the frame's V is a fresh render's bit for bit (no stale shadow, no page missed).
+TEST(Virtual, MovingDynamicCasterRedrawsOnlyThePagesItTouches) {
+  Scene boxes = makeBuiltinScene("boxes");
+  boxes.animation.suns.clear();
+  const size_t ball = static_cast<size_t>(std::find_if(boxes.objects.begin(), boxes.objects.end(),
+                                                       [&](const Object& o) { return o.name == "sphere A"; }) - boxes.objects.begin());
+  ASSERT_LT(ball, boxes.objects.size()) << "boxes' rolling ball";
+  for (const MapUpdates& updates : {kEvery, kWhenInvalid}) {
+    auto r = virtualRenderer(boxes, "pcf", updates);
+    Aabb before;
+    for (const float t : {0.0f, 0.5f, 1.0f, 1.5f}) {
+      Scene posed = boxes;
+      poseScene(posed, t);
+      r->setPose(posed);
+      r->render(kRender);
+      const Aabb now = objectBounds(posed, ball);
+      const LightShadowReport::Pages p = pages(*r);
+      if (t > 0.0f) {
+        Aabb both = before;
+        both.extend(now);
+        int under = 0;
+        for (const glm::ivec3& page : ShadowsAccess::pages(r->shadows(), 0)->drawnPages())
+          under += pageUnder(r->frusta(), page, both, 16384 / 128) ? 1 : 0;
+        std::printf("%s, t = %g s: %d pages drawn of %d resident, %d of them under the ball's bounds then and now\n",
+                    mapUpdatesName(updates).c_str(), t, p.drawn, p.resident, under);
+        EXPECT_GT(p.drawn, 0) << "t = " << t;
+        EXPECT_EQ(under, p.drawn) << "t = " << t << ": a page the ball did not touch was drawn";
+      }
+      auto fresh = virtualRenderer(posed, "pcf", updates);
+      fresh->render(kRender);
+      EXPECT_EQ(r->readVisibility(), fresh->readVisibility()) << mapUpdatesName(updates) << ", t = " << t;
+      before = now;
+    }
+  }
+}
+
+// A dynamic caster that moves where no page this frame needs lies draws nothing.
+TEST(Virtual, DynamicCasterMovingOutOfSightDrawsNoPage) {
+  Scene boxes = makeBuiltinScene("boxes");
+  boxes.animation = {};
+  const size_t ball = static_cast<size_t>(std::find_if(boxes.objects.begin(), boxes.objects.end(),
+                                                       [&](const Object& o) { return o.name == "sphere A"; }) - boxes.objects.begin());
+  ASSERT_LT(ball, boxes.objects.size());
+  boxes.objects[ball].dynamic = true;
+  boxes.objects[ball].worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.5f, 200.0f));  // far behind the camera
+  for (const MapUpdates& updates : {kEvery, kWhenInvalid}) {
+    auto r = virtualRenderer(boxes, "hard", updates);
+    r->render(kRender);
+    Scene moved = boxes;
+    moved.objects[ball].worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.5f, 200.0f));
+    r->setPose(moved);
+    r->render(kRender);
+    EXPECT_EQ(pages(*r).drawn, 0) << mapUpdatesName(updates);
+  }
+}
+
+// city's camera walk (the scene's own animation: the camera walks down the avenue at 1.4 m/s,
+// a van drives by) at 30 frames a second: after the first frame, each frame draws at most 10 % of
+// the pages it keeps.
+TEST(Virtual, CityWalkDrawsAFewOfItsResidentPagesAFrame) {
+  constexpr double kMaxDrawnShare = 0.10;
+  const Scene city = makeBuiltinScene("city");
+  auto r = virtualRenderer(city, "hard", kWhenInvalid);
+  double worst = 0.0;
+  for (int f = 0; f < 5; ++f) {
+    Scene posed = city;
+    poseScene(posed, static_cast<float>(f) / 30.0f);
+    r->setPose(posed);
+    r->render(kRender);
+    const LightShadowReport::Pages p = pages(*r);
+    std::printf("frame %d: %d needed, %d drawn, %d resident, %d missing\n", f, p.needed, p.drawn, p.resident, p.missing);
+    EXPECT_EQ(p.missing, 0);
+    if (f > 0) worst = std::max(worst, static_cast<double>(p.drawn) / static_cast<double>(p.resident));
+  }
+  EXPECT_LE(worst, kMaxDrawnShare);
+}
+
+// A pool too small for the frame's pages: the run says how many it could not take, coarser
+// levels serve them, and V stays close to the full pool's.
+TEST(Virtual, FullPoolIsReportedAndCoarserLevelsServe) {
+  Scene boxes = makeBuiltinScene("boxes");
+  boxes.animation = {};
+  auto full = virtualRenderer(boxes, "hard", kEvery);
+  full->render(kRender);
+  const int needed = pages(*full).needed;
+  const int pool = std::max(16, needed / 2);
+  auto small = virtualRenderer(boxes, "hard", kEvery, {{"virtual.poolPages", std::to_string(pool)}});
+  small->render(kRender);
+  const LightShadowReport::Pages p = pages(*small);
+  std::printf("%d pages needed, pool of %d: %d missing\n", needed, pool, p.missing);
+  EXPECT_EQ(p.missing, needed - pool);
+  EXPECT_EQ(p.resident, pool);
+  const GBufferData g = full->readGBuffer();
+  size_t differ = 0, covered = 0;
+  const std::vector<float> a = full->readVisibility(), b = small->readVisibility();
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!g.covered(i)) continue;
+    ++covered;
+    differ += std::abs(a[i] - b[i]) > 0.5f ? 1 : 0;
+  }
+  std::printf("%zu of %zu pixels differ by > 0.5\n", differ, covered);
+  EXPECT_LT(static_cast<double>(differ), 0.05 * static_cast<double>(covered));
+}
+
+TEST(Virtual, RefusesFiltersThatCannotReadPagesAndLightsItDoesNotPage) {
+  Scene boxes = makeBuiltinScene("boxes");
+  for (const char* filter : {"vsm", "msm", "esm", "vssm", "sdf", "second-depth"}) {
+    const std::string why = filterIncompatibility(filter, "virtual", boxes.light());
+    EXPECT_NE(why.find("paged"), std::string::npos) << filter << ": " << why;
+  }
+  for (const char* filter : {"hard", "pcf", "pcss", "smrt"}) EXPECT_EQ(filterIncompatibility(filter, "virtual", boxes.light()), "") << filter;
+  const Scene pen = makeBuiltinScene("pen");
+  EXPECT_NE(projectionIncompatibility("virtual", pen.light()).find("sun only"), std::string::npos);
+  EXPECT_THROW(renderScene(pen, "virtual", "hard", {}, 32, 32, 256), Error);
+}
