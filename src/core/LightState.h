@@ -12,6 +12,7 @@
 #include "frame/ScreenTarget.h"
 #include "gl/Objects.h"
 #include "shadows/temporal/TemporalAccumulation.h"
+#include "shadows/translucent/TranslucentShadows.h"
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
 
@@ -33,6 +34,7 @@ struct LightState {
   std::unique_ptr<Projection> projection;  ///< made from `technique` (its values)
   std::unique_ptr<Filter> filter;          ///< of technique.filter(): the light's maps
   TemporalHistory history;                 ///< V accumulated over earlier frames
+  TranslucentShadows translucent;          ///< the translucent casters' maps (translucent.*)
   gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
   gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
 
