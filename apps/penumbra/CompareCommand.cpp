@@ -245,12 +245,16 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         exr(fmt::format("reference-visibility-cos-light{}.exr", l.index), refs[l.index].visibilityCosWeighted);
       }
 
-    // A scene with translucent casters: each light's V (one channel: grey) against its RGB V_ref.
+    // A scene with translucent casters: each light's V (RGB where the technique tints it, else
+    // its one channel as grey) against its RGB V_ref.
     std::vector<std::optional<ColourMetrics>> colour(refs.size());
     for (const report::LightComparison& l : cmp.lights) {
       if (!l.castsShadow || refs[l.index].visibilityRgb.empty()) continue;
-      std::vector<glm::vec3> grey(l.visibility.size());
-      std::transform(l.visibility.begin(), l.visibility.end(), grey.begin(), [](float v) { return glm::vec3(v); });
+      std::vector<glm::vec3> grey = l.visibilityRgb;
+      if (grey.empty()) {
+        grey.resize(l.visibility.size());
+        std::transform(l.visibility.begin(), l.visibility.end(), grey.begin(), [](float v) { return glm::vec3(v); });
+      }
       colour[l.index] = compareColourVisibility(grey, refs[l.index].visibilityRgb, refs[l.index].litMask);
       if (l.index == 0 || !std::any_of(colour.begin(), colour.begin() + static_cast<std::ptrdiff_t>(l.index),
                                         [](const auto& c) { return c.has_value(); })) {  // the first such light's image

@@ -70,7 +70,10 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
     j["filters"] = nlohmann::json::array();
     for (const std::string& id : filterIds())
     {
-      nlohmann::json f = {{"id", id}, {"description", filterDescription(id)}, {"params", paramsJson(filterParams(id))}};
+      nlohmann::json f = {{"id", id},
+                          {"description", filterDescription(id)},
+                          {"translucent_casters", filterTranslucentCasters(id)},
+                          {"params", paramsJson(filterParams(id))}};
       if (const std::filesystem::path folder = techniqueFolder(id); !folder.empty()) f["folder"] = folder.string();
       j["filters"].push_back(f);
     }
@@ -96,6 +99,7 @@ void addListCommand(CLI::App& app, std::vector<Command>& commands) {
       std::printf("  %-10s %s\n", id.c_str(), std::string(filterDescription(id)).c_str());
       if (const std::filesystem::path folder = techniqueFolder(id); !folder.empty())
         std::printf("             (technique folder %s)\n", folder.string().c_str());
+      std::printf("  %-10s translucent casters: %s\n", "", std::string(filterTranslucentCasters(id)).c_str());
       printParams(filterParams(id));
     }
     return 0;

@@ -48,6 +48,12 @@ struct CasterMesh {
   /// into a map once and kept while the map's view and every static caster stay as they were (a
   /// static caster that moves invalidates the maps it was in). Without caching it changes nothing.
   bool dynamic = false;
+  /// Light let through, per colour channel (linear RGB in [0, 1]): (0, 0, 0) = opaque, the
+  /// default; (0.85, 0.45, 0.3) an amber pane. Each surface crossed multiplies the light by it.
+  /// Techniques that only know opaque casters draw a translucent one as opaque; with the
+  /// translucent add-on ("translucent.*", docs/translucent.md) its shadow is tinted instead.
+  glm::vec3 transmittance{0.0f};
+  bool translucent() const { return transmittance != glm::vec3(0.0f); }
 };
 
 /// One caster's triangles in the engine's memory, for filters that bake the casters on the CPU

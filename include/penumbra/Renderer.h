@@ -84,9 +84,11 @@ public:
   Shadows& shadows();
 
   /// Re-runs the lit pass of the last frame with other visibilities, one per light (width ×
-  /// height each, row 0 = bottom; e.g. the reference's) and returns the image. The frame's own V
-  /// is restored after.
-  ColorImage shadeWithVisibility(const std::vector<std::vector<float>>& perLight);
+  /// height each, row 0 = bottom; e.g. the reference's) and returns the image. `perLightRgb`:
+  /// where a light's entry is not empty, its V per channel (the reference's visibilityRgb)
+  /// shades it instead. The frame's own V and image are left as they were.
+  ColorImage shadeWithVisibility(const std::vector<std::vector<float>>& perLight,
+                                 const std::vector<std::vector<glm::vec3>>& perLightRgb = {});
   /// The same for a frame of one light.
   ColorImage shadeWithVisibility(std::span<const float> visibility);
 
@@ -101,8 +103,11 @@ public:
   /// texel density (metrics/TexelDensity.h).
   std::vector<float> computeScreenScalar(const std::string& computeShader);
 
-  /// Visibility of light `light` in the last frame, width × height floats, row 0 = bottom.
+  /// Visibility of light `light` in the last frame, width × height floats, row 0 = bottom (the
+  /// mean of the channels where V has colour: Shadows::visibilityHasColour).
   std::vector<float> readVisibility(size_t light = 0) const;
+  /// The same per colour channel; empty when the last frame's V has one channel.
+  std::vector<glm::vec3> readVisibilityRgb(size_t light = 0) const;
   /// The last frame's G-buffer; `triangle` is empty unless that frame had RenderOptions::triangleIds.
   GBufferData readGBuffer() const;
   ColorImage readColor() const;
@@ -119,7 +124,9 @@ public:
   struct Impl;
 
 private:
-  void runLitPass();
+  /// The lit pass, reading the core's visibility array, or `visibility` (an array of one
+  /// channel, or of RGB where `colour`).
+  void runLitPass(const gl::Texture* visibility = nullptr, bool colour = false);
   std::unique_ptr<Impl> mImpl;
 };
 

@@ -98,13 +98,14 @@ struct ShadowReceivers {
 /// What render() changes in the GL state and puts back.
 enum class RestoreState {
   /// Every binding and switch Penumbra touches is read before and written back after: the
-  /// framebuffers and viewport, depth range, program, vertex array; blend, scissor, stencil,
+  /// framebuffers and viewport, depth range, program, vertex array; blend (and its factors and
+  /// equations), scissor, stencil,
   /// logic op, polygon offset, rasterizer discard, primitive restart, sRGB, alpha to coverage,
   /// clip distances 0–7, depth test, clamp, function and mask, colour mask, face culling and
   /// front face, polygon mode, clip control; texture units 0–15 (2D, 2D array, 3D targets) and
   /// their samplers, image units 0–3, uniform buffers 0–2 and storage buffers 0–5 (indexed
   /// bindings), the pixel pack and unpack parameters and buffers, the active texture unit.
-  /// About 210 glGet calls a frame.
+  /// About 216 glGet calls a frame.
   All,
   /// Nothing is read back: after render() those bindings and switches hold whatever Penumbra
   /// left (for engines that set their own state before every pass).
@@ -208,8 +209,8 @@ public:
 
   /// Lights of the last frame.
   size_t lightCount() const;
-  /// Every light's V for the last frame: an R32F 2D array texture of the surfaces' size, layer
-  /// i = lights[i], 1 = lit, 0 where the surface faces away from the light, 1 on background
+  /// Every light's V for the last frame: an R32F 2D array texture of the surfaces' size (RGBA32F
+  /// where V has colour: visibilityHasColour), layer i = lights[i], 1 = lit, 0 where the surface faces away from the light, 1 on background
   /// pixels. Owned by Penumbra. The name stays the same from frame to frame; it is remade (a new
   /// name; the old one deleted) by the render() whose surfaces' size or light count differs from
   /// the frame before, and deleted by ~Shadows().
@@ -217,8 +218,16 @@ public:
   /// V of lights[light] alone: a 2D texture viewing that layer (glTextureView). Lives and is
   /// remade as visibilityArrayTexture() is.
   uint32_t visibilityTexture(size_t light = 0) const;
-  /// The same, read back (row 0 = bottom).
+  /// The same, read back (row 0 = bottom). Where V has colour (visibilityHasColour) the mean of
+  /// its three channels.
   std::vector<float> readVisibility(size_t light = 0) const;
+  /// Whether the last frame's V has colour: some light's technique tints it by translucent
+  /// casters (the "translucent.*" add-on, CasterMesh::transmittance; docs/translucent.md). The
+  /// visibility array is then RGBA32F (RGB = V per channel, alpha 1) instead of R32F; a scene
+  /// without translucent casters, or a technique without the add-on, keeps one channel.
+  bool visibilityHasColour() const;
+  /// V of lights[light] per channel (row 0 = bottom); empty when V has no colour.
+  std::vector<glm::vec3> readVisibilityRgb(size_t light = 0) const;
 
   /// What each light got in the last frame (in the lights' order).
   const std::vector<LightShadowReport>& lightReports() const;

@@ -24,6 +24,9 @@ std::vector<std::string> filterIds();
 /// One sentence on what the projection or filter does; throws a usage Error for an unknown id.
 std::string_view projectionDescription(std::string_view id);
 std::string_view filterDescription(std::string_view id);
+/// What filter `id` does with a translucent caster (CasterMesh::transmittance): draws it as
+/// opaque, ignores it, or shadows through it (with the translucent.* add-on).
+std::string_view filterTranslucentCasters(std::string_view id);
 /// Its parameter table (ParamDesc); throws a usage Error for an unknown id.
 std::span<const ParamDesc> projectionParams(std::string_view id);
 std::span<const ParamDesc> filterParams(std::string_view id);

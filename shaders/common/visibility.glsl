@@ -5,6 +5,22 @@
 // and passes/visibility.glsl calls it for every pixel that faces the light.
 #include "common/shadow.glsl"
 
+// The visibility array's texels: one channel (r32f), or with PN_VISIBILITY_RGB (a scene whose
+// translucent casters tint V) RGB in an rgba32f layer, alpha unused. Passes that read and write
+// it as an image (contact shadows, temporal accumulation) declare it with this format and hold
+// its value as a VisibilityValue.
+#ifdef PN_VISIBILITY_RGB
+#define PN_VISIBILITY_FORMAT rgba32f
+#define VisibilityValue vec3
+VisibilityValue visibilityOfTexel(vec4 t) { return t.rgb; }
+vec4 visibilityTexel(VisibilityValue v) { return vec4(v, 1.0); }
+#else
+#define PN_VISIBILITY_FORMAT r32f
+#define VisibilityValue float
+VisibilityValue visibilityOfTexel(vec4 t) { return t.r; }
+vec4 visibilityTexel(VisibilityValue v) { return vec4(v); }
+#endif
+
 layout(binding = PN_TEX_GBUF_POSITION) uniform sampler2D s_gbufPosition;
 layout(binding = PN_TEX_GBUF_GEONORMAL) uniform sampler2D s_gbufGeoNormal;
 

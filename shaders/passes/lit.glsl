@@ -15,6 +15,15 @@ layout(binding = PN_TEX_VISIBILITY) uniform sampler2DArray s_visibility;
 // point light among them (common/frame.glsl).
 layout(std430, binding = PN_SSBO_LIGHTS) readonly buffer LightsBlock { LightGpu u_lights[]; };
 layout(location = 0) out vec4 o_color;
+// PN_VISIBILITY_RGB (defined or not): the visibility array holds RGB (translucent casters tint
+// V; penumbra/Shadows.h visibilityHasColour), which multiplies each light's colour channel by channel.
+#ifdef PN_VISIBILITY_RGB
+#define LitVisibility vec3
+#define litVisibility(texel) (texel).rgb
+#else
+#define LitVisibility float
+#define litVisibility(texel) (texel).r
+#endif
 // PN_DEBUG_VIEW (a define, PN_VIEW_*): what the pass writes.
 const int kDebugView = PN_DEBUG_VIEW;
 
@@ -53,10 +62,11 @@ void main() {
     vec3 hdr = u_frame.ambient.rgb * albedo;
     // The visibility view: each light's V weighted by its unshadowed light here (what the
     // metrics call the combined V; a single light's own V).
-    float weightedV = 0.0, weights = 0.0;
+    LitVisibility weightedV = LitVisibility(0.0);
+    float weights = 0.0;
     for (int i = 0; i < PN_LIT_LIGHTS; ++i) {
       LightGpu light = u_lights[i];
-      float v = texelFetch(s_visibility, ivec3(px, i), 0).r;
+      LitVisibility v = litVisibility(texelFetch(s_visibility, ivec3(px, i), 0));
       vec3 l = toLightOf(light, pos.xyz);
       vec3 radiance = light.radiance.rgb;
       if (isPositional(light)) {
@@ -71,7 +81,7 @@ void main() {
       weightedV += w * v;
       weights += w;
     }
-    color = kDebugView == PN_VIEW_VISIBILITY ? vec3(weights > 0.0 ? weightedV / weights : texelFetch(s_visibility, ivec3(px, 0), 0).r)
+    color = kDebugView == PN_VIEW_VISIBILITY ? vec3(weights > 0.0 ? weightedV / weights : litVisibility(texelFetch(s_visibility, ivec3(px, 0), 0)))
                                              : toSrgb(acesApprox(hdr));
   }
   if (pos.w > 0.5 && (kDebugView == PN_VIEW_CASCADES || kDebugView == PN_VIEW_TEXEL_DENSITY))

@@ -7,10 +7,18 @@
 // (visibilityAt) instead of the surfaces. With PN_SURFACE_FROM_DEPTH the surface positions come
 // from the camera's depth texture; with PN_NORMALS_FROM_POSITIONS their normals from their
 // neighbours (common/visibility.glsl).
+// A pass whose file defines PN_SHADOW_VALUE as vec3 (the translucent add-on's tint) computes
+// a colour per pixel, written as (r, g, b, 1); a filter's one value v is written as (v, v, v, v).
 #include "common/visibility.glsl"
 #include "shared/VisibilityPoints.h"
 
-float blendedVisibility(SurfacePoint s) {
+#ifndef PN_SHADOW_VALUE
+#define PN_SHADOW_VALUE float
+#endif
+vec4 shadowOutput(float v) { return vec4(v); }
+vec4 shadowOutput(vec3 v) { return vec4(v, 1.0); }
+
+PN_SHADOW_VALUE blendedVisibility(SurfacePoint s) {
 #ifdef PN_VIRTUAL_PAGES
   // A clipmap's level by the pixel's footprint on its surface, as the page marking chose it.
   ShadowViewBlend b = ShadowViewBlend(virtualLevelFor(s.ws, s.geoNormal), 0, 0.0);
@@ -19,7 +27,7 @@ float blendedVisibility(SurfacePoint s) {
   ShadowViewBlend b = shadowViewBlend(s.ws);
 #endif
   g_forcedShadowView = b.first;
-  float v = clamp(shadowVisibility(s), 0.0, 1.0);
+  PN_SHADOW_VALUE v = clamp(shadowVisibility(s), 0.0, 1.0);
   if (b.weight > 0.0) {
     g_forcedShadowView = b.second;
     v = mix(v, clamp(shadowVisibility(s), 0.0, 1.0), b.weight);
@@ -28,14 +36,14 @@ float blendedVisibility(SurfacePoint s) {
   return v;
 }
 
-float surfaceVisibility(vec3 ws, vec3 geoNormal, ivec2 px) {
+PN_SHADOW_VALUE surfaceVisibility(vec3 ws, vec3 geoNormal, ivec2 px) {
   SurfacePoint s;
   s.ws = ws;
   s.geoNormal = normalize(geoNormal);
   s.toLight = toLight(s.ws);
   s.NoL = dot(s.geoNormal, s.toLight);
   s.pixel = px;
-  return s.NoL > 0.0 ? blendedVisibility(s) : 0.0;
+  return s.NoL > 0.0 ? blendedVisibility(s) : PN_SHADOW_VALUE(0.0);
 }
 
 #ifdef PN_VISIBILITY_POINTS
@@ -57,14 +65,14 @@ void main() {
 
 #else
 
-layout(location = 0) out float o_visibility;
+layout(location = 0) out vec4 o_visibility;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);  // the pixel's centre is at +0.5: its integer part is the pixel
   vec4 pos = surfacePosition(px);
-  float v = 1.0;
+  PN_SHADOW_VALUE v = PN_SHADOW_VALUE(1.0);
   if (pos.w > 0.5) v = surfaceVisibility(pos.xyz, surfaceGeoNormal(px, pos.xyz), px);
-  o_visibility = v;
+  o_visibility = shadowOutput(v);
 }
 
 #endif

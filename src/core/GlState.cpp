@@ -94,6 +94,8 @@ SavedGlState::SavedGlState() {
   glGetIntegerv(GL_POLYGON_MODE, mPolygonMode.data());
   glGetBooleanv(GL_DEPTH_WRITEMASK, &mDepthMask);
   glGetBooleanv(GL_COLOR_WRITEMASK, mColorMask.data());
+  mBlendFunc = {getInt(GL_BLEND_SRC_RGB), getInt(GL_BLEND_DST_RGB), getInt(GL_BLEND_SRC_ALPHA), getInt(GL_BLEND_DST_ALPHA)};
+  mBlendEquation = {getInt(GL_BLEND_EQUATION_RGB), getInt(GL_BLEND_EQUATION_ALPHA)};
   for (size_t i = 0; i < std::size(kSwitches); ++i) mSwitches[i] = {kSwitches[i], glIsEnabled(kSwitches[i])};
   mUniformBuffer = getInt(GL_UNIFORM_BUFFER_BINDING);
   mStorageBuffer = getInt(GL_SHADER_STORAGE_BUFFER_BINDING);
@@ -131,6 +133,9 @@ void SavedGlState::restore() const {
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(mPolygonMode[0]));
   glDepthMask(mDepthMask);
   glColorMask(mColorMask[0], mColorMask[1], mColorMask[2], mColorMask[3]);
+  glBlendFuncSeparate(static_cast<GLenum>(mBlendFunc[0]), static_cast<GLenum>(mBlendFunc[1]), static_cast<GLenum>(mBlendFunc[2]),
+                      static_cast<GLenum>(mBlendFunc[3]));
+  glBlendEquationSeparate(static_cast<GLenum>(mBlendEquation[0]), static_cast<GLenum>(mBlendEquation[1]));
   for (const Switch& s : mSwitches) (s.on ? glEnable : glDisable)(s.cap);
   for (GLuint i = 0; i < kSavedUniformBuffers; ++i)
     restoreIndexed(GL_UNIFORM_BUFFER, i, mUniformBuffers[i].buffer, mUniformBuffers[i].start, mUniformBuffers[i].size);

@@ -75,6 +75,9 @@ private:
   std::array<GLint, 2> mPolygonMode{GL_FILL, GL_FILL};
   GLboolean mDepthMask = GL_TRUE;
   std::array<GLboolean, 4> mColorMask{GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  // Blend factors (source and destination, colour then alpha) and equations (colour, alpha).
+  std::array<GLint, 4> mBlendFunc{GL_ONE, GL_ZERO, GL_ONE, GL_ZERO};
+  std::array<GLint, 2> mBlendEquation{GL_FUNC_ADD, GL_FUNC_ADD};
   struct Switch {
     GLenum cap;
     GLboolean on;

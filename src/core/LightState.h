@@ -13,6 +13,7 @@
 #include "frame/VirtualPages.h"
 #include "gl/Objects.h"
 #include "shadows/temporal/TemporalAccumulation.h"
+#include "shadows/translucent/TranslucentShadows.h"
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
 
@@ -37,6 +38,7 @@ struct LightState {
   /// table; none for whole maps.
   std::unique_ptr<VirtualPages> pages;
   TemporalHistory history;                 ///< V accumulated over earlier frames
+  TranslucentShadows translucent;          ///< the translucent casters' maps (translucent.*)
   gl::Buffer frameBlock{"frame block", sizeof(gpu::FrameUniforms)};
   gl::Buffer shadowBlock{"shadow block", sizeof(gpu::ShadowUniforms)};
 

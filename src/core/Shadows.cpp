@@ -64,6 +64,7 @@ void Shadows::render(const ShadowFrameInputs& in) {
   im.screen = {s.width, s.height};
   im.surface = {s.position != 0 ? SurfaceSource::Position : SurfaceSource::Depth, s.normal == 0, in.camera.fit.orthographic()};
   im.takeStates(in.lights, techniques);
+  im.colour = std::any_of(im.states.begin(), im.states.end(), [&](const auto& st) { return st->light.castsShadow && im.tints(*st); });
   im.ensureVisibility(im.screen, static_cast<int>(in.lights.size()));
   im.timer.beginFrame();
 
@@ -139,10 +140,33 @@ uint32_t Shadows::visibilityArrayTexture() const { return mImpl->visibility.id()
 std::vector<float> Shadows::readVisibility(size_t light) const {
   PN_CHECK(light < mImpl->layerViews.size(),
            fmt::format("readVisibility({}): the last frame had {} lights", light, mImpl->layerViews.size()));
+  if (mImpl->colour) {  // the mean of the channels, as the reference's one-channel V of a tinted light
+    const std::vector<glm::vec3> rgb = readVisibilityRgb(light);
+    std::vector<float> v(rgb.size());
+    std::transform(rgb.begin(), rgb.end(), v.begin(), [](const glm::vec3& c) { return (c.r + c.g + c.b) / 3.0f; });
+    return v;
+  }
   const gl::Texture& t = mImpl->layerViews[light];
   std::vector<float> v(static_cast<size_t>(t.width()) * static_cast<size_t>(t.height()));
   const core::PixelTransferScope transfer;
   if (t) t.read(GL_RED, GL_FLOAT, v.data(), v.size() * sizeof(float));
+  return v;
+}
+
+bool Shadows::visibilityHasColour() const { return mImpl->colour; }
+
+std::vector<glm::vec3> Shadows::readVisibilityRgb(size_t light) const {
+  PN_CHECK(light < mImpl->layerViews.size(),
+           fmt::format("readVisibilityRgb({}): the last frame had {} lights", light, mImpl->layerViews.size()));
+  if (!mImpl->colour) return {};
+  const gl::Texture& t = mImpl->layerViews[light];
+  std::vector<glm::vec4> texels(static_cast<size_t>(t.width()) * static_cast<size_t>(t.height()));
+  {
+    const core::PixelTransferScope transfer;
+    t.read(GL_RGBA, GL_FLOAT, texels.data(), texels.size() * sizeof(glm::vec4));
+  }
+  std::vector<glm::vec3> v(texels.size());
+  std::transform(texels.begin(), texels.end(), v.begin(), [](const glm::vec4& c) { return glm::vec3(c); });
   return v;
 }
 

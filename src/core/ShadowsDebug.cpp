@@ -62,9 +62,13 @@ const VirtualPages* ShadowsAccess::pages(const Shadows& shadows, size_t light) {
 std::vector<DebugImage> ShadowsAccess::debugImages(const Shadows& shadows, size_t light) {
   const Shadows::Impl& im = *shadows.mImpl;
   // Before a frame has the light: its visibility, without a texture yet.
-  std::vector<DebugImage> out = {{"visibility", light < im.layerViews.size() ? &im.layerViews[light] : nullptr, "V: 1 = lit, 0 = in shadow"}};
-  if (light < im.states.size())
+  std::vector<DebugImage> out = {{"visibility", light < im.layerViews.size() ? &im.layerViews[light] : nullptr,
+                                  im.colour ? "V per colour channel (RGB, tinted by translucent casters): 1 = lit, 0 = in shadow"
+                                            : "V: 1 = lit, 0 = in shadow"}};
+  if (light < im.states.size()) {
     for (const DebugImage& d : im.states[light]->filter->debugImages()) out.push_back(d);
+    for (const DebugImage& d : im.states[light]->translucent.debugImages()) out.push_back(d);
+  }
   return out;
 }
 

@@ -21,6 +21,7 @@
 #include "shader/ShaderLibrary.h"
 #include "shadows/contact/ContactShadows.h"
 #include "shadows/temporal/TemporalAccumulation.h"
+#include "shadows/translucent/TranslucentShadows.h"
 #include "shared/Bindings.h"
 
 #include <penumbra/Error.h>
@@ -70,7 +71,8 @@ struct Shadows::Impl {
   gl::Buffer filterBlock{"filter block", core::kFilterBlockBytes};
   // Engine textures are read through this sampler, whatever their own sampling state.
   gl::Sampler surfaceSampler{"surface sampler", {GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, false}};
-  gl::Texture visibility;                ///< 2D array, one layer per light
+  gl::Texture visibility;                ///< 2D array, one layer per light: R32F, or RGBA32F (colour)
+  bool colour = false;                   ///< this frame's visibility holds RGB (tinted by translucent casters)
   std::vector<gl::Texture> layerViews;   ///< per layer: the layer as a 2D texture
   std::vector<ScreenTarget> layerTargets;  ///< per layer: the visibility pass's target
   CasterSet casters;
@@ -113,12 +115,19 @@ struct Shadows::Impl {
     return *states[light];
   }
 
+  /// Whether the light's V is tinted by the translucent casters: its technique asks for it and
+  /// there are some.
+  bool tints(const core::LightState& s) const {
+    return casters.hasTranslucent() && TranslucentShadows::enabled(s.technique.addOnValues());
+  }
+
   FrameContext frameContext(core::LightState& s) {
     std::optional<std::span<const CasterGeometry>> cpu;
     if (geometry) cpu = std::span<const CasterGeometry>(*geometry);
     return FrameContext({s.light, s.technique.filterValues(), cpu, s.frusta, s.mapSize, screen, surface, shaders, casters,
                          filterBlock, timer, &visibility, static_cast<int>(s.layer),
-                         updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews, &layerTargets[s.layer], s.pages.get()});
+                         updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews, &layerTargets[s.layer], s.pages.get(),
+                         tints(s) ? CasterSet::Translucent::Skip : CasterSet::Translucent::AsOpaque, colour});
   }
   static void bindBlocks(const core::LightState& s) {
     s.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -164,17 +173,22 @@ struct Shadows::Impl {
       s->light = lights[i];
       s->layer = i;
       if (!TemporalAccumulation::enabled(s->technique.addOnValues())) s->history = {};
+      if (!TranslucentShadows::enabled(s->technique.addOnValues())) s->translucent.release();
       next.push_back(std::move(s));
     }
     states = std::move(next);
   }
 
-  /// The visibility array (one layer per light) and each layer's view and target.
+  /// The visibility array (one layer per light) and each layer's view and target: one channel,
+  /// or RGB when some light's V is tinted by translucent casters (`colour`).
   void ensureVisibility(glm::ivec2 size, int layers) {
-    if (visibility && visibility.width() == size.x && visibility.height() == size.y && visibility.layers() == layers) return;
+    const GLenum format = static_cast<GLenum>(colour ? GL_RGBA32F : GL_R32F);
+    if (visibility && visibility.width() == size.x && visibility.height() == size.y && visibility.layers() == layers &&
+        visibility.desc().format == format)
+      return;
     layerViews.clear();
     layerTargets.clear();
-    visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, GL_R32F, size.x, size.y, layers, 1});
+    visibility = gl::Texture("visibility", {GL_TEXTURE_2D_ARRAY, format, size.x, size.y, layers, 1});
     visibility.setSampling(GL_NEAREST, GL_NEAREST);
     for (int i = 0; i < layers; ++i) {
       layerViews.push_back(gl::Texture::layerView(fmt::format("visibility of light {}", i), visibility, i));
@@ -189,8 +203,9 @@ struct Shadows::Impl {
     frame.screen.w = accumulates ? samplingFrame : 0;
     s.frameBlock.upload(frame);
     if (!s.light.castsShadow) {  // lit wherever the light reaches: V = 1 in its layer
-      const float one = 1.0f;
-      glClearTexSubImage(visibility.id(), 0, 0, 0, static_cast<GLint>(s.layer), screen.x, screen.y, 1, GL_RED, GL_FLOAT, &one);
+      const glm::vec4 one(1.0f);
+      glClearTexSubImage(visibility.id(), 0, 0, 0, static_cast<GLint>(s.layer), screen.x, screen.y, 1, colour ? GL_RGBA : GL_RED,
+                         GL_FLOAT, &one.x);
       return;
     }
     // A projection fitted to the pixels (sdsm) measures them here, on the GPU, before its views
@@ -225,9 +240,11 @@ struct Shadows::Impl {
       unbindSurfaces();
       gl::throwIfGlError("the page marking pass");
     }
+    const bool tinted = tints(s);
     {
       ScopedPass pass(timer, "shadow");
       s.filter->renderShadowMaps(ctx);
+      if (tinted) s.translucent.renderMaps(ctx, s.technique.addOnValues());
     }
     gl::throwIfGlError("the shadow pass");
     {
@@ -236,11 +253,12 @@ struct Shadows::Impl {
     }
     gl::throwIfGlError("the prefilter pass");
     bindSurfaces(in.surfaces);
+    const Parameterized& addOns = s.technique.addOnValues();
     {
       ScopedPass pass(timer, "visibility");
       s.filter->computeVisibility(ctx);
+      if (tinted) s.translucent.apply(ctx, addOns);
     }
-    const Parameterized& addOns = s.technique.addOnValues();
     if (ContactShadows::enabled(addOns)) {
       ScopedPass pass(timer, "contact");
       ContactShadows::apply(ctx, addOns);
@@ -285,7 +303,14 @@ struct Shadows::Impl {
   void accumulatedAt(std::span<const SurfaceSample> points, size_t light, std::vector<float>& v) const {
     const gl::Texture& layer = layerViews[light];
     std::vector<float> image(static_cast<size_t>(screen.x) * static_cast<size_t>(screen.y));
-    {
+    if (colour) {  // the channels' mean, as readVisibility
+      std::vector<glm::vec4> rgba(image.size());
+      {
+        const core::PixelTransferScope transfer;
+        layer.read(GL_RGBA, GL_FLOAT, rgba.data(), rgba.size() * sizeof(glm::vec4));
+      }
+      std::transform(rgba.begin(), rgba.end(), image.begin(), [](const glm::vec4& c) { return (c.r + c.g + c.b) / 3.0f; });
+    } else {
       const core::PixelTransferScope transfer;
       layer.read(GL_RED, GL_FLOAT, image.data(), image.size() * sizeof(float));
     }

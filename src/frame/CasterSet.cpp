@@ -55,6 +55,9 @@ void check(const CasterMesh& m, size_t i) {
       fail(fmt::format("vertices {}..{} lie beyond vertex buffer {} ({} bytes)", m.firstIndex, last, m.vertexBuffer, vertexBytes));
   }
   if (m.positionOffset + kPositionBytes > vertexBytes) fail(fmt::format("positionOffset {} lies beyond the vertex buffer", m.positionOffset));
+  for (int c = 0; c < 3; ++c)
+    if (!(m.transmittance[c] >= 0.0f && m.transmittance[c] <= 1.0f))
+      fail(fmt::format("transmittance ({}, {}, {}) is outside [0, 1]", m.transmittance.r, m.transmittance.g, m.transmittance.b));
   if (m.alphaTexture != 0) {
     if (!glIsTexture(m.alphaTexture)) fail(fmt::format("alphaTexture {} is not a GL texture", m.alphaTexture));
     if (m.uvOffset == kNoAttribute) fail("an alphaTexture needs a uvOffset (the texture coordinate it is read at)");
@@ -171,10 +174,11 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
     g.worldFromObject = m.worldFromObject;
     g.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(m.worldFromObject)));
     const bool masked = m.alphaTexture != 0;
-    g.baseColor = glm::vec4(1.0f, 1.0f, 1.0f, masked ? m.alphaCutoff : 0.0f);
+    g.baseColor = glm::vec4(m.translucent() ? m.transmittance : glm::vec3(1.0f), masked ? m.alphaCutoff : 0.0f);
     g.material = glm::ivec4(masked ? 0 : -1, masked ? 1 : 0, 0, 0);
     objects.push_back(g);
   }
+  mTranslucent = std::any_of(casters.begin(), casters.end(), [](const CasterMesh& m) { return m.translucent(); });
   Hasher statics;
   for (const Draw& d : mDraws) {
     const CasterMesh& m = d.mesh;
@@ -185,6 +189,7 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
     if (m.indexType != IndexType::UInt32) statics.value(static_cast<uint32_t>(m.indexType));
     statics.value(m.worldFromObject);
     statics.value(m.alphaCutoff);
+    if (m.translucent()) statics.value(m.transmittance);
   }
   mStaticKey = statics.digest();
   const size_t bytes = std::max<size_t>(1, objects.size()) * sizeof(gpu::ObjectGpu);
@@ -192,7 +197,8 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
   if (!objects.empty()) mObjects.upload(objects.data(), objects.size() * sizeof(gpu::ObjectGpu));
 }
 
-void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which, std::span<const uint8_t> only) const {
+void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which, Translucent translucent,
+                     std::span<const uint8_t> only) const {
   mObjects.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_OBJECTS);
   for (const bool masked : {false, true}) {
     const GLuint program = masked ? maskedProgram : opaqueProgram;
@@ -201,6 +207,7 @@ void CasterSet::draw(GLuint opaqueProgram, GLuint maskedProgram, Which which, st
       const CasterMesh& m = mDraws[i].mesh;
       if ((m.alphaTexture != 0) != masked) continue;
       if (!isOf(m, which) || (!only.empty() && only[i] == 0)) continue;
+      if (translucent != Translucent::AsOpaque && m.translucent() != (translucent == Translucent::Only)) continue;
       glBindVertexArray(mVaos[mDraws[i].vao].id());
       glProgramUniform1i(program, PN_LOC_OBJECT, static_cast<GLint>(i));
       if (masked) glBindTextureUnit(PN_TEX_BASECOLOR, m.alphaTexture);

@@ -28,13 +28,20 @@ public:
   /// bad one. Vertex arrays are kept across calls for layouts seen before.
   void set(std::span<const CasterMesh> casters);
   /// Draws the opaque casters with `opaqueProgram`, then the alpha-tested ones with
-  /// `maskedProgram` (their texture at PN_TEX_BASECOLOR); PN_LOC_OBJECT set per draw. Leaves
-  /// the last program and vertex array bound.
+  /// `maskedProgram` (their texture at PN_TEX_BASECOLOR); PN_LOC_OBJECT set per draw (the
+  /// object table's baseColor.rgb holds a translucent caster's transmittance, 1 for the
+  /// others). Leaves the last program and vertex array bound.
   /// `which`: every caster, or only the static or only the dynamic ones (CasterMesh::dynamic).
   enum class Which { All, Static, Dynamic };
+  /// Translucent casters (CasterMesh::transmittance): drawn like the others (as opaque, the
+  /// default), left out (a map of the opaque casters alone) or drawn alone.
+  enum class Translucent { AsOpaque, Skip, Only };
   /// `only`: when not empty, one entry per caster (in order); casters whose entry is 0 are skipped
   /// (a paged map's page draws the casters over it alone).
-  void draw(GLuint opaqueProgram, GLuint maskedProgram, Which which = Which::All, std::span<const uint8_t> only = {}) const;
+  void draw(GLuint opaqueProgram, GLuint maskedProgram, Which which = Which::All, Translucent translucent = Translucent::AsOpaque,
+            std::span<const uint8_t> only = {}) const;
+  /// Whether any caster is translucent.
+  bool hasTranslucent() const { return mTranslucent; }
   /// A hash of the static casters (their records and placements, in order): it changes when one
   /// is added, removed, moved or altered. For cached maps.
   uint64_t staticKey() const { return mStaticKey; }
@@ -67,6 +74,7 @@ private:
   std::vector<Draw> mDraws;
   gl::Buffer mObjects;
   uint64_t mStaticKey = 0;
+  bool mTranslucent = false;
 };
 
 }  // namespace penumbra

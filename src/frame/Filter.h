@@ -51,6 +51,14 @@ public:
   virtual std::string_view id() const = 0;
   virtual std::string_view description() const = 0;
   std::span<const ParamDesc> params() const { return mParams; }
+  /// What the filter does with a translucent caster (CasterMesh::transmittance), for users
+  /// (penumbra list, the docs). Every filter whose maps go through FrameContext::renderViews
+  /// draws it as opaque, and with the translucent add-on on leaves it out of its maps while the
+  /// add-on tints V by it (kTranslucentThroughAddOn).
+  virtual std::string_view translucentCasters() const { return kTranslucentThroughAddOn; }
+  static constexpr std::string_view kTranslucentThroughAddOn =
+      "drawn as opaque; with translucent.shadows on, left out of its maps and shadowed through "
+      "(V tinted by their transmittance map)";
   /// Empty when this filter works with the given projection and light; otherwise the reason,
   /// shown to the user (a pair that cannot work is refused, never rendered wrong).
   virtual std::string incompatibility(std::string_view projectionId, const Light& light) const {

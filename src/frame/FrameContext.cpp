@@ -57,6 +57,7 @@ ShaderDefines FrameContext::frameDefines() const {
   if (allWarped != noneWarped) d.set("PN_VIEWS_WARPED", allWarped ? 1 : 0);
   d.set("PN_CASCADE_BLEND", viewCount() > 1 && mFrusta.blendBandM > 0.0f ? 1 : 0);
   if (mPages) d.merge(mPages->defines());
+  if (mColourVisibility) d.set("PN_VISIBILITY_RGB");
   return d;
 }
 
@@ -137,6 +138,35 @@ PassReads passReads(GLuint program) {
   return r;
 }
 
+/// The state every shadow pass draws its maps with, for its lifetime: clip z in [0, 1] is the
+/// window depth (what PN_LINEAR_RASTER_DEPTH's clip z, the linear light depth, needs; with
+/// gl_FragDepth written it does not matter), depth test LESS with writes, depth clamping, no
+/// culling, the map's viewport. The caller's clip control comes back after.
+class ShadowPassState {
+public:
+  explicit ShadowPassState(int mapSize) {
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &mDepthMode);
+    glGetIntegerv(GL_CLIP_ORIGIN, &mOrigin);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, mapSize, mapSize);
+  }
+  ~ShadowPassState() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_DEPTH_CLAMP);
+    glClipControl(static_cast<GLenum>(mOrigin), static_cast<GLenum>(mDepthMode));
+  }
+  ShadowPassState(const ShadowPassState&) = delete;
+  ShadowPassState& operator=(const ShadowPassState&) = delete;
+
+private:
+  GLint mDepthMode = GL_ZERO_TO_ONE, mOrigin = GL_LOWER_LEFT;
+};
+
 }  // namespace
 
 void FrameContext::ensureMaps(ShadowMapArray& maps, const std::string& label) {
@@ -145,18 +175,7 @@ void FrameContext::ensureMaps(ShadowMapArray& maps, const std::string& label) {
 }
 
 void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor) {
-  // Clip z in [0, 1] is the window depth: what PN_LINEAR_RASTER_DEPTH's clip z (the linear light
-  // depth) needs; with gl_FragDepth written it does not matter. The caller's mode comes back.
-  GLint depthMode = GL_ZERO_TO_ONE, origin = GL_LOWER_LEFT;
-  glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode);
-  glGetIntegerv(GL_CLIP_ORIGIN, &origin);
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_CLAMP);
-  glDisable(GL_CULL_FACE);
-  glViewport(0, 0, maps.size(), maps.size());
+  const ShadowPassState state(maps.size());
   const float clearDepth = 1.0f;
   // A pass that samples another map (depth peeling) depends on what the dynamic casters drew
   // there: it is never cached.
@@ -169,10 +188,8 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     for (const GLuint id : {programs.opaque->id(), programs.masked->id()}) pass.value(id);
     pass.value(clearColor);
     pass.value(mCasters.staticKey());
+    pass.value(static_cast<int>(mTranslucentCasters));
     mPages->render(*this, maps, programs.opaque->id(), programs.masked->id(), mCasters, pass.digest());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDisable(GL_DEPTH_CLAMP);
-    glClipControl(static_cast<GLenum>(origin), static_cast<GLenum>(depthMode));
     return;
   }
   const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures;
@@ -190,6 +207,7 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     common.value(clearColor);
     common.value(maps.size());
     common.value(mCasters.staticKey());
+    if (mTranslucentCasters != CasterSet::Translucent::AsOpaque) common.value(static_cast<int>(mTranslucentCasters));
     GLint shadowBlock = 0;
     glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
     glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
@@ -211,24 +229,56 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
       key = h.digest() | 1u;  // 0 means "nothing cached"
       if (maps.restoreCached(v, key)) {
         ++mMapCache->restored;
-        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic);
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic, mTranslucentCasters);
         continue;
       }
     }
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
     if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
     if (!cached) {
-      mCasters.draw(programs.opaque->id(), programs.masked->id());
+      mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, mTranslucentCasters);
       continue;
     }
-    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Static);
+    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Static, mTranslucentCasters);
     maps.storeCached(v, key);
     ++mMapCache->rendered;
-    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic);
+    mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic, mTranslucentCasters);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glDisable(GL_DEPTH_CLAMP);
-  glClipControl(static_cast<GLenum>(origin), static_cast<GLenum>(depthMode));
+}
+
+void FrameContext::renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent) {
+  const ShadowPassState state(maps.size());
+  const float clearDepth = 1.0f;
+  const glm::vec4 clearColor(1.0f);
+  for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
+    maps.markDrawn(v);
+    gl::Framebuffer& fb = maps.framebuffer(v);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    for (const ShadowPrograms* p : {&opaque, &translucent}) {
+      glProgramUniform1i(p->opaque->id(), PN_LOC_VIEW, v);
+      glProgramUniform1i(p->masked->id(), PN_LOC_VIEW, v);
+    }
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    mCasters.draw(opaque.opaque->id(), opaque.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Skip);
+    glDepthMask(GL_FALSE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_BLEND);
+    glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);          // colour: a product; alpha: the nearest depth
+    glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);  // MIN ignores the alpha factors
+    mCasters.draw(translucent.opaque->id(), translucent.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Only);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDepthMask(GL_TRUE);
+  }
+}
+
+void FrameContext::multiplyVisibility(const gl::Program& program) const {
+  PN_CHECK(!mPoints && !program.isCompute() && mVisibilityTarget != nullptr, "multiplyVisibility: a fragment pass over the screen");
+  mVisibilityTarget->draw(program, mScreen, ScreenTarget::Write::Multiply);
 }
 
 void FrameContext::setFilterBlockBytes(const void* data, size_t bytes) {

@@ -76,6 +76,12 @@ struct FrameResources {
   const ScreenTarget* visibilityTarget = nullptr;
   /// A paged projection's pages (marked for this frame); nullptr: whole maps.
   VirtualPages* pages = nullptr;
+  /// What the filter's maps hold of the translucent casters: drawn as opaque (the default), or
+  /// left out when the translucent add-on tints V by them (docs/translucent.md).
+  CasterSet::Translucent translucentCasters = CasterSet::Translucent::AsOpaque;
+  /// The visibility array holds RGB (RGBA32F, alpha unused) rather than one channel (R32F): the
+  /// screen passes are built with PN_VISIBILITY_RGB.
+  bool colourVisibility = false;
 };
 
 class FrameContext {
@@ -84,7 +90,8 @@ public:
       : mLight(r.light), mParams(r.params), mCasterGeometry(r.casterGeometry), mFrusta(r.frusta), mMapSize(r.mapSize), mScreen(r.screen),
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
         mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
-        mVisibilityTarget(r.visibilityTarget), mPages(r.pages) {}
+        mVisibilityTarget(r.visibilityTarget), mPages(r.pages), mTranslucentCasters(r.translucentCasters),
+        mColourVisibility(r.colourVisibility) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); none when the caller gave
   /// none. Only techniques that bake the geometry (sdf) need them.
@@ -138,8 +145,13 @@ public:
   /// the visibility pass, built like it: frameDefines(), the SurfaceSource, `params`' constants.
   const gl::Program& screenProgram(std::string_view file, const Parameterized& params);
   /// What the frame is made of, as compile-time constants (common/shadow.glsl): PN_SHADOW_VIEWS,
-  /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND.
+  /// PN_LIGHT_KIND, PN_VIEWS_PERSPECTIVE and PN_VIEWS_WARPED (when all views agree), PN_CASCADE_BLEND;
+  /// PN_VISIBILITY_RGB when the visibility array holds colour.
   ShaderDefines frameDefines() const;
+  /// The visibility array holds RGB (FrameResources::colourVisibility).
+  bool colourVisibility() const { return mColourVisibility; }
+  /// What the filter's maps hold of the translucent casters (FrameResources::translucentCasters).
+  CasterSet::Translucent translucentCasters() const { return mTranslucentCasters; }
   /// How the screen passes read the surfaces (common/visibility.glsl): PN_SURFACE_FROM_DEPTH,
   /// PN_NORMALS_FROM_POSITIONS, PN_CAMERA_ORTHOGRAPHIC, each where it holds.
   ShaderDefines surfaceDefines() const;
@@ -152,7 +164,18 @@ public:
   /// only the dynamic casters are drawn over it. A layer the frame keeps (FrameResources::
   /// keptViews) is left as it is, once it has been drawn. Paged views: the pages the frame
   /// needs that are not resident and valid are drawn into their tiles (VirtualPages::render).
+  /// The translucent casters are drawn as FrameResources::translucentCasters says (as opaque,
+  /// or left out).
   void renderViews(ShadowMapArray& maps, const ShadowPrograms& programs, const glm::vec4& clearColor = glm::vec4(1.0f));
+  /// The translucent add-on's maps: per view, the opaque casters' depth (`opaque`, colour writes
+  /// off), then the translucent casters drawn with `translucent` over it, depth-tested and not
+  /// writing depth, their colour output multiplied into RGB and their alpha output kept by its
+  /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). Drawn every frame
+  /// (not cached; kept views are drawn again with the view they were drawn with).
+  void renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent);
+  /// Draws the full-screen fragment `program` (a visibilityProgram) into the light's visibility
+  /// layer, multiplying what the visibility pass wrote there, channel by channel.
+  void multiplyVisibility(const gl::Program& program) const;
 
   /// Uploads the filter's uniform block (bound at PN_UBO_FILTER for the rest of the frame).
   template <class T> void setFilterBlock(const T& block) { setFilterBlockBytes(&block, sizeof(T)); }
@@ -197,6 +220,8 @@ private:
   std::span<const uint8_t> mKeptViews;
   const ScreenTarget* mVisibilityTarget;
   VirtualPages* mPages;
+  CasterSet::Translucent mTranslucentCasters;
+  bool mColourVisibility;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

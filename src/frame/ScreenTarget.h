@@ -23,11 +23,15 @@ public:
   ScreenTarget(std::string_view label, const gl::Texture& texture, int layer = -1);
   explicit operator bool() const { return static_cast<bool>(mFramebuffer); }
 
+  /// How a pass's output meets what the target holds: replaces it, or multiplies it (a factor
+  /// applied to what an earlier pass wrote: the translucent casters' tint over V).
+  enum class Write { Replace, Multiply };
   /// Runs `program` (a fullScreenProgram) once per pixel of the size × size region at the
-  /// target's origin: binds the framebuffer and the viewport, turns the depth test, culling and
-  /// blending off, draws, and leaves framebuffer 0 and vertex array 0 bound. Followed by a memory
-  /// barrier, as a dispatch is, for what the pass wrote through images (debug outputs).
-  void draw(const gl::Program& program, glm::ivec2 size) const;
+  /// target's origin: binds the framebuffer and the viewport, turns the depth test and culling
+  /// off and blending off (Multiply: on, destination × source, left off after), draws, and
+  /// leaves framebuffer 0 and vertex array 0 bound. Followed by a memory barrier, as a dispatch
+  /// is, for what the pass wrote through images (debug outputs).
+  void draw(const gl::Program& program, glm::ivec2 size, Write write = Write::Replace) const;
 
 private:
   gl::Framebuffer mFramebuffer;

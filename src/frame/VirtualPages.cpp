@@ -202,7 +202,6 @@ void VirtualPages::mark(FrameContext& frame) {
 
 void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaqueProgram, GLuint maskedProgram,
                           const CasterSet& casters, uint64_t passKey) {
-  (void)frame;
   // A new pass (programs, static casters) or new pool storage: this frame's pages are drawn anew, the others dropped.
   Hasher h;
   h.value(passKey);
@@ -266,17 +265,17 @@ void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaq
     if (d.whole) {
       glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
       if (mKeepStatic) {
-        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Static, mCasterMask);
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Static, frame.translucentCasters(), mCasterMask);
         glCopyImageSubData(pool.depth().id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty, layer, mStaticCopy.id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty,
                            layer, ps, ps, 1);
-        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, mCasterMask);
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, frame.translucentCasters(), mCasterMask);
       } else {
-        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::All, mCasterMask);
+        casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::All, frame.translucentCasters(), mCasterMask);
       }
     } else {
       glCopyImageSubData(mStaticCopy.id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty, layer, pool.depth().id(), GL_TEXTURE_2D_ARRAY, 0, tx, ty,
                          layer, ps, ps, 1);
-      casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, mCasterMask);
+      casters.draw(opaqueProgram, maskedProgram, CasterSet::Which::Dynamic, frame.translucentCasters(), mCasterMask);
     }
     t.valid = true;
     t.dynamicStale = false;

@@ -176,6 +176,7 @@ std::vector<CasterMesh> GpuScene::casterMeshes(const Scene& scene) const {
     m.worldFromObject = o.worldFromObject;
     m.objectBounds = scene.meshes[o.mesh].bounds();
     m.dynamic = moving[i] || o.dynamic;  // animated or declared dynamic (cached maps keep the rest)
+    m.transmittance = mat.transmittance;
     if (mat.alphaMask && mat.baseColorTexture >= 0 && layout.uv) {
       m.alphaTexture = d.texture;
       m.alphaCutoff = mat.alphaCutoff;

@@ -249,8 +249,9 @@ void Renderer::render(const RenderOptions& options) {
   for (const auto& entry : lit.ms) im.timings.ms.push_back(entry);
 }
 
-void Renderer::runLitPass() {
+void Renderer::runLitPass(const gl::Texture* visibility, bool colour) {
   Impl& im = *mImpl;
+  if (!visibility) colour = im.shadows.visibilityHasColour();
   ProgramDesc d;
   d.label = "lit";
   d.fragment = {"passes/lit.glsl"};
@@ -262,6 +263,7 @@ void Renderer::runLitPass() {
   if (std::none_of(im.scene.lights.begin(), im.scene.lights.end(), [](const Light& l) { return isPositional(l); }))
     d.defines.set("PN_ONLY_SUNS");
   if (im.debugView != PN_VIEW_SHADED && im.shadows.lightCount() > 0) d.defines.merge(ShadowsAccess::viewDefines(im.shadows, 0));
+  if (colour) d.defines.set("PN_VISIBILITY_RGB");
   const gl::Program& program = shaders().program(fullScreenProgram(d));
   std::vector<gpu::LightGpu> lights;
   for (const Light& l : im.scene.lights) lights.push_back(core::lightGpu(l));
@@ -272,7 +274,7 @@ void Renderer::runLitPass() {
   im.position.bindUnit(PN_TEX_GBUF_POSITION);
   im.normal.bindUnit(PN_TEX_GBUF_NORMAL);
   im.albedo.bindUnit(PN_TEX_GBUF_ALBEDO);
-  glBindTextureUnit(PN_TEX_VISIBILITY, im.shadows.visibilityArrayTexture());
+  glBindTextureUnit(PN_TEX_VISIBILITY, visibility ? visibility->id() : im.shadows.visibilityArrayTexture());
   bindFrameBlocks(im.shadows);  // the shadow views: cascade and texel-density debug views
   im.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
   glDisable(GL_DITHER);  // the colour is written as computed, as an image store would
@@ -308,21 +310,37 @@ std::vector<float> Renderer::computeScreenScalar(const std::string& computeShade
   return v;
 }
 
-ColorImage Renderer::shadeWithVisibility(const std::vector<std::vector<float>>& perLight) {
+ColorImage Renderer::shadeWithVisibility(const std::vector<std::vector<float>>& perLight,
+                                         const std::vector<std::vector<glm::vec3>>& perLightRgb) {
   Impl& im = *mImpl;
   const size_t n = static_cast<size_t>(im.size.x) * static_cast<size_t>(im.size.y);
   PN_CHECK(perLight.size() == lightCount(), fmt::format("shadeWithVisibility: {} visibilities for {} lights", perLight.size(), lightCount()));
-  const GLuint array = im.shadows.visibilityArrayTexture();
-  const auto upload = [&](size_t layer, const std::vector<float>& v) {
-    PN_CHECK(v.size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", v.size(), im.size.x, im.size.y));
-    glTextureSubImage3D(array, 0, 0, 0, static_cast<GLint>(layer), im.size.x, im.size.y, 1, GL_RED, GL_FLOAT, v.data());
-  };
-  std::vector<std::vector<float>> own;
-  for (size_t i = 0; i < perLight.size(); ++i) own.push_back(readVisibility(i));
-  for (size_t i = 0; i < perLight.size(); ++i) upload(i, perLight[i]);
-  runLitPass();
+  PN_CHECK(perLightRgb.empty() || perLightRgb.size() == perLight.size(),
+           fmt::format("shadeWithVisibility: {} colour visibilities for {} lights", perLightRgb.size(), perLight.size()));
+  const bool colour = std::any_of(perLightRgb.begin(), perLightRgb.end(), [](const auto& v) { return !v.empty(); });
+  // The lit pass reads an array of the caller's values (the frame's own V stays as it is).
+  gl::Texture array("shaded visibility", {GL_TEXTURE_2D_ARRAY, static_cast<GLenum>(colour ? GL_RGBA32F : GL_R32F), im.size.x, im.size.y,
+                                          static_cast<int>(perLight.size()), 1});
+  array.setSampling(GL_NEAREST, GL_NEAREST);
+  for (size_t i = 0; i < perLight.size(); ++i) {
+    PN_CHECK(perLight[i].size() == n, fmt::format("shadeWithVisibility: {} values for a {}x{} frame", perLight[i].size(), im.size.x, im.size.y));
+    const void* data = perLight[i].data();
+    GLenum format = GL_RED;
+    std::vector<glm::vec3> grey;
+    if (colour && i < perLightRgb.size() && !perLightRgb[i].empty()) {
+      PN_CHECK(perLightRgb[i].size() == n, fmt::format("shadeWithVisibility: {} colour values for a {}x{} frame", perLightRgb[i].size(), im.size.x, im.size.y));
+      data = perLightRgb[i].data();
+      format = GL_RGB;
+    } else if (colour) {  // a light without colour: its one value in every channel
+      grey.resize(n);
+      std::transform(perLight[i].begin(), perLight[i].end(), grey.begin(), [](float v) { return glm::vec3(v); });
+      data = grey.data();
+      format = GL_RGB;
+    }
+    glTextureSubImage3D(array.id(), 0, 0, 0, static_cast<GLint>(i), im.size.x, im.size.y, 1, format, GL_FLOAT, data);
+  }
+  runLitPass(&array, colour);
   ColorImage out = readColor();
-  for (size_t i = 0; i < own.size(); ++i) upload(i, own[i]);
   runLitPass();
   return out;
 }
@@ -352,6 +370,8 @@ std::vector<DebugImage> Renderer::debugImages(size_t light) const {
 }
 
 std::vector<float> Renderer::readVisibility(size_t light) const { return mImpl->shadows.readVisibility(light); }
+
+std::vector<glm::vec3> Renderer::readVisibilityRgb(size_t light) const { return mImpl->shadows.readVisibilityRgb(light); }
 
 GBufferData Renderer::readGBuffer() const {
   GBufferData g;

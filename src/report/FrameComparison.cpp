@@ -38,6 +38,7 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     l.type = lights[i].type;
     l.castsShadow = lights[i].castsShadow;
     l.visibility = renderer.readVisibility(i);
+    l.visibilityRgb = renderer.readVisibilityRgb(i);
     l.map = renderer.shadows().lightReports().at(i);
     if (l.castsShadow) l.metrics = compareVisibility(l.visibility, refs[i].visibility, refs[i].litMask, gbuffer.width);
     c.lights.push_back(std::move(l));
@@ -54,9 +55,12 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
   if (images) {
     c.technique = renderer.readColor();
     std::vector<std::vector<float>> refVisibility;
-    for (size_t i = 0; i < lights.size(); ++i)
+    std::vector<std::vector<glm::vec3>> refRgb;  // a reference in colour (translucent casters) shades in colour
+    for (size_t i = 0; i < lights.size(); ++i) {
       refVisibility.push_back(c.lights[i].castsShadow ? refs[i].visibility : c.lights[i].visibility);
-    c.reference = renderer.shadeWithVisibility(refVisibility);
+      refRgb.push_back(c.lights[i].castsShadow ? refs[i].visibilityRgb : std::vector<glm::vec3>{});
+    }
+    c.reference = renderer.shadeWithVisibility(refVisibility, refRgb);
     c.heatmap = errorHeatmap(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width, gbuffer.height, &c.technique,
                              kLabHeatmap);
   }

@@ -21,7 +21,10 @@ struct LightComparison {
   size_t index = 0;
   LightType type = LightType::Directional;
   bool castsShadow = true;        ///< false: V = 1 by contract; left out of the combination
-  std::vector<float> visibility;  ///< the light's V (row 0 = bottom)
+  std::vector<float> visibility;  ///< the light's V (row 0 = bottom; the channels' mean where V has colour)
+  /// The light's V per channel where the frame's V has colour (Shadows::visibilityHasColour);
+  /// empty otherwise.
+  std::vector<glm::vec3> visibilityRgb;
   VisibilityMetrics metrics;      ///< V against V_ref over the light's litMask
   LightShadowReport map;          ///< what the shadow budget gave it
 };

@@ -24,6 +24,7 @@
 #include "shadows/folder/FolderTechnique.h"
 #include "shadows/sdf/SdfFilter.h"
 #include "shadows/temporal/TemporalAccumulation.h"
+#include "shadows/translucent/TranslucentShadows.h"
 
 #include <penumbra/Error.h>
 
@@ -131,6 +132,7 @@ std::vector<std::string> projectionIds() { return ids(projections()); }
 std::vector<std::string> filterIds() { return ids(filters()); }
 std::string_view projectionDescription(std::string_view id) { return prototype(projections(), id, "projection").description(); }
 std::string_view filterDescription(std::string_view id) { return prototype(filters(), id, "filter").description(); }
+std::string_view filterTranslucentCasters(std::string_view id) { return prototype(filters(), id, "filter").translucentCasters(); }
 std::span<const ParamDesc> projectionParams(std::string_view id) { return prototype(projections(), id, "projection").paramDescs(); }
 std::span<const ParamDesc> filterParams(std::string_view id) { return prototype(filters(), id, "filter").params(); }
 
@@ -229,7 +231,8 @@ std::string resolveFilter(std::string_view text) {
 
 std::span<const AddOnGroup> addOnGroups() {
   static const AddOnGroup groups[] = {{"Contact shadows", ContactShadows::params()},
-                                      {"Temporal accumulation", TemporalAccumulation::params()}};
+                                      {"Temporal accumulation", TemporalAccumulation::params()},
+                                      {"Translucent shadows", TranslucentShadows::params()}};
   return groups;
 }
 

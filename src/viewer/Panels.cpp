@@ -325,7 +325,11 @@ void Viewer::drawParams(size_t first, size_t last) {
     unsigned lightBits = 0;  // the kinds of light that cast shadows here: other kinds' parameters change nothing
     for (const Light& l : mSession.scene().lights)
       if (l.castsShadow) lightBits |= lightKindBit(l.type);
+    // An add-on that is off shows its switch alone (its other parameters change nothing then).
+    const bool addOnOff = i > kTechniqueTabGroups && !g.descs.empty() && g.descs.front().choices.size() == 2 &&
+                          mSession.paramValue(g.descs.front()) == 0.0f;
     for (const ParamDesc& d : g.descs) {
+      if (addOnOff && &d != &g.descs.front()) break;
       float value = 0.0f;
       const std::string_view unit = unitFor(d, mSession.scene());
       const bool idle = (d.lights & lightBits) == 0;

@@ -480,7 +480,10 @@ void Viewer::flipReference() {
 
 void Viewer::setView(ViewState& view, const std::string& name, const char* slot) {
   view.name = name;
-  view.seen = name == kNoInset || findView(name) != nullptr;
+  const gl::Texture* t = name == kNoInset ? nullptr : findView(name);
+  view.seen = name == kNoInset || t != nullptr;
+  // V in colour (translucent casters tint it: an RGBA32F layer) is shown as colour.
+  if (t && t->desc().format == GL_RGBA32F && name == "visibility") view.settings.channel = DisplaySettings::kChannelRgb;
   setStatus(fmt::format("{}: {}", slot, name), false);
 }
 

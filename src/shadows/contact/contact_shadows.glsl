@@ -15,7 +15,7 @@
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std140, binding = PN_UBO_FILTER) uniform ContactBlock { ContactUniforms u_contact; };
-layout(binding = PN_IMG_VISIBILITY, r32f) uniform image2D i_visibility;
+layout(binding = PN_IMG_VISIBILITY, PN_VISIBILITY_FORMAT) uniform image2D i_visibility;
 
 // How far (m) p lies behind the surface drawn at pixel q, along the camera ray through p: the
 // ray is met with q's surface plane (its position and normal), not with q's centre depth, so the
@@ -61,8 +61,8 @@ float contactHitM(vec3 ws, vec3 n, ivec2 px) {
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
-  float v = imageLoad(i_visibility, px).r;
-  if (v <= 0.0) return;  // already dark (or facing away): nothing to add
+  VisibilityValue v = visibilityOfTexel(imageLoad(i_visibility, px));
+  if (all(lessThanEqual(vec3(v), vec3(0.0)))) return;  // already dark (or facing away): nothing to add
   vec4 pos = surfacePosition(px);
   if (pos.w < 0.5) return;
   vec3 n = normalize(surfaceGeoNormal(px, pos.xyz));
@@ -71,5 +71,6 @@ void main() {
   // casts a wider penumbra (and is the shadow map's to resolve), so a hard V = 0 there would
   // paint a dark band over soft shadows.
   const float kFadeStart = 0.5;  // share of the march over which the contact stays fully dark
-  if (hitM >= 0.0) imageStore(i_visibility, px, vec4(min(v, smoothstep(kFadeStart, 1.0, hitM / u_contact.march.x))));
+  if (hitM >= 0.0)
+    imageStore(i_visibility, px, visibilityTexel(min(v, VisibilityValue(smoothstep(kFadeStart, 1.0, hitM / u_contact.march.x)))));
 }

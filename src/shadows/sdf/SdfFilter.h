@@ -20,6 +20,10 @@ public:
   std::string_view description() const override {
     return "sphere-traced signed distance field of the casters (baked per scene, no shadow map); k from the light size or set";
   }
+  /// Its field is baked from every caster's triangles (CasterGeometry carries no transmittance).
+  std::string_view translucentCasters() const override {
+    return "treated as opaque, with translucent.shadows on too (the field is baked from every caster's triangles)";
+  }
   /// Refused when no baker is installed (sdf::setBaker): Penumbra::shadows has none of its own.
   std::string incompatibility(std::string_view projectionId, const Light& light) const override;
   /// Uploads the casters' field as an R32F 3D texture the first time, and again only when the

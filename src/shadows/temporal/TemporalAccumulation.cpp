@@ -70,9 +70,12 @@ void TemporalAccumulation::apply(FrameContext& frame, const Parameterized& addOn
                                  uint64_t techniqueKey) {
   PN_ASSERT(mSurface);
   const glm::ivec2 screen = frame.screen();
-  if (!history.images[0] || history.images[0].width() != screen.x || history.images[0].height() != screen.y) {
+  // The history holds what the visibility array does: one channel, or RGB (translucent casters).
+  const GLenum format = static_cast<GLenum>(frame.colourVisibility() ? GL_RGBA32F : GL_R32F);
+  if (!history.images[0] || history.images[0].width() != screen.x || history.images[0].height() != screen.y ||
+      history.images[0].desc().format != format) {
     for (int i = 0; i < 2; ++i) {
-      history.images[i] = gl::Texture(i == 0 ? "temporal history 0" : "temporal history 1", {GL_TEXTURE_2D, GL_R32F, screen.x, screen.y, 1, 1});
+      history.images[i] = gl::Texture(i == 0 ? "temporal history 0" : "temporal history 1", {GL_TEXTURE_2D, format, screen.x, screen.y, 1, 1});
       history.images[i].setSampling(GL_NEAREST, GL_NEAREST);
     }
     history.valid = false;

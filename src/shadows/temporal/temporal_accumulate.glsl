@@ -15,8 +15,8 @@
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std140, binding = PN_UBO_FILTER) uniform TemporalBlock { TemporalUniforms u_temporal; };
-layout(binding = PN_IMG_VISIBILITY, r32f) uniform readonly image2D i_visibility;  // this frame's V
-layout(binding = PN_IMG_OUTPUT, r32f) uniform writeonly image2D i_accumulated;
+layout(binding = PN_IMG_VISIBILITY, PN_VISIBILITY_FORMAT) uniform readonly image2D i_visibility;  // this frame's V
+layout(binding = PN_IMG_OUTPUT, PN_VISIBILITY_FORMAT) uniform writeonly image2D i_accumulated;
 layout(binding = PN_TEX_HISTORY) uniform sampler2D s_history;  // this light's V of the frames before
 layout(binding = PN_TEX_PREVIOUS_SURFACE) uniform sampler2D s_previousSurface;
 layout(binding = PN_TEX_PREVIOUS_NORMAL) uniform sampler2D s_previousNormal;
@@ -28,14 +28,15 @@ const float kMinNormalCos = 0.9;  // 26 degrees
 
 // The history at ws (bilinear over the texels whose previous surface lies on ws's tangent
 // plane); false when none does or ws was off the previous screen.
-bool reprojectedHistory(vec3 ws, vec3 n, out float history) {
+bool reprojectedHistory(vec3 ws, vec3 n, out VisibilityValue history) {
   vec4 clip = u_temporal.previousClipFromWorld * vec4(ws, 1.0);
   if (clip.w <= 0.0) return false;
   vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * vec2(u_frame.screen.xy) - 0.5;  // texel-centre coordinates
   ivec2 base = ivec2(floor(at));
   vec2 f = at - vec2(base);
   float toleranceM = u_temporal.blend.y * u_temporal.blend.z * pixelScaleAt(ws);
-  float sum = 0.0, weightSum = 0.0;
+  VisibilityValue sum = VisibilityValue(0.0);
+  float weightSum = 0.0;
   for (int i = 0; i < 4; ++i) {
     ivec2 q = base + ivec2(i & 1, i >> 1);
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_frame.screen.xy))) continue;
@@ -44,7 +45,7 @@ bool reprojectedHistory(vec3 ws, vec3 n, out float history) {
         dot(texelFetch(s_previousNormal, q, 0).xyz, n) < kMinNormalCos)
       continue;
     float w = ((i & 1) == 1 ? f.x : 1.0 - f.x) * ((i >> 1) == 1 ? f.y : 1.0 - f.y);
-    sum += w * texelFetch(s_history, q, 0).r;
+    sum += w * visibilityOfTexel(texelFetch(s_history, q, 0));
     weightSum += w;
   }
   const float kMinWeight = 1e-3;  // below it the surviving texels are too far off to interpolate from
@@ -53,15 +54,16 @@ bool reprojectedHistory(vec3 ws, vec3 n, out float history) {
   return true;
 }
 
-// The history held to the range of this frame's V around px.
-float clampToNeighbourhood(float history, ivec2 px) {
+// The history held to the range of this frame's V around px (per channel).
+VisibilityValue clampToNeighbourhood(VisibilityValue history, ivec2 px) {
   int mode = int(u_temporal.clip.x);
   if (mode == PN_TEMPORAL_CLAMP_OFF) return history;
-  float lo = 1.0, hi = 0.0, sum = 0.0, sumSq = 0.0, count = 0.0;
+  VisibilityValue lo = VisibilityValue(1.0), hi = VisibilityValue(0.0), sum = VisibilityValue(0.0), sumSq = VisibilityValue(0.0);
+  float count = 0.0;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = clamp(px + ivec2(dx, dy), ivec2(0), u_frame.screen.xy - 1);
-      float v = imageLoad(i_visibility, q).r;
+      VisibilityValue v = visibilityOfTexel(imageLoad(i_visibility, q));
       lo = min(lo, v);
       hi = max(hi, v);
       sum += v;
@@ -70,8 +72,8 @@ float clampToNeighbourhood(float history, ivec2 px) {
     }
   }
   if (mode == PN_TEMPORAL_CLAMP_VARIANCE) {
-    float mean = sum / count;
-    float sigma = sqrt(max(sumSq / count - mean * mean, 0.0));
+    VisibilityValue mean = sum / count;
+    VisibilityValue sigma = sqrt(max(sumSq / count - mean * mean, VisibilityValue(0.0)));
     lo = max(lo, mean - u_temporal.clip.y * sigma);
     hi = min(hi, mean + u_temporal.clip.y * sigma);
   }
@@ -81,9 +83,9 @@ float clampToNeighbourhood(float history, ivec2 px) {
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, u_frame.screen.xy))) return;
-  float v = imageLoad(i_visibility, px).r;
+  VisibilityValue v = visibilityOfTexel(imageLoad(i_visibility, px));
   vec4 pos = surfacePosition(px);
-  float history;
+  VisibilityValue history;
   if (pos.w > 0.5 && u_temporal.blend.w > 0.5 &&
       reprojectedHistory(pos.xyz, normalize(surfaceGeoNormal(px, pos.xyz)), history))
   {
@@ -92,8 +94,9 @@ void main() {
     // once, over a short ramp past the threshold: beside an edge the clamp's range is all of [0, 1].
     const float kSnapRampV = 0.25;
     float snap = u_temporal.clip.z;
-    float weight = mix(u_temporal.blend.x, 1.0, smoothstep(snap, snap + kSnapRampV, abs(v - history)));
+    VisibilityValue weight = mix(VisibilityValue(u_temporal.blend.x), VisibilityValue(1.0),
+                                 smoothstep(snap, snap + kSnapRampV, abs(v - history)));
     v = mix(history, v, weight);
   }
-  imageStore(i_accumulated, px, vec4(v));
+  imageStore(i_accumulated, px, visibilityTexel(v));
 }

@@ -1,0 +1,138 @@
+// The translucent add-on (translucent.*, docs/translucent.md) on `glass`: under the tinted pane
+// (transmittance 0.85, 0.45, 0.3) the sun's light is tinted, not blocked. The shadow's red/green
+// ratio of V must lie within 10 % of the RGB reference's, with the hard and the pcf filter; the
+// same filters without the add-on draw the pane as opaque, V there is 0 in every channel, and the
+// same check fails. Opaque scenes: the add-on on changes no bit of V or of the image, and V keeps
+// one channel.
+#include "GlFixture.h"
+#include "ReferenceKnownAnswers.h"
+
+#include <penumbra/Reference.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 90;
+constexpr int kMapSize = 512;
+constexpr int kSamples = 16;            // a sun 0.01 rad wide: the pane's umbra needs few
+constexpr float kHueTolerance = 0.10f;  // the red/green ratio, relative
+const glm::vec3 kPane(0.85f, 0.45f, 0.3f);  // the tinted pane's transmittance (BuiltinScenes.cpp)
+constexpr float kPaneMatch = 0.02f;          // per channel: a pixel the pane alone shades, by the reference
+constexpr double kFrameRedder = 1.015;  // the frame's red/green under the pane, tinted V over grey V (measured 1.026: tone mapping compresses)
+
+struct Hue {
+  size_t pixels = 0;
+  double redOverGreen = 0.0;  ///< Σ V_r / Σ V_g over those pixels (1 where both are 0: no hue)
+};
+
+// The red/green ratio of `v` over the pixels whose reference V is the pane's transmittance.
+Hue hueUnderThePane(const std::vector<glm::vec3>& v, const ReferenceResult& ref) {
+  double r = 0.0, g = 0.0;
+  Hue h;
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!ref.litMask[i] || glm::any(glm::greaterThan(glm::abs(ref.visibilityRgb[i] - kPane), glm::vec3(kPaneMatch)))) continue;
+    r += v[i].r;
+    g += v[i].g;
+    ++h.pixels;
+  }
+  constexpr double kNone = 1e-6;
+  h.redOverGreen = (r + kNone) / (g + kNone);
+  return h;
+}
+
+std::vector<glm::vec3> colourOf(const Renderer& renderer) {
+  std::vector<glm::vec3> rgb = renderer.readVisibilityRgb();
+  if (!rgb.empty()) return rgb;
+  const std::vector<float> v = renderer.readVisibility();
+  for (float x : v) rgb.push_back(glm::vec3(x));
+  return rgb;
+}
+
+RenderOptions small() {
+  RenderOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  return o;
+}
+
+}  // namespace
+
+TEST(TranslucentShadows, TheTintedPanesShadowKeepsTheReferencesHue) {
+  const Scene glass = makeBuiltinScene("glass");
+  for (const std::string filter : {"hard", "pcf"}) {
+    SCOPED_TRACE(filter);
+    const auto on = makeTestRenderer(glass, "uniform", filter, {{"translucent.shadows", "on"}}, kMapSize);
+    on->render(small());
+    ASSERT_TRUE(on->shadows().visibilityHasColour());
+    const GBufferData gbuffer = on->readGBuffer();
+    const ReferenceResult ref = ReferenceTracer(glass).trace(gbuffer, glass.lights.front(), quiet(kSamples));
+    ASSERT_FALSE(ref.visibilityRgb.empty());
+    const Hue reference = hueUnderThePane(ref.visibilityRgb, ref);
+    ASSERT_GT(reference.pixels, 100u) << "the pane's shadow is in view";
+    EXPECT_NEAR(reference.redOverGreen, kPane.r / kPane.g, 1e-3);
+
+    const Hue tinted = hueUnderThePane(colourOf(*on), ref);
+    EXPECT_NEAR(tinted.redOverGreen / reference.redOverGreen, 1.0, kHueTolerance) << "red/green " << tinted.redOverGreen;
+
+    // Without the add-on the pane is opaque: its shadow is black, no hue, and the check fails.
+    const auto off = makeTestRenderer(glass, "uniform", filter, {}, kMapSize);
+    off->render(small());
+    EXPECT_FALSE(off->shadows().visibilityHasColour());
+    const Hue opaque = hueUnderThePane(colourOf(*off), ref);
+    EXPECT_GT(std::abs(opaque.redOverGreen / reference.redOverGreen - 1.0), kHueTolerance);
+
+    // The lit pass shades with the colour V: under the pane the frame is redder than the same
+    // frame shaded with V's channel mean (one channel, the same brightness).
+    const ColorImage tintedImage = on->readColor();
+    const ColorImage greyImage = on->shadeWithVisibility(on->readVisibility());
+    double tintedR = 0.0, tintedG = 0.0, greyR = 0.0, greyG = 0.0;
+    for (size_t i = 0; i < ref.visibilityRgb.size(); ++i) {
+      if (!ref.litMask[i] || glm::any(glm::greaterThan(glm::abs(ref.visibilityRgb[i] - kPane), glm::vec3(kPaneMatch)))) continue;
+      tintedR += tintedImage.rgba[4 * i];
+      tintedG += tintedImage.rgba[4 * i + 1];
+      greyR += greyImage.rgba[4 * i];
+      greyG += greyImage.rgba[4 * i + 1];
+    }
+    std::printf("[ %s ] red/green of V under the pane %.4f (reference %.4f, opaque %.4f); of the frame %.3f, shaded grey %.3f\n",
+                filter.c_str(), tinted.redOverGreen, reference.redOverGreen, opaque.redOverGreen, tintedR / tintedG, greyR / greyG);
+    EXPECT_GT(tintedR / tintedG, kFrameRedder * (greyR / greyG));
+  }
+}
+
+TEST(TranslucentShadows, ContactAndTemporalKeepTheColour) {
+  // The passes after the filter read and write the colour V: the tint survives them.
+  const Scene glass = makeBuiltinScene("glass");
+  const auto r = makeTestRenderer(glass, "uniform", "pcf",
+                                  {{"translucent.shadows", "on"}, {"contact.shadows", "on"}, {"temporal.alpha", "0.5"},
+                                   {"temporal.accumulate", "on"}},
+                                  kMapSize);
+  for (int frame = 0; frame < 3; ++frame) r->render(small());
+  ASSERT_TRUE(r->shadows().visibilityHasColour());
+  const ReferenceResult ref = ReferenceTracer(glass).trace(r->readGBuffer(), glass.lights.front(), quiet(kSamples));
+  const Hue tinted = hueUnderThePane(colourOf(*r), ref);
+  ASSERT_GT(tinted.pixels, 100u);
+  EXPECT_NEAR(tinted.redOverGreen / (kPane.r / kPane.g), 1.0, kHueTolerance);
+}
+
+TEST(TranslucentShadows, OpaqueScenesAreUnchangedByTheAddOn) {
+  for (const std::string name : {"boxes", "fence", "room"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    const auto plain = makeTestRenderer(scene, "uniform", "pcf", {}, kMapSize);
+    const auto with = makeTestRenderer(scene, "uniform", "pcf", {{"translucent.shadows", "on"}}, kMapSize);
+    plain->render(small());
+    with->render(small());
+    EXPECT_FALSE(with->shadows().visibilityHasColour());
+    EXPECT_TRUE(with->readVisibilityRgb().empty());
+    for (size_t l = 0; l < scene.lights.size(); ++l) EXPECT_EQ(plain->readVisibility(l), with->readVisibility(l)) << "light " << l;
+    EXPECT_EQ(plain->readColor().rgba, with->readColor().rgba);
+    EXPECT_EQ(plain->shadows().techniqueMemoryBytes(), with->shadows().techniqueMemoryBytes());
+  }
+}
