@@ -186,9 +186,12 @@ TEST(ViewerCli, NoGlObjectGrowthOver1000FramesOfTechniqueSwitching) {
   const std::string dir = freshDir("viewer-objects");
   // One frame per technique pair: the first cycle creates every program the later ones use
   // (the shader cache keeps programs for the whole run, by design).
+  // pen's light is a spot, which the virtual projection refuses (it pages suns only): its pairs
+  // would be refused, not shown.
   std::vector<std::pair<std::string, std::string>> pairs;
   for (const std::string& p : projectionIds())
-    for (const std::string& f : filterIds()) pairs.emplace_back(p, f);
+    if (p != "virtual")
+      for (const std::string& f : filterIds()) pairs.emplace_back(p, f);
   // Options with which a filter makes GL objects of its own (the hardware comparison sampler,
   // SAT vs mip textures, another storage format, other program variants). Each filter's value
   // follows the projection it is shown with, so every cycle goes through every value and the
