@@ -20,7 +20,6 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text);
 /// Writes the byte blocks one after another to a file atomically (e.g. a cache's header, then
 /// its payload).
 void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks);
-void writeBinaryFile(const std::filesystem::path& path, std::span<const std::span<const char>> blocks);
 
 /// Checks, before any work, that a file can be written at `path` as the writers above would:
 /// the path is not empty and names no folder, disk or socket; a device or FIFO is writable;
