@@ -20,6 +20,7 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text);
 /// Writes the byte blocks one after another to a file atomically (e.g. a cache's header, then
 /// its payload).
 void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks);
+void writeBinaryFile(const std::filesystem::path& path, std::span<const std::span<const char>> blocks);
 
 /// Checks, before any work, that a file can be written at `path` as the writers above would:
 /// the path is not empty and names no folder, disk or socket; a device or FIFO is writable;
@@ -67,9 +68,6 @@ void checkCacheFolder(const std::filesystem::path& dir);
 /// The folder's entries, interrupted writes first, then least recently used first (an empty list
 /// when the folder is missing).
 std::vector<CacheEntry> listCacheEntries(const std::filesystem::path& dir);
-/// An entry's bytes; nothing when it is missing, not a regular file (a folder in its place) or
-/// cannot be read. Never throws: a cache that cannot be read is a miss.
-std::optional<std::vector<char>> readCacheEntry(const std::filesystem::path& entry);
 /// Marks an entry as just used. A failure (a read-only folder) is ignored: reading still works.
 void touchCacheEntry(const std::filesystem::path& entry);
 /// Removes entries in listCacheEntries' order until the rest total at most maxBytes; returns

@@ -1,9 +1,10 @@
-// The on-disk cache of baked SDFs: one file per key, "<dir>/sdf-<key>.bin", written to a unique
-// temporary name and renamed, so a reader never sees half a file. A file that fails any check
-// (size, magic, version, key, dimensions, the hash of every other byte) is ignored and baked over.
+// The on-disk cache of baked SDFs: one file per key, "<dir>/sdf-<key>.bin", in the format every
+// cache entry has (base/CacheRecord.h), written to a unique temporary name and renamed, so a reader
+// never sees half a file. A file that fails any check (size, magic, kind, version, key, dimensions,
+// the hash of every other byte) is ignored and baked over.
 #include "bake/SdfBake.h"
 
-#include "base/Hash.h"
+#include "base/CacheRecord.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Files.h>
@@ -23,60 +24,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kMagic[8] = {'P', 'N', 'S', 'D', 'F', 'B', 'I', 'N'};
+constexpr std::string_view kKind = "sdf";
 
-// Fixed-size header; the payload follows: dims.x·dims.y·dims.z floats (x fastest), then the
-// sheets' vertices (3 floats each, three vertices per triangle). Native
-// (little-endian) order: the cache is local to one machine.
-struct Header {
-  char magic[8];
-  uint32_t codeVersion;
+// Block 0 of an entry (base/CacheRecord.h); then the distances (dims.x·dims.y·dims.z floats, x
+// fastest) and the sheets' vertices (three a triangle).
+struct Record {
   int32_t dims[3];
-  uint64_t key;
   float lo[3];
   float voxelM;
+  uint32_t sheetTriangles;
   uint64_t triangles;
   double bakeSeconds;
-  uint64_t hash;  ///< of the header (this field 0) and the payload: no byte of the file goes unchecked
-  uint32_t sheetTriangles;
-  uint32_t reserved;  // 0; keeps the size a multiple of 8 without compiler padding
 };
-static_assert(sizeof(Header) == 80, "the header has no padding: every byte is written");
-
-size_t voxelCount(const int32_t dims[3]) {
-  return static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]) * static_cast<size_t>(dims[2]);
-}
+static_assert(sizeof(Record) == 48, "the record has no padding: every byte is written");
 
 std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
-  const std::optional<std::vector<char>> read = readCacheEntry(path);
-  if (!read) return std::nullopt;
-  const std::vector<char>& file = *read;
-  if (file.size() < sizeof(Header)) return std::nullopt;
-  Header header;
-  std::memcpy(&header, file.data(), sizeof(Header));
-  if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.codeVersion != kSdfCodeVersion || header.key != key)
-    return std::nullopt;
-  const bool noGrid = header.dims[0] == 0 && header.dims[1] == 0 && header.dims[2] == 0;
-  for (int32_t d : header.dims)
+  std::optional<CacheReader> entry = CacheReader::open(path, kKind, kSdfCodeVersion, key);
+  Record record;
+  if (!entry || entry->blockCount() != 3 || !entry->next(record) || !(record.voxelM > 0.0f)) return std::nullopt;
+  const bool noGrid = record.dims[0] == 0 && record.dims[1] == 0 && record.dims[2] == 0;
+  for (int32_t d : record.dims)
     if (!noGrid && (d < 1 || d > 4 * kMaxResolution)) return std::nullopt;
-  if (header.sheetTriangles > static_cast<uint32_t>(kMaxSheetTriangles)) return std::nullopt;
-  const size_t voxels = voxelCount(header.dims);
-  const size_t sheetVertices = 3 * static_cast<size_t>(header.sheetTriangles);
-  const size_t payload = voxels * sizeof(float) + sheetVertices * sizeof(glm::vec3);
-  if (file.size() != sizeof(Header) + payload) return std::nullopt;
-  if (cacheEntryHash(header, &Header::hash, file.data() + sizeof(Header), payload) != header.hash || !(header.voxelM > 0.0f))
-    return std::nullopt;
-
+  if (record.sheetTriangles > static_cast<uint32_t>(kMaxSheetTriangles)) return std::nullopt;
   SdfVolume v;
-  v.dims = {header.dims[0], header.dims[1], header.dims[2]};
-  v.lo = {header.lo[0], header.lo[1], header.lo[2]};
-  v.voxelM = header.voxelM;
-  v.distances.resize(voxels);
-  std::memcpy(v.distances.data(), file.data() + sizeof(Header), voxels * sizeof(float));
-  v.sheets.resize(sheetVertices);
-  std::memcpy(v.sheets.data(), file.data() + sizeof(Header) + voxels * sizeof(float), sheetVertices * sizeof(glm::vec3));
-  v.stats.bakeSeconds = header.bakeSeconds;
-  v.stats.triangles = header.triangles;
+  const size_t voxels = static_cast<size_t>(record.dims[0]) * static_cast<size_t>(record.dims[1]) *
+                        static_cast<size_t>(record.dims[2]);
+  if (!entry->next(v.distances, voxels) || !entry->next(v.sheets, 3 * static_cast<size_t>(record.sheetTriangles)) ||
+      !entry->verified())
+    return std::nullopt;
+  v.dims = {record.dims[0], record.dims[1], record.dims[2]};
+  v.lo = {record.lo[0], record.lo[1], record.lo[2]};
+  v.voxelM = record.voxelM;
+  v.stats.bakeSeconds = record.bakeSeconds;
+  v.stats.triangles = record.triangles;
   v.stats.gridBytes = voxels * sizeof(float);
   v.stats.fromCache = true;
   v.stats.cacheKey = key;
@@ -84,25 +64,18 @@ std::optional<SdfVolume> load(const fs::path& path, uint64_t key) {
 }
 
 void store(const fs::path& path, const SdfVolume& v) {
-  Header header{};
-  std::memcpy(header.magic, kMagic, sizeof(kMagic));
-  header.codeVersion = kSdfCodeVersion;
+  Record record{};
   for (int a = 0; a < 3; ++a) {
-    header.dims[a] = v.dims[a];
-    header.lo[a] = v.lo[a];
+    record.dims[a] = v.dims[a];
+    record.lo[a] = v.lo[a];
   }
-  header.key = v.stats.cacheKey;
-  header.voxelM = v.voxelM;
-  header.triangles = v.stats.triangles;
-  header.bakeSeconds = v.stats.bakeSeconds;
-  header.sheetTriangles = static_cast<uint32_t>(v.sheets.size() / 3);
-  std::vector<char> payload(v.distances.size() * sizeof(float) + v.sheets.size() * sizeof(glm::vec3));
-  std::memcpy(payload.data(), v.distances.data(), v.distances.size() * sizeof(float));
-  std::memcpy(payload.data() + v.distances.size() * sizeof(float), v.sheets.data(), v.sheets.size() * sizeof(glm::vec3));
-  header.hash = cacheEntryHash(header, &Header::hash, payload.data(), payload.size());
-
-  writeBinaryFile(path, {std::span<const char>(reinterpret_cast<const char*>(&header), sizeof(header)),
-                         std::span<const char>(payload.data(), payload.size())});
+  record.voxelM = v.voxelM;
+  record.sheetTriangles = static_cast<uint32_t>(v.sheets.size() / 3);
+  record.triangles = v.stats.triangles;
+  record.bakeSeconds = v.stats.bakeSeconds;
+  const std::span<const char> blocks[] = {cacheBlock(record), cacheBlock(std::span<const float>(v.distances)),
+                                          cacheBlock(std::span<const glm::vec3>(v.sheets))};
+  writeCacheRecord(path, kKind, kSdfCodeVersion, v.stats.cacheKey, blocks);
 }
 
 }  // namespace

@@ -217,6 +217,10 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text) {
 }
 
 void writeBinaryFile(const std::filesystem::path& path, std::initializer_list<std::span<const char>> blocks) {
+  writeBinaryFile(path, std::span<const std::span<const char>>(blocks.begin(), blocks.size()));
+}
+
+void writeBinaryFile(const std::filesystem::path& path, std::span<const std::span<const char>> blocks) {
   AtomicFile file(path);
   {
     errno = 0;

@@ -1,7 +1,8 @@
 #pragma once
-// The on-disk cache of reference results: one file per key, "<dir>/reference-<key>.bin".
-// Files are written to a unique temporary name and renamed, so a reader never sees half a file;
-// a file that fails any check (size, magic, version, key, the hash of every other byte) is ignored.
+// The on-disk cache of reference results: one file per key, "<dir>/reference-<key>.bin", in the
+// format every cache entry has (base/CacheRecord.h). Files are written to a unique temporary name
+// and renamed, so a reader never sees half a file; a file that fails any check (size, magic, kind,
+// version, key, the hash of every other byte, each block's size) is ignored.
 #include <penumbra/Reference.h>
 
 #include <cstdint>

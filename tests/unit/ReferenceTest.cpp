@@ -544,9 +544,10 @@ TEST(ReferenceCache, SecondCallReadsIdenticalDataFastAndInputsChangeTheKey) {
   const ReferenceResult repaired = tracer.trace(g, benchLight(), options);
   EXPECT_FALSE(repaired.fromCache);
   expectSameData(first, repaired);
-  // The header's fields are checked too: a flipped byte in the sample count (offset 12) or the
-  // trace time (offset 32) reported 191 samples or 3286 s once.
-  for (const std::streamoff offset : {12, 32}) {
+  // The header's and the record's fields are checked too: a flipped byte in the kind (offset 8),
+  // the key (32), the sample count (96: after the 48-byte header and six block sizes) or the
+  // trace time (112); the latter two once reported 191 samples or 3286 s.
+  for (const std::streamoff offset : {8, 32, 96, 112}) {
     {
       std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
       f.seekp(offset + 1);
