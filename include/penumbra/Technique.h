@@ -45,8 +45,19 @@ std::filesystem::path techniqueFolder(std::string_view filterId);
 /// What names the filter on a command line in another process: its folder for a technique
 /// folder's id (a printed command loads it again), else the id.
 std::string filterArgument(std::string_view filterId);
+/// Reads a loaded folder's technique.json again and puts it in place of the loaded one under the
+/// same id: techniques made after this take its parameters, maps and GLSL constants, and every
+/// light running the id makes its filter anew (techniques made before keep pointing at the old
+/// description, which stays alive). Throws a usage Error naming the file and the field at fault,
+/// a changed id, or a folder never loaded; the loaded description stays then. Returns the id.
+std::string reloadTechniqueFolder(const std::filesystem::path& folder);
+/// Puts back the description the last reloadTechniqueFolder() of `folder` replaced (for a caller
+/// whose techniques could not take the new one). Throws a usage Error when there is none.
+void restorePreviousTechniqueFolder(const std::filesystem::path& folder);
 /// The GLSL files of every technique folder loaded: what a viewer watches to reload.
 std::vector<std::filesystem::path> techniqueFolderFiles();
+/// The technique.json of every technique folder loaded: what a viewer watches to reload.
+std::vector<std::filesystem::path> techniqueFolderDescriptions();
 
 /// A parameter group any filter can take: a pass the core runs after the filter's own.
 struct AddOnGroup {

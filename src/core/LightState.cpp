@@ -6,7 +6,10 @@
 namespace penumbra::core {
 
 bool LightState::adopt(const Technique& merged) {
-  const bool newFilter = !filter || merged.filter() != technique.filter();
+  // A filter whose maker was replaced since (a technique folder's description reloaded) is made anew.
+  const uint64_t revision = filterRevision(merged.filter());
+  const bool newFilter = !filter || merged.filter() != technique.filter() || revision != filterMadeAt;
+  filterMadeAt = revision;
   const bool newProjection = !projection || merged.projection() != technique.projection() ||
                              !merged.projectionValues().sameValues(technique.projectionValues());
   technique = merged;

@@ -34,6 +34,7 @@ struct LightState {
   Technique technique;
   std::unique_ptr<Projection> projection;  ///< made from `technique` (its values)
   std::unique_ptr<Filter> filter;          ///< of technique.filter(): the light's maps
+  uint64_t filterMadeAt = 0;               ///< filterRevision() of the id when `filter` was made
   /// A paged projection's pages (Projection::pageLayout): which are resident where, the page
   /// table; none for whole maps.
   std::unique_ptr<VirtualPages> pages;

@@ -30,9 +30,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <utility>
 
 namespace penumbra {
 namespace {
@@ -41,6 +43,7 @@ template <class T>
 struct Entry {
   std::string id;
   std::function<std::unique_ptr<T>()> make;
+  uint64_t revision = 0;  ///< counts the times `make` was replaced (a technique folder reloaded)
 };
 
 template <class T>
@@ -166,7 +169,12 @@ void registerFilter(const std::function<std::unique_ptr<Filter>()>& make) {
     if (e.id == id) throw usageError(fmt::format("registerFilter: a filter '{}' is registered already", id));
   for (const Entry<Projection>& e : projections().entries)
     if (e.id == id) throw usageError(fmt::format("registerFilter: '{}' is a projection's id", id));
-  kinds.entries.push_back({id, make});
+  kinds.entries.push_back({id, make, 0});
+}
+
+uint64_t filterRevision(std::string_view id) {
+  const std::lock_guard lock(registryMutex());
+  return entry(filters(), id, "filter").revision;
 }
 
 namespace {
@@ -176,6 +184,43 @@ namespace {
 std::vector<std::unique_ptr<FolderDescription>>& folders() {
   static std::vector<std::unique_ptr<FolderDescription>> loaded;
   return loaded;
+}
+
+/// Descriptions a reload replaced, newest last, with the prototypes made from them: techniques
+/// and lights made before the reload still point into them, so they are never freed.
+struct Retired {
+  std::unique_ptr<FolderDescription> description;
+  std::unique_ptr<Filter> prototype;
+};
+std::vector<Retired>& retired() {
+  static std::vector<Retired> kept;
+  return kept;
+}
+
+/// Puts `next` in the place of the loaded description `slot` of the same id: the registry's
+/// entry makes filters of `next` from now on (its revision counts up, so lights remake theirs)
+/// and the prototype is made again. The previous one is retired.
+void replaceFolder(std::unique_ptr<FolderDescription>& slot, std::unique_ptr<FolderDescription> next) {
+  Kinds<Filter>& kinds = filters();
+  std::unique_ptr<Filter> prototype;
+  if (auto it = kinds.prototypes.find(slot->id); it != kinds.prototypes.end()) {
+    prototype = std::move(it->second);
+    kinds.prototypes.erase(it);
+  }
+  retired().push_back({std::exchange(slot, std::move(next)), std::move(prototype)});
+  const FolderDescription& kept = *slot;
+  for (Entry<Filter>& e : kinds.entries)
+    if (e.id == kept.id) {
+      e.make = [&kept] { return makeFolderFilter(kept); };
+      ++e.revision;
+    }
+}
+
+std::unique_ptr<FolderDescription>& loadedFolder(const std::filesystem::path& folder) {
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(std::filesystem::absolute(folder));
+  for (std::unique_ptr<FolderDescription>& f : folders())
+    if (f->folder == canonical) return f;
+  throw usageError(fmt::format("technique folder {}: not loaded", folder.string()));
 }
 
 }  // namespace
@@ -198,6 +243,28 @@ std::string loadTechniqueFolder(const std::filesystem::path& folder) {
   return kept.id;
 }
 
+std::string reloadTechniqueFolder(const std::filesystem::path& folder) {
+  std::unique_ptr<FolderDescription> d = readFolderDescription(folder);
+  const std::lock_guard lock(registryMutex());
+  std::unique_ptr<FolderDescription>& slot = loadedFolder(folder);
+  if (d->id != slot->id)
+    throw usageError(fmt::format("{}: id: '{}' differs from '{}', the id it was loaded under; a folder keeps its id while it is "
+                                 "loaded (start again to rename it)",
+                                 d->descriptionFile.string(), d->id, slot->id));
+  replaceFolder(slot, std::move(d));
+  return slot->id;
+}
+
+void restorePreviousTechniqueFolder(const std::filesystem::path& folder) {
+  const std::lock_guard lock(registryMutex());
+  std::unique_ptr<FolderDescription>& slot = loadedFolder(folder);
+  std::vector<Retired>& old = retired();
+  const auto previous = std::find_if(old.rbegin(), old.rend(), [&](const Retired& r) { return r.description && r.description->folder == slot->folder; });
+  if (previous == old.rend()) throw usageError(fmt::format("technique folder {}: no earlier description to restore", folder.string()));
+  // The restored description moves back into the registry; the one it replaces is retired in its place.
+  replaceFolder(slot, std::move(previous->description));
+}
+
 std::filesystem::path techniqueFolder(std::string_view filterId) {
   const std::lock_guard lock(registryMutex());
   for (const std::unique_ptr<FolderDescription>& f : folders())
@@ -214,6 +281,13 @@ std::vector<std::filesystem::path> techniqueFolderFiles() {
   const std::lock_guard lock(registryMutex());
   std::vector<std::filesystem::path> out;
   for (const std::unique_ptr<FolderDescription>& f : folders()) out.push_back(f->visibilityFile);
+  return out;
+}
+
+std::vector<std::filesystem::path> techniqueFolderDescriptions() {
+  const std::lock_guard lock(registryMutex());
+  std::vector<std::filesystem::path> out;
+  for (const std::unique_ptr<FolderDescription>& f : folders()) out.push_back(f->descriptionFile);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <penumbra/Scene.h>
 #include <penumbra/Technique.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,6 +35,9 @@ std::string filterIncompatibility(std::string_view filter, std::string_view proj
 /// built-in ones: techniques name it like any other, and every light that runs it gets its own
 /// instance from `make`. Throws a usage Error when the id is taken.
 void registerFilter(const std::function<std::unique_ptr<Filter>()>& make);
+/// How many times filter `id`'s maker was replaced (reloadTechniqueFolder): a light whose filter
+/// was made at another revision makes a new one. 0 for a filter never replaced.
+uint64_t filterRevision(std::string_view id);
 
 /// Every add-on group's parameters in one set, at their defaults.
 Parameterized makeAddOns();

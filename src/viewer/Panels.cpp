@@ -233,11 +233,11 @@ void Viewer::drawPanels() {
   ImGui::PushItemWidth(-ImGui::GetFontSize() * kLabelRoomEm);
 
   // The status line: the latest action (or error), always at the top, at a fixed height.
-  const std::string status = !mRenderError.empty() ? "render failed (showing the last good frame): " + mRenderError : mStatus;
+  const std::string status = !mRenderError.empty() ? "render failed (showing the last good frame): " + mRenderError : mStatus.text;
   ImGui::BeginChild("##status", ImVec2(0.0f, kStatusLines * ImGui::GetTextLineHeightWithSpacing()), false,
                     ImGuiWindowFlags_NoScrollbar);
   ImGui::PushTextWrapPos(0.0f);
-  if (mStatusIsError || !mRenderError.empty()) ImGui::TextColored(kErrorColor, "%s", status.c_str());
+  if (mStatus.error || !mRenderError.empty()) ImGui::TextColored(kErrorColor, "%s", status.c_str());
   else ImGui::TextDisabled("%s", status.empty() ? "ready" : status.c_str());
   ImGui::PopTextWrapPos();
   ImGui::EndChild();
@@ -489,20 +489,7 @@ void Viewer::drawToolsPanel() {
     if (mHeatmapResult->version != mSession.version()) ImGui::TextColored(kErrorColor, "stale: the view changed since");
   }
   ImGui::Separator();
-  if (mWatcher) {
-    ImGui::Checkbox("Auto reload", &mAutoReload);
-    ImGui::SameLine();
-    if (ImGui::Button("Reload shaders (F5)")) reloadShaders();
-    if (!mWatcher->sourceTree().empty()) ImGui::TextDisabled("from %s", mWatcher->sourceTree().string().c_str());
-    for (const std::filesystem::path& f : techniqueFolderFiles()) ImGui::TextDisabled("and %s", f.string().c_str());
-    for (const std::string& e : mWatcher->errors()) {
-      ImGui::PushTextWrapPos(0.0f);
-      ImGui::TextColored(kErrorColor, "%s", e.c_str());
-      ImGui::PopTextWrapPos();
-    }
-  } else {
-    ImGui::TextDisabled("shader hot reload: start with --shader-dir");
-  }
+  mHotReload.drawControls();
   ImGui::Separator();
   ImGui::InputText("##save", mSavePath, sizeof(mSavePath));
   ImGui::SameLine();

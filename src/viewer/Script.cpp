@@ -59,10 +59,13 @@ constexpr Verb kVerbs[] = {
     {"screenshot", 1, 1, "PATH", "after this frame, write the 3D view (no panels) as PNG"},
     {"screenshot-window", 1, 1, "PATH", "after this frame, write the whole window (with panels) as PNG"},
     {"screenshot-inset", 1, 1, "PATH", "after this frame, write the inset (with its labels) as PNG"},
-    {"print", 1, 1, "gl-objects|technique|timings|lights|layout|time", "print a line on stdout (layout: the open panel's extent)"},
+    {"print", 1, 1, "gl-objects|technique|params|timings|lights|layout|time",
+     "print a line on stdout (params: the technique's parameters as key=value; layout: the open panel's extent)"},
     {"heatmap", 0, 1, "[SAMPLES]", "start the error heatmap against the ray-traced reference"},
     {"wait-heatmap", 0, 0, "", "let frames pass until the heatmap is done"},
     {"reload", 0, 0, "", "reload shaders from the source tree (errors are printed)"},
+    {"wait-reload", 0, 0, "",
+     "let frames pass until a saved file is reloaded (a shader, a technique folder's GLSL or technique.json; at most 60 s)"},
     {"save", 1, 1, "PATH", "save the current scene, camera, light and technique as a scene file"},
     {"ui", 1, 1, "on|off", "show or hide the panels"},
     {"quit", 0, 0, "", "stop here"},
@@ -120,9 +123,9 @@ void checkAction(const ScriptAction& a) {
   if (a.verb == "wait") scriptInt(a, 0, 0, kMaxWaitFrames);
   if (a.verb == "heatmap" && !a.args.empty()) scriptInt(a, 0, 1, 1 << 16);
   if (a.verb == "ui" && sub != "on" && sub != "off") fail(a, "expected on or off");
-  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "timings" && sub != "lights" && sub != "layout" &&
-      sub != "time")
-    fail(a, "expected gl-objects, technique, timings, lights, layout or time");
+  if (a.verb == "print" && sub != "gl-objects" && sub != "technique" && sub != "params" && sub != "timings" && sub != "lights" &&
+      sub != "layout" && sub != "time")
+    fail(a, "expected gl-objects, technique, params, timings, lights, layout or time");
   if (a.verb == "time" && scriptFloat(a, 0) < 0.0f) fail(a, "expected a time of at least 0 s");
   if (a.verb == "play" && !a.args.empty() && !(scriptFloat(a, 0) > 0.0f && scriptFloat(a, 0) <= kMaxPlaySpeed))
     fail(a, fmt::format("expected a speed above 0 and at most {}", kMaxPlaySpeed));

@@ -9,10 +9,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 namespace penumbra::viewer {
 namespace {
+
+// `wait-reload` gives up after this long: a file that was never saved.
+constexpr std::chrono::seconds kMaxReloadWait{60};
 
 void requireKnown(const ScriptAction& a, const std::vector<std::string>& known, const char* what) {
   if (std::find(known.begin(), known.end(), a.args[0]) == known.end()) {
@@ -33,6 +37,15 @@ void Viewer::runScript() {
     if (mHeatmap.running() || mHeatmapRequest) return;
     mWaitHeatmap = false;
   }
+  if (mWaitReloadFrom) {
+    if (mHotReload.reloads() == *mWaitReloadFrom) {
+      if (std::chrono::steady_clock::now() - mWaitReloadSince < kMaxReloadWait) return;
+      const ScriptAction& a = mOptions.script[mScriptIndex - 1];
+      throw usageError(fmt::format("{}: wait-reload: nothing was saved and reloaded in {} s{}", a.where, kMaxReloadWait.count(),
+                                   mHotReload.active() ? "" : " (hot reload is off: --no-hot-reload, or no source tree and no technique folder)"));
+    }
+    mWaitReloadFrom.reset();
+  }
   while (mScriptIndex < mOptions.script.size()) {
     const ScriptAction& a = mOptions.script[mScriptIndex++];
     try {
@@ -50,11 +63,11 @@ bool Viewer::execute(const ScriptAction& a) {
   const std::string& v = a.verb;
   const std::string arg = a.args.empty() ? "" : a.args[0];
   auto refused = [&] {
-    std::printf("refused %s=%s: %s\n", v.c_str(), arg.c_str(), mStatus.c_str());
+    std::printf("refused %s=%s: %s\n", v.c_str(), arg.c_str(), mStatus.text.c_str());
     std::fflush(stdout);
   };
   if (v == "scene") {
-    if (!selectScene(arg)) throw usageError(mStatus);
+    if (!selectScene(arg)) throw usageError(mStatus.text);
   } else if (v == "filter") {
     requireKnown(a, filterIds(), "filter");
     if (!selectFilter(arg)) refused();
@@ -136,6 +149,12 @@ bool Viewer::execute(const ScriptAction& a) {
       std::printf("%s\n", layoutText().c_str());
     } else if (arg == "time") {
       std::printf("time %.3f of %.3f s %s\n", mSession.time(), mSession.duration(), mPlaying ? "playing" : "paused");
+    } else if (arg == "params") {
+      const Technique& t = mSession.technique();
+      std::string line = "params";
+      for (const Parameterized* values : {&t.projectionValues(), &t.filterValues()})
+        for (const ParamDesc& d : values->paramDescs()) line += fmt::format(" {}={}", d.key, formatParamValue(d, values->param(d.key)));
+      std::printf("%s\n", line.c_str());
     } else if (arg == "technique") {
       std::printf("technique scene=%s projection=%s filter=%s\n", mSession.scene().name.c_str(), mSession.projectionId().c_str(),
                   mSession.filterId().c_str());
@@ -161,8 +180,11 @@ bool Viewer::execute(const ScriptAction& a) {
     mWaitHeatmap = true;
     return true;
   } else if (v == "reload") {
-    reloadShaders();
-    if (!mWatcher) throw usageError(mStatus);
+    if (!mHotReload.reloadShaders()) throw usageError(mStatus.text);
+  } else if (v == "wait-reload") {
+    mWaitReloadFrom = mHotReload.reloads();
+    mWaitReloadSince = std::chrono::steady_clock::now();
+    return true;
   } else if (v == "save") {
     saveSettings(arg);
   } else if (v == "ui") {

@@ -123,20 +123,31 @@ size_t ViewSession::shownLight() const {
 
 std::vector<DebugImage> ViewSession::debugImages() const { return mRenderer.debugImages(shownLight()); }
 
-void ViewSession::rebuildTechnique(const std::string& projectionId, const std::string& filterId) {
+std::vector<std::string> ViewSession::rebuildTechnique(const std::string& projectionId, const std::string& filterId) {
   Technique t(projectionId, filterId);
   t.setMapSize(mTechnique.mapSize());
   std::vector<std::pair<std::string, std::string>> own;  // the scene's settings for this technique
   for (const auto& kv : mScene.shadow.params)
     if (prefixOf(kv.first) == projectionId || prefixOf(kv.first) == filterId) own.push_back(kv);
   t.setWhereOwn(own);
+  std::vector<std::string> refused;  // a reloaded folder's table may have narrowed a range
   for (const auto& [key, value] : mRemembered)
-    if (t.has(key) && t.owner(key) != ParamOwner::AddOn) t.set(key, value);
+    if (t.has(key) && t.owner(key) != ParamOwner::AddOn) {
+      try {
+        t.set(key, value);
+      } catch (const Error&) {
+        refused.push_back(key);
+      }
+    }
   for (const ParamDesc& d : t.addOnValues().paramDescs()) t.set(d.key, mTechnique.get(d.key));  // the add-ons stay as they are
   mRenderer.setTechnique(t);  // checks every light; throws before changing anything
   mTechnique = t;
+  for (const std::string& key : refused) mRemembered.erase(key);
   ++mVersion;
+  return refused;
 }
+
+std::vector<std::string> ViewSession::refreshFilter() { return rebuildTechnique(mTechnique.projection(), mTechnique.filter()); }
 
 void ViewSession::setProjection(const std::string& id) { rebuildTechnique(id, mTechnique.filter()); }
 void ViewSession::setFilter(const std::string& id) { rebuildTechnique(mTechnique.projection(), id); }

@@ -46,6 +46,12 @@ public:
   void setProjection(const std::string& id);
   void setFilter(const std::string& id);
 
+  /// Makes the technique again from the registry's entry of its filter, after that entry was
+  /// replaced (a technique folder's description reloaded): the parameters follow the new
+  /// table, the values set before are kept where the new table has them and takes them.
+  /// Returns the keys whose values it refused (now at their defaults). Throws as setFilter().
+  std::vector<std::string> refreshFilter();
+
   std::vector<ParamGroup> paramGroups();
   float paramValue(const ParamDesc& desc);
   /// Sets a projection, filter or scene parameter; remembered across technique switches.
@@ -109,7 +115,8 @@ public:
   uint64_t version() const { return mVersion; }
 
 private:
-  void rebuildTechnique(const std::string& projectionId, const std::string& filterId);
+  /// Returns the remembered keys the new technique refused (out of its range), forgotten.
+  std::vector<std::string> rebuildTechnique(const std::string& projectionId, const std::string& filterId);
   /// Throws a usage Error naming `which` if the light is not one to add or keep.
   void checkLight(const Light& light, const std::string& which);
   /// Gives the scene's lights that have none an id of their own (Light::id), so that each keeps

@@ -69,11 +69,11 @@ Viewer::Viewer(Scene scene, const Technique& technique, ViewerOptions options)
     : mOptions(std::move(options)),
       mWindow(mOptions.width, mOptions.height, "Penumbra view", {.debug = false, .verbose = mOptions.verbose}),
       mSession(mWindow, std::move(scene), technique),
-      mDisplay(mSession.renderer().shaders()) {
+      mDisplay(mSession.renderer().shaders()),
+      mStatus{{}, false, mOptions.scripted || mOptions.verbose},
+      mHotReload(mSession.renderer().shaders(), mOptions.shaderTree, mOptions.reloadTechniqueFolders, mStatus) {
   glfwSwapInterval(mOptions.vsync ? 1 : 0);
   glfwSetWindowTitle(mWindow.window(), title(mSession).c_str());
-  if (mOptions.shaderTree || (mOptions.reloadTechniqueFolders && !techniqueFolderFiles().empty()))
-    mWatcher = std::make_unique<ShaderWatcher>(mSession.renderer().shaders(), mOptions.shaderTree.value_or(std::filesystem::path()));
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory
@@ -107,11 +107,7 @@ void Viewer::resetCamera() {
   mFlySpeedMps = std::max(s.bounds().radius(), 1.0f) * kFlySpeedPerSceneRadius;
 }
 
-void Viewer::setStatus(std::string message, bool error) {
-  mStatus = std::move(message);
-  mStatusIsError = error;
-  if (mOptions.scripted || mOptions.verbose) std::fprintf(error ? stderr : stdout, "penumbra view: %s\n", mStatus.c_str());
-}
+void Viewer::setStatus(std::string message, bool error) { mStatus.set(std::move(message), error); }
 
 bool Viewer::frame() {
   const auto start = std::chrono::steady_clock::now();
@@ -151,9 +147,7 @@ void Viewer::drawFrame() {
   }
   advanceTime(mOptions.scripted ? kScriptedFrameS : dt);
   pollHeatmap();
-  if (mWatcher && mAutoReload && mWatcher->poll())
-    setStatus(mWatcher->errors().empty() ? "shaders reloaded" : fmt::format("shader reload: {} error(s), last good kept", mWatcher->errors().size()),
-              !mWatcher->errors().empty());
+  mHotReload.poll({&mSession, mSplit.get()});
 
   renderFrame();
   if (mHeatmapRequest) startHeatmap(*std::exchange(mHeatmapRequest, std::nullopt));  // on this frame
@@ -188,7 +182,7 @@ void Viewer::handleInput(float dt) {
                         mouse.x < static_cast<float>(mViewRect.x + mViewRect.z) && mouse.y < static_cast<float>(mViewRect.w);
   if (!io.WantCaptureKeyboard) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F1) || ImGui::IsKeyPressed(GLFW_KEY_TAB)) mOptions.showUi = !mOptions.showUi;
-    if (ImGui::IsKeyPressed(GLFW_KEY_F5)) reloadShaders();
+    if (ImGui::IsKeyPressed(GLFW_KEY_F5)) mHotReload.reloadShaders();
     if (ImGui::IsKeyPressed(GLFW_KEY_F12)) {
       if (io.KeyShift) mWindowShot = nextScreenshotPath();
       else mViewShot = nextScreenshotPath();
@@ -561,13 +555,6 @@ void Viewer::screenshotInset(const std::filesystem::path& path) {
 void Viewer::saveSettings(const std::filesystem::path& path) {
   saveSceneFile(path, mSession.scene(), mSession.technique());
   setStatus(fmt::format("saved {} (penumbra render --scene {})", path.string(), path.string()), false);
-}
-
-void Viewer::reloadShaders() {
-  if (!mWatcher) return setStatus("no shader source tree: start with --shader-dir DIR to reload shaders", true);
-  const std::vector<std::string>& errors = mWatcher->reload();
-  if (errors.empty()) return setStatus(fmt::format("shaders reloaded from {}", mWatcher->sourceTree().string()), false);
-  setStatus(fmt::format("shader reload: {} error(s), last good programs kept:\n{}", errors.size(), join(errors, "\n")), true);
 }
 
 }  // namespace penumbra::viewer

@@ -11,13 +11,15 @@
 #include "viewer/Cameras.h"
 #include "viewer/DebugDisplay.h"
 #include "viewer/HeatmapJob.h"
+#include "viewer/HotReload.h"
 #include "viewer/Script.h"
-#include "viewer/ShaderWatcher.h"
+#include "viewer/StatusLine.h"
 #include "viewer/ViewSession.h"
 
 #include <penumbra/Reference.h>
 
 #include <array>
+#include <chrono>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -126,7 +128,6 @@ private:
   void screenshotWindow(const std::filesystem::path& path);
   void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
   void saveSettings(const std::filesystem::path& path);
-  void reloadShaders();
   void resetCamera();
   void setStatus(std::string message, bool error);
   std::filesystem::path nextScreenshotPath() const;
@@ -171,8 +172,8 @@ private:
   gl::WindowContext mWindow;
   ViewSession mSession;
   DebugDisplay mDisplay;
-  std::unique_ptr<ShaderWatcher> mWatcher;
-  bool mAutoReload = true;
+  StatusLine mStatus;
+  HotReload mHotReload;
   HeatmapJob mHeatmap;
   std::optional<HeatmapResult> mHeatmapResult;
   gl::Texture mHeatmapTexture;
@@ -208,9 +209,7 @@ private:
   ViewState mMain{kShadedView, {}, true}, mInset{kNoInset, {}, true};
   glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};
 
-  // Status line, timings.
-  std::string mStatus;
-  bool mStatusIsError = false;
+  // Timings.
   std::string mRenderError;
   std::map<std::string, std::deque<float>> mPassHistory;
   std::deque<float> mFrameHistory;
@@ -221,6 +220,8 @@ private:
   size_t mScriptIndex = 0;
   int mWaitFrames = 0;
   bool mWaitHeatmap = false;
+  std::optional<int> mWaitReloadFrom;  ///< `wait-reload`: HotReload::reloads() when it started
+  std::chrono::steady_clock::time_point mWaitReloadSince;
   bool mQuit = false;
   std::optional<std::filesystem::path> mViewShot, mWindowShot, mInsetShot;
   char mSavePath[512] = {};

@@ -17,11 +17,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
+#include <sys/wait.h>
 #include <unistd.h>
 
 using namespace penumbra;
@@ -52,8 +55,8 @@ bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed, so the viewer cannot open a window here: " \
                                    "install the xvfb and xauth packages (scripts/install-deps)"
 
-/// Runs `penumbra view <args>` in a virtual X server.
-RunResult runViewer(const std::string& args, const std::string& dir) {
+/// What runs `penumbra view` in a virtual X server, started in `dir`.
+std::string viewerLauncher(const std::string& dir) {
   // -a takes the first free display from -n on; starting from a number that depends on the
   // process keeps tests that CTest runs in parallel from racing for the same one.
   const int firstDisplay = 100 + static_cast<int>(getpid() % 800);
@@ -63,9 +66,11 @@ RunResult runViewer(const std::string& args, const std::string& dir) {
   static int runs = 0;
   const std::string auth = dir + "/.Xauthority-" + std::to_string(runs++);
   { std::ofstream touch(auth); }  // xauth adds to an existing file without a warning
-  return runPenumbra("view " + args, dir,
-                     "xvfb-run -a -n " + std::to_string(firstDisplay) + " -f '" + auth + "' -s '-screen 0 1280x1024x24'");
+  return "xvfb-run -a -n " + std::to_string(firstDisplay) + " -f '" + auth + "' -s '-screen 0 1280x1024x24'";
 }
+
+/// Runs `penumbra view <args>` in a virtual X server.
+RunResult runViewer(const std::string& args, const std::string& dir) { return runPenumbra("view " + args, dir, viewerLauncher(dir)); }
 
 void writeScript(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
@@ -541,4 +546,83 @@ TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
   const std::vector<uint8_t> reference = readPng(dir + "/reference.png", w, h), technique = readPng(dir + "/technique.png", w, h);
   EXPECT_GE(differingShare(reference, technique), kMinDifferingShare) << "the reference looks like the technique";
   EXPECT_EQ(differingShare(technique, plain), 0.0) << "flipping back shows the technique again";
+}
+
+// A technique folder's technique.json saved while the viewer runs (docs/viewer.md, "Hot
+// reload"): the description is read again, its new parameter and its new default reach the
+// technique and the picture; a broken save is reported naming the file and the field, and the
+// last good description keeps running (the same picture). The test edits the file when the
+// viewer's script prints its parameters, and the script's wait-reload waits for the reload.
+TEST(ViewerCli, SavedTechniqueDescriptionIsReloadedAndABrokenOneKeepsTheLastGood) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-description-reload");
+  std::filesystem::copy(std::string(PENUMBRA_TEST_DATA) + "/../../examples/techniques/pcf", dir + "/pcf");
+  const std::filesystem::path file = std::filesystem::canonical(dir + "/pcf/technique.json");
+  std::string original;
+  {
+    std::ifstream in(file);
+    original.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string radius = R"("unit": "texels", "default": 2, "range": [0, 32],)";
+  ASSERT_NE(original.find(radius), std::string::npos) << "the pcf example's radius is not where the test edits it";
+  // A new first parameter (the GLSL does not read it), a wider kernel by default, a map declared.
+  const std::string wider = R"("unit": "texels", "default": 6, "range": [0, 32],)";
+  std::string edited = original;
+  edited.replace(edited.find(radius), radius.size(), wider);
+  const std::string maps = R"("maps": ["depth"])";
+  ASSERT_NE(edited.find(maps), std::string::npos);
+  edited.replace(edited.find(maps), maps.size(), R"("maps": ["depth", "min-depth"])");
+  edited.insert(edited.find("\"params\": [") + 11,
+                R"({"name": "gain", "label": "Gain", "unit": "", "default": 1, "range": [0, 2], "meaning": "a parameter of the test"},)");
+  std::string broken = edited;  // the radius's range upside down: params[2] now
+  broken.replace(broken.find(wider), wider.size(), R"("unit": "texels", "default": 6, "range": [32, 0],)");
+  auto save = [&](const std::string& text, int secondsAhead) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+    // File times may be coarse: one that differs from the last for sure.
+    std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(secondsAhead));
+  };
+
+  writeScript(dir + "/s.txt",
+              "panel filter\nscreenshot before.png\nprint params\nwait-reload\nscreenshot after.png\n"
+              "screenshot-window panel.png\ninset min-depth\nscreenshot-inset min-depth.png\ninset none\nprint params\n"
+              "wait-reload\nscreenshot kept.png\nprint params\n");
+  const std::string command = "cd '" + dir + "' && " + viewerLauncher(dir) + " '" PENUMBRA_BINARY
+                              "' view --filter ./pcf --scene pen --size 480x270 --shadow-map 256 --script s.txt 2> err.txt < /dev/null";
+  FILE* viewer = popen(command.c_str(), "r");
+  ASSERT_NE(viewer, nullptr);
+  std::string out;
+  std::vector<std::string> params;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof(buffer), viewer)) {
+    const std::string line = buffer;
+    out += line;
+    if (line.rfind("params ", 0) != 0) continue;
+    params.push_back(line);
+    if (params.size() == 1) save(edited, 2);
+    if (params.size() == 2) save(broken, 4);
+  }
+  const int status = pclose(viewer);
+  std::ifstream errIn(dir + "/err.txt");
+  const std::string err((std::istreambuf_iterator<char>(errIn)), {});
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << err << out;
+  ASSERT_EQ(params.size(), 3u) << out;
+
+  EXPECT_NE(params[0].find(" pcf-folder.radiusTexels=2 "), std::string::npos) << params[0];
+  EXPECT_EQ(params[0].find("pcf-folder.gain"), std::string::npos) << params[0];
+  EXPECT_NE(params[1].find(" pcf-folder.gain=1 "), std::string::npos) << params[1];
+  EXPECT_NE(params[1].find(" pcf-folder.radiusTexels=6 "), std::string::npos) << params[1];
+  EXPECT_NE(out.find("reloaded " + file.string() + ": pcf-folder, 8 parameters; new: pcf-folder.gain"), std::string::npos) << out;
+  // The broken save: the file and the field in the status line, the last good description kept.
+  EXPECT_NE(err.find(file.string() + ": params[2].range: min 32 must be below max 0 (the last good description keeps running)"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(params[2], params[1]);
+  int w = 0, h = 0;
+  const std::vector<uint8_t> before = readPng(dir + "/before.png", w, h), after = readPng(dir + "/after.png", w, h),
+                             kept = readPng(dir + "/kept.png", w, h);
+  EXPECT_GE(differingShare(before, after), kMinDifferingShare) << "a radius of 6 texels looks like one of 2";
+  EXPECT_EQ(after, kept) << "the last good description no longer draws the same picture";
+  // The declared map is built: the lights made their filters again from the new description.
+  const std::vector<uint8_t> minDepth = readPng(dir + "/min-depth.png", w, h);
+  EXPECT_GE(greyStats(minDepth).stdDev, kMinGreyStdDev) << "the min-depth map looks blank";
 }

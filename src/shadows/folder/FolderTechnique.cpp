@@ -278,6 +278,7 @@ std::unique_ptr<FolderDescription> readFolderDescription(const std::filesystem::
 
   auto d = std::make_unique<FolderDescription>();
   d->folder = std::filesystem::weakly_canonical(std::filesystem::absolute(folder));
+  d->descriptionFile = d->folder / kDescriptionFile;
   d->id = r.string(r.need(j, "id", "id"), "id");
   if (!isTechniqueId(d->id)) r.fail("id", fmt::format("'{}' is not an id: lower-case letters, digits and '-', starting with a letter", d->id));
   d->description = r.string(r.need(j, "description", "description"), "description");

@@ -25,6 +25,7 @@ struct FolderMaps {
 /// One parsed technique.json, with the strings its ParamDesc table points into.
 struct FolderDescription {
   std::filesystem::path folder;         ///< absolute, canonical
+  std::filesystem::path descriptionFile;///< absolute: folder / technique.json
   std::filesystem::path visibilityFile; ///< absolute: the key its GLSL is compiled under
   std::string id, description;
   FolderMaps maps;
