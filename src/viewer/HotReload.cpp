@@ -1,6 +1,7 @@
 #include "viewer/HotReload.h"
 
 #include "viewer/ViewSession.h"
+#include "viewer/Widgets.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Technique.h>
@@ -13,8 +14,6 @@
 
 namespace penumbra::viewer {
 namespace {
-
-const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 
 std::set<std::string> paramKeys(std::string_view filterId) {
   std::set<std::string> keys;

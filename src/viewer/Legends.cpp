@@ -138,7 +138,7 @@ std::optional<float> Viewer::drawLegend(const char* id, const ViewState& view, c
   } else if (name == kHeatmapView) {
     const float full = HeatmapOptions{}.fullScaleDeltaV;
     const int spot = 2 * report::kLabHeatmap.dilatePx + 1;
-    ImGui::Text("ΔV = V − V_ref (%d spp), each error over a %d×%d spot", mHeatmapResult ? mHeatmapResult->samplesPerPixel : 0,
+    ImGui::Text("ΔV = V − V_ref (%d spp), each error over a %d×%d spot", mHeatmap.samplesShown(),
                 spot, spot);
     colorBar(
         [full](float t) {
@@ -150,7 +150,7 @@ std::optional<float> Viewer::drawLegend(const char* id, const ViewState& view, c
         fmt::format("−{:g} too dark", full), "0", fmt::format("+{:g} leaks", full));
   } else if (name == kReferenceView) {
     ImGui::TextWrapped("reference: the frame lit with V_ref (Embree, %d spp); R flips back",
-                mHeatmapResult ? mHeatmapResult->samplesPerPixel : 0);
+                mHeatmap.samplesShown());
   } else if (texture == &mSession.renderer().colorTexture()) {
     // A lit-pass view not listed above: the colour output.
   } else {

@@ -59,7 +59,7 @@ void Viewer::drawLightsPanel() {
       const std::string text = fmt::format("{}: {}  ×{:.3g}{}", i, lightTypeName(l.type), l.intensity, l.castsShadow ? "" : "  (no shadow)");
       if (ImGui::Selectable(text.c_str(), i == mSession.selectedLight())) {
         mSession.selectLight(i);
-        setStatus(fmt::format("selected {}: the views show its images", lightLabel(l, i)), false);
+        mStatus.set(fmt::format("selected {}: the views show its images", lightLabel(l, i)), false);
       }
       ImGui::PopID();
     }
@@ -70,9 +70,9 @@ void Viewer::drawLightsPanel() {
     if (ImGui::Button(fmt::format("+ {}", lightTypeName(type)).c_str())) {
       try {
         mSession.addLight(makeLight(type, scene.bounds(), scene.camera, count));
-        setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), count)), false);
+        mStatus.set(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), count)), false);
       } catch (const Error& e) {
-        setStatus(e.what(), true);
+        mStatus.set(e.what(), true);
       }
     }
     ImGui::SameLine();
@@ -83,9 +83,9 @@ void Viewer::drawLightsPanel() {
     try {
       const std::string removed = lightLabel(scene.lights[mSession.selectedLight()], mSession.selectedLight());
       mSession.removeLight(mSession.selectedLight());
-      setStatus("removed " + removed, false);
+      mStatus.set("removed " + removed, false);
     } catch (const Error& e) {
-      setStatus(e.what(), true);
+      mStatus.set(e.what(), true);
     }
   }
   ImGui::EndDisabled();
@@ -194,9 +194,9 @@ void Viewer::drawLightsPanel() {
   if (changed) {
     try {
       mSession.setLight(selected, l);
-      setStatus(fmt::format("edited {}", lightLabel(l, selected)), false);
+      mStatus.set(fmt::format("edited {}", lightLabel(l, selected)), false);
     } catch (const Error& e) {
-      setStatus(e.what(), true);
+      mStatus.set(e.what(), true);
     }
   }
   const std::vector<LightShadowReport>& reports = mSession.renderer().shadows().lightReports();
@@ -270,12 +270,12 @@ void Viewer::executeLight(const ScriptAction& a) {
   } else if (sub == "add") {
     const size_t added = scene.lights.size();
     mSession.addLight(makeLight(parseLightType(a.args[1]), scene.bounds(), scene.camera, added));
-    setStatus(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), added)), false);
+    mStatus.set(fmt::format("added {}", lightLabel(mSession.scene().lights.back(), added)), false);
   } else if (sub == "remove") {
     const size_t i = index();
     const std::string removed = lightLabel(mSession.lightAt(i), i);
     mSession.removeLight(i);
-    setStatus("removed " + removed, false);
+    mStatus.set("removed " + removed, false);
   } else if (sub == "set") {
     const size_t i = index();
     const std::span<const std::string> value = std::span(a.args).subspan(3);

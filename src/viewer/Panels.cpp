@@ -3,6 +3,7 @@
 // choices, an integer slider for step-1 parameters, a float slider otherwise (logarithmic when
 // the range spans orders of magnitude), each showing its unit. Nothing here knows a technique.
 #include "viewer/Viewer.h"
+#include "viewer/Widgets.h"
 
 #include "text/ImageText.h"
 #include "shadows/Registry.h"
@@ -34,22 +35,12 @@ constexpr float kLabelRoomEm = 9.5f;         // width left for widget labels, in
 // temporal accumulation): the first two sit with the scene and technique choices, the filter's
 // own and the add-ons' in a tab of their own (together they would run past 720 px).
 constexpr size_t kTechniqueTabGroups = 2;
-constexpr float kPlayButtonEm = 4.0f;  // Play / Pause, in font heights
-// The Speed slider's range (× real time): a 4 s animation from a minute to a quarter second.
-constexpr float kMinPlaySpeed = 1.0f / 16.0f, kMaxPlaySpeed = 16.0f;
-const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 // DejaVu Sans at this size: as tall as ImGui's default font's lines, readable at 100 % scale.
 constexpr float kFontPx = 15.0f;
 // The glyphs the labels use: Latin-1, Greek (λ, α, σ, Δ), general punctuation (–, —, …),
 // superscripts and subscripts, arrows, mathematical operators (−, √, ≤, ≥, ×), block shapes.
 constexpr ImWchar kGlyphRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x205E, 0x2070, 0x209F,
                                     0x2190, 0x21FF, 0x2200, 0x22FF, 0x25A0, 0x25FF, 0};
-
-void hint(const char* text) {
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("%s", text);
-  ImGui::PopStyleColor();
-}
 
 // A unit written "a | b" (light.size: "m | rad") is the first light's: b for a sun, a otherwise.
 std::string_view unitFor(const ParamDesc& d, const Scene& scene) {
@@ -249,7 +240,7 @@ void Viewer::drawPanels() {
     ImGui::EndTooltip();
   }
 
-  drawTimeControls();
+  mPlayback.drawTimeControls();
   if (ImGui::BeginTabBar("##panels", ImGuiTabBarFlags_FittingPolicyResizeDown)) {
     for (const PanelInfo& p : kPanels) {
       const bool select = mSelectPanel && *mSelectPanel == p.panel;
@@ -258,7 +249,10 @@ void Viewer::drawPanels() {
         case Panel::Technique: drawTechniquePanel(); break;
         case Panel::Filter: drawParams(kTechniqueTabGroups, mSession.paramGroups().size()); break;
         case Panel::Lights: drawLightsPanel(); break;
-        case Panel::Camera: drawCameraPanel(); break;
+        case Panel::Camera:
+          mCamera.drawControls(mSession);
+          mPlayback.drawControls();
+          break;
         case Panel::Views: drawViewsPanel(); break;
         case Panel::Timings: drawTimingPanel(); break;
         case Panel::Tools: drawToolsPanel(); break;
@@ -276,21 +270,6 @@ void Viewer::drawPanels() {
   ImGui::End();
 }
 
-void Viewer::drawOverlay() {
-  if (!mHeatmap.running()) return;
-  // A small box in the view's top-left corner, shown with or without the panels.
-  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
-  constexpr float kMarginPx = 8.0f;
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(mViewRect.x) / scale + kMarginPx, kMarginPx), ImGuiCond_Always);
-  ImGui::SetNextWindowBgAlpha(0.7f);
-  ImGui::Begin("##heatmap progress", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
-  ImGui::TextUnformatted("tracing the reference for the error heatmap");
-  ImGui::ProgressBar(mHeatmap.progress(), ImVec2(ImGui::GetFontSize() * 18.0f, 0.0f));
-  ImGui::End();
-}
-
 void Viewer::drawTechniquePanel() {
   if (auto s = idCombo("Scene", mSession.scene().name, builtinSceneNames())) selectScene(*s);
   ImGui::InputTextWithHint("##scenefile", "scene .json file", mScenePath, sizeof(mScenePath));
@@ -305,7 +284,7 @@ void Viewer::drawTechniquePanel() {
     for (int size : kShadowMapSizes)
       if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == map)) {
         mSession.setShadowMapSize(size);
-        setStatus(fmt::format("shadow map {}²", size), false);
+        mStatus.set(fmt::format("shadow map {}²", size), false);
       }
     ImGui::EndCombo();
   }
@@ -341,68 +320,13 @@ void Viewer::drawParams(size_t first, size_t last) {
       if (changed) {
         try {
           mSession.setParam(d, value);
-          setStatus(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), unit), false);
+          mStatus.set(fmt::format("{} = {} {}", d.key, formatParamValue(d, value), unit), false);
         } catch (const Error& e) {
-          setStatus(e.what(), true);
+          mStatus.set(e.what(), true);
         }
       }
     }
   }
-}
-
-void Viewer::drawTimeControls() {
-  const float duration = mSession.duration();
-  if (duration <= 0.0f) return;  // a still scene: nothing to play
-  if (ImGui::Button(mPlaying ? "Pause" : "Play", ImVec2(kPlayButtonEm * ImGui::GetFontSize(), 0.0f))) setPlaying(!mPlaying);
-  ImGui::SameLine();
-  float t = mSession.time();
-  if (ImGui::SliderFloat("Time", &t, 0.0f, duration, "%.2f s")) {
-    mPlaying = false;  // scrubbing holds the frame under the cursor
-    setTime(t);
-  }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("drag to scrub (pauses); Space plays and pauses; loop and speed: Camera tab");
-}
-
-void Viewer::drawCameraPanel() {
-  const Scene& scene = mSession.scene();
-  int mode = mFly ? 1 : 0;
-  bool modeChanged = ImGui::RadioButton("orbit", &mode, 0);
-  ImGui::SameLine();
-  modeChanged |= ImGui::RadioButton("fly (C)", &mode, 1);
-  if (modeChanged) {
-    mFly = mode == 1;
-    mOrbit = OrbitCamera::fromCamera(scene.camera);
-    mFlyCamera = FlyCamera::fromCamera(scene.camera);
-    setStatus(mFly ? "camera: fly" : "camera: orbit", false);
-  }
-  hint(mFly ? "left-drag look, WASD/QE move (Shift fast), wheel speed" : "left-drag orbit, middle/Shift-drag pan, wheel zoom");
-  float fovDeg = glm::degrees(scene.camera.fovYRad);
-  if (ImGui::SliderFloat("Field of view", &fovDeg, 10.0f, 120.0f, "%.0f° vertical")) mSession.camera().fovYRad = glm::radians(fovDeg);
-  if (ImGui::Button("Reset camera")) {
-    mSession.camera() = mHomeCamera;
-    resetCamera();
-    setStatus("camera: the scene's own", false);
-  }
-  ImGui::SameLine();
-  const std::string argument = "--camera " + cameraArgument(scene.camera);
-  if (ImGui::Button("Copy --camera")) {
-    ImGui::SetClipboardText(argument.c_str());
-    setStatus("copied " + argument, false);
-  }
-  hint(("this view for penumbra render / compare: " + argument).c_str());
-  if (mSession.duration() <= 0.0f) return;
-  ImGui::Separator();
-  ImGui::TextUnformatted("Animation");
-  ImGui::Checkbox("Loop", &mLoop);
-  ImGui::SliderFloat("Speed", &mPlaySpeed, kMinPlaySpeed, kMaxPlaySpeed, "%.2f × real time", ImGuiSliderFlags_Logarithmic);
-  if (mSession.animatesCamera()) {
-    bool follow = mSession.cameraFollows();
-    if (ImGui::Checkbox("Camera follows the animation", &follow)) {
-      mSession.setCameraFollows(follow);
-      setTime(mSession.time());  // orbit and fly take the animated camera
-    }
-  }
-  hint(fmt::format("this frame for penumbra render / compare: --time {:.3f}", mSession.time()).c_str());
 }
 
 void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
@@ -415,7 +339,7 @@ void Viewer::drawViewSettings(const char* id, ViewState& view, bool allowNone) {
     if (view.name != kNoInset) ImGui::TextDisabled("no '%s' with %s: shown when a filter has it", view.name.c_str(), mSession.filterId().c_str());
     return;
   }
-  if (t == &mSession.renderer().colorTexture() || t == &mHeatmapTexture || t == &mReferenceTexture) return;  // colour images
+  if (t == &mSession.renderer().colorTexture() || mHeatmap.owns(t)) return;  // colour images
   ImGui::PushID(id);
   DisplaySettings& s = view.settings;
   const char* channels[] = {"r", "g", "b", "a", "rgb"};
@@ -469,25 +393,7 @@ void Viewer::drawTimingPanel() {
 }
 
 void Viewer::drawToolsPanel() {
-  ImGui::SliderInt("Samples", &mHeatmapSamples, 1, 1024, "%d per pixel", ImGuiSliderFlags_Logarithmic);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light samples per pixel of the ray-traced reference (compare and bench use %d)",
-                                                ReferenceOptions{}.samples);
-  if (mHeatmap.running()) {
-    ImGui::ProgressBar(mHeatmap.progress(), ImVec2(-ImGui::GetFontSize() * 5.0f, 0.0f));
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) {
-      mHeatmap.cancel();
-      setStatus("heatmap cancelled", false);
-    }
-  } else if (ImGui::Button("Error heatmap (H)")) {
-    mHeatmapRequest = mHeatmapSamples;
-  }
-  if (mHeatmapResult) {
-    const VisibilityMetrics& m = mHeatmapResult->metrics;
-    ImGui::Text("RMSE %.4f  leak %.2f%%  over-dark %.2f%%", m.rmse, m.leakPct, m.overDarkPct);
-    ImGui::Text("penumbra RMSE %.4f  (%zu px, %d spp)", m.penumbraRmse, m.pixels, mHeatmapResult->samplesPerPixel);
-    if (mHeatmapResult->version != mSession.version()) ImGui::TextColored(kErrorColor, "stale: the view changed since");
-  }
+  mHeatmap.drawControls();
   ImGui::Separator();
   mHotReload.drawControls();
   ImGui::Separator();
@@ -497,7 +403,7 @@ void Viewer::drawToolsPanel() {
     try {
       saveSettings(mSavePath);
     } catch (const Error& e) {
-      setStatus(e.what(), true);
+      mStatus.set(e.what(), true);
     }
   }
   if (ImGui::Button("Screenshot (F12)")) mViewShot = nextScreenshotPath();

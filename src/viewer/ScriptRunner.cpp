@@ -34,7 +34,7 @@ void Viewer::runScript() {
     return;
   }
   if (mWaitHeatmap) {
-    if (mHeatmap.running() || mHeatmapRequest) return;
+    if (mHeatmap.busy()) return;
     mWaitHeatmap = false;
   }
   if (mWaitReloadFrom) {
@@ -77,27 +77,7 @@ bool Viewer::execute(const ScriptAction& a) {
   } else if (v == "set") {
     mSession.setParam(arg);
   } else if (v == "camera") {
-    if (arg != "mode") mSession.cutCamera();  // the camera jumps: no history to reuse
-    if (arg == "mode") {
-      mFly = a.args[1] == "fly";
-      mOrbit = OrbitCamera::fromCamera(mSession.scene().camera);
-      mFlyCamera = FlyCamera::fromCamera(mSession.scene().camera);
-    } else if (arg == "orbit") {
-      mFly = false;
-      mOrbit.yawRad = glm::radians(scriptFloat(a, 1));
-      mOrbit.pitchRad = glm::radians(scriptFloat(a, 2));
-      mOrbit.distanceM = 1.0f;
-      mOrbit.rotate(0.0f, 0.0f);  // clamps the pitch
-      mOrbit.zoom(scriptFloat(a, 3));  // clamps the distance
-      mOrbit.apply(mSession.camera());
-    } else {  // look
-      Camera& c = mSession.camera();
-      c.position = {scriptFloat(a, 1), scriptFloat(a, 2), scriptFloat(a, 3)};
-      c.target = {scriptFloat(a, 4), scriptFloat(a, 5), scriptFloat(a, 6)};
-      if (glm::length(c.target - c.position) <= 0.0f) throw usageError("the target equals the position");
-      mOrbit = OrbitCamera::fromCamera(c);
-      mFlyCamera = FlyCamera::fromCamera(c);
-    }
+    mCamera.runAction(a, mSession);
   } else if (v == "light") {
     executeLight(a);
   } else if (v == "view") {
@@ -148,7 +128,7 @@ bool Viewer::execute(const ScriptAction& a) {
     } else if (arg == "layout") {
       std::printf("%s\n", layoutText().c_str());
     } else if (arg == "time") {
-      std::printf("time %.3f of %.3f s %s\n", mSession.time(), mSession.duration(), mPlaying ? "playing" : "paused");
+      std::printf("time %.3f of %.3f s %s\n", mSession.time(), mSession.duration(), mPlayback.playing() ? "playing" : "paused");
     } else if (arg == "params") {
       const Technique& t = mSession.technique();
       std::string line = "params";
@@ -165,16 +145,10 @@ bool Viewer::execute(const ScriptAction& a) {
       std::printf("%s frame=%.3f clock=%s\n", line.c_str(), mLastFrameMs, t.clock.c_str());
     }
     std::fflush(stdout);
-  } else if (v == "time") {
-    mPlaying = false;
-    setTime(scriptFloat(a, 0));
-  } else if (v == "play") {
-    mPlaySpeed = a.args.empty() ? 1.0f : scriptFloat(a, 0);
-    setPlaying(true);
-  } else if (v == "pause") {
-    setPlaying(false);
+  } else if (v == "time" || v == "play" || v == "pause") {
+    mPlayback.runAction(a);
   } else if (v == "heatmap") {
-    mHeatmapRequest = a.args.empty() ? mHeatmapSamples : scriptInt(a, 0, 1, 1 << 16);
+    mHeatmap.request(a.args.empty() ? std::nullopt : std::optional<int>(scriptInt(a, 0, 1, 1 << 16)));
     return true;
   } else if (v == "wait-heatmap") {
     mWaitHeatmap = true;

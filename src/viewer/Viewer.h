@@ -3,15 +3,19 @@
 //  - Panels (Panels.cpp): scene, projection, filter and every parameter as a widget generated
 //    from its ParamDesc; lights (LightsPanel.cpp); camera; debug views; per-pass times; shaders;
 //    heatmap; save.
-//  - The view (this file): orbit/fly camera, light dragging, the main view + an inset (any
-//    Renderer::debugImages() entry, the colour output or the error heatmap), screenshots,
-//    shader hot reload, and the scripted mode (Script.h) used by tests and demos.
+//  - The parts, one job each, that the panels and the script take by reference: the camera rig
+//    (CameraRig.h), playback (Playback.h), the heatmap and reference (HeatmapView.h), hot reload
+//    (HotReload.h), the status line (StatusLine.h).
+//  - The view (this file): owns the parts and wires them to the window: the main view + an
+//    inset (any Renderer::debugImages() entry, the colour output or the error heatmap), the
+//    split view, screenshots, and the scripted mode (Script.h) used by tests and demos.
 #include "platform/Context.h"
 #include "gl/Objects.h"
-#include "viewer/Cameras.h"
+#include "viewer/CameraRig.h"
 #include "viewer/DebugDisplay.h"
-#include "viewer/HeatmapJob.h"
+#include "viewer/HeatmapView.h"
 #include "viewer/HotReload.h"
+#include "viewer/Playback.h"
 #include "viewer/Script.h"
 #include "viewer/StatusLine.h"
 #include "viewer/ViewSession.h"
@@ -46,9 +50,6 @@ struct ViewerOptions {
 /// Names of the views that are not Renderer::debugImages() entries. The lit-pass views
 /// (RenderOptions::debugView: shaded, cascades, texel-density) are the colour output.
 inline constexpr const char* kShadedView = "shaded";
-inline constexpr const char* kHeatmapView = "heatmap";
-/// The same frame lit with the reference's V_ref (after a heatmap of this view): R flips to it.
-inline constexpr const char* kReferenceView = "reference";
 inline constexpr const char* kNoInset = "none";
 /// The shadow-map sizes (texels per side) the panels offer, for the technique and for one light.
 inline constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
@@ -102,23 +103,14 @@ private:
   void layout();
   void handleInput(float dtSeconds);
   void renderFrame();
-  // Time (Panels.cpp draws its controls): play, pause, scrub.
-  void advanceTime(float dtSeconds);  ///< when playing: dt × speed, looping or stopping at the end
-  /// Poses both halves of the view; the camera follows if asked. A jump (not playback's step)
-  /// that moves the camera cuts the temporal history.
-  void setTime(float timeS, bool jump = true);
-  void setPlaying(bool playing);      ///< play from the start again when at the end and not looping
-  void drawTimeControls();
   void drawViews();
   void recordTimings(double frameMs);
-  void pollHeatmap();
 
   // Actions shared by the panels and the script. They report problems in the status line
   // (and, when scripted, on stdout) instead of throwing, except for unknown names.
   bool selectScene(const std::string& nameOrPath);
   bool selectProjection(const std::string& id);
   bool selectFilter(const std::string& id);
-  void startHeatmap(int samples);
   void flipReference();  ///< R: technique ↔ reference (a heatmap first when there is none)
   /// Split view: the right half of the view shows `filter` with `projection` ("" = off).
   bool setSplit(const std::string& filter, const std::string& projection);
@@ -128,8 +120,6 @@ private:
   void screenshotWindow(const std::filesystem::path& path);
   void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
   void saveSettings(const std::filesystem::path& path);
-  void resetCamera();
-  void setStatus(std::string message, bool error);
   std::filesystem::path nextScreenshotPath() const;
   const gl::Texture* findView(const std::string& name) const;
   int litView() const;  ///< RenderOptions::debugView for the main view
@@ -147,11 +137,9 @@ private:
 
   // Panels (Panels.cpp).
   void drawPanels();
-  void drawOverlay();  ///< the heatmap's progress, over the view
   void drawTechniquePanel();
   /// The parameter groups [first, last) of ViewSession::paramGroups().
   void drawParams(size_t first, size_t last);
-  void drawCameraPanel();
   void drawViewsPanel();
   void drawViewSettings(const char* id, ViewState& view, bool allowNone);
   void drawTimingPanel();
@@ -174,37 +162,21 @@ private:
   DebugDisplay mDisplay;
   StatusLine mStatus;
   HotReload mHotReload;
-  HeatmapJob mHeatmap;
-  std::optional<HeatmapResult> mHeatmapResult;
-  gl::Texture mHeatmapTexture;
-  int mHeatmapSamples = ReferenceOptions{}.samples;  ///< as compare and bench: the same ruler
-  std::optional<int> mHeatmapRequest;  ///< samples; started once this frame is rendered
-  gl::Texture mReferenceTexture;       ///< the heatmap's frame lit with V_ref
-  uint64_t mReferenceVersion = 0;      ///< ViewSession::version() it shows (0 = none)
-  bool mFlipWhenReady = false;         ///< R pressed before a heatmap of this view existed
+  CameraRig mCamera{mStatus};
+  Playback mPlayback{mSession, mCamera, mStatus};
+  HeatmapView mHeatmap{mSession, mStatus, mOptions.scripted};
   std::unique_ptr<ViewSession> mSplit; ///< the right half's technique, when the view is split
   std::string mSplitLabel;
 
   std::optional<Panel> mSelectPanel;   ///< a tab to open on the next frame (script, keys)
   PanelLayout mLayout;
 
-  // Layout (window pixels, origin lower-left) and cameras.
+  // Layout (window pixels, origin lower-left).
   glm::ivec2 mFramebuffer{0};
   glm::ivec4 mViewRect{0}, mInsetRect{0};
   float mSidebarWidth = 380.0f;
   bool mSidebarFitted = false;  ///< widened once to hold every tab's title
   float mRenderScale = 1.0f;
-  bool mFly = false;
-  bool mDragInView = false;  ///< a mouse drag that started over the view
-  Camera mHomeCamera;  ///< the scene's own camera ("Reset camera")
-  OrbitCamera mOrbit;
-  FlyCamera mFlyCamera;
-  float mFlySpeedMps = 2.0f;
-
-  // Time: the animation plays at mPlaySpeed × real time (a script's frames: 1/30 s each).
-  bool mPlaying = false;
-  bool mLoop = true;
-  float mPlaySpeed = 1.0f;
 
   ViewState mMain{kShadedView, {}, true}, mInset{kNoInset, {}, true};
   glm::vec2 mMainRange{0.0f}, mInsetRange{0.0f};
