@@ -1,4 +1,6 @@
-// The viewer's scripted mode: Script.h's actions executed on the Viewer, one frame at a time.
+// The viewer's scripted mode: the runner (ScriptRunner.h), and the dispatch that hands each of
+// Script.h's actions to the part that does it.
+#include "viewer/ScriptRunner.h"
 #include "viewer/Viewer.h"
 
 #include "viewer/LightEdit.h"
@@ -15,9 +17,6 @@
 namespace penumbra::viewer {
 namespace {
 
-// `wait-reload` gives up after this long: a file that was never saved.
-constexpr std::chrono::seconds kMaxReloadWait{60};
-
 void requireKnown(const ScriptAction& a, const std::vector<std::string>& known, const char* what) {
   if (std::find(known.begin(), known.end(), a.args[0]) == known.end()) {
     std::string list;
@@ -28,26 +27,36 @@ void requireKnown(const ScriptAction& a, const std::vector<std::string>& known, 
 
 }  // namespace
 
-void Viewer::runScript() {
+void ScriptRunner::waitReload() {
+  mWaitReloadFrom = mReload.reloads();
+  mWaitReloadSince = std::chrono::steady_clock::now();
+}
+
+bool ScriptRunner::waiting() {
   if (mWaitFrames > 0) {
     --mWaitFrames;
-    return;
+    return true;
   }
   if (mWaitHeatmap) {
-    if (mHeatmap.busy()) return;
+    if (mHeatmap.busy()) return true;
     mWaitHeatmap = false;
   }
   if (mWaitReloadFrom) {
-    if (mHotReload.reloads() == *mWaitReloadFrom) {
-      if (std::chrono::steady_clock::now() - mWaitReloadSince < kMaxReloadWait) return;
-      const ScriptAction& a = mOptions.script[mScriptIndex - 1];
+    if (mReload.reloads() == *mWaitReloadFrom) {
+      if (std::chrono::steady_clock::now() - mWaitReloadSince < kMaxReloadWait) return true;
+      const ScriptAction& a = mScript[mIndex - 1];
       throw usageError(fmt::format("{}: wait-reload: nothing was saved and reloaded in {} s{}", a.where, kMaxReloadWait.count(),
-                                   mHotReload.active() ? "" : " (hot reload is off: --no-hot-reload, or no source tree and no technique folder)"));
+                                   mReload.active() ? "" : " (hot reload is off: --no-hot-reload, or no source tree and no technique folder)"));
     }
     mWaitReloadFrom.reset();
   }
-  while (mScriptIndex < mOptions.script.size()) {
-    const ScriptAction& a = mOptions.script[mScriptIndex++];
+  return false;
+}
+
+void ScriptRunner::run(const std::function<bool(const ScriptAction&)>& execute) {
+  if (waiting()) return;
+  while (mIndex < mScript.size()) {
+    const ScriptAction& a = mScript[mIndex++];
     try {
       if (execute(a)) return;
     } catch (const Error& e) {
@@ -105,7 +114,7 @@ bool Viewer::execute(const ScriptAction& a) {
   } else if (v == "wait") {
     const int n = scriptInt(a, 0, 0, 1 << 30);
     if (n == 0) return false;
-    mWaitFrames = n - 1;
+    mScript.waitFrames(n - 1);
     return true;
   } else if (v == "screenshot") {
     mViewShot = arg;
@@ -151,20 +160,19 @@ bool Viewer::execute(const ScriptAction& a) {
     mHeatmap.request(a.args.empty() ? std::nullopt : std::optional<int>(scriptInt(a, 0, 1, 1 << 16)));
     return true;
   } else if (v == "wait-heatmap") {
-    mWaitHeatmap = true;
+    mScript.waitHeatmap();
     return true;
   } else if (v == "reload") {
     if (!mHotReload.reloadShaders()) throw usageError(mStatus.text);
   } else if (v == "wait-reload") {
-    mWaitReloadFrom = mHotReload.reloads();
-    mWaitReloadSince = std::chrono::steady_clock::now();
+    mScript.waitReload();
     return true;
   } else if (v == "save") {
     saveSettings(arg);
   } else if (v == "ui") {
     mOptions.showUi = arg == "on";
   } else if (v == "quit") {
-    mQuit = true;
+    mScript.quit();
     return true;
   }
   return false;

@@ -96,8 +96,8 @@ bool Viewer::frame() {
   const auto start = std::chrono::steady_clock::now();
   glfwPollEvents();
   if (glfwWindowShouldClose(mWindow.window())) return false;
-  if (mOptions.scripted) runScript();
-  if (mQuit) return false;
+  if (mOptions.scripted) mScript.run([this](const ScriptAction& a) { return execute(a); });
+  if (mScript.finished()) return false;
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();

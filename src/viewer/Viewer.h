@@ -5,7 +5,7 @@
 //    heatmap; save.
 //  - The parts, one job each, that the panels and the script take by reference: the camera rig
 //    (CameraRig.h), playback (Playback.h), the heatmap and reference (HeatmapView.h), hot reload
-//    (HotReload.h), the status line (StatusLine.h).
+//    (HotReload.h), the script runner (ScriptRunner.h), the status line (StatusLine.h).
 //  - The view (this file): owns the parts and wires them to the window: the main view + an
 //    inset (any Renderer::debugImages() entry, the colour output or the error heatmap), the
 //    split view, screenshots, and the scripted mode (Script.h) used by tests and demos.
@@ -16,6 +16,7 @@
 #include "viewer/HeatmapView.h"
 #include "viewer/HotReload.h"
 #include "viewer/Playback.h"
+#include "viewer/ScriptRunner.h"
 #include "viewer/Script.h"
 #include "viewer/StatusLine.h"
 #include "viewer/ViewSession.h"
@@ -23,7 +24,6 @@
 #include <penumbra/Reference.h>
 
 #include <array>
-#include <chrono>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -125,8 +125,7 @@ private:
   int litView() const;  ///< RenderOptions::debugView for the main view
   std::vector<std::string> viewNames() const;
 
-  // Script.cpp's actions, run at the start of frames.
-  void runScript();
+  // ScriptRunner.cpp: one script action handed to the part that does it (mScript calls it).
   bool execute(const ScriptAction& a);  ///< true = let this frame pass before the next action
 
   // Lights (LightsPanel.cpp): the light list and the selected light's editor, labels over the
@@ -189,12 +188,7 @@ private:
   long mFrameCount = 0;
 
   // Script and screenshot requests for the current frame.
-  size_t mScriptIndex = 0;
-  int mWaitFrames = 0;
-  bool mWaitHeatmap = false;
-  std::optional<int> mWaitReloadFrom;  ///< `wait-reload`: HotReload::reloads() when it started
-  std::chrono::steady_clock::time_point mWaitReloadSince;
-  bool mQuit = false;
+  ScriptRunner mScript{mOptions.script, mHeatmap, mHotReload};
   std::optional<std::filesystem::path> mViewShot, mWindowShot, mInsetShot;
   char mSavePath[512] = {};
   char mScenePath[512] = {};
