@@ -70,29 +70,37 @@ void HeatmapJob::run(Scene scene, GBufferData g, std::vector<float> v, ColorImag
     options.progress = false;  // the viewer draws its own progress bar
     options.useCache = false;  // per-band results are not worth a cache file each
     const size_t n = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
-    std::vector<float> vRef(n, 1.0f);
+    // Every light is traced, so the reference view is lit like the frame; the heatmap and its
+    // metrics are the first light's (the one the frame's visibility image shows).
+    const size_t lights = scene.lights.size();
+    std::vector<std::vector<float>> vRef(lights, std::vector<float>(n, 1.0f));
     std::vector<uint8_t> mask(n, 0);
     int spp = 0;
-    for (int y0 = 0; y0 < g.height; y0 += kBandRows) {
-      if (mCancel) return;
-      const int y1 = std::min(g.height, y0 + kBandRows);
-      GBufferData band;
-      band.width = g.width;
-      band.height = y1 - y0;
-      band.position = rows(g.position, g.width, y0, y1);
-      band.geoNormal = rows(g.geoNormal, g.width, y0, y1);
-      band.normal = rows(g.normal, g.width, y0, y1);
-      band.albedo = rows(g.albedo, g.width, y0, y1);
-      band.triangle = rows(g.triangle, g.width, y0, y1);
-      const ReferenceResult r = tracer.trace(band, scene.light(), options);
-      std::copy(r.visibility.begin(), r.visibility.end(), vRef.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
-      std::copy(r.litMask.begin(), r.litMask.end(), mask.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
-      spp = r.samplesPerPixel;
-      mProgress = static_cast<float>(y1) / static_cast<float>(g.height);
-    }
+    const int bands = (g.height + kBandRows - 1) / kBandRows;
+    for (size_t l = 0; l < lights; ++l)
+      for (int y0 = 0; y0 < g.height; y0 += kBandRows) {
+        if (mCancel) return;
+        const int y1 = std::min(g.height, y0 + kBandRows);
+        GBufferData band;
+        band.width = g.width;
+        band.height = y1 - y0;
+        band.position = rows(g.position, g.width, y0, y1);
+        band.geoNormal = rows(g.geoNormal, g.width, y0, y1);
+        band.normal = rows(g.normal, g.width, y0, y1);
+        band.albedo = rows(g.albedo, g.width, y0, y1);
+        band.triangle = rows(g.triangle, g.width, y0, y1);
+        const ReferenceResult r = tracer.trace(band, scene.lights[l], options);
+        std::copy(r.visibility.begin(), r.visibility.end(), vRef[l].begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
+        if (l == 0) {
+          std::copy(r.litMask.begin(), r.litMask.end(), mask.begin() + static_cast<std::ptrdiff_t>(y0) * g.width);
+          spp = r.samplesPerPixel;
+        }
+        mProgress = static_cast<float>(static_cast<int>(l) * bands + y0 / kBandRows + 1) /
+                    static_cast<float>(static_cast<int>(lights) * bands);
+      }
     HeatmapResult result;
-    result.metrics = compareVisibility(v, vRef, mask, g.width);
-    result.image = errorHeatmap(v, vRef, mask, g.width, g.height, color.rgba.empty() ? nullptr : &color, report::kLabHeatmap);
+    result.metrics = compareVisibility(v, vRef.at(0), mask, g.width);
+    result.image = errorHeatmap(v, vRef.at(0), mask, g.width, g.height, color.rgba.empty() ? nullptr : &color, report::kLabHeatmap);
     result.samplesPerPixel = spp;
     result.vRef = std::move(vRef);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

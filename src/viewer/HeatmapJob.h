@@ -19,8 +19,9 @@ namespace penumbra::viewer {
 
 struct HeatmapResult {
   ColorImage image;           ///< errorHeatmap() over the frame's colour, row 0 = top
-  std::vector<float> vRef;    ///< the reference's V (G-buffer order, row 0 = bottom)
-  VisibilityMetrics metrics;  ///< V against V_ref over the pixels that face the light
+  /// The reference's V of every light (G-buffer order, row 0 = bottom): the reference view.
+  std::vector<std::vector<float>> vRef;
+  VisibilityMetrics metrics;  ///< the first light's V against its V_ref over the pixels that face it
   int samplesPerPixel = 0;
   double seconds = 0.0;       ///< wall-clock time of the trace
   uint64_t version = 0;       ///< ViewSession::version() of the frame it measures
@@ -34,7 +35,8 @@ public:
   HeatmapJob& operator=(const HeatmapJob&) = delete;
 
   /// Starts a new job (cancelling a running one) on a copy of one frame's data: the scene (its
-  /// casters and first light), its G-buffer, visibility and colour (the heatmap's backdrop; empty
+  /// casters and lights: the heatmap is the first light's, the reference view lit by all), its
+  /// G-buffer, the first light's visibility and colour (the heatmap's backdrop; empty
   /// = V_ref in grey). `samples` = light samples per pixel for a light of size > 0.
   void start(const Scene& scene, GBufferData gbuffer, std::vector<float> visibility, ColorImage color,
              int samples, uint64_t version);

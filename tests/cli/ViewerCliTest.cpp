@@ -79,6 +79,7 @@ void writeScript(const std::string& path, const std::string& text) {
 struct Grey {
   int levels = 0;
   double stdDev = 0.0;
+  double mean = 0.0;
 };
 
 Grey greyStats(const std::vector<uint8_t>& rgba) {
@@ -92,7 +93,8 @@ Grey greyStats(const std::vector<uint8_t>& rgba) {
     sum2 += double(g) * g;
   }
   const double mean = sum / double(n);
-  return {static_cast<int>(std::count(seen.begin(), seen.end(), true)), std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean))};
+  return {static_cast<int>(std::count(seen.begin(), seen.end(), true)), std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean)),
+          mean};
 }
 
 double differingShare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
@@ -274,6 +276,23 @@ TEST(ViewerCli, UnknownFilterInAScriptStopsWithExit2) {
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("s.txt:1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("blurry"), std::string::npos) << r.err;
+}
+
+// room has a point lamp and a spot: the reference view is lit by both lights' V_ref (the heatmap
+// and its numbers are the first light's), so it looks like the technique's frame.
+TEST(ViewerCli, HeatmapAndReferenceViewOfASceneWithTwoLights) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = freshDir("viewer-heatmap-lights");
+  writeScript(dir + "/s.txt", "scene room\nheatmap 16\nwait-heatmap\nview shaded\nflip\nwait 1\nscreenshot reference.png\n"
+                              "flip\nwait 1\nscreenshot technique.png\n");
+  const RunResult r = runViewer("--size 160x120 --shadow-map 512 --filter pcss --script s.txt", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("heatmap: RMSE"), std::string::npos) << r.out;
+  int w = 0, h = 0;
+  const Grey reference = greyStats(readPng(dir + "/reference.png", w, h));
+  const Grey technique = greyStats(readPng(dir + "/technique.png", w, h));
+  std::printf("mean grey: reference %.2f, technique %.2f\n", reference.mean, technique.mean);
+  EXPECT_NEAR(reference.mean, technique.mean, 0.05 * technique.mean);
 }
 
 TEST(ViewerCli, DebugViewsHeatmapAndSavedSettings) {
