@@ -70,8 +70,11 @@ vec2 blockerSearchRadiusUv(int view, vec3 wsReceiver, float lightSize) {
 // mapSize texels per side, from a min-depth pyramid (render/MinDepthPyramid.h: a texel of level
 // k covers 2^(k+1) map texels per side): at the level whose texels are at least as wide as the
 // box, the at most 2x2 texels over it. Their union holds the box, so the result is never above
-// the box's own minimum.
+// the box's own minimum. A paged map: its pool's pyramid, page by page (pagedMinDepthOverBox).
 float minDepthOverBox(sampler2DArray pyramid, int view, vec2 uv, vec2 radiusUv, float mapSize) {
+#ifdef PN_VIRTUAL_PAGES
+  return pagedMinDepthOverBox(pyramid, view, uv, radiusUv);
+#else
   vec2 lo = (uv - radiusUv) * mapSize, hi = (uv + radiusUv) * mapSize;
   float width = max(max(hi.x - lo.x, hi.y - lo.y), 1.0);
   int level = clamp(int(ceil(log2(width))) - 1, 0, textureQueryLevels(pyramid) - 1);
@@ -85,6 +88,7 @@ float minDepthOverBox(sampler2DArray pyramid, int view, vec2 uv, vec2 radiusUv, 
   for (int y = a.y; y <= b.y; ++y)
     for (int x = a.x; x <= b.x; ++x) m = min(m, texelFetch(pyramid, ivec3(x, y, view), level).r);
   return m;
+#endif
 }
 
 // The blocker search region made tight: the near plane's footprint (blockerSearchRadiusUv,

@@ -157,9 +157,10 @@ float virtualPixelWidthM(vec3 ws) {
 // The level a pixel at ws on a surface of normal n asks for, before rounding: the finest level
 // whose texels, seen from the camera, each cover at most one pixel is its floor. The pixel's
 // footprint on its surface (width² / cos of the camera's angle to it) projected along the light's
-// rays onto the map's plane (× cos of the light's angle) holds w²·ratio m², and a texel of level
-// l is t_l = t_0·2^l wide: log2(w·√ratio / t_0), moved by the level bias. n = vec3(0): no surface
-// known (the pixel faces camera and light alike).
+// rays onto the map's plane (× cos of the light's angle) holds w²·ratio m², ratio capped at 1 (a
+// texel no wider than the pixel), and a texel of level l is t_l = t_0·2^l wide:
+// log2(w·√ratio / t_0), moved by the level bias. n = vec3(0): no surface known (the pixel faces
+// camera and light alike).
 float virtualLevelValue(vec3 ws, vec3 n) {
   float ratio = 1.0;
   if (dot(n, n) > 0.0) {
@@ -169,7 +170,10 @@ float virtualLevelValue(vec3 ws, vec3 n) {
 #else
     vec3 toEye = normalize(u_frame.cameraPosition.xyz - ws);
 #endif
-    ratio = max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine);
+    // Never coarser than the pixel's width: a camera grazing the surface stretches its footprint
+    // along the view only, and the texels must still resolve its width across (the thin shadows
+    // of poles and wires on a street seen far off); a light grazing it makes the texels finer.
+    ratio = min(max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine), 1.0);
   }
   return log2(virtualPixelWidthM(ws)) + 0.5 * log2(ratio) - u_pages.lod.x + u_pages.lod.z;
 }
@@ -193,6 +197,20 @@ vec2 virtualUvInLevel(vec2 uv, int from, int to) {
   return ((uv * 2.0 - 1.0 - tFrom) * (kTo / kFrom) + tTo) * 0.5 + 0.5;
 }
 
+// Where the page holding texel t of level l lies in the pool: its tile's first texel and layer.
+// False when t is off the level's map or its page is not resident.
+bool pageInPool(ivec2 t, int l, out ivec3 pool0) {
+  const int size = PN_PAGE_SIZE * PN_PAGES_PER_SIDE;
+  pool0 = ivec3(0);
+  if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(size)))) return false;
+  uint entry = texelFetch(s_pageTable, ivec3(t / PN_PAGE_SIZE, l), 0).r;
+  if (entry == 0u) return false;
+  int tile = int(entry - 1u);
+  const int perLayer = PN_POOL_TILES_PER_SIDE * PN_POOL_TILES_PER_SIDE;
+  pool0 = ivec3(ivec2(tile % PN_POOL_TILES_PER_SIDE, (tile % perLayer) / PN_POOL_TILES_PER_SIDE) * PN_PAGE_SIZE, tile / perLayer);
+  return true;
+}
+
 // The depth at texel `texel` of level `level`, read from `pool` through the page table. A page
 // that is not resident (not needed by this frame's pixels, or the pool was full) is served by the
 // first coarser level that holds the point in a resident page; none does: the far plane (1).
@@ -201,15 +219,54 @@ float pagedDepth(sampler2DArray pool, ivec2 texel, int level) {
   vec2 uv = (vec2(texel) + 0.5) / float(size);
   for (int l = level; l < shadowViewCount(); ++l) {
     ivec2 t = l == level ? texel : ivec2(floor(virtualUvInLevel(uv, level, l) * float(size)));
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(size)))) continue;
-    uint entry = texelFetch(s_pageTable, ivec3(t / PN_PAGE_SIZE, l), 0).r;
-    if (entry == 0u) continue;
-    int tile = int(entry - 1u);
-    const int perLayer = PN_POOL_TILES_PER_SIDE * PN_POOL_TILES_PER_SIDE;
-    ivec2 tileXY = ivec2(tile % PN_POOL_TILES_PER_SIDE, (tile % perLayer) / PN_POOL_TILES_PER_SIDE);
-    return texelFetch(pool, ivec3(tileXY * PN_PAGE_SIZE + t % PN_PAGE_SIZE, tile / perLayer), 0).r;
+    ivec3 pool0;
+    if (!pageInPool(t, l, pool0)) continue;
+    return texelFetch(pool, ivec3(pool0.xy + t % PN_PAGE_SIZE, pool0.z), 0).r;
   }
   return 1.0;
+}
+
+// The smallest depth over cell `cell` (2^(k+1) texels a side) of level `level`'s virtual map, from
+// the pool's min-depth pyramid (MinDepthPyramid over the pool: its level k holds a tile's k-th
+// level, as tiles sit on a grid of whole pages). A page that is not resident is served by the
+// first coarser level that holds the cell in a resident page: the levels' corners sit on their
+// page grids, so the cell of a coarser level at the same k (twice as wide) holds the finer one.
+// No level holds it: 0, the near plane (nothing is known there; a bound must not be above it).
+float pagedCellMinDepth(sampler2DArray pyramid, ivec2 cell, int k, int level) {
+  const int size = PN_PAGE_SIZE * PN_PAGES_PER_SIDE;
+  int cellTexels = 2 << k;
+  vec2 uv = (vec2(cell) + 0.5) * float(cellTexels) / float(size);
+  for (int l = level; l < shadowViewCount(); ++l) {
+    ivec2 c = l == level ? cell : ivec2(floor(virtualUvInLevel(uv, level, l) * float(size) / float(cellTexels)));
+    ivec2 t = c * cellTexels;
+    ivec3 pool0;
+    if (!pageInPool(t, l, pool0)) continue;
+    return texelFetch(pyramid, ivec3((pool0.xy + t % PN_PAGE_SIZE) / cellTexels, pool0.z), k).r;
+  }
+  return 0.0;
+}
+
+// The smallest depth over the box of half-size radiusUv around uv of level `level` (at most four
+// cells of the pool's pyramid, common/penumbra.glsl: minDepthOverBox for whole maps). A box wider
+// than a page is looked up in the first coarser level where it is not: each level halves it in
+// texels, and its texels store the surfaces nearest the light at their centres, as the finer
+// level's do.
+float pagedMinDepthOverBox(sampler2DArray pyramid, int level, vec2 uv, vec2 radiusUv) {
+  const float size = float(PN_PAGE_SIZE * PN_PAGES_PER_SIDE);
+  const int maxK = findMSB(PN_PAGE_SIZE) - 1;  // a cell of 2^(maxK+1) texels is a page
+  float width = max(2.0 * max(radiusUv.x, radiusUv.y) * size, 1.0);
+  int l = min(level + max(int(ceil(log2(width / float(PN_PAGE_SIZE)))), 0), shadowViewCount() - 1);
+  float scale = exp2(float(level - l));
+  vec2 centre = virtualUvInLevel(uv, level, l);
+  vec2 lo = (centre - radiusUv * scale) * size, hi = (centre + radiusUv * scale) * size;
+  int k = clamp(int(ceil(log2(max(max(hi.x - lo.x, hi.y - lo.y), 1.0)))) - 1, 0, maxK);
+  float cellTexels = exp2(float(k + 1));
+  ivec2 a = ivec2(floor(lo / cellTexels));
+  ivec2 b = clamp(ivec2(floor(hi / cellTexels)), a, a + 1);
+  float m = 1.0;
+  for (int y = a.y; y <= b.y; ++y)
+    for (int x = a.x; x <= b.x; ++x) m = min(m, pagedCellMinDepth(pyramid, ivec2(x, y), k, l));
+  return m;
 }
 #endif
 

@@ -1,9 +1,9 @@
 // Page marking for a paged projection (frame/VirtualPages): every covered pixel that faces the
 // light (the pixels the visibility pass will look up) marks, at the level its footprint asks for
 // (virtualLevelFor, the visibility pass's own choice), the pages its texel and a margin of
-// u_pages.lod.w texels around it fall in. A page's flag is set once (atomicOr); the invocation
-// that set it appends the page to the list the CPU reads back, so the list holds each needed
-// page once. Surfaces are read as the visibility pass reads them (surfaceDefines).
+// u_pages.lod.w texels around it fall in, and the page holding it at every coarser level. A
+// page's flag is set once (atomicOr); the invocation that set it appends the page to the list the
+// CPU reads back, so the list holds each needed page once. Surfaces are read as the visibility pass reads them (surfaceDefines).
 #include "common/visibility.glsl"
 
 layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
@@ -39,5 +39,13 @@ void main() {
     ivec2 hi = clamp(ivec2(floor(coord.xy * size + u_pages.lod.w)), ivec2(0), ivec2(int(size) - 1)) / PN_PAGE_SIZE;
     for (int y = lo.y; y <= hi.y; ++y)
       for (int x = lo.x; x <= hi.x; ++x) markPage(levels[i], ivec2(x, y));
+  }
+  // The page that holds the point at every coarser level too: a read past the marked pages (a
+  // kernel's or a ray's far taps, a blocker search, the min-depth bounds) falls back to the first
+  // coarser level that holds it, and this keeps one resident around every point a pixel sees. Each
+  // level's pages are twice as wide as the last's, so the chain adds about a third to the pages.
+  for (int l = max(levels[0], levels[1]) + 1; l < shadowViewCount(); ++l) {
+    vec3 coord = shadowCoord(l, pos.xyz);
+    if (insideMap(coord)) markPage(l, ivec2(floor(coord.xy * size)) / PN_PAGE_SIZE);
   }
 }

@@ -109,6 +109,8 @@ public:
   /// page table (common/shadow.glsl: fetchMapDepth), so no filter may read them as whole
   /// textures (mips, summed-area tables, pyramids, hardware 2x2 comparisons).
   bool paged() const { return mPages != nullptr; }
+  /// The paged views' pages (null when not paged).
+  const VirtualPages* pages() const { return mPages; }
   /// Makes `maps` the storage the views are drawn into (depth only): a layer of mapSize()² per
   /// view, or for paged views the pool of pages.
   void ensureMaps(ShadowMapArray& maps, const std::string& label);

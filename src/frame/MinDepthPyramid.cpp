@@ -14,11 +14,12 @@ bool MinDepthPyramid::hasMinFilter() {
   return epoxy_has_gl_extension("GL_ARB_texture_filter_minmax") || epoxy_has_gl_extension("GL_EXT_texture_filter_minmax");
 }
 
-void MinDepthPyramid::build(ShaderLibrary& shaders, const gl::Texture& map, bool minFilter) {
+void MinDepthPyramid::build(ShaderLibrary& shaders, const gl::Texture& map, bool minFilter, int maxLevels) {
   PN_CHECK(map.desc().target == GL_TEXTURE_2D_ARRAY, "MinDepthPyramid: the map must be a 2D array texture");
   const int w = (map.width() + 1) / 2, h = (map.height() + 1) / 2, layers = map.layers();
-  const int levels = std::bit_width(static_cast<unsigned>(std::max(w, h)));  // down to 1×1
-  if (!mPyramid || mPyramid.width() != w || mPyramid.height() != h || mPyramid.layers() != layers) {
+  const int allLevels = std::bit_width(static_cast<unsigned>(std::max(w, h)));  // down to 1×1
+  const int levels = maxLevels > 0 ? std::min(maxLevels, allLevels) : allLevels;
+  if (!mPyramid || mPyramid.width() != w || mPyramid.height() != h || mPyramid.layers() != layers || mPyramid.levels() != levels) {
     mPyramid = gl::Texture("min-depth pyramid", {GL_TEXTURE_2D_ARRAY, GL_R32F, w, h, layers, levels});
     mPyramid.setSampling(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);
   }

@@ -15,10 +15,12 @@ public:
   /// Where the context has GL_ARB_texture_filter_minmax (or the EXT) and `minFilter` is on, each
   /// texel over exactly 2x2 texels is one read through a minimum-reducing bilinear filter instead
   /// of four texel fetches: the same pyramid, in about two thirds of the time on llvmpipe.
-  void build(ShaderLibrary& shaders, const gl::Texture& map, bool minFilter = true);
+  /// `maxLevels` > 0 builds only the first that many levels: a pool of pages (VirtualPages) needs
+  /// the levels whose texels stay inside one tile, log2(page size) of them.
+  void build(ShaderLibrary& shaders, const gl::Texture& map, bool minFilter = true, int maxLevels = 0);
   /// Whether build() can take the minimum in the filter here (needs a current context).
   static bool hasMinFilter();
-  /// R32F 2D array, ceil(size/2)² at level 0 down to 1×1, one layer per map layer.
+  /// R32F 2D array, ceil(size/2)² at level 0 down to 1×1 (or maxLevels levels), one layer per map layer.
   const gl::Texture& pyramid() const { return mPyramid; }
 
 private:

@@ -52,6 +52,7 @@ public:
   /// The layout's constants for every pass that reads the pages (PN_VIRTUAL_PAGES, …).
   ShaderDefines defines() const;
   int poolSide() const { return mTilesPerSide * mLayout.pageSize; }
+  int pageSize() const { return mLayout.pageSize; }
   int poolLayers() const { return mPoolLayers; }
   const PageStats& stats() const { return mStats; }
   /// The pages drawn in the last frame: (level, x, y) on the level's grid of that frame.

@@ -48,6 +48,11 @@ TimeStats shadowCostStats(const FrameSamples& frames) {
   return timeStats(sums);
 }
 
+std::optional<double> BenchRow::pagesDrawnMean() const {
+  if (!motion || motion->pagesDrawn.empty()) return std::nullopt;
+  return std::accumulate(motion->pagesDrawn.begin(), motion->pagesDrawn.end(), 0.0) / static_cast<double>(motion->pagesDrawn.size());
+}
+
 double BenchRow::oneOffSeconds() const {
   double s = 0.0;
   for (const OneOffCost& c : oneOff) s += c.seconds;

@@ -63,6 +63,9 @@ struct MotionScore {
   float fps = kMotionFps;
   std::vector<VisibilityMetrics> frames;
   FlickerCounts flicker;
+  /// A paged projection's pages drawn in each frame, every light's together (LightShadowReport::
+  /// pages); empty for a projection that does not page.
+  std::vector<int> pagesDrawn;
 };
 
 /// A row's whole cost timed again in interleaved rounds with the other contenders of its
@@ -98,6 +101,9 @@ struct BenchRow {
   /// Median/spread of `pass`; zeros when the row has no such pass.
   TimeStats time(std::string_view pass) const;
   double memoryMiB() const { return static_cast<double>(memoryBytes) / kBytesPerMiB; }
+  /// The mean of MotionScore::pagesDrawn over the motion's frames; none for a still row or a
+  /// projection that does not page.
+  std::optional<double> pagesDrawnMean() const;
   /// Seconds of every one-off cost together (0 when there are none).
   double oneOffSeconds() const;
 };

@@ -246,8 +246,18 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
             compareSequence(renderer, moving, render, timing, ro, {}, {}, {}, &motionReferences[light]);
         renderer.setPose(s.scene);
         MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
-                           .flicker = seq.flicker};
+                           .flicker = seq.flicker, .pagesDrawn = {}};
         for (const SequenceFrame& f : seq.frames) motion.frames.push_back(f.metrics);
+        // A paged projection's pages drawn a frame (a light that pages has a pool).
+        for (const SequenceFrame& f : seq.frames) {
+          int drawn = 0;
+          bool paged = false;
+          for (const LightShadowReport& l : f.lights) {
+            drawn += l.pages.drawn;
+            paged = paged || l.pages.poolPages > 0;
+          }
+          if (paged) motion.pagesDrawn.push_back(drawn);
+        }
         row.motion = std::move(motion);
       }
       if (c.inGrid) {

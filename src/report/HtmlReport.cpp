@@ -196,11 +196,14 @@ std::string gridSection(const BenchResults& r) {
                            esc(path), thumbW, thumbH, esc(alt), row.width, row.height);
       };
       rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %"
-                          "<br>whole cost {} ms<br>memory {} MiB{}</td>",
+                          "<br>whole cost {} ms<br>memory {} MiB{}{}</td>",
                           esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
                           row.metrics.umbraLeakPct, row.metrics.overDarkPct, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
                           row.oneOff.empty() ? "" : fmt::format("<br>+ {:.3g} s bake<br><small>(static casters only)</small>",
-                                                                row.oneOffSeconds()));
+                                                                row.oneOffSeconds()),
+                          row.pagesDrawnMean() ? fmt::format("<br>pages drawn {} a frame<br><small>(mean over the motion)</small>",
+                                                             numberText(*row.pagesDrawnMean()))
+                                               : "");
       rows += img(row.imagePath, row.config.filter + " " + row.config.projection) +
               img(row.referencePath, "reference") + img(row.heatmapPath, "error heatmap") + "</tr>\n";
     }

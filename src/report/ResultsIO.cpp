@@ -43,7 +43,7 @@ std::vector<std::string> tableColumns(const BenchResults& results) {
                                    "overdark_pct", "penumbra_rmse", "pixels"};
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kShadowCostColumn) + suffix);
   for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what", "motion", "motion_frames", "flicker_pct",
-                        "rmse_motion_mean", "penumbra_rmse_motion_mean"})
+                        "rmse_motion_mean", "penumbra_rmse_motion_mean", "pages_drawn"})
     cols.emplace_back(c);
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kRoundsCostColumn) + suffix);
   for (const std::string& pass : results.passNames())
@@ -76,6 +76,8 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   } else {
     cells.insert(cells.end(), 5, Cell());
   }
+  if (const std::optional<double> pages = r.pagesDrawnMean()) cells.emplace_back(*pages);
+  else cells.emplace_back();
   if (r.rounds)
     cells.insert(cells.end(), {num(r.rounds->stats.median), num(r.rounds->stats.p10), num(r.rounds->stats.p90)});
   else

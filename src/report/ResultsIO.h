@@ -27,7 +27,8 @@ using Cell = std::variant<std::monostate, std::string, double>;
 /// Column names, in order: configuration, quality, the whole cost (shadow_cost_ms_{median,p10,p90},
 /// shadow_memory_mb in MiB, one_off_s and one_off_what: empty for techniques with none), the
 /// motion (motion, motion_frames, flicker_pct, rmse_motion_mean, penumbra_rmse_motion_mean: empty
-/// for a still row), rounds_cost_ms_{median,p10,p90}, then
+/// for a still row; pages_drawn, the mean pages a paged projection drew a frame over the motion's
+/// frames: empty for a still row or a projection that does not page), rounds_cost_ms_{median,p10,p90}, then
 /// <pass>_ms_{median,p10,p90} for every pass of results.passNames(), then image paths and the clock.
 std::vector<std::string> tableColumns(const BenchResults& results);
 /// One row's cells, aligned with tableColumns(results).

@@ -26,8 +26,10 @@ constexpr ParamDesc tightSearchParam(std::string_view key) {
 
 class TightSearch {
 public:
-  /// Prefilter step: rebuilds the pyramid of `map` (linear depth in channel r) when `on` and the
-  /// map is not paged (FrameContext::paged: its pool has no pyramid; the search is then off).
+  /// Prefilter step: rebuilds the pyramid of `map` (linear depth in channel r) when `on`. A paged
+  /// map (FrameContext::paged) is a pool of tiles: its pyramid holds the levels inside one tile
+  /// (a page's own pyramid, up to one texel a page; common/shadow.glsl: pagedMinDepthOverBox)
+  /// and is rebuilt only in a frame that drew a page or with a new pool.
   void build(FrameContext& frame, bool on, const gl::Texture& map);
   /// Before the visibility dispatch: when `on` and built, sets PN_TIGHT_SEARCH and binds the pyramid at
   /// PN_TEX_MIN_DEPTH, where common/penumbra.glsl reads it.
@@ -36,6 +38,7 @@ public:
 private:
   MinDepthPyramid mPyramid;
   bool mBuilt = false;
+  GLuint mPool = 0;  // the pool the pyramid was last built over (paged maps)
 };
 
 }  // namespace penumbra

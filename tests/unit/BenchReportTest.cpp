@@ -167,6 +167,27 @@ TEST(BenchResultsIO, CsvQuotesTextAndRoundTripsNumbers) {
   EXPECT_EQ(j["rows"][0]["umbra_leak_pct"].get<double>(), 0.375);
 }
 
+// pages_drawn: a paged row's mean pages drawn a frame over its motion; empty for a row that does
+// not page and for a still row.
+TEST(BenchResultsIO, PagesDrawnIsTheMotionsMeanForPagedRowsOnly) {
+  BenchResults r;
+  BenchRow paged;
+  paged.config = {.plan = "custom", .scene = "city", .projection = "virtual", .filter = "hard", .params = {}, .inGrid = false};
+  paged.motion = MotionScore{.what = kAnimationMotion, .fps = kMotionFps, .frames = {{}, {}, {}, {}}, .flicker = {}, .pagesDrawn = {0, 4, 3, 3}};
+  BenchRow cascaded = paged;
+  cascaded.config.projection = "csm";
+  cascaded.motion->pagesDrawn.clear();
+  BenchRow still = paged;
+  still.motion.reset();
+  r.rows = {paged, cascaded, still};
+  const nlohmann::json j = resultsJson(r);
+  EXPECT_EQ(j["rows"][0]["pages_drawn"].get<double>(), 2.5);
+  EXPECT_TRUE(j["rows"][1]["pages_drawn"].is_null());
+  EXPECT_TRUE(j["rows"][2]["pages_drawn"].is_null());
+  const std::vector<std::string> columns = tableColumns(r);
+  EXPECT_NE(std::find(columns.begin(), columns.end(), "pages_drawn"), columns.end());
+}
+
 // A micro-benchmark that failed is kept with its error: in the JSON and in the page's table,
 // with no ratio drawn against it. The page names each row's baseline.
 TEST(BenchResultsIO, FailedMicroBenchmarkIsReportedNotLost) {

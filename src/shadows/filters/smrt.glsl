@@ -159,8 +159,8 @@ float shadowVisibility(SurfacePoint s) {
     endDepth = max(endDepth, minDepthOverBox(s_minDepth, view, coord.xy, regionUv, shadowMapSize()));
   }
 #else
-  // No pyramid (a paged map: TightSearch builds none over its pool): the march runs to the near
-  // plane, every caster in front of the receiver within its reach.
+  // No pyramid: the march runs to the near plane, every caster in front of the receiver within its
+  // reach.
   float endDepth = 0.0;
 #endif
   if (endDepth >= coord.z - r.bias) return 1.0;  // nothing in front of the receiver that a ray can meet
