@@ -48,6 +48,9 @@ struct ComparisonReceiver {
   // Subtracted per texel of the compared texel's distance from the receiver (linear depth): the
   // plane moved back one texel along its normal for every texel it is carried (planeReachDepth).
   float biasPerTexel;
+  // Subtracted per texel more by a filter's taps, never by a blocker search: the depth a wall
+  // standing square on the receiver rises in front of its plane per texel (creaseDepthPerTexel).
+  float creasePerTexel;
 };
 
 // Beyond this tangent of the angle to the light (~84 degrees, as slopeTangent clamps) a bias
@@ -117,6 +120,25 @@ float planeNormalOffsetDepth(int view, vec3 ws, vec2 depthPerUv, float texels) {
   return texels * sqrt(texelDepth * texelDepth + slopeDepth * slopeDepth);
 }
 
+// A wall standing square on the receiver (a concave crease: a lit wall on a lit floor) rises in
+// front of the receiver's plane carried d texels toward it by d·t / (cos θ · sin θ) of depth, θ
+// the receiver's angle to the light: its texels are seen at height d·t / sin θ. The plane margin
+// (1 + d)·t / cos θ covers that only where sin θ ≥ d / (1 + d) (θ ≥ 42° for a 2-texel tap), so
+// under a high sun or a lamp overhead a filter's kernel straddling the foot of a lit wall reads
+// the wall as a blocker and darkens a strip of floor as wide as the kernel. This is the depth per
+// texel of tap distance to add to planeNormalOffsetDepth's one texel (t / cos θ) so that the two
+// together are t / (cos θ · sin θ): (1/sin θ − 1)·t / cos θ, with 1/sin θ capped at
+// kMaxCreaseFactor. It hides, d texels from the receiver, anything lower than d·t / sin θ above
+// its plane (at most kMaxCreaseFactor·d texels): filters apply it to their own taps, whose reach
+// is the kernel's radius, and never to a blocker search, which reaches much farther to find the
+// casters that size a penumbra and would hide real ones (a table top above the wall it shadows).
+const float kMaxCreaseFactor = 10.0;
+float creaseDepthPerTexel(vec2 depthPerUv, float biasPerTexel) {
+  float slopeDepth = length(depthPerUv) / shadowMapSize();
+  float invSin = biasPerTexel / max(slopeDepth, biasPerTexel / kMaxCreaseFactor);  // 1 / sin θ, capped
+  return (invSin - 1.0) * biasPerTexel;
+}
+
 // Receiver at shadow coordinate `coord` of `view`. Each tap compares a texel with the receiver's
 // own plane at that texel's centre — where the stored depth was rasterised — so a planar
 // receiver meets its own map exactly at every tap and a wide kernel on a tilted receiver neither
@@ -136,6 +158,7 @@ ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, floa
   r.depth = coord.z;
   receiverPlane(view, s, r.depthPerUv, r.projectivePerUv);
   r.biasPerTexel = planeNormalOffsetDepth(view, s.ws, r.depthPerUv, 1.0);
+  r.creasePerTexel = creaseDepthPerTexel(r.depthPerUv, r.biasPerTexel);
   r.bias = constantBias + slopeTexels * length(r.depthPerUv) / shadowMapSize() + planeTexels * r.biasPerTexel;
   return r;
 }
@@ -161,7 +184,7 @@ struct TapKernel {
   float depth;         // the receiver's plane there, minus its bias
   vec2 depthPerTexel;  // the plane's gradient and projective term per texel (ComparisonReceiver)
   vec2 projectivePerTexel;
-  float biasPerTexel;  // ComparisonReceiver::biasPerTexel
+  float biasPerTexel;  // ComparisonReceiver::biasPerTexel, + creasePerTexel for a filter's taps
   // The hardware's 2×2 comparison takes one reference depth for four texels: the plane at the tap
   // point differs from the plane at their centres by up to half a texel of slope on each axis.
   float bilinearMargin;
@@ -170,7 +193,7 @@ struct TapKernel {
 };
 
 // The kernel of radius radiusUv (per axis) around r, its pattern turned by `rotation`, in a map of
-// mapSize (textureSize) texels.
+// mapSize (textureSize) texels: a filter's, whose taps keep the crease margin.
 TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
   vec2 size = vec2(mapSize);
   vec2 radiusTexels = radiusUv * size;
@@ -184,10 +207,18 @@ TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 ma
   k.depthPerTexel = r.depthPerUv / size;
   k.projectivePerTexel = r.projectivePerUv / size;
   k.depth = r.depth - r.bias;
-  k.biasPerTexel = r.biasPerTexel;
+  k.biasPerTexel = r.biasPerTexel + r.creasePerTexel;
   k.bilinearMargin = 0.5 * (abs(k.depthPerTexel.x) + abs(k.depthPerTexel.y));
   k.uvPerTexel = 1.0 / size;
   k.layer = r.layer;
+  return k;
+}
+
+// The same kernel for a blocker search: without the crease margin, which over a search's reach
+// would hide real casters (creaseDepthPerTexel).
+TapKernel searchKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
+  TapKernel k = tapKernel(r, radiusUv, rotation, mapSize);
+  k.biasPerTexel = r.biasPerTexel;
   return k;
 }
 

@@ -62,6 +62,7 @@ void main() {
   r.depthPerUv = vec2(0.0);
   r.projectivePerUv = vec2(0.0);
   r.biasPerTexel = 0.0;
+  r.creasePerTexel = 0.0;
   o_v[0] = percentageCloserBox(s_test, r, vec2(1.0 / 3.0), 1);
 }
 )";
