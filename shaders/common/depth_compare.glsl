@@ -48,8 +48,8 @@ struct ComparisonReceiver {
   // Subtracted per texel of the compared texel's distance from the receiver (linear depth): the
   // plane moved back one texel along its normal for every texel it is carried (planeReachDepth).
   float biasPerTexel;
-  // Subtracted per texel more by a filter's taps, never by a blocker search: the depth a wall
-  // standing square on the receiver rises in front of its plane per texel (creaseDepthPerTexel).
+  // Subtracted per texel more by a kernel's taps (pcf's; 0 for pcss): the depth a wall standing
+  // square on the receiver rises in front of its plane per texel (creaseDepthPerTexel).
   float creasePerTexel;
 };
 
@@ -129,9 +129,8 @@ float planeNormalOffsetDepth(int view, vec3 ws, vec2 depthPerUv, float texels) {
 // texel of tap distance to add to planeNormalOffsetDepth's one texel (t / cos θ) so that the two
 // together are t / (cos θ · sin θ): (1/sin θ − 1)·t / cos θ, with 1/sin θ capped at
 // kMaxCreaseFactor. It hides, d texels from the receiver, anything lower than d·t / sin θ above
-// its plane (at most kMaxCreaseFactor·d texels): filters apply it to their own taps, whose reach
-// is the kernel's radius, and never to a blocker search, which reaches much farther to find the
-// casters that size a penumbra and would hide real ones (a table top above the wall it shadows).
+// its plane (at most kMaxCreaseFactor·d texels), so only a kernel of a few texels may take it:
+// pcf's (its radius, 2 texels by default, bounds d). pcss sets it to 0 (pcss.glsl).
 const float kMaxCreaseFactor = 10.0;
 float creaseDepthPerTexel(vec2 depthPerUv, float biasPerTexel) {
   float slopeDepth = length(depthPerUv) / shadowMapSize();
@@ -146,10 +145,10 @@ float creaseDepthPerTexel(vec2 depthPerUv, float biasPerTexel) {
 // plane is lowered by constantBias (linear depth), slopeTexels texels of its steepest slope, and
 // planeTexels + d texels of world size along its normal (planeNormalOffsetDepth), d the compared
 // texel's distance from the receiver in texels: the margin for what a plane does not model. It
-// grows with d because what it covers does: the plane carried d texels away from the receiver
-// meets a concave crease's other face (a lit wall on the floor) up to d texels above it, and a
-// curved or faceted receiver departs from it by more the farther it is carried; at the receiver
-// itself only planeTexels remain, so contact shadows keep their root.
+// grows with d because what it covers does: a curved or faceted receiver departs from the plane
+// by more the farther it is carried, and a concave crease's other face (a lit wall on the floor)
+// rises in front of it (a filter's taps add creasePerTexel for that); at the receiver itself only
+// planeTexels remain, so contact shadows keep their root.
 ComparisonReceiver comparisonReceiver(int view, SurfacePoint s, vec3 coord, float constantBias, float slopeTexels,
                                       float planeTexels) {
   ComparisonReceiver r;
@@ -184,7 +183,7 @@ struct TapKernel {
   float depth;         // the receiver's plane there, minus its bias
   vec2 depthPerTexel;  // the plane's gradient and projective term per texel (ComparisonReceiver)
   vec2 projectivePerTexel;
-  float biasPerTexel;  // ComparisonReceiver::biasPerTexel, + creasePerTexel for a filter's taps
+  float biasPerTexel;  // ComparisonReceiver::biasPerTexel + creasePerTexel
   // The hardware's 2×2 comparison takes one reference depth for four texels: the plane at the tap
   // point differs from the plane at their centres by up to half a texel of slope on each axis.
   float bilinearMargin;
@@ -193,7 +192,7 @@ struct TapKernel {
 };
 
 // The kernel of radius radiusUv (per axis) around r, its pattern turned by `rotation`, in a map of
-// mapSize (textureSize) texels: a filter's, whose taps keep the crease margin.
+// mapSize (textureSize) texels.
 TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
   vec2 size = vec2(mapSize);
   vec2 radiusTexels = radiusUv * size;
@@ -211,14 +210,6 @@ TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 ma
   k.bilinearMargin = 0.5 * (abs(k.depthPerTexel.x) + abs(k.depthPerTexel.y));
   k.uvPerTexel = 1.0 / size;
   k.layer = r.layer;
-  return k;
-}
-
-// The same kernel for a blocker search: without the crease margin, which over a search's reach
-// would hide real casters (creaseDepthPerTexel).
-TapKernel searchKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
-  TapKernel k = tapKernel(r, radiusUv, rotation, mapSize);
-  k.biasPerTexel = r.biasPerTexel;
   return k;
 }
 
