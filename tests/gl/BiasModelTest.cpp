@@ -31,6 +31,7 @@ constexpr int kWidth = 256, kHeight = 144;  // small: one reference per scene
 constexpr int kReferenceSamples = 32;
 constexpr double kMaxAcnePct = 0.1;   // the bound `tune --objective acne` holds
 constexpr double kMaxUmbraLeakPct = 0.1;
+constexpr double kMaxNightPcfAcnePct = 0.025;  // the crease: 0.047 % without pcf's crease margin
 
 RenderOptions smallFrame() {
   RenderOptions o;
@@ -103,6 +104,11 @@ TEST(BiasModel, DefaultsLeaveNoAcneAndNoDetachedShadow) {
         std::printf("%-8s %-7s %-5s: acne %.3f %%  umbra leak %.3f %%\n", name.c_str(), projection.c_str(), filter, m.acnePct,
                     m.umbraLeakPct);
         EXPECT_LE(m.acnePct, kMaxAcnePct) << name << " " << projection << " " << filter;
+        // pcf's crease margin (common/depth_compare.glsl): the foot of night's kerbs under its
+        // lamps, lit walls on a lit street, read 0.047 % without it and 0.018 % with it.
+        if (name == "night" && std::string_view(filter) == "pcf") {
+          EXPECT_LE(m.acnePct, kMaxNightPcfAcnePct);
+        }
         if (leakBound) {
           EXPECT_LE(m.umbraLeakPct, kMaxUmbraLeakPct) << name << " " << projection << " " << filter;
         }
