@@ -22,6 +22,7 @@ FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragme
   d.fragment = {std::string(fragment)};
   d.defines = defines;
   if (mPages) d.defines.set("PN_PAGED_SHADOW_PASS");
+  if (mDitherTranslucent) d.defines.set("PN_DITHER_TRANSLUCENT");
   bool orthographic = true;
   for (const ShadowView& v : mFrusta.views) orthographic = orthographic && !v.perspective && !v.warped;
   if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
@@ -192,7 +193,8 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     mPages->render(*this, maps, programs.opaque->id(), programs.masked->id(), mCasters, pass.digest());
     return;
   }
-  const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures;
+  // Dithered translucent casters change with the frame's sampling index: such maps are drawn anew.
+  const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures && !mDitherTranslucent;
   // What every layer's content depends on besides its own view: the shadow pass's programs (and
   // the filter block where they read it), the clear colour, the map size and the static casters.
   Hasher common;
@@ -274,6 +276,29 @@ void FrameContext::renderTranslucentViews(ShadowMapArray& maps, const ShadowProg
     glBlendFunc(GL_ONE, GL_ZERO);
     glDepthMask(GL_TRUE);
   }
+}
+
+void FrameContext::sumTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& program) {
+  const ShadowPassState state(maps.size());
+  const glm::vec4 clearColor(0.0f);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
+    maps.markDrawn(v);
+    gl::Framebuffer& fb = maps.framebuffer(v);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    glProgramUniform1i(program.opaque->id(), PN_LOC_VIEW, v);
+    glProgramUniform1i(program.masked->id(), PN_LOC_VIEW, v);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+    mCasters.draw(program.opaque->id(), program.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Only);
+  }
+  glDisable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ZERO);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
 }
 
 void FrameContext::multiplyVisibility(const gl::Program& program) const {

@@ -82,6 +82,9 @@ struct FrameResources {
   /// The visibility array holds RGB (RGBA32F, alpha unused) rather than one channel (R32F): the
   /// screen passes are built with PN_VISIBILITY_RGB.
   bool colourVisibility = false;
+  /// The shadow passes dither the translucent casters by their opacity (stochastic transparency,
+  /// translucent.method=stochastic): built with PN_DITHER_TRANSLUCENT (common/material.glsl).
+  bool ditherTranslucent = false;
 };
 
 class FrameContext {
@@ -91,7 +94,7 @@ public:
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
         mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
         mVisibilityTarget(r.visibilityTarget), mPages(r.pages), mTranslucentCasters(r.translucentCasters),
-        mColourVisibility(r.colourVisibility) {}
+        mColourVisibility(r.colourVisibility), mDitherTranslucent(r.ditherTranslucent) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); none when the caller gave
   /// none. Only techniques that bake the geometry (sdf) need them.
@@ -173,6 +176,11 @@ public:
   /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). Drawn every frame
   /// (not cached; kept views are drawn again with the view they were drawn with).
   void renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent);
+  /// Per view, the sum over the translucent casters alone (CasterSet::Translucent::Only) of
+  /// what `program` outputs (additive blending; colour cleared to 0, no depth test): every
+  /// translucent surface over the texel counts, in any order (msm.translucent's moments). Drawn
+  /// every frame, like renderTranslucentViews.
+  void sumTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& program);
   /// Draws the full-screen fragment `program` (a visibilityProgram) into the light's visibility
   /// layer, multiplying what the visibility pass wrote there, channel by channel.
   void multiplyVisibility(const gl::Program& program) const;
@@ -222,6 +230,7 @@ private:
   VirtualPages* mPages;
   CasterSet::Translucent mTranslucentCasters;
   bool mColourVisibility;
+  bool mDitherTranslucent;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

@@ -164,6 +164,9 @@ std::string Technique::problemWith(const Light& light) const {
     return fmt::format("Technique::projection \"{}\" cannot shadow a {} light: {}", mProjection, kind, why);
   if (const std::string why = filterIncompatibility(mFilter, mProjection, light); !why.empty())
     return fmt::format("Technique::filter \"{}\" with projection \"{}\" cannot shadow a {} light: {}", mFilter, mProjection, kind, why);
+  if (mAddOnValues.paramInt("translucent.shadows") != 0 && filterShadowsThroughTranslucent(mFilter, mFilterValues))
+    return fmt::format("Technique::filter \"{}\" shadows through translucent casters itself ({}): turn translucent.shadows off "
+                       "(both would tint V)", mFilter, "msm.translucent=on");
   return {};
 }
 
