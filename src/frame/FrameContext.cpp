@@ -22,15 +22,23 @@ FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragme
   d.fragment = {std::string(fragment)};
   d.defines = defines;
   if (mPages) d.defines.set("PN_PAGED_SHADOW_PASS");
-  if (mDitherTranslucent) d.defines.set("PN_DITHER_TRANSLUCENT");
   bool orthographic = true;
   for (const ShadowView& v : mFrusta.views) orthographic = orthographic && !v.perspective && !v.warped;
   if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
   ShadowPrograms p;
   p.masked = &mShaders.program(d);
-  d.label += " (opaque)";
-  d.defines.set("PN_OPAQUE_CASTERS");
-  p.opaque = &mShaders.program(d);
+  ProgramDesc opaque = d;
+  opaque.label += " (opaque)";
+  opaque.defines.set("PN_OPAQUE_CASTERS");
+  p.opaque = &mShaders.program(opaque);
+  if (mDitherTranslucent) {
+    for (ProgramDesc* desc : {&d, &opaque}) {
+      desc->label += " (dithered)";
+      desc->defines.set("PN_DITHER_TRANSLUCENT");
+    }
+    p.ditherMasked = &mShaders.program(d);
+    p.ditherOpaque = &mShaders.program(opaque);
+  }
   return p;
 }
 
@@ -190,7 +198,11 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     pass.value(clearColor);
     pass.value(mCasters.staticKey());
     pass.value(static_cast<int>(mTranslucentCasters));
-    mPages->render(*this, maps, programs.opaque->id(), programs.masked->id(), mCasters, pass.digest());
+    // Dithered translucent casters: every caster through the dithered pass (pages draw their
+    // casters in one call).
+    const bool dither = programs.ditherOpaque != nullptr;
+    mPages->render(*this, maps, (dither ? programs.ditherOpaque : programs.opaque)->id(),
+                   (dither ? programs.ditherMasked : programs.masked)->id(), mCasters, pass.digest());
     return;
   }
   // Dithered translucent casters change with the frame's sampling index: such maps are drawn anew.
@@ -219,8 +231,8 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     maps.markDrawn(v);
     gl::Framebuffer& fb = maps.framebuffer(v);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
-    glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);
-    glProgramUniform1i(programs.masked->id(), PN_LOC_VIEW, v);
+    for (const gl::Program* p : {programs.opaque, programs.masked, programs.ditherOpaque, programs.ditherMasked})
+      if (p != nullptr) glProgramUniform1i(p->id(), PN_LOC_VIEW, v);
     uint64_t key = 0;
     if (cached) {
       // The view as the shadow pass reads it: its matrix and depth plane (not the split
@@ -238,7 +250,12 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
     if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
     if (!cached) {
-      mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, mTranslucentCasters);
+      if (programs.ditherOpaque != nullptr) {  // the opaque casters plain, the translucent ones dithered
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Skip);
+        mCasters.draw(programs.ditherOpaque->id(), programs.ditherMasked->id(), CasterSet::Which::All, CasterSet::Translucent::Only);
+      } else {
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, mTranslucentCasters);
+      }
       continue;
     }
     mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Static, mTranslucentCasters);

@@ -83,7 +83,8 @@ struct FrameResources {
   /// screen passes are built with PN_VISIBILITY_RGB.
   bool colourVisibility = false;
   /// The shadow passes dither the translucent casters by their opacity (stochastic transparency,
-  /// translucent.method=stochastic): built with PN_DITHER_TRANSLUCENT (common/material.glsl).
+  /// translucent.method=stochastic): renderViews draws them with the pass built with
+  /// PN_DITHER_TRANSLUCENT (common/material.glsl), and such maps are never cached.
   bool ditherTranslucent = false;
 };
 
@@ -129,6 +130,11 @@ public:
   struct ShadowPrograms {
     const gl::Program* masked;
     const gl::Program* opaque;
+    /// With FrameResources::ditherTranslucent: the same pass built with PN_DITHER_TRANSLUCENT,
+    /// which renderViews draws the translucent casters with (the others keep the plain pass and
+    /// its early depth test); null otherwise.
+    const gl::Program* ditherMasked = nullptr;
+    const gl::Program* ditherOpaque = nullptr;
   };
   /// Shadow-pass programs: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
   /// The default depth-only pass over orthographic views (a sun's uniform map or cascades) is
