@@ -255,3 +255,16 @@ TEST(TranslucentShadows, StochasticCastersAccumulateToThePanesTransmittance) {
   EXPECT_NEAR(mean.r, target, kStochasticMean);
   EXPECT_LT(accumulated, kStochasticShrink * first);
 }
+
+TEST(TranslucentShadows, StochasticCastersAreRefusedUnderPagedMaps) {
+  // A paged projection's pages do not take the dither (the panes would shadow as opaque): the
+  // pair is refused, naming the way out.
+  const Scene glass = makeBuiltinScene("glass");
+  try {
+    const auto r = makeTestRenderer(glass, "virtual", "pcf", {{"translucent.shadows", "on"}, {"translucent.method", "stochastic"}}, kMapSize);
+    r->render(small());
+    FAIL() << "translucent.method=stochastic under virtual rendered";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("translucent.method=map"), std::string::npos) << e.what();
+  }
+}
