@@ -179,13 +179,14 @@ public:
   /// The translucent add-on's maps: per view, the opaque casters' depth (`opaque`, colour writes
   /// off), then the translucent casters drawn with `translucent` over it, depth-tested and not
   /// writing depth, their colour output multiplied into RGB and their alpha output kept by its
-  /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). Drawn every frame
-  /// (not cached; kept views are drawn again with the view they were drawn with).
+  /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). With cached maps each
+  /// layer is restored and stored as renderViews does (key: both programs, the size, the static
+  /// casters, the view); kept views are drawn again with the view they were drawn with.
   void renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent);
   /// Per view, the sum over the translucent casters alone (CasterSet::Translucent::Only) of
   /// what `program` outputs (additive blending; colour cleared to 0, no depth test): every
-  /// translucent surface over the texel counts, in any order (msm.translucent's moments). Drawn
-  /// every frame, like renderTranslucentViews.
+  /// translucent surface over the texel counts, in any order (msm.translucent's moments). Cached
+  /// like renderTranslucentViews.
   void sumTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& program);
   /// Draws the full-screen fragment `program` (a visibilityProgram) into the light's visibility
   /// layer, multiplying what the visibility pass wrote there, channel by channel.

@@ -268,3 +268,26 @@ TEST(TranslucentShadows, StochasticCastersAreRefusedUnderPagedMaps) {
     EXPECT_NE(std::string(e.what()).find("translucent.method=map"), std::string::npos) << e.what();
   }
 }
+
+TEST(TranslucentShadows, CachedMapsRestoreTheTranslucentMapsToo) {
+  // With maps cached while nothing changes (MapUpdates::WhenInvalid) the add-on's transmittance
+  // map and msm's translucent sums are restored like the filter's maps: the second frame draws
+  // no map and V is bit for bit the uncached frame's.
+  Scene glass = makeBuiltinScene("glass");
+  glass.animation = {};
+  for (const auto& [filter, params] : {std::pair{std::string("pcf"), Params{{"translucent.shadows", "on"}}},
+                                       std::pair{std::string("msm"), Params{{"msm.translucent", "on"}}}}) {
+    SCOPED_TRACE(filter);
+    const auto plain = makeTestRenderer(glass, "uniform", filter, params, kMapSize);
+    plain->render(small());
+    const auto cached = makeTestRenderer(glass, "uniform", filter, params, kMapSize);
+    cached->shadows().setMapUpdates(MapUpdates{MapUpdates::Policy::WhenInvalid});
+    cached->render(small());
+    const size_t drawn = cached->shadows().mapCacheStats().rendered;
+    EXPECT_EQ(drawn, filter == "pcf" ? 2u : 3u) << "the filter's map and the translucent ones, stored";
+    cached->render(small());
+    EXPECT_EQ(cached->shadows().mapCacheStats().restored, drawn);
+    EXPECT_EQ(cached->shadows().mapCacheStats().rendered, drawn) << "nothing drawn again";
+    EXPECT_EQ(cached->readVisibilityRgb(), plain->readVisibilityRgb());
+  }
+}
