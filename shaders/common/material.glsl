@@ -8,6 +8,9 @@
 // Usage:  #include "common/material.glsl"   then   void main() { alphaTest(v_uv); ... }
 // Declares u_object (the draw's index into u_objects, PN_LOC_OBJECT): do not declare it again.
 #include "common/frame.glsl"
+#ifdef PN_DITHER_TRANSLUCENT
+#include "common/sampling.glsl"
+#endif
 
 layout(location = PN_LOC_OBJECT) uniform int u_object;
 layout(binding = PN_TEX_BASECOLOR) uniform sampler2D s_baseColor;
@@ -27,6 +30,22 @@ vec4 materialTexel(vec2 uv) {
 void alphaTest(vec2 uv) {
   ObjectGpu o = u_objects[u_object];
   if (o.material.y != 0 && o.material.x >= 0 && materialTexel(uv).a < o.baseColor.a) discard;
+}
+
+// Stochastic transparency in the shadow passes (each calls it after its alpha test, for opaque
+// and masked casters alike; nothing without PN_DITHER_TRANSLUCENT, which FrameContext::
+// shadowProgram sets for the translucent add-on's stochastic method): a translucent caster's
+// fragment (CasterSet: material.z = 1, baseColor.rgb = its transmittance T) is kept with the
+// probability of its opacity 1 − mean(T), by a per-texel noise that the frame's sampling index
+// turns (common/sampling.glsl's pixelNoise), offset per object so that two panes over one texel
+// are dithered apart. The map's filter taps and temporal accumulation average the kept texels.
+void ditherTranslucent() {
+#ifdef PN_DITHER_TRANSLUCENT
+  ObjectGpu o = u_objects[u_object];
+  float opacity = 1.0 - (o.baseColor.r + o.baseColor.g + o.baseColor.b) / 3.0;
+  const ivec2 kObjectStep = ivec2(37, 71);  // texels between two objects' patterns
+  if (o.material.z != 0 && pixelNoise(ivec2(gl_FragCoord.xy) + u_object * kObjectStep, samplingFrame()) >= opacity) discard;
+#endif
 }
 
 // Linear base colour: the material's factor times its texture (if any).

@@ -32,5 +32,6 @@ void main() {
 #ifndef PN_OPAQUE_CASTERS
   alphaTest(v_uv);
 #endif
+  ditherTranslucent();
   gl_FragDepth = clamp(depth, 0.0, 1.0);
 }

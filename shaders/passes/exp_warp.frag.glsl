@@ -22,6 +22,7 @@ void main() {
 #ifndef PN_OPAQUE_CASTERS
   alphaTest(v_uv);
 #endif
+  ditherTranslucent();
   gl_FragDepth = z;
   vec2 c = u_warp.warp.xy;
   vec4 m = expWarpMoments(z, c.x, c.y);

@@ -29,12 +29,14 @@ void main() {
 #ifndef PN_OPAQUE_CASTERS
   alphaTest(v_uv);
 #endif
+  ditherTranslucent();
   o_moments = vec4(z, z2, 0.0, 0.0);
 #elif PN_MOMENT_COUNT == 4
   vec4 b = depthMoments(z);
 #ifndef PN_OPAQUE_CASTERS
   alphaTest(v_uv);
 #endif
+  ditherTranslucent();
 #ifdef PN_MOMENTS_QUANTIZED
   b = quantizeMoments16(b);
 #endif

@@ -115,10 +115,28 @@ struct Shadows::Impl {
     return *states[light];
   }
 
-  /// Whether the light's V is tinted by the translucent casters: its technique asks for it and
-  /// there are some.
-  bool tints(const core::LightState& s) const {
-    return casters.hasTranslucent() && TranslucentShadows::enabled(s.technique.addOnValues());
+  /// Whether the light's V is tinted by the translucent casters: its filter or the add-on asks
+  /// for it and there are some.
+  bool tints(const core::LightState& s) const { return filterTints(s) || addOnTints(s); }
+  /// The light's filter shadows through the translucent casters itself (msm.translucent).
+  bool filterTints(const core::LightState& s) const {
+    return casters.hasTranslucent() && s.filter && s.filter->shadowsThroughTranslucent(s.technique.filterValues());
+  }
+  /// The translucent add-on tints the light's V (translucent.*; never beside a filter that
+  /// tints itself: Technique::problemWith refuses the pair).
+  bool addOnTints(const core::LightState& s) const {
+    const Parameterized& addOns = s.technique.addOnValues();
+    return casters.hasTranslucent() && TranslucentShadows::enabled(addOns) && !stochastic(addOns) && !filterTints(s);
+  }
+  /// The add-on's stochastic method: on, with translucent.method=stochastic (its choice 1).
+  static bool stochastic(const Parameterized& addOns) {
+    constexpr int kStochastic = 1;
+    return TranslucentShadows::enabled(addOns) && addOns.paramInt("translucent.method") == kStochastic;
+  }
+  /// The filter's maps dither the translucent casters by their opacity (FrameResources::
+  /// ditherTranslucent): the add-on's stochastic method, where some caster is translucent.
+  bool dithers(const core::LightState& s) const {
+    return casters.hasTranslucent() && stochastic(s.technique.addOnValues()) && !filterTints(s);
   }
 
   FrameContext frameContext(core::LightState& s) {
@@ -127,7 +145,7 @@ struct Shadows::Impl {
     return FrameContext({s.light, s.technique.filterValues(), cpu, s.frusta, s.mapSize, screen, surface, shaders, casters,
                          filterBlock, timer, &visibility, static_cast<int>(s.layer),
                          updatesOf(s.light).cached() ? &mapCache : nullptr, s.keptViews, &layerTargets[s.layer], s.pages.get(),
-                         tints(s) ? CasterSet::Translucent::Skip : CasterSet::Translucent::AsOpaque, colour});
+                         tints(s) ? CasterSet::Translucent::Skip : CasterSet::Translucent::AsOpaque, colour, dithers(s)});
   }
   static void bindBlocks(const core::LightState& s) {
     s.frameBlock.bindBase(GL_UNIFORM_BUFFER, PN_UBO_FRAME);
@@ -173,7 +191,8 @@ struct Shadows::Impl {
       s->light = lights[i];
       s->layer = i;
       if (!TemporalAccumulation::enabled(s->technique.addOnValues())) s->history = {};
-      if (!TranslucentShadows::enabled(s->technique.addOnValues())) s->translucent.release();
+      if (!TranslucentShadows::enabled(s->technique.addOnValues()) || stochastic(s->technique.addOnValues()))
+        s->translucent.release();
       next.push_back(std::move(s));
     }
     states = std::move(next);
@@ -240,7 +259,7 @@ struct Shadows::Impl {
       unbindSurfaces();
       gl::throwIfGlError("the page marking pass");
     }
-    const bool tinted = tints(s);
+    const bool tinted = addOnTints(s);
     {
       ScopedPass pass(timer, "shadow");
       s.filter->renderShadowMaps(ctx);

@@ -175,7 +175,8 @@ void CasterSet::set(std::span<const CasterMesh> casters) {
     g.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(m.worldFromObject)));
     const bool masked = m.alphaTexture != 0;
     g.baseColor = glm::vec4(m.translucent() ? m.transmittance : glm::vec3(1.0f), masked ? m.alphaCutoff : 0.0f);
-    g.material = glm::ivec4(masked ? 0 : -1, masked ? 1 : 0, 0, 0);
+    // material.z: 1 for a translucent caster, which the shadow passes' dither reads (common/material.glsl).
+    g.material = glm::ivec4(masked ? 0 : -1, masked ? 1 : 0, m.translucent() ? 1 : 0, 0);
     objects.push_back(g);
   }
   mTranslucent = std::any_of(casters.begin(), casters.end(), [](const CasterMesh& m) { return m.translucent(); });

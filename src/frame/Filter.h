@@ -59,6 +59,14 @@ public:
   static constexpr std::string_view kTranslucentThroughAddOn =
       "drawn as opaque; with translucent.shadows on, left out of its maps and shadowed through "
       "(V tinted by their transmittance map)";
+  /// Whether, with these parameter values, the filter shadows through translucent casters
+  /// itself: its maps then hold the opaque casters alone (FrameContext::translucentCasters is
+  /// Skip), its visibility pass writes RGB, and the translucent add-on is refused beside it
+  /// (Technique::problemWith). msm with msm.translucent on; no other filter.
+  virtual bool shadowsThroughTranslucent(const Parameterized& values) const {
+    (void)values;
+    return false;
+  }
   /// Empty when this filter works with the given projection and light; otherwise the reason,
   /// shown to the user (a pair that cannot work is refused, never rendered wrong).
   virtual std::string incompatibility(std::string_view projectionId, const Light& light) const {

@@ -27,9 +27,18 @@ FrameContext::ShadowPrograms FrameContext::shadowProgram(std::string_view fragme
   if (fragment == kDepthOnlyFragment && orthographic) d.defines.set("PN_LINEAR_RASTER_DEPTH");
   ShadowPrograms p;
   p.masked = &mShaders.program(d);
-  d.label += " (opaque)";
-  d.defines.set("PN_OPAQUE_CASTERS");
-  p.opaque = &mShaders.program(d);
+  ProgramDesc opaque = d;
+  opaque.label += " (opaque)";
+  opaque.defines.set("PN_OPAQUE_CASTERS");
+  p.opaque = &mShaders.program(opaque);
+  if (mDitherTranslucent) {
+    for (ProgramDesc* desc : {&d, &opaque}) {
+      desc->label += " (dithered)";
+      desc->defines.set("PN_DITHER_TRANSLUCENT");
+    }
+    p.ditherMasked = &mShaders.program(d);
+    p.ditherOpaque = &mShaders.program(opaque);
+  }
   return p;
 }
 
@@ -189,10 +198,15 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     pass.value(clearColor);
     pass.value(mCasters.staticKey());
     pass.value(static_cast<int>(mTranslucentCasters));
-    mPages->render(*this, maps, programs.opaque->id(), programs.masked->id(), mCasters, pass.digest());
+    // Dithered translucent casters: every caster through the dithered pass (pages draw their
+    // casters in one call).
+    const bool dither = programs.ditherOpaque != nullptr;
+    mPages->render(*this, maps, (dither ? programs.ditherOpaque : programs.opaque)->id(),
+                   (dither ? programs.ditherMasked : programs.masked)->id(), mCasters, pass.digest());
     return;
   }
-  const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures;
+  // Dithered translucent casters change with the frame's sampling index: such maps are drawn anew.
+  const bool cached = mMapCache && !reads[0].otherTextures && !reads[1].otherTextures && !mDitherTranslucent;
   // What every layer's content depends on besides its own view: the shadow pass's programs (and
   // the filter block where they read it), the clear colour, the map size and the static casters.
   Hasher common;
@@ -217,8 +231,8 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     maps.markDrawn(v);
     gl::Framebuffer& fb = maps.framebuffer(v);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
-    glProgramUniform1i(programs.opaque->id(), PN_LOC_VIEW, v);
-    glProgramUniform1i(programs.masked->id(), PN_LOC_VIEW, v);
+    for (const gl::Program* p : {programs.opaque, programs.masked, programs.ditherOpaque, programs.ditherMasked})
+      if (p != nullptr) glProgramUniform1i(p->id(), PN_LOC_VIEW, v);
     uint64_t key = 0;
     if (cached) {
       // The view as the shadow pass reads it: its matrix and depth plane (not the split
@@ -236,7 +250,12 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
     if (maps.color()) glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
     if (!cached) {
-      mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, mTranslucentCasters);
+      if (programs.ditherOpaque != nullptr) {  // the opaque casters plain, the translucent ones dithered
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Skip);
+        mCasters.draw(programs.ditherOpaque->id(), programs.ditherMasked->id(), CasterSet::Which::All, CasterSet::Translucent::Only);
+      } else {
+        mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::All, mTranslucentCasters);
+      }
       continue;
     }
     mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Static, mTranslucentCasters);
@@ -246,34 +265,112 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
   }
 }
 
-void FrameContext::renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent) {
-  const ShadowPassState state(maps.size());
+namespace {
+
+/// The views of the bound shadow block, as the shadow passes read them (for cache keys).
+gpu::ShadowUniforms boundShadowViews() {
+  gpu::ShadowUniforms views{};
+  GLint shadowBlock = 0;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
+  glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
+  return views;
+}
+
+/// Per view of `maps` (its framebuffer bound, `setView(v)` called): with a map cache, a layer
+/// stored under the same key (`common`, the view's matrix and depth plane) is restored and only
+/// `draw(Which::Dynamic)` drawn over it; otherwise it is cleared and drawn, the static casters
+/// first and stored, then the dynamic ones. Without a cache every caster is drawn.
+template <class SetView, class Draw>
+void drawCachedLayers(ShadowMapArray& maps, int viewCount, MapCacheState* cache, const Hasher& common, const glm::vec4& clearColor,
+                      const SetView& setView, const Draw& draw) {
   const float clearDepth = 1.0f;
-  const glm::vec4 clearColor(1.0f);
-  for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
+  const gpu::ShadowUniforms views = cache ? boundShadowViews() : gpu::ShadowUniforms{};
+  for (int v = 0; v < maps.layers() && v < viewCount; ++v) {
     maps.markDrawn(v);
     gl::Framebuffer& fb = maps.framebuffer(v);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    setView(v);
+    uint64_t key = 0;
+    if (cache) {
+      Hasher h = common;
+      h.value(views.views[v].clipFromWorld);
+      h.value(views.views[v].depthPlane);
+      key = h.digest() | 1u;  // 0 means "nothing cached"
+      if (maps.restoreCached(v, key)) {
+        ++cache->restored;
+        draw(CasterSet::Which::Dynamic);
+        continue;
+      }
+    }
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+    if (!cache) {
+      draw(CasterSet::Which::All);
+      continue;
+    }
+    draw(CasterSet::Which::Static);
+    maps.storeCached(v, key);
+    ++cache->rendered;
+    draw(CasterSet::Which::Dynamic);
+  }
+}
+
+}  // namespace
+
+void FrameContext::renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent) {
+  const ShadowPassState state(maps.size());
+  Hasher common;
+  for (const ShadowPrograms* p : {&opaque, &translucent})
+    for (const gl::Program* program : {p->opaque, p->masked}) common.value(program->id());
+  common.value(maps.size());
+  common.value(mCasters.staticKey());
+  const auto setView = [&](int v) {
     for (const ShadowPrograms* p : {&opaque, &translucent}) {
       glProgramUniform1i(p->opaque->id(), PN_LOC_VIEW, v);
       glProgramUniform1i(p->masked->id(), PN_LOC_VIEW, v);
     }
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, &clearColor.x);
+  };
+  const auto draw = [&](CasterSet::Which which) {
     glDepthMask(GL_TRUE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    mCasters.draw(opaque.opaque->id(), opaque.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Skip);
+    mCasters.draw(opaque.opaque->id(), opaque.masked->id(), which, CasterSet::Translucent::Skip);
     glDepthMask(GL_FALSE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glEnable(GL_BLEND);
     glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);          // colour: a product; alpha: the nearest depth
     glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);  // MIN ignores the alpha factors
-    mCasters.draw(translucent.opaque->id(), translucent.masked->id(), CasterSet::Which::All, CasterSet::Translucent::Only);
+    mCasters.draw(translucent.opaque->id(), translucent.masked->id(), which, CasterSet::Translucent::Only);
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDepthMask(GL_TRUE);
-  }
+  };
+  drawCachedLayers(maps, viewCount(), mMapCache, common, glm::vec4(1.0f), setView, draw);
+}
+
+void FrameContext::sumTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& program) {
+  const ShadowPassState state(maps.size());
+  Hasher common;
+  for (const gl::Program* p : {program.opaque, program.masked}) common.value(p->id());
+  common.value(maps.size());
+  common.value(mCasters.staticKey());
+  const auto setView = [&](int v) {
+    glProgramUniform1i(program.opaque->id(), PN_LOC_VIEW, v);
+    glProgramUniform1i(program.masked->id(), PN_LOC_VIEW, v);
+  };
+  const auto draw = [&](CasterSet::Which which) {
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    mCasters.draw(program.opaque->id(), program.masked->id(), which, CasterSet::Translucent::Only);
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+  };
+  drawCachedLayers(maps, viewCount(), mMapCache, common, glm::vec4(0.0f), setView, draw);
 }
 
 void FrameContext::multiplyVisibility(const gl::Program& program) const {

@@ -82,6 +82,10 @@ struct FrameResources {
   /// The visibility array holds RGB (RGBA32F, alpha unused) rather than one channel (R32F): the
   /// screen passes are built with PN_VISIBILITY_RGB.
   bool colourVisibility = false;
+  /// The shadow passes dither the translucent casters by their opacity (stochastic transparency,
+  /// translucent.method=stochastic): renderViews draws them with the pass built with
+  /// PN_DITHER_TRANSLUCENT (common/material.glsl), and such maps are never cached.
+  bool ditherTranslucent = false;
 };
 
 class FrameContext {
@@ -91,7 +95,7 @@ public:
         mSurface(r.surface), mShaders(r.shaders), mCasters(r.casters), mFilterBlock(r.filterBlock), mTimer(r.timer),
         mVisibility(r.visibility), mVisibilityLayer(r.visibilityLayer), mMapCache(r.mapCache), mKeptViews(r.keptViews),
         mVisibilityTarget(r.visibilityTarget), mPages(r.pages), mTranslucentCasters(r.translucentCasters),
-        mColourVisibility(r.colourVisibility) {}
+        mColourVisibility(r.colourVisibility), mDitherTranslucent(r.ditherTranslucent) {}
 
   /// The casters' triangles on the CPU (Shadows::setCasterGeometry); none when the caller gave
   /// none. Only techniques that bake the geometry (sdf) need them.
@@ -128,6 +132,11 @@ public:
   struct ShadowPrograms {
     const gl::Program* masked;
     const gl::Program* opaque;
+    /// With FrameResources::ditherTranslucent: the same pass built with PN_DITHER_TRANSLUCENT,
+    /// which renderViews draws the translucent casters with (the others keep the plain pass and
+    /// its early depth test); null otherwise.
+    const gl::Program* ditherMasked = nullptr;
+    const gl::Program* ditherOpaque = nullptr;
   };
   /// Shadow-pass programs: passes/geometry.vert.glsl + `fragment` (default: linear depth only).
   /// The default depth-only pass over orthographic views (a sun's uniform map or cascades) is
@@ -172,9 +181,15 @@ public:
   /// The translucent add-on's maps: per view, the opaque casters' depth (`opaque`, colour writes
   /// off), then the translucent casters drawn with `translucent` over it, depth-tested and not
   /// writing depth, their colour output multiplied into RGB and their alpha output kept by its
-  /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). Drawn every frame
-  /// (not cached; kept views are drawn again with the view they were drawn with).
+  /// minimum (blend equation MIN). Colour cleared to 1, depth to 1 (far). With cached maps each
+  /// layer is restored and stored as renderViews does (key: both programs, the size, the static
+  /// casters, the view); kept views are drawn again with the view they were drawn with.
   void renderTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& opaque, const ShadowPrograms& translucent);
+  /// Per view, the sum over the translucent casters alone (CasterSet::Translucent::Only) of
+  /// what `program` outputs (additive blending; colour cleared to 0, no depth test): every
+  /// translucent surface over the texel counts, in any order (msm.translucent's moments). Cached
+  /// like renderTranslucentViews.
+  void sumTranslucentViews(ShadowMapArray& maps, const ShadowPrograms& program);
   /// Draws the full-screen fragment `program` (a visibilityProgram) into the light's visibility
   /// layer, multiplying what the visibility pass wrote there, channel by channel.
   void multiplyVisibility(const gl::Program& program) const;
@@ -224,6 +239,7 @@ private:
   VirtualPages* mPages;
   CasterSet::Translucent mTranslucentCasters;
   bool mColourVisibility;
+  bool mDitherTranslucent;
   const gl::Buffer* mPoints = nullptr;
   const gl::Buffer* mPointVisibility = nullptr;
   int mPointCount = 0;

@@ -142,6 +142,9 @@ std::span<const ParamDesc> filterParams(std::string_view id) { return prototype(
 std::string projectionIncompatibility(std::string_view projection, const Light& light) {
   return prototype(projections(), projection, "projection").incompatibility(light);
 }
+bool filterShadowsThroughTranslucent(std::string_view filter, const Parameterized& values) {
+  return prototype(filters(), filter, "filter").shadowsThroughTranslucent(values);
+}
 std::string filterIncompatibility(std::string_view filter, std::string_view projection, const Light& light) {
   const Filter& f = prototype(filters(), filter, "filter");
   if (prototype(projections(), projection, "projection").pageLayout() && !f.readsPagedMaps())

@@ -30,6 +30,9 @@ std::unique_ptr<Filter> makeFilter(std::string_view id);
 /// Usage Errors for unknown ids.
 std::string projectionIncompatibility(std::string_view projection, const Light& light);
 std::string filterIncompatibility(std::string_view filter, std::string_view projection, const Light& light);
+/// Whether the filter shadows through translucent casters itself with these values
+/// (Filter::shadowsThroughTranslucent).
+bool filterShadowsThroughTranslucent(std::string_view filter, const Parameterized& values);
 
 /// Adds a filter of the caller's to the registry under its own id (Filter::id), after the
 /// built-in ones: techniques name it like any other, and every light that runs it gets its own

@@ -2,6 +2,7 @@
 // parameter groups, and the one place that routes a key to one of them.
 #include <penumbra/Technique.h>
 
+#include "frame/Projection.h"
 #include "shadows/Registry.h"
 
 #include <penumbra/Error.h>
@@ -164,6 +165,15 @@ std::string Technique::problemWith(const Light& light) const {
     return fmt::format("Technique::projection \"{}\" cannot shadow a {} light: {}", mProjection, kind, why);
   if (const std::string why = filterIncompatibility(mFilter, mProjection, light); !why.empty())
     return fmt::format("Technique::filter \"{}\" with projection \"{}\" cannot shadow a {} light: {}", mFilter, mProjection, kind, why);
+  if (mAddOnValues.paramInt("translucent.shadows") != 0 && filterShadowsThroughTranslucent(mFilter, mFilterValues))
+    return fmt::format("Technique::filter \"{}\" shadows through translucent casters itself ({}): turn translucent.shadows off "
+                       "(both would tint V)", mFilter, "msm.translucent=on");
+  constexpr int kStochastic = 1;  // translucent.method's choice (TranslucentShadows.cpp)
+  if (mAddOnValues.paramInt("translucent.shadows") != 0 && mAddOnValues.paramInt("translucent.method") == kStochastic &&
+      makeProjection(*this)->pageLayout())
+    return fmt::format("Technique::projection \"{}\" pages its maps, which translucent.method=stochastic cannot dither translucent "
+                       "casters into (they would shadow as opaque): use a projection with whole maps, or translucent.method=map",
+                       mProjection);
   return {};
 }
 

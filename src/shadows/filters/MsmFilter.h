@@ -1,6 +1,8 @@
 #pragma once
 // msm: moment shadow maps — four depth moments (32-bit float or 16-bit quantised), a mip chain,
-// the Hamburger 4MSM lower bound (docs/msm.md).
+// the Hamburger 4MSM lower bound (docs/msm.md). With msm.translucent on, translucent casters are
+// left out of those moments and summed into two more maps, weighted by their absorbance
+// (docs/translucent.md): V = V(opaque) × exp(−absorbance × the reconstructed share in front).
 #include "frame/ShadowMaps.h"
 
 #include "frame/Filter.h"
@@ -18,9 +20,14 @@ public:
   void prefilter(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
   std::vector<DebugImage> debugImages() const override;
+  std::string_view translucentCasters() const override;
+  bool shadowsThroughTranslucent(const Parameterized& values) const override;
 
 private:
   ShadowMapArray mMaps;
+  /// msm.translucent: per view, the absorbance-weighted moments of the translucent casters'
+  /// depths and their per-channel absorbance (the two summed maps); empty while it is off.
+  ShadowMapArray mTranslucentMoments, mAbsorbance;
 };
 
 }  // namespace penumbra

@@ -8,7 +8,8 @@ PN_GPU_BEGIN
 // the footprint switch as FootprintParams.h says.
 struct MsmUniforms {
   vec4 params;  // x: moment bias (texels², see common/moments.glsl), y: depth bias (linear depth), z: minimum filter
-                // width (texels), w: unused
+                // width (texels), w: (light map size / translucent maps' size)², the moment bias's factor on the
+                // translucent maps (msm.translucent)
   ivec4 mode;   // x: maximum anisotropic taps along the footprint's long axis; yzw: unused
 };
 

@@ -11,12 +11,19 @@
 namespace penumbra {
 namespace {
 
+// translucent.method's choices, by value (core/ShadowsImpl.h's ditherTranslucent reads 1 as stochastic).
+constexpr std::string_view kMethods[] = {"map", "stochastic"};
+
 constexpr ParamDesc kParams[] = {
     {"translucent.shadows", "Translucent shadows",
      "on: translucent casters tint the light instead of blocking it: the filter's maps hold the opaque casters, a second "
      "map per view the product of the translucent casters' transmittances in front of them, and V (RGB) is the filter's "
      "V times that product where the receiver lies behind them", "",
      0.0f, 0.0f, 1.0f, 1.0f, kOffOn},
+    {"translucent.method", "Method",
+     "map: the transmittance map tints V (colour); stochastic: the translucent casters are dithered into the filter's own "
+     "maps, each texel kept with the probability of the caster's opacity 1 - mean(T), a pattern the frame's sampling index "
+     "turns, resolved by the filter's taps and temporal.accumulate (V one channel: no hue)", "", 0.0f, 0.0f, 1.0f, 1.0f, kMethods},
     {"translucent.mapScale", "Map scale", "side of the transmittance map as a share of the light's map size (0.5: a quarter of "
      "its texels): its cost and memory scale with the square", "× map size", 0.5f, 0.125f, 1.0f, 0.0f},
     {"translucent.radiusTexels", "Tint radius", "the tint is averaged over a box of (2r + 1)² texels of the transmittance map "
