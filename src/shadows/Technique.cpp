@@ -168,11 +168,13 @@ std::string Technique::problemWith(const Light& light) const {
   if (mAddOnValues.paramInt("translucent.shadows") != 0 && filterShadowsThroughTranslucent(mFilter, mFilterValues))
     return fmt::format("Technique::filter \"{}\" shadows through translucent casters itself ({}): turn translucent.shadows off "
                        "(both would tint V)", mFilter, "msm.translucent=on");
-  constexpr int kStochastic = 1;  // translucent.method's choice (TranslucentShadows.cpp)
-  if (mAddOnValues.paramInt("translucent.shadows") != 0 && mAddOnValues.paramInt("translucent.method") == kStochastic &&
-      makeProjection(*this)->pageLayout())
-    return fmt::format("Technique::projection \"{}\" pages its maps, which translucent.method=stochastic cannot dither translucent "
-                       "casters into (they would shadow as opaque): use a projection with whole maps, or translucent.method=map",
+  // The add-on draws whole maps of the projection's views: under a paged projection that is a
+  // map of the virtual size per level (12 × 8192² ran out of GL memory), and the pages do not
+  // take stochastic's dither (the panes shadowed as opaque).
+  if (mAddOnValues.paramInt("translucent.shadows") != 0 && makeProjection(*this)->pageLayout())
+    return fmt::format("Technique::projection \"{}\" pages its maps, which translucent.shadows cannot follow (its transmittance "
+                       "map would be whole maps of the virtual size; stochastic's dither does not reach the pages): use a "
+                       "projection with whole maps (csm for a sun)",
                        mProjection);
   return {};
 }
