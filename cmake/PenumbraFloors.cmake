@@ -3,7 +3,7 @@
 # folder under ${PROJECT_BINARY_DIR}/floors/<target>/ holding links to its own source folders
 # ("scene" -> src/scene) and to its public headers ("penumbra/Scene.h" -> include/penumbra/
 # Scene.h). A floor's include path is its own root plus the roots of the floors it links, so
-# `#include "render/Renderer.h"` or `#include <penumbra/Renderer.h>` from a floor below the
+# `#include "renderer/Renderer.h"` or `#include <penumbra/Renderer.h>` from a floor below the
 # renderer finds no such file: a build error, not a review comment.
 #
 # penumbra_floor(<target>

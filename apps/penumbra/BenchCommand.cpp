@@ -4,12 +4,12 @@
 #include "Common.h"
 
 #include "platform/Context.h"
-#include "report/BenchRunner.h"
+#include "bench/BenchRunner.h"
 #include "report/ChoosingPage.h"
 #include "report/HtmlReport.h"
-#include "report/Recommendation.h"
-#include "report/ResultsIO.h"
-#include "report/ScaleBench.h"
+#include "bench/Recommendation.h"
+#include "bench/ResultsIO.h"
+#include "bench/ScaleBench.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>

@@ -1,9 +1,9 @@
 #pragma once
 // Options shared by the subcommands that render (render, compare, bench, view) and the one
 // place that turns them into a scene + technique.
-#include "report/BenchRunner.h"
+#include "bench/BenchRunner.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 

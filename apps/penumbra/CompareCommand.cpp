@@ -5,14 +5,14 @@
 #include "Common.h"
 
 #include "platform/Context.h"
-#include "metrics/Shimmer.h"
-#include "metrics/TexelDensity.h"
-#include "report/BenchRunner.h"
-#include "report/FrameComparison.h"
-#include "report/ImageKey.h"
+#include "comparison/Shimmer.h"
+#include "comparison/TexelDensity.h"
+#include "bench/BenchRunner.h"
+#include "comparison/FrameComparison.h"
+#include "comparison/ImageKey.h"
 #include "text/ImageText.h"
-#include "report/Sheet.h"
-#include "report/SequenceComparison.h"
+#include "comparison/Sheet.h"
+#include "comparison/SequenceComparison.h"
 
 #include <penumbra/Animation.h>
 #include <penumbra/Error.h>

@@ -2,7 +2,7 @@
 #include "Commands.h"
 #include "Common.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>

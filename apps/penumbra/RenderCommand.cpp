@@ -6,7 +6,7 @@
 
 #include "base/AtomicFile.h"
 #include "platform/Context.h"
-#include "report/BenchResults.h"
+#include "bench/BenchResults.h"
 
 #include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>

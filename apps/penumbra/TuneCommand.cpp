@@ -6,9 +6,9 @@
 
 #include "platform/Context.h"
 #include "report/TuneReport.h"
-#include "report/TuneRunner.h"
-#include "report/TuneSearch.h"
-#include "report/TuneShards.h"
+#include "tuner/TuneRunner.h"
+#include "tuner/TuneSearch.h"
+#include "tuner/TuneShards.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>

@@ -100,7 +100,7 @@ public:
   /// Runs a compute shader (a shader-library key) once per pixel of the last frame, with the
   /// frame and shadow blocks and the G-buffer bound, writing an r32f image at PN_IMG_OUTPUT;
   /// returns it (width × height, row 0 = bottom). For screen-space measurements such as the
-  /// texel density (metrics/TexelDensity.h).
+  /// texel density (comparison/TexelDensity.h).
   std::vector<float> computeScreenScalar(const std::string& computeShader);
 
   /// Visibility of light `light` in the last frame, width × height floats, row 0 = bottom (the

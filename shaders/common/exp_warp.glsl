@@ -17,7 +17,7 @@
 // receiver's distance from the mean can grow without bound, which is capped (a smaller distance
 // only makes the bound larger: still a bound).
 #include "common/chebyshev.glsl"
-#include "shadows/filters/exp_warp.shared.h"
+#include "techniques/filters/exp_warp.shared.h"
 
 // A receiver this many means away from its region's mean is as good as infinitely far: the
 // bound is below 1e-30 of the variance (squares stay far below float32's 3.4e38).

@@ -1,4 +1,4 @@
-// The minimal lookup kernels (report/VisibilityBaselines.cpp): per pixel, what a filter's
+// The minimal lookup kernels (bench/VisibilityBaselines.cpp): per pixel, what a filter's
 // visibility cannot do without — read the G-buffer position, apply one matrix, do the filter's
 // taps and its closing arithmetic, store V — and nothing else: no view selection or cascade blend,
 // no N·L, no bias geometry (one constant bias), no edge handling beyond clamping. The bench times

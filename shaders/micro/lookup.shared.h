@@ -1,6 +1,6 @@
 #pragma once
 // The minimal lookup kernels' uniform block and kinds (micro/lookup.glsl,
-// report/VisibilityBaselines.cpp), declared once for C++ and GLSL.
+// bench/VisibilityBaselines.cpp), declared once for C++ and GLSL.
 #include "shared/Cpp.h"
 
 // LOOKUP_KIND: which filter's lookup the kernel does.

@@ -7,7 +7,7 @@
 //   moments must not shadow it), clamped to the largest value the storage holds.
 #include "common/frame.glsl"
 #include "common/material.glsl"
-#include "shadows/filters/exp_warp.shared.h"
+#include "techniques/filters/exp_warp.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform ExpWarpBlock { ExpWarpUniforms u_warp; };
 layout(location = PN_LOC_VIEW) uniform int u_view;

@@ -1,4 +1,4 @@
-// Texel-density pass (metrics/TexelDensity.h): per pixel, the screen pixels covered by one
+// Texel-density pass (comparison/TexelDensity.h): per pixel, the screen pixels covered by one
 // shadow-map texel (common/texel_density.glsl). -1 where there is no geometry or the surface
 // faces away from the light (no shadow-map lookup happens there).
 #include "common/texel_density.glsl"

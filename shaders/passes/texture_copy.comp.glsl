@@ -1,6 +1,6 @@
 // A plain copy of level 0 of a texture array into a twin, one imageLoad and one imageStore per
 // texel and nothing else: the bandwidth floor that the bench's micro-benchmarks set the prefilter
-// builders against (report/MicroBenchmarks.cpp). COPY_FORMAT: rg32f or rgba32f. COPY_BUFFER 1 instead copies a storage buffer of uvec4 (a
+// builders against (bench/MicroBenchmarks.cpp). COPY_FORMAT: rg32f or rgba32f. COPY_BUFFER 1 instead copies a storage buffer of uvec4 (a
 // summed-area table, common/sat.glsl) into another, one load and one store per element; its groups
 // form rows of gl_NumWorkGroups.x (one row of groups could not hold a 2048² table: at most 65535).
 #include "shared/Bindings.h"

@@ -1,6 +1,6 @@
 #pragma once
 // The texel-density heatmap's colour ramp, written once and compiled as C++ (the heatmap image,
-// metrics/TexelDensity.cpp) and as GLSL (the lit pass's PN_VIEW_TEXEL_DENSITY debug view).
+// comparison/TexelDensity.cpp) and as GLSL (the lit pass's PN_VIEW_TEXEL_DENSITY debug view).
 // Input: log2 of the screen pixels covered by one shadow-map texel. 0 (one texel per pixel) is
 // neutral grey; under-sampled (texels larger than pixels: blocky shadow edges) goes warm, to
 // red at 2^PN_DENSITY_LOG2_HI pixels per texel; over-sampled (texels wasted) goes cool, to blue

@@ -1,7 +1,7 @@
 #pragma once
 // The penumbra debug images written by the visibility pass of the filters that estimate a
 // penumbra from an average blocker depth (pcss, vssm): image units and the "no blocker" value,
-// shared by C++ (src/shadows/PenumbraDebugImages.h) and GLSL (common/penumbra_debug.glsl).
+// shared by C++ (src/techniques/PenumbraDebugImages.h) and GLSL (common/penumbra_debug.glsl).
 #include "shared/Bindings.h"
 
 // Both images are screen-sized r32f, bound only for the per-pixel visibility pass.

@@ -15,7 +15,7 @@
 //    and leave the objects standing on it a voxel or two thick.
 //  - Alpha-masked materials are treated as solid (the field has no holes).
 #include "frame/CasterSet.h"
-#include "shadows/sdf/SdfVolume.h"
+#include "techniques/sdf/SdfVolume.h"
 
 #include <penumbra/Bake.h>
 

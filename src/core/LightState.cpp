@@ -1,7 +1,7 @@
 #include "core/LightState.h"
 
 #include "base/Hash.h"
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 namespace penumbra::core {
 

@@ -12,8 +12,8 @@
 #include "frame/ScreenTarget.h"
 #include "frame/VirtualPages.h"
 #include "gl/Objects.h"
-#include "shadows/temporal/TemporalAccumulation.h"
-#include "shadows/translucent/TranslucentShadows.h"
+#include "techniques/temporal/TemporalAccumulation.h"
+#include "techniques/translucent/TranslucentShadows.h"
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
 

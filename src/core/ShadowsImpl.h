@@ -19,9 +19,9 @@
 #include "gl/Debug.h"
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
-#include "shadows/contact/ContactShadows.h"
-#include "shadows/temporal/TemporalAccumulation.h"
-#include "shadows/translucent/TranslucentShadows.h"
+#include "techniques/contact/ContactShadows.h"
+#include "techniques/temporal/TemporalAccumulation.h"
+#include "techniques/translucent/TranslucentShadows.h"
 #include "shared/Bindings.h"
 
 #include <penumbra/Error.h>

@@ -1,7 +1,7 @@
 #pragma once
 // The softness axis: what the shadow map stores and how visibility is computed from it.
-// A filter is one class + one GLSL file (src/shadows/filters/), registered in one line
-// (src/shadows/Registry.cpp). An instance is one light's GPU storage (its maps, mips and tables)
+// A filter is one class + one GLSL file (src/techniques/filters/), registered in one line
+// (src/techniques/Registry.cpp). An instance is one light's GPU storage (its maps, mips and tables)
 // and the passes over it: it renders its maps, optionally prefilters them, and writes the
 // visibility (R32F, 1 = lit), the contract read by everything downstream. Its parameter values
 // are not its own: they are the light's technique's (FrameContext::param), so one light's

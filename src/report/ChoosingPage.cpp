@@ -1,11 +1,11 @@
 #include "report/ChoosingPage.h"
 
 #include "report/ReportCharts.h"
-#include "report/SequenceComparison.h"
+#include "comparison/SequenceComparison.h"
 #include "report/SvgChart.h"
 
 #include <penumbra/Files.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <fmt/format.h>
 

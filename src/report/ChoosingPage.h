@@ -3,7 +3,7 @@
 // Markdown page docs/choosing.md, both written by `penumbra bench` from the run's own rows, with
 // the rule, each pick's measured error, cost and memory, the command that reproduces it and the
 // machine it was measured on.
-#include "report/Recommendation.h"
+#include "bench/Recommendation.h"
 
 #include <filesystem>
 #include <string>

@@ -1,9 +1,9 @@
 #include "report/HtmlReport.h"
 
-#include "report/ScaleBench.h"
+#include "bench/ScaleBench.h"
 
 #include "report/ChoosingPage.h"
-#include "report/Recommendation.h"
+#include "bench/Recommendation.h"
 #include "report/ReportCharts.h"
 #include "report/SvgChart.h"
 

@@ -6,7 +6,7 @@
 // 4. tables (cost ratios such as msm/vsm, every row, skipped configurations, the machine). The
 // micro-benchmarks (building blocks such as the SAT build against a copy) are a page of their
 // own, micro.html: they time the tool's parts, not the user's choice.
-#include "report/BenchResults.h"
+#include "bench/BenchResults.h"
 
 #include <filesystem>
 #include <string>

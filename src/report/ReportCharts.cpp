@@ -1,7 +1,7 @@
 #include "report/ReportCharts.h"
 
-#include "report/Recommendation.h"
-#include "shadows/Registry.h"
+#include "bench/Recommendation.h"
+#include "techniques/Registry.h"
 
 #include <fmt/format.h>
 
@@ -45,30 +45,6 @@ std::vector<LegendEntry> legendFor(const BenchResults& results, const std::vecto
 
 }  // namespace
 
-std::string numberText(double v) {
-  const double a = std::abs(v);
-  return fmt::format("{:.{}f}", v, a >= 100 ? 0 : a >= 10 ? 1 : a >= 1 ? 2 : 3);
-}
-
-std::string lightParams(const BenchRow& row) {
-  std::string out;
-  for (const auto& [k, v] : row.config.params)
-    if (k.starts_with("light.")) out += (out.empty() ? "" : ";") + k + "=" + v;
-  return out;
-}
-
-std::string techniqueParams(const BenchRow& row) {
-  std::string out;
-  for (const auto& [k, v] : row.config.params)
-    if (!k.starts_with("light.")) out += (out.empty() ? "" : ";") + k + "=" + v;
-  return out;
-}
-
-std::string rowLabel(const BenchRow& row) {
-  const std::string params = techniqueParams(row);
-  return fmt::format("{} · {}{}", row.config.filter, row.config.projection, params.empty() ? "" : " · " + params);
-}
-
 std::string filterColor(const std::string& filterId) { return paletteColor(indexIn(filterIds(), filterId)); }
 
 Marker filterMarker(const std::string& filterId) { return kMarkers[indexIn(filterIds(), filterId) % std::size(kMarkers)]; }
@@ -88,23 +64,6 @@ ErrorMetric sceneMetric(const std::string& scene) {
   for (const Situation& s : kSituations)
     if (scene == s.scene) return s.metric;
   return ErrorMetric::Rmse;
-}
-
-std::vector<size_t> sceneRows(const BenchResults& results, const std::string& scene) {
-  std::optional<std::string> light;
-  for (const BenchRow& r : results.rows)
-    if (r.config.scene == scene && (!light || lightParams(r).empty())) {
-      light = lightParams(r);
-      if (light->empty()) break;
-    }
-  std::vector<size_t> rows;
-  for (size_t i = 0; i < results.rows.size(); ++i)
-    if (results.rows[i].config.scene == scene && lightParams(results.rows[i]) == light) rows.push_back(i);
-  return rows;
-}
-
-std::string oneOffText(const BenchRow& r) {
-  return r.oneOff.empty() ? std::string() : fmt::format(" + one-off {:.3g} s (static casters only)", r.oneOffSeconds());
 }
 
 namespace {

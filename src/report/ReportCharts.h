@@ -8,8 +8,8 @@
 //     stacked bar per configuration showing where its time goes, pass by pass;
 //  2. whole cost (and error) against light size, for every technique run at several light sizes;
 //  3. per-light cost and memory, and error, against the number of lights (the light-count plan).
-#include "report/BenchResults.h"
-#include "report/Recommendation.h"
+#include "bench/BenchResults.h"
+#include "bench/Recommendation.h"
 #include "report/SvgChart.h"
 
 #include <string>
@@ -23,18 +23,6 @@ inline constexpr const char* kCostName = "shadow + prefilter + visibility";
 inline constexpr std::pair<const char*, const char*> kPassColors[] = {
     {"projection", "#F0E442"}, {"shadow", "#56B4E9"}, {"prefilter", "#E69F00"}, {"visibility", "#009E73"}, {"contact", "#CC79A7"}};
 
-/// A time or size with about three significant digits, never in exponent form ("1030", "61.6", "2.87").
-std::string numberText(double v);
-
-/// A row's light.* parameters as text ("" when it uses the scene's own light).
-std::string lightParams(const BenchRow& row);
-/// A row's parameters other than light.* as text.
-std::string techniqueParams(const BenchRow& row);
-/// "pcss · csm" plus the technique parameters when there are any.
-std::string rowLabel(const BenchRow& row);
-/// " + one-off 0.57 s (static casters only)" for a row with one-off costs, else "".
-std::string oneOffText(const BenchRow& row);
-
 /// A scene's charts at one light (its own, else the first it was run with).
 struct SceneCharts {
   std::string scene, light;        ///< the group: scene and light parameters ("" = its own)
@@ -47,10 +35,6 @@ struct SceneCharts {
 
 /// One entry per scene, in run order.
 std::vector<SceneCharts> sceneCharts(const BenchResults& results);
-
-/// The rows of a scene at its own light (or, if it has none, at the first light it was run
-/// with): the group sceneCharts draws and the recommendation ranks.
-std::vector<size_t> sceneRows(const BenchResults& results, const std::string& scene);
 
 struct LightSizeCharts {
   std::string scene, projection;

@@ -1,7 +1,7 @@
 #pragma once
 // What `penumbra tune` writes: tune.json (also its --json stdout) and tune.html (the front as a
 // chart, SvgChart), and the answer's two forms: a --set command line and a scene-file snippet.
-#include "report/TuneRunner.h"
+#include "tuner/TuneRunner.h"
 
 #include <nlohmann/json.hpp>
 

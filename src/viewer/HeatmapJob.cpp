@@ -1,6 +1,6 @@
 #include "viewer/HeatmapJob.h"
 
-#include "report/FrameComparison.h"
+#include "comparison/FrameComparison.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Reference.h>

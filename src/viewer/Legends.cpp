@@ -5,7 +5,7 @@
 // `screenshot`) stays the rendered image alone.
 #include "viewer/Viewer.h"
 
-#include "report/FrameComparison.h"
+#include "comparison/FrameComparison.h"
 #include "report/ReportCharts.h"
 #include "shared/DebugColors.h"
 #include "shared/DensityRamp.h"

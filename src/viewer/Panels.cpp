@@ -6,7 +6,7 @@
 #include "viewer/Widgets.h"
 
 #include "text/ImageText.h"
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/SceneIO.h>

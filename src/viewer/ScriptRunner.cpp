@@ -6,7 +6,7 @@
 #include "viewer/LightEdit.h"
 
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 
 #include <penumbra/Animation.h>
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/Technique.h>
 #include <penumbra/SceneIO.h>
 

@@ -6,7 +6,7 @@
 
 #include <penumbra/Error.h>
 #include <penumbra/ImageIO.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <GLFW/glfw3.h>

@@ -1,6 +1,6 @@
 #include "CliSupport.h"
 
-#include "report/Sheet.h"
+#include "comparison/Sheet.h"
 
 #include <penumbra/Exr.h>
 #include <penumbra/ImageIO.h>

@@ -9,7 +9,7 @@
 #include "viewer/DebugDisplay.h"
 
 #include <penumbra/ImageIO.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>

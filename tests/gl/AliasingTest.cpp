@@ -5,9 +5,9 @@
 #include "GlFixture.h"
 #include "TestGeometry.h"
 
-#include "metrics/Shimmer.h"
-#include "metrics/TexelDensity.h"
-#include "shadows/projections/PerspectiveProjection.h"
+#include "comparison/Shimmer.h"
+#include "comparison/TexelDensity.h"
+#include "techniques/projections/PerspectiveProjection.h"
 #include "shared/DensityRamp.h"
 #include "shared/Enums.h"
 

@@ -10,7 +10,7 @@
 // sees the acne, and a shadow pushed off its caster leaks.
 #include "GlFixture.h"
 
-#include "report/FrameComparison.h"
+#include "comparison/FrameComparison.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Metrics.h>

@@ -7,8 +7,8 @@
 #include "GlslProbe.h"
 
 #include "frame/SatBuilder.h"
-#include "shadows/filters/ExpWarpMaps.h"
-#include "shadows/filters/exp_warp.shared.h"
+#include "techniques/filters/ExpWarpMaps.h"
+#include "techniques/filters/exp_warp.shared.h"
 #include "shared/Bindings.h"
 
 #include <fmt/format.h>

@@ -3,7 +3,7 @@
 // that render a scene with a technique and read the visibility back.
 #include "platform/Context.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include "core/ShadowsAccess.h"
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>

@@ -4,7 +4,7 @@
 #include "GlFixture.h"
 
 #include "gl/Objects.h"
-#include "shadows/filters/PcfFilter.h"
+#include "techniques/filters/PcfFilter.h"
 
 #include <gtest/gtest.h>
 

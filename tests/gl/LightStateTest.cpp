@@ -7,7 +7,7 @@
 #include "core/ShadowsAccess.h"
 #include "frame/FrameContext.h"
 #include "gl/Objects.h"
-#include "shadows/filters/HardFilter.h"
+#include "techniques/filters/HardFilter.h"
 
 #include <penumbra/Shadows.h>
 #include <penumbra/ShadowsDebug.h>

@@ -9,7 +9,7 @@
 // (8) of lamp 0's: the filter's error, whatever the number of lights.
 #include "GlFixture.h"
 
-#include "report/FrameComparison.h"
+#include "comparison/FrameComparison.h"
 
 #include <algorithm>
 #include <cmath>

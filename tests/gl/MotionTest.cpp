@@ -2,7 +2,7 @@
 // and flicker over city's walk (csm without stabilisation crawls, with it the texels stay put).
 #include "GlFixture.h"
 
-#include "report/SequenceComparison.h"
+#include "comparison/SequenceComparison.h"
 
 #include <penumbra/Animation.h>
 

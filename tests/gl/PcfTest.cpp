@@ -6,7 +6,7 @@
 
 #include "gl/Objects.h"
 #include "shader/ShaderLibrary.h"
-#include "shadows/filters/PcfFilter.h"
+#include "techniques/filters/PcfFilter.h"
 #include "shared/Bindings.h"
 
 #include <cmath>

@@ -4,7 +4,7 @@
 #include "GlslProbe.h"
 
 #include "frame/SatBuilder.h"
-#include "report/MicroBenchmarks.h"
+#include "bench/MicroBenchmarks.h"
 #include "shared/Bindings.h"
 
 #include <algorithm>
@@ -293,7 +293,7 @@ TEST(Sat, DISABLED_BenchmarkBuildVersusCopy) {
   glTextureSubImage3D(moments.id(), 0, 0, 0, 0, kMapSide, kMapSide, 1, GL_RG, GL_FLOAT, zz.data());
   gl::Texture copy("bench copy", {GL_TEXTURE_2D_ARRAY, GL_RG32F, kMapSide, kMapSide, 1, 1});
   ShaderLibrary shaders;
-  // The bench's micro-benchmark baseline (report/MicroBenchmarks.cpp): one imageLoad and one
+  // The bench's micro-benchmark baseline (bench/MicroBenchmarks.cpp): one imageLoad and one
   // imageStore per texel.
   ProgramDesc copyDesc;
   copyDesc.label = "bench texture copy";

@@ -3,7 +3,7 @@
 // both stages must compute the same V, for every filter.
 #include "GlFixture.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>

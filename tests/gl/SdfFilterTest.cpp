@@ -7,7 +7,7 @@
 
 #include "frame/FrameContext.h"
 #include "bake/SdfBake.h"
-#include "shadows/sdf/SdfFilter.h"
+#include "techniques/sdf/SdfFilter.h"
 #include "shared/Bindings.h"
 #include "shared/Frame.h"
 #include "shared/Shadow.h"
@@ -78,7 +78,7 @@ TEST(SdfFilter, ShaderDistanceMatchesTheBake) {
   gl::Buffer buffer("sdf probe points", points.size() * sizeof(glm::vec4), points.data());
   buffer.bindBase(GL_SHADER_STORAGE_BUFFER, PN_SSBO_TEST);
   const gl::Program probe = compileProbe("sdf distance", R"(
-#include "shadows/sdf/sdf.glsl"
+#include "techniques/sdf/sdf.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = PN_SSBO_TEST) buffer Probe { vec4 points[]; };  // xyz in, w out
 void main() {

@@ -4,7 +4,7 @@
 #include "GlFixture.h"
 #include "TestGeometry.h"
 
-#include "report/TuneRunner.h"
+#include "tuner/TuneRunner.h"
 
 #include <filesystem>
 

@@ -11,15 +11,15 @@
 #include "GlslProbe.h"
 #include "TestGeometry.h"
 
-#include "metrics/Shimmer.h"
-#include "shadows/filters/esm.shared.h"
-#include "shadows/filters/evsm.shared.h"
-#include "shadows/filters/evsm_soft.shared.h"
-#include "shadows/filters/exp_warp.shared.h"
-#include "shadows/filters/msm.shared.h"
-#include "shadows/filters/msm_soft.shared.h"
-#include "shadows/filters/vsm.shared.h"
-#include "shadows/filters/vssm.shared.h"
+#include "comparison/Shimmer.h"
+#include "techniques/filters/esm.shared.h"
+#include "techniques/filters/evsm.shared.h"
+#include "techniques/filters/evsm_soft.shared.h"
+#include "techniques/filters/exp_warp.shared.h"
+#include "techniques/filters/msm.shared.h"
+#include "techniques/filters/msm_soft.shared.h"
+#include "techniques/filters/vsm.shared.h"
+#include "techniques/filters/vssm.shared.h"
 
 #include <penumbra/Metrics.h>
 #include <penumbra/Reference.h>
@@ -128,14 +128,14 @@ TEST(VarianceFilters, UniformBlocksMatchCpp) {
   glContext();
   const gl::Program probe = compileProbe("prefiltered blocks", R"(
 #include "shared/Bindings.h"
-#include "shadows/filters/msm.shared.h"
-#include "shadows/filters/msm_soft.shared.h"
-#include "shadows/filters/vsm.shared.h"
-#include "shadows/filters/vssm.shared.h"
-#include "shadows/filters/esm.shared.h"
-#include "shadows/filters/evsm.shared.h"
-#include "shadows/filters/evsm_soft.shared.h"
-#include "shadows/filters/exp_warp.shared.h"
+#include "techniques/filters/msm.shared.h"
+#include "techniques/filters/msm_soft.shared.h"
+#include "techniques/filters/vsm.shared.h"
+#include "techniques/filters/vssm.shared.h"
+#include "techniques/filters/esm.shared.h"
+#include "techniques/filters/evsm.shared.h"
+#include "techniques/filters/evsm_soft.shared.h"
+#include "techniques/filters/exp_warp.shared.h"
 layout(local_size_x = 1) in;
 layout(std140, binding = 0) uniform A { VsmUniforms u_vsm; };
 layout(std140, binding = 1) uniform B { VssmUniforms u_vssm; };

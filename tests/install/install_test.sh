@@ -85,7 +85,7 @@ cmake -S "$source/examples/engine" -B "$tmp/subdir" -G Ninja -DPENUMBRA_SOURCE="
 outputs=$(ninja -C "$tmp/subdir" -t targets all | sed 's/:.*//')
 libraries=$(echo "$outputs" | sed -n 's|^\(.*/\)\{0,1\}lib\(penumbra_[a-z]*\)\.a$|\2|p' | sort -u)
 echo "  libraries: $(echo $libraries)"
-for unwanted in penumbra_platform penumbra_exr penumbra_renderer penumbra_lab penumbra_viewer; do
+for unwanted in penumbra_platform penumbra_exr penumbra_renderer penumbra_comparison penumbra_bench penumbra_tuner penumbra_report penumbra_viewer; do
   if echo "$libraries" | grep -qx "$unwanted"; then echo "FAIL: the tools' floor $unwanted is built" >&2; exit 1; fi
 done
 if echo "$outputs" | grep -Eq '(^|/)(penumbra|penumbra_asan|penumbra_unit_tests|penumbra_gl_tests|penumbra_fuzz_loaders)$'; then

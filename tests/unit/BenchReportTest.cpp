@@ -1,13 +1,13 @@
 // The bench's pure parts: sweep parsing and expansion, statistics, the Pareto front, CSV
 // quoting and the SVG charts (no GL).
-#include "report/BenchPlan.h"
-#include "report/BenchResults.h"
+#include "bench/BenchPlan.h"
+#include "bench/BenchResults.h"
 #include "report/HtmlReport.h"
-#include "report/ResultsIO.h"
+#include "bench/ResultsIO.h"
 #include "report/SvgChart.h"
 
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// Lag and ghosting (metrics/Lag.h) on crafted frames: a still plane whose reference darkens
+// Lag and ghosting (comparison/Lag.h) on crafted frames: a still plane whose reference darkens
 // pixel by pixel, seen by a technique that shows the reference of the frame before (it lags by
 // construction) and by the reference itself.
-#include "metrics/Lag.h"
+#include "comparison/Lag.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 #include "ProjectionSamples.h"
 
-#include "shadows/projections/LightSpace.h"
+#include "techniques/projections/LightSpace.h"
 
 #include <algorithm>
 #include <random>

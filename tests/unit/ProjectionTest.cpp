@@ -2,13 +2,13 @@
 // of the camera frustum into its clip volume (warps included), csm's snapping, and that every
 // caster that can shadow a visible receiver lies inside the light's clip volume.
 #include "ProjectionSamples.h"
-#include "shadows/projections/CascadedProjection.h"
-#include "shadows/projections/LightSpace.h"
-#include "shadows/projections/LightSpacePerspectiveProjection.h"
-#include "shadows/projections/PerspectiveProjection.h"
-#include "shadows/projections/TrapezoidalProjection.h"
+#include "techniques/projections/CascadedProjection.h"
+#include "techniques/projections/LightSpace.h"
+#include "techniques/projections/LightSpacePerspectiveProjection.h"
+#include "techniques/projections/PerspectiveProjection.h"
+#include "techniques/projections/TrapezoidalProjection.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>

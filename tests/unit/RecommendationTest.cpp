@@ -2,10 +2,10 @@
 // costs, ties by cost and by error, one row for several budgets; the keys written on compare's
 // pictures; the camera walk.
 #include "report/ChoosingPage.h"
-#include "report/ImageKey.h"
-#include "report/Recommendation.h"
-#include "report/SequenceComparison.h"
-#include "report/TuneRunner.h"
+#include "comparison/ImageKey.h"
+#include "bench/Recommendation.h"
+#include "comparison/SequenceComparison.h"
+#include "tuner/TuneRunner.h"
 
 #include <penumbra/Animation.h>
 #include <penumbra/SceneIO.h>

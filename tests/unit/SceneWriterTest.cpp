@@ -3,7 +3,7 @@
 #include "viewer/SceneWriter.h"
 
 #include <penumbra/Error.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -2,11 +2,11 @@
 // the GPU reduction (the same bounds taken on the CPU from surface samples): every sample inside
 // its cascade, each cascade tight around its samples, whole-texel moves only when stabilised.
 #include "ProjectionSamples.h"
-#include "shadows/projections/CascadedProjection.h"
-#include "shadows/projections/LightSpace.h"
-#include "shadows/projections/SampleDistributionProjection.h"
+#include "techniques/projections/CascadedProjection.h"
+#include "techniques/projections/LightSpace.h"
+#include "techniques/projections/SampleDistributionProjection.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
 // `penumbra tune --objective acne` without GL: the acne metric (over-darkening where the reference
 // is fully lit), the objective that accepts at most 0.1 % of it and then prefers the least umbra
 // leak, and the bias parameters it searches.
-#include "report/TuneRunner.h"
+#include "tuner/TuneRunner.h"
 
 #include <penumbra/Error.h>
 #include <penumbra/Metrics.h>
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 

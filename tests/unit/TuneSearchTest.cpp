@@ -1,8 +1,8 @@
 // The search of `penumbra tune` without GL: candidates inside the table's ranges, neighbours,
 // the successive-halving cut, the Pareto front and the budget pick.
-#include "report/TuneSearch.h"
+#include "tuner/TuneSearch.h"
 
-#include "shadows/Registry.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,319 @@
+#include "bench/BenchRunner.h"
+
+#include "platform/Context.h"
+#include "frame/PassTimer.h"
+#include "base/ProgressBar.h"
+#include "comparison/FrameComparison.h"
+#include "bench/MicroBenchmarks.h"
+#include "bench/Recommendation.h"
+#include "bench/ReferenceBaseline.h"
+#include "comparison/SequenceComparison.h"
+#include "bench/VisibilityBaselines.h"
+
+#include <penumbra/Error.h>
+#include <penumbra/ImageIO.h>
+#include <penumbra/Reference.h>
+#include <penumbra/Renderer.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <optional>
+
+namespace penumbra::report {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The light.* parameters of a configuration: configurations that share them (and the scene)
+// share one reference.
+std::string lightKey(const BenchConfig& c) {
+  std::string key;
+  for (const auto& [k, v] : c.params)
+    if (k.starts_with("light.")) key += k + "=" + v + ";";
+  return key;
+}
+
+void writeImage(const std::filesystem::path& dir, const std::string& relative, const ColorImage& img) {
+  writePng(dir / relative, img.width, img.height, img.rgba);
+}
+
+RenderOptions renderOptions(const BenchSettings& set) {
+  return {.width = set.width, .height = set.height, .shadowBudgetTexels = set.shadowBudgetTexels, .debugView = 0};
+}
+
+// The whole cost of the renderer's last frame: its kShadowCostPasses.
+double frameShadowCost(const Renderer& renderer) {
+  FrameSamples frame;
+  for (const auto& [name, ms] : renderer.timings().ms) frame.emplace_back(name, std::vector<double>{ms});
+  return shadowCostStats(frame).median;
+}
+
+// The recommendation's contenders timed again in interleaved rounds (timeInterleaved).
+void retimeContenders(BenchResults& results, const SetupFactory& makeSetup, const RunOptions& options) {
+  const BenchSettings& set = options.settings;
+  for (const SituationPicks& p : recommend(results)) {
+    if (p.contenders.size() < 2) continue;  // nothing to compare: its own frames stand
+    std::vector<BenchConfig> configs;
+    std::vector<RenderOptions> renders;
+    std::vector<int> mapSizes;
+    for (const size_t i : p.contenders) {
+      configs.push_back(results.rows[i].config);
+      renders.push_back(renderOptions(set));
+      mapSizes.push_back(results.rows[i].shadowMapSize);
+    }
+    const std::vector<std::vector<double>> ms =
+        timeInterleaved(configs, renders, mapSizes, makeSetup, set.warmupFrames, set.retimeRounds);
+    for (size_t k = 0; k < p.contenders.size(); ++k)
+      results.rows[p.contenders[k]].rounds = RoundCosts{.group = p.situation->id, .ms = ms[k], .stats = timeStats(ms[k])};
+    if (options.verbose || options.progress)
+      std::fprintf(stderr, "penumbra bench: %s: %zu contenders timed again in %d interleaved rounds\n", p.situation->id,
+                   p.contenders.size(), set.retimeRounds);
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
+                                                 const std::vector<int>& mapSizes, const SetupFactory& makeSetup, int warmupFrames,
+                                                 int rounds) {
+  PN_CHECK(configs.size() == renders.size() && configs.size() == mapSizes.size(),
+           "timeInterleaved: one render setting and map size per configuration");
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (size_t k = 0; k < configs.size(); ++k) {
+    BenchSetup s = makeSetup(configs[k]);
+    auto r = std::make_unique<Renderer>();
+    r->setScene(std::move(s.scene));
+    r->setTechnique(s.technique.setMapSize(mapSizes[k]));
+    for (int w = 0; w < std::max(warmupFrames, 1); ++w) r->render(renders[k]);
+    renderers.push_back(std::move(r));
+  }
+  std::vector<std::vector<double>> ms(configs.size());
+  for (int round = 0; round < rounds; ++round)
+    for (size_t k = 0; k < renderers.size(); ++k) {
+      renderers[k]->render(renders[k]);
+      ms[k].push_back(frameShadowCost(*renderers[k]));
+    }
+  return ms;
+}
+
+WarmTimes timeWarmFrames(Renderer& renderer, const RenderOptions& render, int warmupFrames, int timedFrames, double maxSeconds) {
+  for (int i = 0; i < std::max(warmupFrames, 1); ++i) renderer.render(render);
+  // Per-pass samples over the timed frames, in first-seen pass order.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> ms;
+  const auto add = [&](const std::string& name, double value) {
+    if (!ms.contains(name)) order.push_back(name);
+    ms[name].push_back(value);
+  };
+  WarmTimes out;
+  const auto timedStart = Clock::now();
+  while (out.frames < std::max(timedFrames, 1)) {
+    renderer.render(render);
+    const PassTimings& t = renderer.timings();
+    for (const auto& [name, v] : t.ms) add(name, v);
+    add(kTotalPass, t.total());
+    out.clock = t.clock;
+    ++out.frames;
+    if (std::chrono::duration<double>(Clock::now() - timedStart).count() > maxSeconds) break;
+  }
+  for (const std::string& name : order) {
+    out.passes.push_back({name, timeStats(ms[name])});
+    if (name != kTotalPass) out.frameMs.emplace_back(name, ms[name]);
+  }
+  out.shadowCost = shadowCostStats(out.frameMs);
+  return out;
+}
+
+std::string fileStem(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const bool safe = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ||
+                      ch == '-' || ch == '_';
+    out += safe ? ch : '_';
+  }
+  return out;
+}
+
+BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& configs, const SetupFactory& makeSetup,
+                      const RunOptions& options) {
+  const BenchSettings& set = options.settings;
+  const auto runStart = Clock::now();
+  BenchResults results;
+  results.settings = set;
+  results.machine = describeMachine(context.info());
+
+  Renderer renderer;
+  std::optional<std::string> currentScene, currentLight;
+  std::unique_ptr<ReferenceTracer> tracer;
+  struct FrameReference {
+    GBufferData gbuffer;
+    std::vector<ReferenceResult> lights;
+  };
+  std::map<std::string, FrameReference> references;  // by light key, for the current scene
+  std::map<std::string, SequenceReferences> motionReferences;  // by light key: the motion's frames
+  std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
+  std::optional<ProgressBar> bar;
+  bar.emplace("penumbra bench: configurations", configs.size(), options.progress && !options.verbose,
+              ProgressBar::Elsewhere::Lines);
+
+  for (const BenchConfig& c : configs) {
+    BenchSetup s = makeSetup(c);
+    const std::string light = lightKey(c);
+    if (currentScene != c.scene) {
+      renderer.setScene(s.scene);
+      tracer = std::make_unique<ReferenceTracer>(s.scene);
+      references.clear();
+      motionReferences.clear();
+      referenceImages.clear();
+      currentScene = c.scene;
+      currentLight = light;
+    } else if (currentLight != light) {
+      renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
+      currentLight = light;
+    }
+    if (set.shadowMapSize) s.technique.setMapSize(*set.shadowMapSize);
+    const RenderOptions render = renderOptions(set);
+    const auto done = [&] {
+      bar->advance(1);
+      if (options.configDone) options.configDone();
+    };
+    const auto configStart = Clock::now();
+    try {
+      renderer.setTechnique(s.technique);
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Usage) throw;
+      results.skipped.push_back({c, e.what(), false});
+      done();
+      continue;
+    }
+    try {
+      WarmTimes times = timeWarmFrames(renderer, render, set.warmupFrames, set.timedFrames, set.maxSecondsPerConfig);
+      results.machine.clock = times.clock;
+      const int frames = times.frames;
+
+      if (!references.contains(light)) {
+        ReferenceOptions ro;
+        ro.samples = set.referenceSamples;
+        ro.useCache = set.useCache;
+        ro.cacheMaxBytes = set.cacheMaxBytes;
+        ro.progress = false;  // the bench's own bar is on screen
+        FrameReference& r = references[light];
+        r.gbuffer = renderer.readGBuffer();
+        r.lights = traceLights(*tracer, r.gbuffer, renderer.scene().lights, ro);
+      }
+      const FrameReference& ref = references[light];
+      const FrameComparison cmp = compareFrame(renderer, ref.gbuffer, ref.lights, c.inGrid);
+
+      BenchRow row;
+      row.config = c;
+      row.lightSize = renderer.scene().light().size;
+      row.lights = static_cast<int>(renderer.lightCount());
+      row.width = set.width;
+      row.height = set.height;
+      row.shadowMapSize = s.technique.mapSize();
+      row.grantedMapSize = s.technique.mapSize();
+      for (const LightShadowReport& l : renderer.shadows().lightReports())
+        if (l.views > 0) {
+          row.grantedMapSize = l.mapSize;
+          break;
+        }
+      row.frames = frames;
+      row.passes = std::move(times.passes);
+      row.frameMs = std::move(times.frameMs);
+      row.shadowCost = times.shadowCost;
+      row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
+      row.oneOff = oneOffCosts(renderer.shadows());
+      row.metrics = cmp.metrics;
+      // One-off work (a bake) is redone as casters move: such a row is left out where they may.
+      const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();
+      if (c.motion != MotionKind::None && set.motionFrames > 1 && !rebakes) {
+        // The still frame again, then the scene's animation (or a camera walk where nothing
+        // moves) at kMotionFps; the renderer goes back to the still pose for the next row.
+        const SequenceTiming timing{set.motionFrames, kMotionFps, 0.0f};
+        Scene moving = s.scene;
+        const bool walk = c.motion == MotionKind::Walk || moving.animation.empty();
+        if (walk) addCameraWalk(moving, timing);
+        ReferenceOptions ro;
+        ro.samples = set.referenceSamples;
+        ro.useCache = set.useCache;
+        ro.cacheMaxBytes = set.cacheMaxBytes;
+        ro.progress = false;
+        const SequenceComparison seq =
+            compareSequence(renderer, moving, render, timing, ro, {}, {}, {}, &motionReferences[light]);
+        renderer.setPose(s.scene);
+        MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
+                           .flicker = seq.flicker, .pagesDrawn = {}};
+        for (const SequenceFrame& f : seq.frames) motion.frames.push_back(f.metrics);
+        // A paged projection's pages drawn a frame (a light that pages has a pool).
+        for (const SequenceFrame& f : seq.frames) {
+          int drawn = 0;
+          bool paged = false;
+          for (const LightShadowReport& l : f.lights) {
+            drawn += l.pages.drawn;
+            paged = paged || l.pages.poolPages > 0;
+          }
+          if (paged) motion.pagesDrawn.push_back(drawn);
+        }
+        row.motion = std::move(motion);
+      }
+      if (c.inGrid) {
+        const std::string scene = fileStem(renderer.scene().name);
+        const std::string stem = fmt::format("images/{}-{}-{}", scene, fileStem(c.projection), fileStem(c.filter));
+        row.imagePath = stem + ".png";
+        row.heatmapPath = stem + "-heatmap.png";
+        writeImage(options.outDir, row.imagePath, cmp.technique);
+        writeImage(options.outDir, row.heatmapPath, cmp.heatmap);
+        if (!referenceImages.contains(light)) {
+          const std::string path = fmt::format("images/{}-reference{}.png", scene, light.empty() ? "" : "-" + fileStem(light));
+          writeImage(options.outDir, path, cmp.reference);
+          referenceImages[light] = path;
+        }
+        row.referencePath = referenceImages[light];
+      }
+      results.rows.push_back(std::move(row));
+      if (options.verbose) {
+        const BenchRow& b = results.rows.back();
+        const std::string motion = b.motion ? fmt::format(", flicker {:.3f}% over {} frames", b.motion->flicker.pct(), b.motion->frames.size())
+                                            : std::string();
+        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s (%d frames, %.1f s)\n",
+                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(), b.shadowCost.median,
+                     b.memoryMiB(), cmp.metrics.rmse, motion.c_str(), frames,
+                     std::chrono::duration<double>(Clock::now() - configStart).count());
+      }
+    } catch (const std::exception& e) {
+      results.skipped.push_back({c, e.what(), true});
+      if (options.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
+    }
+    done();
+  }
+  bar.reset();  // its last line before the next stage's
+  if (set.retimeRounds > 0 && !results.rows.empty()) retimeContenders(results, makeSetup, options);
+  if (!options.microBenchmarks) {
+    if (results.machine.clock.empty()) results.machine.clock = PassTimer(context.info().softwareRenderer).endFrame().clock;
+    results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+    results.machine.loadEnd = loadAverage();
+    return results;
+  }
+  // Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
+  int microMapSize = set.shadowMapSize.value_or(0);
+  for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
+  if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
+  if (options.verbose || options.progress)
+    std::fprintf(stderr, "penumbra bench: micro-benchmarks, %d rounds\n", set.microRepetitions);
+  const bool cpuClock = context.info().softwareRenderer;
+  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
+  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,
+                                                .rounds = set.microRepetitions, .cpuClock = cpuClock}))
+    results.micro.push_back(std::move(m));
+  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
+  if (results.machine.clock.empty()) results.machine.clock = PassTimer(cpuClock).endFrame().clock;  // no frame ran: its name
+  results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+  results.machine.loadEnd = loadAverage();
+  return results;
+}
+
+}  // namespace penumbra::report

@@ -1,0 +1,82 @@
+#include "techniques/filters/VssmFilter.h"
+
+#include "frame/FrameContext.h"
+#include "frame/MipBuilder.h"
+#include "techniques/filters/BleedReduction.h"
+#include "techniques/filters/SoftRegionParams.h"
+#include "techniques/filters/vssm.shared.h"
+#include "shared/Bindings.h"
+
+namespace penumbra {
+namespace {
+
+constexpr std::string_view kSourceNames[] = {"sat", "mip"};
+static_assert(PN_VSSM_SOURCE_SAT == 0 && PN_VSSM_SOURCE_MIP == 1, "kSourceNames follows the PN_VSSM_SOURCE_* order");
+
+constexpr ParamDesc kParams[] = {
+    {"vssm.source", "Source", "where region means of (z, z^2) come from: sat (summed-area table, exact boxes) or mip (mip chain, trilinear approximation)", "",
+     PN_VSSM_SOURCE_SAT, 0, 1, 1, kSourceNames, "PN_VSSM_SOURCE"},
+    {"vssm.minVariance", "Min variance", "floor of the variance, in texels² (depth spreads measured in the world size of a texel): keeps receivers from shadowing themselves", "texels²",
+     3.0f, 0.0f, 256.0f, 0.0f},
+    bleedReductionParam("vssm.bleedReduction"),
+    softMinRadiusParam("vssm.minRadiusTexels"),
+    softMaxRadiusParam("vssm.maxRadiusTexels"),
+    tightSearchParam("vssm.tightSearch"),
+    mipSplitParam("vssm.mipSplit"),
+    mipBoxAnisotropyParam("vssm.anisotropy"),
+};
+
+}  // namespace
+
+VssmFilter::VssmFilter() : Filter(kParams) {}
+
+bool VssmFilter::fromSat(const FrameContext& frame) { return frame.paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
+
+void VssmFilter::renderShadowMaps(FrameContext& frame) {
+  if (fromSat(frame)) {
+    // Linear depth only: the SAT build forms z and z² itself, in exact fixed point.
+    mMaps.ensure("vssm depth", frame.mapSize(), frame.viewCount());
+    frame.renderViews(mMaps, frame.shadowProgram());
+  } else {
+    constexpr int kFullMipChain = 0;
+    mMaps.ensure("vssm moments", frame.mapSize(), frame.viewCount(), GL_RG32F, kFullMipChain);
+    const ShaderDefines defines = ShaderDefines().set("PN_MOMENT_COUNT", 2).set("PN_MOMENT_SLOPE_VARIANCE");
+    frame.renderViews(mMaps, frame.shadowProgram("passes/moments.frag.glsl", defines), glm::vec4(1.0f));
+  }
+}
+
+void VssmFilter::prefilter(FrameContext& frame) {
+  if (fromSat(frame))
+    mSat.build(frame.shaders(), mMaps.depth(), 2);
+  else
+    MipBuilder::build(mMaps.color());
+  // From the depth map, or from the moments' z (channel r) with source=mip.
+  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, fromSat(frame) ? mMaps.depth() : mMaps.color());
+}
+
+void VssmFilter::computeVisibility(FrameContext& frame) {
+  gpu::VssmUniforms u{};
+  u.params = glm::vec4(frame.param("vssm.minVariance"), frame.param("vssm.bleedReduction"), frame.param("vssm.minRadiusTexels"),
+                       frame.param("vssm.maxRadiusTexels"));
+  u.mode = glm::ivec4(frame.paramInt("vssm.anisotropy"), frame.paramInt("vssm.mipSplit"), 0, 0);
+  frame.setFilterBlock(u);
+  if (fromSat(frame)) {
+    mSat.bindTable();
+  } else {
+    MipBuilder::setTrilinear(mMaps.color());
+    mMaps.color().bindUnit(PN_TEX_FILTER0);
+  }
+  mPenumbraDebug.bind(frame);
+  ShaderDefines defines;
+  mTightSearch.bind(frame.paramInt("vssm.tightSearch") != 0, defines);
+  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/vssm.glsl", defines));
+}
+
+std::vector<DebugImage> VssmFilter::debugImages() const {
+  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
+  if (mMaps.color()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
+  for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
+  return out;
+}
+
+}  // namespace penumbra

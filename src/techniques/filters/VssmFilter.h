@@ -1,0 +1,34 @@
+#pragma once
+// vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
+// of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
+#include "frame/SatBuilder.h"
+#include "frame/ShadowMaps.h"
+#include "techniques/PenumbraDebugImages.h"
+#include "techniques/TightSearch.h"
+
+#include "frame/Filter.h"
+
+namespace penumbra {
+
+class VssmFilter final : public Filter {
+public:
+  VssmFilter();
+  std::string_view id() const override { return "vssm"; }
+  std::string_view description() const override {
+    return "variance soft shadows: O(1) blocker search + Chebyshev filter from a (z, z^2) SAT or mip chain";
+  }
+  void renderShadowMaps(FrameContext& frame) override;
+  void prefilter(FrameContext& frame) override;
+  void computeVisibility(FrameContext& frame) override;
+  /// The depth map or moments, then "blocker-depth" and "penumbra-width-m" (PenumbraDebugImages.h).
+  std::vector<DebugImage> debugImages() const override;
+
+private:
+  static bool fromSat(const FrameContext& frame);
+  ShadowMapArray mMaps;
+  SatBuilder mSat;
+  PenumbraDebugImages mPenumbraDebug;
+  TightSearch mTightSearch;
+};
+
+}  // namespace penumbra

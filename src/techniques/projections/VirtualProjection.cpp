@@ -1,0 +1,102 @@
+#include "techniques/projections/VirtualProjection.h"
+
+#include "techniques/projections/LightSpace.h"
+#include "shared/Bindings.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+constexpr ParamDesc kParams[] = {
+    {"virtual.levels", "Levels", "clipmap levels around the camera, each a virtual map twice as wide as the one before", "levels",
+     12.0f, 1.0f, static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
+    {"virtual.firstLevelM", "First level", "width of the finest level's square in metres (its texel: this / virtual size)", "m",
+     16.0f, 0.25f, 4096.0f, 0.0f},
+    {"virtual.virtualSize", "Virtual size", "texels per side of each level's virtual map (a power of two, a multiple of the page size)",
+     "texels", 16384.0f, 1024.0f, 16384.0f, 1.0f},
+    {"virtual.pageSize", "Page size", "texels per side of a page, the unit that is marked, drawn and cached (a power of two)", "texels",
+     128.0f, 32.0f, 512.0f, 1.0f},
+    {"virtual.poolPages", "Pool", "pages the pool holds: its fixed memory is this × page size² × 4 bytes (× 2 with cached map "
+     "updates, which keep the static casters' copy); when a frame needs more, coarser levels serve the rest", "pages",
+     1024.0f, 16.0f, 16384.0f, 1.0f},
+    {"virtual.marginTexels", "Margin", "texels around each pixel's texel whose pages are marked with it (a filter's kernel reads "
+     "there; beyond, a coarser level serves)", "texels", 4.0f, 0.0f, 64.0f, 1.0f},
+    {"virtual.levelBias", "Level bias", "levels added to each pixel's choice: + reads coarser levels (fewer pages, one texel over "
+     "several pixels), − finer ones", "levels", 0.0f, -2.0f, 4.0f, 0.0f},
+};
+
+// The depth range is the scene's along the light, widened to whole steps of an eighth of its
+// power-of-two span: a caster that moves a little inside the scene leaves it (and every page's
+// stored depths) as it was.
+constexpr float kDepthStepsPerSpan = 8.0f;
+
+}  // namespace
+
+VirtualProjection::VirtualProjection() : Projection(kParams) {}
+
+std::string VirtualProjection::incompatibility(const Light& light) const {
+  if (light.type != LightType::Directional)
+    return "virtual maps are built here for the sun only (a clipmap of levels around the camera); a spot light's single virtual "
+           "map and a point light's six are not: give the light its own projection (its LightShadowSettings::projection, e.g. "
+           "\"uniform\")";
+  const int size = paramInt("virtual.virtualSize"), page = paramInt("virtual.pageSize");
+  if (!std::has_single_bit(static_cast<unsigned>(size)) || !std::has_single_bit(static_cast<unsigned>(page)))
+    return fmt::format("virtual.virtualSize {} and virtual.pageSize {} must be powers of two", size, page);
+  if (page > size) return fmt::format("virtual.pageSize {} is larger than virtual.virtualSize {}", page, size);
+  return {};
+}
+
+std::optional<PageLayout> VirtualProjection::pageLayout() const {
+  PageLayout l;
+  l.virtualSize = paramInt("virtual.virtualSize");
+  l.pageSize = paramInt("virtual.pageSize");
+  l.poolPages = paramInt("virtual.poolPages");
+  l.marginTexels = param("virtual.marginTexels");
+  l.levelBias = param("virtual.levelBias");
+  return l;
+}
+
+LightFrusta VirtualProjection::computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
+                                             int mapSize) const {
+  (void)aspect;
+  (void)mapSize;
+  const PageLayout layout = *pageLayout();
+  // The light's rotation alone (the eye at the world's origin): every level shares it, and a
+  // level's place is its translation (common/shadow.glsl: virtualUvInLevel).
+  const glm::mat4 lightFromWorld = lightViewMatrix(glm::vec3(0.0f), light.direction);
+  Aabb bounds = scene.bounds().transformed(lightFromWorld);
+  if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
+  const float span = std::max(bounds.hi.z - bounds.lo.z, 1.0f);
+  const float step = std::exp2(std::ceil(std::log2(span))) / kDepthStepsPerSpan;
+  const float nearM = (std::floor(-bounds.hi.z / step) - 1.0f) * step;
+  const float farM = (std::ceil(-bounds.lo.z / step) + 1.0f) * step;
+  const glm::vec3 centre = glm::vec3(lightFromWorld * glm::vec4(camera.position, 1.0f));
+  LightFrusta f;
+  const int levels = paramInt("virtual.levels");
+  for (int level = 0; level < levels; ++level) {
+    const float extentM = param("virtual.firstLevelM") * std::exp2(static_cast<float>(level));
+    const double pageM = static_cast<double>(extentM) / layout.pagesPerSide();
+    // The square around the camera, its corner on the page grid of its level.
+    const glm::dvec2 lo = glm::floor((glm::dvec2(centre) - 0.5 * static_cast<double>(extentM)) / pageM) * pageM;
+    ShadowView v;
+    v.viewFromWorld = lightFromWorld;
+    v.nearM = nearM;
+    v.farM = farM;
+    v.perspective = false;
+    v.extent = glm::vec2(extentM);
+    v.clipFromWorld = glm::orthoRH_ZO(static_cast<float>(lo.x), static_cast<float>(lo.x) + extentM, static_cast<float>(lo.y),
+                                      static_cast<float>(lo.y) + extentM, nearM, farM) *
+                      lightFromWorld;
+    v.depthPlane = linearDepthPlane(lightFromWorld, nearM, farM);
+    f.views.push_back(v);
+  }
+  return f;
+}
+
+}  // namespace penumbra
