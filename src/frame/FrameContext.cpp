@@ -176,6 +176,25 @@ private:
   GLint mDepthMode = GL_ZERO_TO_ONE, mOrigin = GL_LOWER_LEFT;
 };
 
+/// The views of the bound shadow block, as the shadow passes read them (for cache keys).
+gpu::ShadowUniforms boundShadowViews() {
+  gpu::ShadowUniforms views{};
+  GLint shadowBlock = 0;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
+  glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
+  return views;
+}
+
+/// A cached layer's key: what every layer shares (`common`) and its own view as the shadow pass
+/// reads it, its matrix and depth plane (not the split distances, which only the visibility pass
+/// reads). Never 0, which means "nothing cached".
+uint64_t layerKey(const Hasher& common, const gpu::ShadowUniforms& views, int v) {
+  Hasher h = common;
+  h.value(views.views[v].clipFromWorld);
+  h.value(views.views[v].depthPlane);
+  return h.digest() | 1u;
+}
+
 }  // namespace
 
 void FrameContext::ensureMaps(ShadowMapArray& maps, const std::string& label) {
@@ -222,9 +241,7 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
     common.value(maps.size());
     common.value(mCasters.staticKey());
     if (mTranslucentCasters != CasterSet::Translucent::AsOpaque) common.value(static_cast<int>(mTranslucentCasters));
-    GLint shadowBlock = 0;
-    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
-    glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
+    views = boundShadowViews();
   }
   for (int v = 0; v < maps.layers() && v < viewCount(); ++v) {
     if (static_cast<size_t>(v) < mKeptViews.size() && mKeptViews[static_cast<size_t>(v)] && maps.drawn(v)) continue;
@@ -235,12 +252,7 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
       if (p != nullptr) glProgramUniform1i(p->id(), PN_LOC_VIEW, v);
     uint64_t key = 0;
     if (cached) {
-      // The view as the shadow pass reads it: its matrix and depth plane (not the split
-      // distances, which only the visibility pass reads).
-      Hasher h = common;
-      h.value(views.views[v].clipFromWorld);
-      h.value(views.views[v].depthPlane);
-      key = h.digest() | 1u;  // 0 means "nothing cached"
+      key = layerKey(common, views, v);
       if (maps.restoreCached(v, key)) {
         ++mMapCache->restored;
         mCasters.draw(programs.opaque->id(), programs.masked->id(), CasterSet::Which::Dynamic, mTranslucentCasters);
@@ -267,15 +279,6 @@ void FrameContext::renderViews(ShadowMapArray& maps, const ShadowPrograms& progr
 
 namespace {
 
-/// The views of the bound shadow block, as the shadow passes read them (for cache keys).
-gpu::ShadowUniforms boundShadowViews() {
-  gpu::ShadowUniforms views{};
-  GLint shadowBlock = 0;
-  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, PN_UBO_SHADOW, &shadowBlock);
-  glGetNamedBufferSubData(static_cast<GLuint>(shadowBlock), 0, sizeof(views), &views);
-  return views;
-}
-
 /// Per view of `maps` (its framebuffer bound, `setView(v)` called): with a map cache, a layer
 /// stored under the same key (`common`, the view's matrix and depth plane) is restored and only
 /// `draw(Which::Dynamic)` drawn over it; otherwise it is cleared and drawn, the static casters
@@ -292,10 +295,7 @@ void drawCachedLayers(ShadowMapArray& maps, int viewCount, MapCacheState* cache,
     setView(v);
     uint64_t key = 0;
     if (cache) {
-      Hasher h = common;
-      h.value(views.views[v].clipFromWorld);
-      h.value(views.views[v].depthPlane);
-      key = h.digest() | 1u;  // 0 means "nothing cached"
+      key = layerKey(common, views, v);
       if (maps.restoreCached(v, key)) {
         ++cache->restored;
         draw(CasterSet::Which::Dynamic);
