@@ -62,8 +62,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--warmup", o->warmup, "untimed frames first; the first compiles the shaders (default 1)")->check(CLI::Range(1, 100));
   sub->add_option("--size", o->size, fmt::format("image size WxH (default {}, as render and compare; --quick 96x64)", defaultSizeText()));
   sub->add_option("--shadow-map", o->shadowMap,
-                  "shadow-map texels per side (default: each scene's own, as render and compare; --quick 512)")
-      ->check(CLI::Range(16, 16384));
+                  fmt::format("shadow-map texels per side (default: each scene's own, as render and compare; --quick {}); {}",
+                              kMinDefaultsMapSizeTexels, mapSizeLimitText()))
+      ->check(mapSizeOption());
   sub->add_option("--samples", o->samples,
                   fmt::format("reference light samples per pixel (default {}, as compare; --quick 36)", ReferenceOptions{}.samples))
       ->check(CLI::Range(1, kMaxReferenceSamples));

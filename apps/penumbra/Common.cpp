@@ -49,7 +49,10 @@ void addTechniqueOptions(CLI::App& app, TechniqueOptions& o) {
   app.add_option("--projection", o.projection, "light projection id (default: the scene's own, else uniform)");
   app.add_option("--set", o.sets, "parameter override key=value, repeatable (e.g. hard.bias=slope, light.size=0.1)");
   app.add_option("--size", o.size, "image size WxH in pixels")->capture_default_str();
-  app.add_option("--shadow-map", o.shadowMapSize, "shadow-map resolution in texels per side (default: the scene's own, 2048 for the built-in scenes)");
+  app.add_option("--shadow-map", o.shadowMapSize,
+                 fmt::format("shadow-map resolution in texels per side (default: the scene's own, 2048 for the built-in scenes); {}",
+                             mapSizeLimitText()))
+      ->check(mapSizeOption());
   app.add_option("--camera", o.camera,
                  "camera position and target in metres, and optionally the vertical field of view in degrees: "
                  "X,Y,Z:TX,TY,TZ[:FOV] (default: the scene's camera; given, it stays put in an animated scene)");
@@ -160,6 +163,24 @@ CLI::Validator finiteNumber(double lo, double hi, bool aboveLo) {
         return fmt::format("{} is not a number in {}", text, range);
       },
       fmt::format("FLOAT in {}{} - {}]", open, lo, hi));  // CLI::Range's form in --help
+}
+
+std::string mapSizeLimitText() {
+  return fmt::format("{}..{}: below {} a texel grows wider than the built-in scenes' casters and the default bias and "
+                     "filters no longer keep acne and detached shadows away (docs/hard.md#map-sizes)",
+                     kMinDefaultsMapSizeTexels, kMaxMapSizeTexels, kMinDefaultsMapSizeTexels);
+}
+
+CLI::Validator mapSizeOption() {
+  return CLI::Validator(
+      [](std::string& text) {
+        int v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec == std::errc() && end == text.data() + text.size() && v >= kMinDefaultsMapSizeTexels && v <= kMaxMapSizeTexels)
+          return std::string();
+        return fmt::format("{} texels: a map side is {}", text, mapSizeLimitText());
+      },
+      fmt::format("INT in [{} - {}]", kMinDefaultsMapSizeTexels, kMaxMapSizeTexels));
 }
 
 CLI::Validator unsignedNumber() {

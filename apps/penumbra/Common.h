@@ -4,6 +4,7 @@
 #include "bench/BenchRunner.h"
 
 #include "techniques/Registry.h"
+#include <penumbra/MapSizes.h>
 #include <penumbra/Renderer.h>
 #include <penumbra/SceneIO.h>
 
@@ -126,6 +127,11 @@ CLI::Validator techniqueFolderFilter();
 /// The check of a floating-point option: a finite number in [lo, hi] ((lo, hi] with `aboveLo`).
 /// CLI::Range and CLI::PositiveNumber let NaN through (every comparison with it is false).
 CLI::Validator finiteNumber(double lo, double hi, bool aboveLo = false);
+/// The check of a --shadow-map option (render, compare, view, bench, tune): a whole number of
+/// texels per side in [kMinDefaultsMapSizeTexels, kMaxMapSizeTexels]; its refusal says why the
+/// least is that (mapSizeLimitText, also the options' --help).
+CLI::Validator mapSizeOption();
+std::string mapSizeLimitText();
 /// The check of an unsigned whole-number option (a seed): digits only, at most UINT64_MAX (the
 /// conversion alone would read "-1" as 2^64 - 1).
 CLI::Validator unsignedNumber();

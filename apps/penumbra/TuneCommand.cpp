@@ -106,8 +106,9 @@ void addTuneCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--shadow-map", o->technique.shadowMapSize,
                   "the default configuration's map size, searched over powers of two from half to twice it, or with a "
                   "map count (csm.cascades) the maps' texels in all (compare's --shadow-budget) from a quarter to four "
-                  "times the default's (not with --objective acne; default: the first scene's own, as compare)")
-      ->check(CLI::Range(16, 16384));
+                  "times the default's, never below the least the command line takes (not with --objective acne; "
+                  "default: the first scene's own, as compare); " + mapSizeLimitText())
+      ->check(mapSizeOption());
   sub->add_option("--samples", o->samples, "reference light samples per pixel (as compare)")
       ->capture_default_str()->check(CLI::Range(1, kMaxReferenceSamples));
   sub->add_option("--candidates", o->candidates, "Latin-hypercube candidates per technique in the screen stage")

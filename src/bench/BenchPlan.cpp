@@ -1,6 +1,7 @@
 #include "bench/BenchPlan.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/MapSizes.h>
 #include "techniques/Registry.h"
 #include <penumbra/SceneIO.h>
 
@@ -184,7 +185,7 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
     matrix.projections = {"uniform", "csm"};
     settings.width = 96;
     settings.height = 64;
-    settings.shadowMapSize = 512;
+    settings.shadowMapSize = kMinDefaultsMapSizeTexels;
     settings.warmupFrames = 1;
     settings.timedFrames = 3;
     settings.maxSecondsPerConfig = 0.5;

@@ -4,6 +4,7 @@
 // candidates in it, the neighbours of a point for coordinate descent, the successive-halving
 // cut, and the pick of the recommended configuration from measured (error, cost, memory).
 // Unit-tested in tests/unit/TuneSearchTest.cpp.
+#include <penumbra/MapSizes.h>
 #include <penumbra/Params.h>
 
 #include <cstdint>
@@ -47,7 +48,7 @@ using TuneCandidate = std::vector<float>;
 inline constexpr float kLogSpanFactor = 16.0f;
 /// Map sizes searched: the default's ÷ / × this factor (powers of two).
 inline constexpr int kMapSizeSpanFactor = 2;
-inline constexpr int kMinTuneMapSize = 256, kMaxTuneMapSize = 8192;
+inline constexpr int kMinTuneMapSize = kMinDefaultsMapSizeTexels, kMaxTuneMapSize = 8192;
 
 /// The default configuration's maps: the side of each and the texels of all together.
 struct TuneMapDefault {

@@ -79,11 +79,11 @@ std::vector<std::string> jsonValues(bool negativeValid) { return {"NaN", "Infini
 
 /// The cheapest valid run of each subcommand, option by option (a tested option replaces its own).
 const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> kBase = {
-    {"render", {{"--scene", "boxes"}, {"--size", "16x16"}, {"--shadow-map", "16"}, {"--out", "o.png"}}},
-    {"compare", {{"--scene", "boxes"}, {"--size", "16x16"}, {"--shadow-map", "16"}, {"--samples", "1"}, {"--out", "c"}}},
+    {"render", {{"--scene", "boxes"}, {"--size", "16x16"}, {"--shadow-map", "1024"}, {"--out", "o.png"}}},
+    {"compare", {{"--scene", "boxes"}, {"--size", "16x16"}, {"--shadow-map", "1024"}, {"--samples", "1"}, {"--out", "c"}}},
     {"bench", {{"--quick", ""}, {"--scenes", "pen"}, {"--filters", "hard"}, {"--projections", "uniform"}, {"--size", "16x16"},
-               {"--shadow-map", "16"}, {"--samples", "1"}, {"--frames", "1"}, {"--micro-rounds", "1"}, {"--out", "b"}}},
-    {"tune", {{"--scene", "pen"}, {"--filters", "hard"}, {"--size", "32x32"}, {"--shadow-map", "16"}, {"--samples", "1"},
+               {"--shadow-map", "1024"}, {"--samples", "1"}, {"--frames", "1"}, {"--micro-rounds", "1"}, {"--out", "b"}}},
+    {"tune", {{"--scene", "pen"}, {"--filters", "hard"}, {"--size", "32x32"}, {"--shadow-map", "1024"}, {"--samples", "1"},
               {"--candidates", "1"}, {"--max-minutes", "0.01"}, {"--out", "t"}}},
     {"view", {{"--size", "16x16"}, {"--frames", "1"}}},
     {"cache", {}},
@@ -253,7 +253,7 @@ TEST(BadNumbersCli, EveryNumericLightFieldOfASceneFileAndAGltfFileRefusesThem) {
       std::string light = f.pattern;
       light.replace(light.find("{}"), 2, v);
       const std::string name = f.file == "scene" ? "light.json" : "light.gltf";
-      cases.push_back({.args = "render --scene in/" + name + " --size 16x16 --shadow-map 16 --out o.png",
+      cases.push_back({.args = "render --scene in/" + name + " --size 16x16 --shadow-map 1024 --out o.png",
                        .names = {"in/" + name + ": ", f.names},
                        .exit = 1,
                        .inputName = name,

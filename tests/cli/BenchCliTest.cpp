@@ -77,7 +77,7 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
   const std::string dir = freshDir("bench-rows");
   const RunResult r = runPenumbra(
       "bench --scenes boxes --filters hard,pcf --projections uniform,csm --sweep pcf.radiusTexels=1:2:2 "
-      "--size 64x48 --shadow-map 256 --frames 2 --samples 4 --no-cache --out out",
+      "--size 64x48 --shadow-map 1024 --frames 2 --samples 4 --no-cache --out out",
       dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::vector<std::vector<std::string>> csv = parseCsv(slurp(dir + "/out/results.csv"));
@@ -180,7 +180,7 @@ TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
 TEST(BenchCli, EveryRowReproducesWithItsCompareCommand) {
   const std::string dir = freshDir("bench-reproduce");
   const RunResult r = runPenumbra("bench --scenes pen --filters hard,pcss,vssm --projections uniform,csm "
-                                  "--sweep light.size=0.05:0.1:2 --size 96x64 --shadow-map 512 --samples 16 --frames 1 "
+                                  "--sweep light.size=0.05:0.1:2 --size 96x64 --shadow-map 1024 --samples 16 --frames 1 "
                                   "--out out",
                                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -353,7 +353,7 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
 // without their footprint are measured against the one-tap kernels of their default rows.
 TEST(BenchCli, MicroOnlyReportsEachPassOverItsKernel) {
   const std::string dir = freshDir("bench-micro");
-  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 256 --micro-rounds 3 --out out", dir);
+  const RunResult r = runPenumbra("bench --micro-only --size 64x48 --shadow-map 1024 --micro-rounds 3 --out out", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   EXPECT_TRUE(json["rows"].empty());
@@ -410,14 +410,14 @@ TEST(BenchCli, CameraMeasuresTheSceneFromThatView) {
   const std::string dir = freshDir("bench-camera");
   const std::string camera = "3,2.5,4:0,0.4,0:35";
   RunResult r = runPenumbra("bench --scenes boxes --filters hard --projections uniform --camera " + camera +
-                                " --size 96x64 --shadow-map 512 --frames 1 --samples 4 --out out",
+                                " --size 96x64 --shadow-map 1024 --frames 1 --samples 4 --out out",
                             dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   EXPECT_EQ(json["settings"]["camera"], camera);
   ASSERT_EQ(json["rows"].size(), 1u);
   EXPECT_NE(slurp(dir + "/out/report.html").find("--camera " + camera), std::string::npos);
-  const std::string compare = "compare --scene boxes --filter hard --projection uniform --size 96x64 --shadow-map 512 "
+  const std::string compare = "compare --scene boxes --filter hard --projection uniform --size 96x64 --shadow-map 1024 "
                               "--samples 4 --json --out imgs";
   r = runPenumbra(compare + " --camera " + camera, dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;

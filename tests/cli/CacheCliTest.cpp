@@ -115,7 +115,7 @@ TEST(CacheCli, ListsTrimsAndClearsOnlyItsEntries) {
 // evicts B, not A. PENUMBRA_CACHE_MAX_MB=0 keeps nothing at all, the sdf bake's entry too.
 TEST(CacheCli, CompareEvictsTheLeastRecentlyUsedReference) {
   const std::string dir = freshDir("cache-lru");
-  const std::string compare = "compare --scene boxes --set light.size=0 --size 256x256 --shadow-map 256 --json --out imgs";
+  const std::string compare = "compare --scene boxes --set light.size=0 --size 256x256 --shadow-map 1024 --json --out imgs";
   const auto run = [&](const std::string& camera, const std::string& extra = "", const std::string& env = "") {
     const RunResult r = runPenumbra(compare + " --camera " + camera + " " + extra, dir, cacheEnv(dir + "/c") + env);
     EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -161,7 +161,7 @@ TEST(CacheCli, AFileOrADanglingLinkInTheFoldersPlaceIsNamed) {
       EXPECT_EQ(r.err, "penumbra: the cache folder " + folder + " " + problem + "\n") << args;
       EXPECT_TRUE(r.out.empty()) << r.out;
     }
-    const RunResult c = runPenumbra("compare --size 24x16 --shadow-map 64 --samples 2 --json --out imgs", dir, cacheEnv(folder));
+    const RunResult c = runPenumbra("compare --size 24x16 --shadow-map 1024 --samples 2 --json --out imgs", dir, cacheEnv(folder));
     ASSERT_EQ(c.exitCode, 0) << c.err;
     EXPECT_NE(c.err.find("penumbra: warning: reference cache: the cache folder " + folder + " " + problem +
                          "; references are traced but not kept"),
@@ -178,7 +178,7 @@ TEST(CacheCli, AFileOrADanglingLinkInTheFoldersPlaceIsNamed) {
 TEST(CacheCli, AReadOnlyFolderCostsTheCacheNotTheResult) {
   const std::string dir = freshDir("cache-read-only");
   const std::string cache = dir + "/c";
-  const std::string compare = "compare --size 24x16 --shadow-map 64 --samples 2 --json --out imgs";
+  const std::string compare = "compare --size 24x16 --shadow-map 1024 --samples 2 --json --out imgs";
   ASSERT_EQ(runPenumbra(compare + " --camera 4,3,5:0,0.5,0", dir, cacheEnv(cache)).exitCode, 0);  // one entry
   ASSERT_EQ(listed(cacheJson(cache)).size(), 1u);
   // The user the runs are made as: this one, or nobody when this one is root (root writes anywhere).

@@ -48,7 +48,7 @@ TEST(CompareCli, JsonHasTheDocumentedKeysAndImagesAreWritten) {
 // here) lies outside a warm run's spread.
 TEST(CompareCli, WarmTimesOfTwoRunsInARowAgreeWithinTheSpreadTheyReport) {
   const std::string dir = freshDir("compare-warm");
-  const std::string args = "compare --scene pen --filter pcf --size 160x90 --shadow-map 512 --samples 4 --json --out imgs";
+  const std::string args = "compare --scene pen --filter pcf --size 160x90 --shadow-map 1024 --samples 4 --json --out imgs";
   nlohmann::json runs[2];
   for (nlohmann::json& j : runs) {
     const RunResult r = runPenumbra(args, dir, "env PENUMBRA_CLOCK=cpu");
@@ -68,7 +68,7 @@ TEST(CompareCli, WarmTimesOfTwoRunsInARowAgreeWithinTheSpreadTheyReport) {
   for (const char* pass : {"shadow", "prefilter", "visibility"}) passes += runs[1]["timings_ms"].value(pass, 0.0);
   EXPECT_NEAR(passes, b["median"].get<double>(), 0.25 * b["median"].get<double>());
   // Printed as warm, not as one frame.
-  const RunResult text = runPenumbra("compare --scene pen --filter pcf --size 160x90 --shadow-map 512 --samples 4 --out imgs", dir);
+  const RunResult text = runPenumbra("compare --scene pen --filter pcf --size 160x90 --shadow-map 1024 --samples 4 --out imgs", dir);
   ASSERT_EQ(text.exitCode, 0) << text.err;
   EXPECT_NE(text.out.find("times, warm: the median of 5 frames after 1 warm-up"), std::string::npos) << text.out;
 }
@@ -78,7 +78,7 @@ TEST(CompareCli, WarmTimesOfTwoRunsInARowAgreeWithinTheSpreadTheyReport) {
 // and each band carries text (dark pixels on the light background).
 TEST(CompareCli, SheetHasTitledTilesALegendAndTheMetrics) {
   const std::string dir = freshDir("compare-sheet");
-  const RunResult r = runPenumbra("compare --scene fence --filter vsm --size 320x180 --shadow-map 512 --samples 4 --out imgs", dir);
+  const RunResult r = runPenumbra("compare --scene fence --filter vsm --size 320x180 --shadow-map 1024 --samples 4 --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   int w = 0, h = 0, sw = 0, sh = 0;
   (void)penumbra::readPng(dir + "/imgs/technique.png", w, h);
@@ -110,7 +110,7 @@ TEST(CompareCli, SheetHasTitledTilesALegendAndTheMetrics) {
 // The JSON names the camera as a --camera argument; given back, it repeats the run's numbers.
 TEST(CompareCli, CameraInTheJsonRepeatsTheRun) {
   const std::string dir = freshDir("compare-camera");
-  const std::string common = "compare --scene boxes --size 96x64 --shadow-map 512 --samples 4 --json --out imgs";
+  const std::string common = "compare --scene boxes --size 96x64 --shadow-map 1024 --samples 4 --json --out imgs";
   RunResult r = runPenumbra(common + " --camera 3,2.5,4:0,0.4,0:35", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json first = nlohmann::json::parse(r.out);
@@ -127,7 +127,7 @@ TEST(CompareCli, CameraInTheJsonRepeatsTheRun) {
 }
 
 TEST(CompareCli, ShimmerReportsAPercentage) {
-  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 96x64 --shadow-map 512 --samples 4 --shimmer 5 --json --out imgs");
+  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 96x64 --shadow-map 1024 --samples 4 --shimmer 5 --json --out imgs");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.contains("shimmer_pct"));
@@ -179,7 +179,7 @@ TEST(CompareCli, WritesEveryFileItsHelpNamesAndTheTruthAsFloatImages) {
   EXPECT_GE(named.size(), 9u) << help.out;
 
   const std::string dir = freshDir("compare-files");
-  const std::string frame = "--scene boxes --set light.size=0 --size 96x64 --shadow-map 512";
+  const std::string frame = "--scene boxes --set light.size=0 --size 96x64 --shadow-map 1024";
   RunResult r = runPenumbra("compare " + frame + " --json --no-cache --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::vector<std::string> written;
@@ -216,7 +216,7 @@ TEST(CompareCli, WritesEveryFileItsHelpNamesAndTheTruthAsFloatImages) {
 TEST(CompareCli, WritesEachLightsCosWeightedReferenceAndCountsPixelsLitFromBelowTheHorizon) {
   const std::string dir = freshDir("compare-light-cos");
   const RunResult r = runPenumbra(
-      "compare --scene room --set light.size=0.3 --size 128x96 --samples 16 --shadow-map 256 --json --out imgs", dir);
+      "compare --scene room --set light.size=0.3 --size 128x96 --samples 16 --shadow-map 1024 --json --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["lights"].size(), 2u);
@@ -246,7 +246,7 @@ TEST(CompareCli, WritesEachLightsCosWeightedReferenceAndCountsPixelsLitFromBelow
 // translucent caster as opaque, so its colour error is large where the reference is tinted.
 TEST(CompareCli, GlassSceneHasAColourReferenceAndColourMetrics) {
   const std::string dir = freshDir("compare-glass");
-  const RunResult r = runPenumbra("compare --scene glass --filter pcf --size 128x72 --samples 16 --shadow-map 512 --json --out imgs", dir);
+  const RunResult r = runPenumbra("compare --scene glass --filter pcf --size 128x72 --samples 16 --shadow-map 1024 --json --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"rmse_rgb", "rmse_r", "rmse_g", "rmse_b"}) {

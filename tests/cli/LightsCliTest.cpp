@@ -41,7 +41,7 @@ TEST(LightsCli, BadLightEntryExitsOneNamingTheField) {
 // The issue's check: compare on `room` lists its point lamp and its spot, each with its metrics.
 TEST(LightsCli, CompareListsEveryLightWithItsMetrics) {
   const std::string dir = freshDir("compare-room");
-  const RunResult r = runPenumbra("compare --scene room --filter pcss --size 96x64 --shadow-map 512 --samples 16 --json --no-cache --out imgs", dir);
+  const RunResult r = runPenumbra("compare --scene room --filter pcss --size 96x64 --shadow-map 1024 --samples 16 --json --no-cache --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.contains("lights"));
@@ -84,15 +84,15 @@ TEST(LightsCli, LightParamsAreCheckedAtLoadAndAppliedWithTheirTechnique) {
                                       << params << R"(}}}], "objects": [{"shape": "plane"}, {"shape": "box"}]})";
   };
   scene(R"("pcss.blockerSamples": 32)");
-  RunResult r = runPenumbra("render --scene lamp.json --size 24x16 --shadow-map 64 --verbose --out a.png", dir);
+  RunResult r = runPenumbra("render --scene lamp.json --size 24x16 --shadow-map 1024 --verbose --out a.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("lamp.json: lights[1].shadow.params.pcss.blockerSamples=32 not applied: not a parameter of --projection "
                        "uniform or --filter hard"),
             std::string::npos) << r.err;
-  r = runPenumbra("render --scene lamp.json --filter pcss --size 24x16 --shadow-map 64 --verbose --out b.png", dir);
+  r = runPenumbra("render --scene lamp.json --filter pcss --size 24x16 --shadow-map 1024 --verbose --out b.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err.find("not applied"), std::string::npos) << "pcss takes it: " << r.err;
-  r = runPenumbra("bench --scenes lamp.json --filters hard,pcss --projections uniform --size 64x48 --shadow-map 256 --samples 1 "
+  r = runPenumbra("bench --scenes lamp.json --filters hard,pcss --projections uniform --size 64x48 --shadow-map 1024 --samples 1 "
                   "--frames 1 --micro-rounds 1 --out bench",
                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;

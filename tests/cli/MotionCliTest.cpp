@@ -57,7 +57,7 @@ std::vector<std::string> lines(const std::string& file) {
 
 TEST(MotionCli, RenderFramesWritesANumberedSequence) {
   const std::string dir = freshDir("frames-seq");
-  const RunResult r = runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 0.5 --out seq.png", dir);
+  const RunResult r = runPenumbra("render --scene boxes --size 48x32 --shadow-map 1024 --frames 3 --fps 0.5 --out seq.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* f : {"seq-0000.png", "seq-0001.png", "seq-0002.png"}) EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
   EXPECT_FALSE(std::filesystem::exists(dir + "/seq-0003.png"));
@@ -67,7 +67,7 @@ TEST(MotionCli, RenderFramesWritesANumberedSequence) {
   EXPECT_NE(first, last) << "the ball rolled and the sun moved in 4 s";
   // The first frame is the still frame (the sun's direction comes back from its azimuth and
   // elevation within a float's rounding: a texel on an edge may differ).
-  ASSERT_EQ(runPenumbra("render --scene boxes --size 48x32 --shadow-map 256 --out still.png", dir).exitCode, 0);
+  ASSERT_EQ(runPenumbra("render --scene boxes --size 48x32 --shadow-map 1024 --out still.png", dir).exitCode, 0);
   const std::vector<uint8_t> still = readPng(dir + "/still.png", w, h);
   ASSERT_EQ(still.size(), first.size());
   size_t differ = 0;
@@ -85,7 +85,7 @@ TEST(MotionCli, FramesMakeAnMp4ThroughFfmpegWithoutAShell) {
   const std::string real = ffmpegOnPath(), args = dir + "/args.txt";
   const std::string path = "PATH='" + dir + "/bin:" + std::getenv("PATH") + "'";
   if (real.empty()) writeStandIn(dir + "/bin", args, 0);
-  const std::string render = "render --scene boxes --size 47x31 --shadow-map 64 --frames 2 --fps 2.5 --out \"my 'clip' (50%).png\"";
+  const std::string render = "render --scene boxes --size 47x31 --shadow-map 1024 --frames 2 --fps 2.5 --out \"my 'clip' (50%).png\"";
   RunResult r = runPenumbra(render, dir, path);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("and my 'clip' (50%).mp4"), std::string::npos) << r.out;
@@ -150,7 +150,7 @@ TEST(MotionCli, AnimationThatLeavesTheStillPosesBoundsIsRefusedBeforeAnyFrame) {
   std::ofstream(dir + "/overhead.json") << R"({"camera": {"position": [-5, 9, 0], "target": [0, 0, 0],
     "animation": {"keys": [{"timeS": 0, "position": [-5, 9, 0]}, {"timeS": 2, "position": [5, 9, 0]}]}},
     "lights": [{"type": "sun"}], "objects": [{"shape": "plane"}, {"shape": "box"}]})";
-  const std::string common = " --scene overhead.json --size 16x16 --shadow-map 16";
+  const std::string common = " --scene overhead.json --size 16x16 --shadow-map 1024";
   for (const std::string args : {"render --frames 3 --fps 1 --out f.png", "compare --frames 3 --fps 1 --samples 1 --out c", "render --time 1",
                                   "compare --time 1 --samples 1 --out c"}) {
     const RunResult r = runPenumbra(args + common, dir);
@@ -164,7 +164,7 @@ TEST(MotionCli, AnimationThatLeavesTheStillPosesBoundsIsRefusedBeforeAnyFrame) {
 
 TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
   const std::string dir = freshDir("compare-frames");
-  const RunResult r = runPenumbra("compare --scene boxes --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 --json --out imgs", dir);
+  const RunResult r = runPenumbra("compare --scene boxes --size 48x32 --shadow-map 1024 --samples 4 --frames 3 --fps 1 --json --out imgs", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* k : {"frames", "flicker_pct", "rmse_mean", "rmse_worst_frame", "frame_rmse", "lag_rmse", "ghost_pct", "lag_pixels"})
@@ -181,7 +181,7 @@ TEST(MotionCli, CompareFramesJsonHasTheTimeKeys) {
 // frame; --verbose says so. A budget below 1 is a usage error.
 TEST(MotionCli, MapUpdatesCountTheMapsAndRefuseABadPolicy) {
   const std::string dir = freshDir("frames-cache");
-  const std::string common = "render --scene boxes --size 48x32 --shadow-map 256 --frames 3 --fps 1 --verbose";
+  const std::string common = "render --scene boxes --size 48x32 --shadow-map 1024 --frames 3 --fps 1 --verbose";
   RunResult r = runPenumbra(common + " --map-updates invalid --out cached.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("cached maps: 0 restored, 3 drawn, 0 kept (--map-updates invalid); staleness max 0"), std::string::npos) << r.err;
@@ -190,7 +190,7 @@ TEST(MotionCli, MapUpdatesCountTheMapsAndRefuseABadPolicy) {
   EXPECT_NE(r.err.find("3 drawn, 0 kept (--map-updates budget 1); staleness max 0"), std::string::npos) << r.err;
   // A still sun over a rolling ball (tests/data/scenes/rolling-ball.json): the map's static
   // casters are restored in every frame after the first.
-  r = runPenumbra("render --scene '" PENUMBRA_TEST_DATA "/scenes/rolling-ball.json' --size 48x32 --shadow-map 256 --frames 3 --verbose "
+  r = runPenumbra("render --scene '" PENUMBRA_TEST_DATA "/scenes/rolling-ball.json' --size 48x32 --shadow-map 1024 --frames 3 --verbose "
                   "--map-updates invalid --out ball.png",
                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -207,7 +207,7 @@ TEST(MotionCli, MapUpdatesCountTheMapsAndRefuseABadPolicy) {
 // after the first, 2 kept, none older than 1 frame.
 TEST(MotionCli, CompareReportsTheMapBudgetsStaleness) {
   const std::string dir = freshDir("compare-budget");
-  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 48x32 --shadow-map 256 --samples 4 --frames 3 --fps 1 "
+  const RunResult r = runPenumbra("compare --scene boxes --projection csm --size 48x32 --shadow-map 1024 --samples 4 --frames 3 --fps 1 "
                                   "--map-updates 2 --json --out imgs",
                                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -226,7 +226,7 @@ TEST(MotionCli, CompareReportsTheMapBudgetsStaleness) {
 // how many of its maps the compared frame kept, and its own flicker and lag over the sequence.
 TEST(MotionCli, EachLightHasItsOwnMapUpdatesAndFlicker) {
   const std::string dir = freshDir("per-light-updates");
-  const RunResult r = runPenumbra("compare --scene '" PENUMBRA_TEST_DATA "/scenes/two-suns.json' --projection csm --size 48x32 --shadow-map 256 --samples 4 --frames 3 "
+  const RunResult r = runPenumbra("compare --scene '" PENUMBRA_TEST_DATA "/scenes/two-suns.json' --projection csm --size 48x32 --shadow-map 1024 --samples 4 --frames 3 "
                                   "--fps 1 --map-updates invalid --json --out imgs",
                                   dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;

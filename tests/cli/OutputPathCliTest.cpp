@@ -196,7 +196,7 @@ TEST(OutputPathCli, LongFileNamesAreWrittenOrRefusedBeforeTheRender) {
   const long max = pathconf(dir.c_str(), _PC_NAME_MAX);
   ASSERT_GT(max, 16) << "the file system's name limit";
   const std::string fits = std::string(static_cast<size_t>(max) - 4, 'a') + ".png";  // exactly the limit
-  RunResult r = runPenumbra("render --size 16x16 --shadow-map 16 --out " + fits, dir);
+  RunResult r = runPenumbra("render --size 16x16 --shadow-map 1024 --out " + fits, dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir + "/" + fits));
   for (const auto& e : fs::directory_iterator(dir))

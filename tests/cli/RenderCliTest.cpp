@@ -76,7 +76,7 @@ TEST(RenderCli, MaxMemoryRefusesAModelThatWouldNotFit) {
       << refused.err;
   EXPECT_NE(refused.err.find("more than the --max-memory limit of 256 KiB (this machine has "), std::string::npos) << refused.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/penumbra.png"));
-  EXPECT_EQ(runPenumbra("render --scene grid.obj --size 16x16 --shadow-map 256 --max-memory 2M", dir).exitCode, 0);
+  EXPECT_EQ(runPenumbra("render --scene grid.obj --size 16x16 --shadow-map 1024 --max-memory 2M", dir).exitCode, 0);
   const RunResult bad = runPenumbra("render --scene grid.obj --max-memory lots", dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("--max-memory: 'lots' is not a size"), std::string::npos) << bad.err;
@@ -159,7 +159,7 @@ TEST(RenderCli, LargeModelLoadsAreAnnounced) {
       }
   }
   ASSERT_GE(std::filesystem::file_size(dir + "/big.obj"), 16u << 20);
-  const RunResult r = runPenumbra("render --scene big.obj --size 16x16 --shadow-map 256", dir);
+  const RunResult r = runPenumbra("render --scene big.obj --size 16x16 --shadow-map 1024", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("penumbra: loading big.obj ("), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" MiB)\npenumbra: loaded big.obj in "), std::string::npos) << r.err;
@@ -217,14 +217,25 @@ TEST(RenderCli, BadSetIsAUsageError) {
 }
 
 TEST(RenderCli, ShadowMapBeyondTheLimitIsAClearError) {
+  const std::string why = "a map side is 1024..16384: below 1024 a texel grows wider than the built-in scenes' casters";
   const RunResult r = runPenumbra("render --shadow-map 1000000 --size 32x32");
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.err.find("--shadow-map 1000000: a map side is 16..16384 texels (the maximum"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1000000 texels: " + why), std::string::npos) << r.err;
+  // Below the least size at which the default bias and filters hold, every command that takes
+  // --shadow-map refuses it, naming that size and why, and its --help says so.
+  for (const std::string command : {"render", "compare", "view", "bench", "tune"}) {
+    const RunResult small = runPenumbra(command + " --shadow-map 512 --size 32x32");
+    EXPECT_EQ(small.exitCode, 2) << command;
+    EXPECT_NE(small.err.find("512 texels: " + why), std::string::npos) << command << ": " << small.err;
+    const RunResult help = runPenumbra(command + " --help");
+    EXPECT_NE(help.out.find("INT in [1024 - 16384]"), std::string::npos) << command << ": " << help.out;
+  }
+  EXPECT_EQ(runPenumbra("render --shadow-map 1024 --size 16x16 --out small.png", freshDir("render-least-map")).exitCode, 0);
 }
 
 TEST(RenderCli, VisibilityExrAndDump) {
   const std::string dir = freshDir("dump");
-  const RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --visibility v.exr --dump d --out c.png", dir);
+  const RunResult r = runPenumbra("render --size 64x48 --shadow-map 1024 --visibility v.exr --dump d --out c.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   int w = 0, h = 0;
   const std::vector<float> v = readExr(dir + "/v.exr", w, h);
@@ -240,9 +251,9 @@ TEST(RenderCli, VisibilityExrAndDump) {
 // render; --verbose then times the renders after the first (the first compiles the shaders).
 TEST(RenderCli, RepeatWritesTheSameImageAndTimesTheWarmFrames) {
   const std::string dir = freshDir("frames");
-  RunResult r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --out one.png", dir);
+  RunResult r = runPenumbra("render --size 64x48 --shadow-map 1024 --filter vsm --out one.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  r = runPenumbra("render --size 64x48 --shadow-map 512 --filter vsm --repeat 3 --verbose --out three.png", dir);
+  r = runPenumbra("render --size 64x48 --shadow-map 1024 --filter vsm --repeat 3 --verbose --out three.png", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   int w = 0, h = 0;
   EXPECT_EQ(readPng(dir + "/one.png", w, h), readPng(dir + "/three.png", w, h));

@@ -38,7 +38,7 @@ std::string folderFrom(const std::string& dir, const std::string& example, const
 
 /// `compare --json` of a filter on pen at a small size, with the technique image written.
 nlohmann::json compareJson(const std::string& dir, const std::string& filter, const std::string& out, const std::string& extra = "") {
-  const RunResult r = runPenumbra("compare --scene pen --size 96x64 --shadow-map 512 --samples 8 --json --out " + out +
+  const RunResult r = runPenumbra("compare --scene pen --size 96x64 --shadow-map 1024 --samples 8 --json --out " + out +
                                       " --filter " + filter + extra,
                                   dir, "env PENUMBRA_CACHE=" + dir + "/cache");
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -96,7 +96,7 @@ TEST(TechniqueFolderCli, AGlslErrorExits2NamingTheFileAndLine) {
   int lineNo = 1;
   for (size_t i = 0; i < at; ++i) lineNo += glsl[i] == '\n';
   const std::string folder = folderFrom(dir, "pcf", "", glsl);
-  const RunResult r = runPenumbra("render --scene pen --size 32x32 --shadow-map 64 --out x.png --filter " + folder, dir);
+  const RunResult r = runPenumbra("render --scene pen --size 32x32 --shadow-map 1024 --out x.png --filter " + folder, dir);
   EXPECT_EQ(r.exitCode, 2) << r.err;
   const std::string file = (std::filesystem::canonical(folder) / "visibility.glsl").string();
   EXPECT_NE(r.err.find(file + ":" + std::to_string(lineNo) + ":"), std::string::npos) << r.err << "\nexpected " << file << ":" << lineNo;
@@ -124,7 +124,7 @@ TEST(TechniqueFolderCli, ABadDescriptionNamesTheField) {
     ASSERT_NE(at, std::string::npos) << c.from;
     broken.replace(at, c.from.size(), c.to);
     const std::string folder = folderFrom(dir, "pcf", broken, "");
-    const RunResult r = runPenumbra("render --scene pen --size 32x32 --shadow-map 64 --out x.png --filter " + folder, dir);
+    const RunResult r = runPenumbra("render --scene pen --size 32x32 --shadow-map 1024 --out x.png --filter " + folder, dir);
     EXPECT_EQ(r.exitCode, 2) << c.field << ": " << r.err;
     EXPECT_NE(r.err.find("technique.json: " + c.field + ":"), std::string::npos) << c.field << ": " << r.err;
   }
@@ -148,7 +148,7 @@ TEST(TechniqueFolderCli, ParametersAreListedAndSetLikeABuiltins) {
   }
   EXPECT_TRUE(found) << r.out;
   // Out of range and unknown keys are refused as a built-in's are.
-  const RunResult bad = runPenumbra("render --scene pen --size 32x32 --shadow-map 64 --out x.png --filter " + kExamples +
+  const RunResult bad = runPenumbra("render --scene pen --size 32x32 --shadow-map 1024 --out x.png --filter " + kExamples +
                                         "/vsm --set vsm-folder.anisotropy=99",
                                     dir);
   EXPECT_EQ(bad.exitCode, 2);

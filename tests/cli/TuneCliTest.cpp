@@ -22,7 +22,7 @@ namespace {
 // Tiny: seconds per configuration on llvmpipe. The reference at 16 samples is cached after the
 // first run.
 const std::string kTinyTune =
-    "tune --scene pen --filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 6 --max-minutes 1 --out out";
+    "tune --scene pen --filters pcf --size 96x54 --shadow-map 1024 --samples 16 --candidates 6 --max-minutes 1 --out out";
 
 // compare's error agrees with the tuned row's within this fraction (the 2 %).
 constexpr double kReproduceFraction = 0.02;
@@ -160,7 +160,7 @@ TEST(TuneCli, AcneSearchesTheBiasOnlyAndReturnsOneWithoutAcne) {
 
 TEST(TuneCli, ShardsMergedGiveTheSameFrontAsOneRunWithTheModelledCost) {
   const std::string dir = freshDir("tune-shards");
-  const std::string base = "tune --scene pen --filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 6 "
+  const std::string base = "tune --scene pen --filters pcf --size 96x54 --shadow-map 1024 --samples 16 --candidates 6 "
                            "--max-minutes 1 --cost model";
   const std::vector<std::pair<std::string, std::string>> shards = {{"1/2", "s1"}, {"2/2", "s2"}};
   for (const auto& [shard, out] : shards) {
@@ -196,7 +196,7 @@ TEST(TuneCli, SeveralViewsAreEachMeasuredAndTheWorstDecides) {
   const std::string dir = freshDir("tune-views");
   // Two cameras on the pen, from the right and from above the left of the scene's own.
   const std::string views = "tune --scene pen --camera 1.5,1.8,2:-0.5,0.1,-0.3 --camera 0.6,2.4,2.2:-0.8,0.1,-0.2 "
-                            "--filters pcf --size 96x54 --shadow-map 256 --samples 16 --candidates 4 --max-minutes 1 --out out --json";
+                            "--filters pcf --size 96x54 --shadow-map 1024 --samples 16 --candidates 4 --max-minutes 1 --out out --json";
   const nlohmann::json j = jsonOf(views + " --aggregate worst", dir);
   ASSERT_FALSE(j.is_null());
   ASSERT_EQ(j["views"].size(), 2u);

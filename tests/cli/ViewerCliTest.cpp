@@ -143,7 +143,7 @@ TEST(ViewerCli, ScreenshotsOfEveryFilterAndProjectionAreNotBlankAndFiltersDiffer
   script += "filter hard\n";
   for (const std::string& p : projectionIds()) script += "projection " + p + "\nscreenshot projection-" + p + ".png\n";
   writeScript(dir + "/techniques.txt", script);
-  const RunResult r = runViewer("--size 640x320 --shadow-map 256 --script techniques.txt", dir);
+  const RunResult r = runViewer("--size 640x320 --shadow-map 1024 --script techniques.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
   // A refused pair keeps the previous technique: its picture proves nothing, so say which.
@@ -232,7 +232,7 @@ TEST(ViewerCli, NoGlObjectGrowthOver1000FramesOfTechniqueSwitching) {
     script += step(i) + (i < pairs.size() || i + pairs.size() >= kFrames ? "print gl-objects\n" : "");
   writeScript(dir + "/switch.txt", script);
   const auto start = std::chrono::steady_clock::now();
-  const RunResult r = runViewer("--size 160x120 --shadow-map 128 --script switch.txt", dir);
+  const RunResult r = runViewer("--size 160x120 --shadow-map 1024 --script switch.txt", dir);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.out.find("refused"), std::string::npos) << "a refused pair skips its options: " << r.out;
@@ -272,7 +272,7 @@ TEST(ViewerCli, UnknownFilterInAScriptStopsWithExit2) {
   SKIP_WITHOUT_XVFB();
   const std::string dir = freshDir("viewer-unknown");
   writeScript(dir + "/s.txt", "filter blurry\n");
-  const RunResult r = runViewer("--size 160x120 --shadow-map 64 --script s.txt", dir);
+  const RunResult r = runViewer("--size 160x120 --shadow-map 1024 --script s.txt", dir);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("s.txt:1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("blurry"), std::string::npos) << r.err;
@@ -303,7 +303,7 @@ TEST(ViewerCli, DebugViewsHeatmapAndSavedSettings) {
               "view visibility\nscreenshot visibility.png\nview shaded\nheatmap 4\nwait-heatmap\nscreenshot heatmap.png\n"
               "save saved.json\nscreenshot-window window.png\nview texel-density\nscreenshot density.png\n"
               "projection csm\nview cascades\nscreenshot cascades.png\n");
-  const RunResult r = runViewer("--size 480x240 --shadow-map 512 --filter pcss --script s.txt", dir);
+  const RunResult r = runViewer("--size 480x240 --shadow-map 1024 --filter pcss --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("heatmap: RMSE"), std::string::npos) << r.out;
   int w = 0, h = 0;
@@ -317,7 +317,7 @@ TEST(ViewerCli, DebugViewsHeatmapAndSavedSettings) {
   EXPECT_EQ(w, 480);
   EXPECT_EQ(h, 240);
   // The saved settings render as a scene of their own, with the technique and light size kept.
-  const RunResult render = runPenumbra("render --scene saved.json --size 64x32 --shadow-map 256 --out again.png", dir);
+  const RunResult render = runPenumbra("render --scene saved.json --size 64x32 --shadow-map 1024 --out again.png", dir);
   EXPECT_EQ(render.exitCode, 0) << render.err;
   EXPECT_NE(render.out.find("--filter pcss"), std::string::npos) << render.out;
   std::ifstream saved(dir + "/saved.json");
@@ -331,7 +331,7 @@ TEST(ViewerCli, ThreeDViewShowsExactlyWhatRenderWrites) {
   // output through unchanged (no filtering, no gamma, no flip).
   const std::string dir = freshDir("viewer-exact");
   writeScript(dir + "/s.txt", "screenshot view.png\n");
-  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 512";
+  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 1024";
   const RunResult v = runViewer(technique + " --hide-ui --script s.txt", dir);
   ASSERT_EQ(v.exitCode, 0) << v.err;
   const RunResult r = runPenumbra("render " + technique + " --out render.png", dir);
@@ -346,7 +346,7 @@ TEST(ViewerCli, ScreenshotCameraRendersTheSameImage) {
   SKIP_WITHOUT_XVFB();
   const std::string dir = freshDir("viewer-camera");
   writeScript(dir + "/s.txt", "camera orbit 40 25 3\nscreenshot view.png\n");
-  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 512";
+  const std::string technique = "--scene pen --filter pcf --size 320x200 --shadow-map 1024";
   const RunResult v = runViewer(technique + " --hide-ui --script s.txt", dir);
   ASSERT_EQ(v.exitCode, 0) << v.err;
   const size_t at = v.out.find("--camera ");
@@ -369,7 +369,7 @@ TEST(ViewerCli, TimePosesTheSceneAsRenderDoes) {
   writeScript(dir + "/s.txt",
               "time 2\nscreenshot boxes.png\nplay 2\nwait 15\npause\nprint time\n"
               "scene city\ntime 4\nscreenshot city.png\nprint time\n");
-  const std::string technique = "--projection uniform --filter pcf --size 320x200 --shadow-map 512";
+  const std::string technique = "--projection uniform --filter pcf --size 320x200 --shadow-map 1024";
   const RunResult v = runViewer("--scene boxes " + technique + " --hide-ui --script s.txt", dir);
   ASSERT_EQ(v.exitCode, 0) << v.err;
   const std::smatch m = [&] {
@@ -442,7 +442,7 @@ TEST(ViewerCli, SelectedPointLightShowsItsSixCubeFaces) {
               "screenshot-window faces-window.png\nview shaded\nlight add sun\nlight set 2 castsShadow off\n"
               "light set 1 position 0.2 1.3 0\nlight set 0 mapSize 256\nprint lights\nlight remove 0\nprint lights\n"
               "screenshot after.png\nsave saved.json\n");
-  constexpr int kMapSize = 256;
+  constexpr int kMapSize = 1024;
   const RunResult r = runViewer("--scene room.json --size 800x400 --shadow-map " + std::to_string(kMapSize) + " --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("lights 2 selected 0: 0=spot 1=point\n"), std::string::npos) << r.out;
@@ -479,11 +479,11 @@ TEST(ViewerCli, SelectedPointLightShowsItsSixCubeFaces) {
 
   // Mistakes that only the scene can reveal stop the script with the line and the light.
   writeScript(dir + "/bad.txt", "light select 1\nlight select 5\n");
-  RunResult bad = runViewer("--scene room.json --size 160x120 --shadow-map 64 --script bad.txt", dir);
+  RunResult bad = runViewer("--scene room.json --size 160x120 --shadow-map 1024 --script bad.txt", dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("bad.txt:2: light: there is no light 5: the scene has 2 (0..1)"), std::string::npos) << bad.err;
   writeScript(dir + "/bad2.txt", "light set 1 direction 0 -1 0\n");
-  bad = runViewer("--scene room.json --size 160x120 --shadow-map 64 --script bad2.txt", dir);
+  bad = runViewer("--scene room.json --size 160x120 --shadow-map 1024 --script bad2.txt", dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("bad2.txt:1: light: direction: the light is a point"), std::string::npos) << bad.err;
 }
@@ -510,7 +510,7 @@ TEST(ViewerCli, At1280x720EveryPanelFitsAndTheViewsCompare) {
   script += "projection uniform\nscene room\nlight add spot\nlight add spot\nlight add spot\nlight add spot\nlight select 1\n"
             "panel lights\nwait 2\nprint lights\nprint layout\nscreenshot-window panel-lights-room.png\n";
   writeScript(dir + "/s.txt", script);
-  const RunResult r = runViewer("--size 1280x720 --shadow-map 512 --script s.txt", dir);
+  const RunResult r = runViewer("--size 1280x720 --shadow-map 1024 --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
 
   const std::regex layout("layout panel=(\\S+) content-bottom=(\\d+) window-height=(\\d+) scroll-max=(\\d+) font=\"([^\"]*)\" "
