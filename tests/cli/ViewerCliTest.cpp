@@ -138,7 +138,8 @@ TEST(ViewerCli, ScreenshotsOfEveryFilterAndProjectionAreNotBlankAndFiltersDiffer
   // pen: a spot light of radius 0.12 m over a leaning pencil, so hard, filtered and soft
   // shadows must all look different; a coarse 256² map also separates the hard depth tests
   // (biased or not). Projections are switched under the baseline filter.
-  std::string script = "scene pen\n";
+  // The light's own map size: the command line's --shadow-map starts at 1024².
+  std::string script = "scene pen\nlight set 0 mapSize 256\n";
   for (const std::string& f : filterIds()) script += "filter " + f + "\nscreenshot filter-" + f + ".png\n";
   script += "filter hard\n";
   for (const std::string& p : projectionIds()) script += "projection " + p + "\nscreenshot projection-" + p + ".png\n";
