@@ -398,7 +398,7 @@ namespace {
 // the lamp, so that each of its six cube faces sees depth that varies across the face. A face's
 // map holds depth along its axis, so a plane square to that axis would look flat: the ceiling
 // slopes, and the floor casts no shadow (the -Y face sees the objects' tops).
-constexpr const char* kTwoLightRoom = R"({"name": "two-lights",
+constexpr const char* kTwoLightRoom = R"({"name": "two-lights", "shadow": {"mapSize": 256},
   "camera": {"position": [0, 2.2, 4.5], "target": [0, 0.8, 0]},
   "lights": [
     {"type": "spot", "position": [2, 2.6, 2], "target": [0, 0, 0], "outerConeDeg": 40, "innerConeDeg": 30,
@@ -443,8 +443,8 @@ TEST(ViewerCli, SelectedPointLightShowsItsSixCubeFaces) {
               "screenshot-window faces-window.png\nview shaded\nlight add sun\nlight set 2 castsShadow off\n"
               "light set 1 position 0.2 1.3 0\nlight set 0 mapSize 256\nprint lights\nlight remove 0\nprint lights\n"
               "screenshot after.png\nsave saved.json\n");
-  constexpr int kMapSize = 1024;
-  const RunResult r = runViewer("--scene room.json --size 800x400 --shadow-map " + std::to_string(kMapSize) + " --script s.txt", dir);
+  constexpr int kMapSize = 256;  // the scene file's own (the command line's --shadow-map starts at 1024²)
+  const RunResult r = runViewer("--scene room.json --size 800x400 --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("lights 2 selected 0: 0=spot 1=point\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("lights 2 selected 1: 0=spot 1=point\n"), std::string::npos) << r.out;
