@@ -7,6 +7,7 @@
 #include <penumbra/Files.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cctype>
 #include <charconv>
@@ -343,6 +344,25 @@ void checkShadowBudget(const Setup& s) {
                                  budget, lights, lights == 1 ? "" : "s", maps, least, core::kMinBudgetMapSize, least));
 }
 
+// A scene file's own map sizes are the file's to choose (a small map is a fair experiment), but
+// below kMinDefaultsMapSizeTexels the default bias and filters no longer promise no acne and no
+// detached shadow: the command line says so once a run, naming the fields.
+void noteSmallSceneMaps(const Scene& scene, bool sizeGiven) {
+  std::vector<std::string> fields;
+  if (!sizeGiven && scene.shadow.mapSize < kMinDefaultsMapSizeTexels)
+    fields.push_back(fmt::format("shadow.mapSize {}", scene.shadow.mapSize));
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const int own = scene.lights[i].shadow.mapSize;
+    if (own > 0 && own < kMinDefaultsMapSizeTexels) fields.push_back(fmt::format("lights[{}].shadow.mapSize {}", i, own));
+  }
+  if (fields.empty()) return;
+  static std::set<std::string> said;
+  const std::string line = fmt::format("{}: {} below {}²: the default bias and filters are held to no acne and no detached "
+                                       "shadow from {}² up; below it the texel decides (docs/hard.md#map-sizes)",
+                                       sceneFile(scene), fmt::join(fields, ", "), kMinDefaultsMapSizeTexels, kMinDefaultsMapSizeTexels);
+  if (said.insert(line).second) std::fprintf(stderr, "penumbra: %s\n", line.c_str());
+}
+
 }  // namespace
 
 Setup makeSetup(const TechniqueOptions& o) {
@@ -370,6 +390,7 @@ Setup makeSetup(const TechniqueOptions& o) {
     throw usageError(fmt::format("--shadow-map {}: a map side is {}..{} texels (the maximum Penumbra takes; a driver may allow less)",
                                  mapSize, kMinMapSizeTexels, kMaxMapSizeTexels));
   s.technique.setMapSize(mapSize);
+  noteSmallSceneMaps(s.scene, o.shadowMapSize.has_value());
   // The scene's own params apply when they belong to the technique in use (a scene may carry
   // settings for several techniques), and are checked all the same; --set applies strictly.
   for (const auto& kv : s.scene.shadow.params) {

@@ -15,7 +15,7 @@ import subprocess
 import sys
 import time
 
-SMALL = ["--size", "96x54", "--samples", "8", "--shadow-map", "512"]
+SMALL = ["--size", "96x54", "--samples", "8", "--shadow-map", "1024"]
 
 
 def options(figure, description):

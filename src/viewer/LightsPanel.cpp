@@ -9,6 +9,7 @@
 #include "core/ShadowsAccess.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/MapSizes.h>
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -172,7 +173,7 @@ void Viewer::drawLightsPanel() {
       }
     ImGui::EndCombo();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer)");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer); below %d² the default bias and filters no longer keep acne and detached shadows away", kMinDefaultsMapSizeTexels);
   // The light's own map updates (docs/embedding.md#cached-maps); none = the technique's.
   const std::string policy = l.shadow.updates ? mapUpdatesName(*l.shadow.updates) : "technique's";
   if (ImGui::BeginCombo("Map updates", policy.c_str())) {

@@ -9,6 +9,7 @@
 #include "techniques/Registry.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/MapSizes.h>
 #include <penumbra/SceneIO.h>
 
 #include <fmt/format.h>
@@ -281,8 +282,9 @@ void Viewer::drawTechniquePanel() {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(filterDescription(mSession.filterId())).c_str());
   int map = mSession.shadowMapSize();
   if (ImGui::BeginCombo("Shadow map", fmt::format("{}² texels", map).c_str())) {
-    for (int size : kShadowMapSizes)
-      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == map)) {
+    for (int size : kShadowMapSizes)  // --shadow-map's range: from the least map the defaults hold on
+      if (size >= kMinDefaultsMapSizeTexels && size <= gl::maxTextureSize() &&
+          ImGui::Selectable(fmt::format("{}²", size).c_str(), size == map)) {
         mSession.setShadowMapSize(size);
         mStatus.set(fmt::format("shadow map {}²", size), false);
       }

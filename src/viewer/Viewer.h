@@ -51,7 +51,8 @@ struct ViewerOptions {
 /// (RenderOptions::debugView: shaded, cascades, texel-density) are the colour output.
 inline constexpr const char* kShadedView = "shaded";
 inline constexpr const char* kNoInset = "none";
-/// The shadow-map sizes (texels per side) the panels offer, for the technique and for one light.
+/// The shadow-map sizes (texels per side) the panels offer: one light's all of them (a scene file's
+/// mapSize), the technique's from kMinDefaultsMapSizeTexels (the command line's --shadow-map).
 inline constexpr std::array<int, 7> kShadowMapSizes = {256, 512, 1024, 2048, 4096, 8192, 16384};
 
 /// True for the lit pass's views (shaded, cascades, texel-density): the colour output.

@@ -233,6 +233,27 @@ TEST(RenderCli, ShadowMapBeyondTheLimitIsAClearError) {
   EXPECT_EQ(runPenumbra("render --shadow-map 1024 --size 16x16 --out small.png", freshDir("render-least-map")).exitCode, 0);
 }
 
+// A scene file may ask for smaller maps (an experiment with the texel): it renders, and the
+// command line says once that the defaults no longer hold there, naming the fields; --shadow-map
+// replaces the file's shadow.mapSize, so then only the light's own size is named.
+TEST(RenderCli, SceneFileMapsBelowTheLeastAreRenderedWithANotice) {
+  const std::string dir = freshDir("render-small-scene-maps");
+  std::ofstream(dir + "/small.json") << R"({"lights": [{"type": "sun", "direction": [-0.4, -1, -0.3]},
+      {"type": "spot", "position": [0, 4, 0], "direction": [0, -1, 0], "shadow": {"mapSize": 512}}],
+    "objects": [{"shape": "plane"}, {"shape": "box"}], "shadow": {"mapSize": 256}})";
+  const std::string why = "below 1024²: the default bias and filters are held to no acne and no detached shadow from 1024² up";
+  RunResult r = runPenumbra("render --scene small.json --size 16x16 --out a.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("small.json: shadow.mapSize 256, lights[1].shadow.mapSize 512 " + why), std::string::npos) << r.err;
+  EXPECT_EQ(countLines(r.err), 1u) << r.err;
+  r = runPenumbra("render --scene small.json --shadow-map 2048 --size 16x16 --out b.png", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("small.json: lights[1].shadow.mapSize 512 " + why), std::string::npos) << r.err;
+  r = runPenumbra("render --size 16x16 --out c.png", dir);  // boxes: 2048² maps, nothing said
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find(why), std::string::npos) << r.err;
+}
+
 TEST(RenderCli, VisibilityExrAndDump) {
   const std::string dir = freshDir("dump");
   const RunResult r = runPenumbra("render --size 64x48 --shadow-map 1024 --visibility v.exr --dump d --out c.png", dir);

@@ -286,7 +286,7 @@ TEST(ViewerCli, HeatmapAndReferenceViewOfASceneWithTwoLights) {
   const std::string dir = freshDir("viewer-heatmap-lights");
   writeScript(dir + "/s.txt", "scene room\nheatmap 16\nwait-heatmap\nview shaded\nflip\nwait 1\nscreenshot reference.png\n"
                               "flip\nwait 1\nscreenshot technique.png\n");
-  const RunResult r = runViewer("--size 160x120 --shadow-map 512 --filter pcss --script s.txt", dir);
+  const RunResult r = runViewer("--size 160x120 --shadow-map 1024 --filter pcss --script s.txt", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("heatmap: RMSE"), std::string::npos) << r.out;
   int w = 0, h = 0;
@@ -607,7 +607,7 @@ TEST(ViewerCli, SavedTechniqueDescriptionIsReloadedAndABrokenOneKeepsTheLastGood
               "screenshot-window panel.png\ninset min-depth\nscreenshot-inset min-depth.png\ninset none\nprint params\n"
               "wait-reload\nscreenshot kept.png\nprint params\n");
   const std::string command = "cd '" + dir + "' && " + viewerLauncher(dir) + " '" PENUMBRA_BINARY
-                              "' view --filter ./pcf --scene pen --size 480x270 --shadow-map 256 --script s.txt 2> err.txt < /dev/null";
+                              "' view --filter ./pcf --scene pen --size 480x270 --shadow-map 1024 --script s.txt 2> err.txt < /dev/null";
   FILE* viewer = popen(command.c_str(), "r");
   ASSERT_NE(viewer, nullptr);
   std::string out;

@@ -29,7 +29,7 @@ done
 status=0
 for scene in "${scenes[@]}"; do
   rm -f "$tmp/out.png"
-  timeout 300 "$bin" render --scene "$scene" --size 32x32 --shadow-map 256 --out "$tmp/out.png" >"$tmp/stdout" 2>"$tmp/stderr"
+  timeout 300 "$bin" render --scene "$scene" --size 32x32 --shadow-map 1024 --out "$tmp/out.png" >"$tmp/stdout" 2>"$tmp/stderr"
   rc=$?
   why=""
   if [ "$rc" -eq 124 ]; then why="timed out"
