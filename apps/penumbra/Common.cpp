@@ -390,7 +390,6 @@ Setup makeSetup(const TechniqueOptions& o) {
     throw usageError(fmt::format("--shadow-map {}: a map side is {}..{} texels (the maximum Penumbra takes; a driver may allow less)",
                                  mapSize, kMinMapSizeTexels, kMaxMapSizeTexels));
   s.technique.setMapSize(mapSize);
-  noteSmallSceneMaps(s.scene, o.shadowMapSize.has_value());
   // The scene's own params apply when they belong to the technique in use (a scene may carry
   // settings for several techniques), and are checked all the same; --set applies strictly.
   for (const auto& kv : s.scene.shadow.params) {
@@ -420,6 +419,7 @@ Setup makeSetup(const TechniqueOptions& o) {
   s.render.shadowBudgetTexels = o.shadowBudgetTexels;
   checkShadowBudget(s);
   s.mapUpdates = parseMapUpdates(o.mapUpdates);
+  noteSmallSceneMaps(s.scene, o.shadowMapSize.has_value());  // once the file is known to be good
   return s;
 }
 
