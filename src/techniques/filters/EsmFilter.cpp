@@ -28,23 +28,17 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("esm.anisotropy"),
 };
 
-ExpWarpMaps::Warp esmWarp(const FrameContext& f) {
+}  // namespace
+
+EsmFilter::EsmFilter()
+    : ExpWarpFilter(kParams, "esm warp", "exp(c·(2z − 1)) of the linear light depth z (esm.exponent = c)") {}
+
+ExpWarpMaps::Warp EsmFilter::warp(const FrameContext& frame) const {
   ExpWarpMaps::Warp w;
-  w.positive = f.param("esm.exponent");
+  w.positive = frame.param("esm.exponent");
   w.components = 1;
   w.storage = ExpWarpStorage::Float32;
   return w;
-}
-
-}  // namespace
-
-EsmFilter::EsmFilter() : Filter(kParams) {}
-
-void EsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "esm warp", esmWarp(frame)); }
-
-void EsmFilter::prefilter(FrameContext& frame) {
-  (void)frame;
-  mMaps.buildMips();
 }
 
 void EsmFilter::computeVisibility(FrameContext& frame) {
@@ -52,12 +46,7 @@ void EsmFilter::computeVisibility(FrameContext& frame) {
   u.params = glm::vec4(frame.param("esm.exponent"), frame.param("esm.filterTexels"), 0.0f, 0.0f);
   u.mode = glm::ivec4(frame.paramInt("esm.anisotropy"), frame.paramInt("esm.footprint"), 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bindForFiltering();
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/esm.glsl"));
-}
-
-std::vector<DebugImage> EsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
-          {std::string(kMomentsImage), &mMaps.moments(), "exp(c·(2z − 1)) of the linear light depth z (esm.exponent = c)"}};
+  dispatchVisibility(frame, "techniques/filters/esm.glsl");
 }
 
 }  // namespace penumbra

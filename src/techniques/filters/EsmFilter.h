@@ -1,13 +1,12 @@
 #pragma once
 // esm: exponential shadow maps — exp(c (2z − 1)) in one 32-bit float channel, a mip chain,
 // trilinear + anisotropic filtering over the pixel footprint, V = E[p] / p(t) (docs/esm.md).
-#include "techniques/filters/ExpWarpMaps.h"
-
-#include "frame/Filter.h"
+// The maps, their mips and binding are the exp-warp family's (ExpWarpFilter.h).
+#include "techniques/filters/ExpWarpFilter.h"
 
 namespace penumbra {
 
-class EsmFilter final : public Filter {
+class EsmFilter final : public ExpWarpFilter {
 public:
   EsmFilter();
   std::string_view id() const override { return "esm"; }
@@ -15,13 +14,10 @@ public:
     return "exponential shadow maps: exp(c (2z - 1)) in one channel, mip chain, trilinear + anisotropic, V = "
            "E[exp(2c (z - t))]";
   }
-  void renderShadowMaps(FrameContext& frame) override;
-  void prefilter(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
-  std::vector<DebugImage> debugImages() const override;
 
 private:
-  ExpWarpMaps mMaps;
+  ExpWarpMaps::Warp warp(const FrameContext& frame) const override;
 };
 
 }  // namespace penumbra

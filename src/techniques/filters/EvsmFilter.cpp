@@ -29,39 +29,24 @@ constexpr ParamDesc kParams[] = {
     footprintAnisotropyParam("evsm.anisotropy"),
 };
 
-ExpWarpMaps::Warp evsmWarp(const FrameContext& f) {
-  ExpWarpMaps::Warp w;
-  w.components = f.paramInt("evsm.components") == 0 ? 2 : 4;
-  w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm.storage"));
-  w.positive = clampWarpExponent(f.param("evsm.positiveExponent"), w.storage);
-  w.negative = w.components == 4 ? clampWarpExponent(f.param("evsm.negativeExponent"), w.storage) : 0.0f;
-  return w;
-}
-
 }  // namespace
 
-EvsmFilter::EvsmFilter() : Filter(kParams) {}
+EvsmFilter::EvsmFilter()
+    : ExpWarpFilter(kParams, "evsm moments", "warped moments (p, p², n, n²) of the linear light depth") {}
 
-void EvsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm moments", evsmWarp(frame)); }
-
-void EvsmFilter::prefilter(FrameContext& frame) {
-  (void)frame;
-  mMaps.buildMips();
+ExpWarpMaps::Warp EvsmFilter::warp(const FrameContext& frame) const {
+  return chebyshevWarp(frame.paramInt("evsm.components") == 0 ? 2 : 4,
+                       static_cast<ExpWarpStorage>(frame.paramInt("evsm.storage")), frame.param("evsm.positiveExponent"),
+                       frame.param("evsm.negativeExponent"));
 }
 
 void EvsmFilter::computeVisibility(FrameContext& frame) {
-  const ExpWarpMaps::Warp w = evsmWarp(frame);
   gpu::EvsmUniforms u{};
-  u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), static_cast<float>(w.components));
+  u.warp = chebyshevWarpUniform(warp(frame));
   u.params = glm::vec4(frame.param("evsm.minVariance"), frame.param("evsm.bleedReduction"), frame.param("evsm.filterTexels"), 0.0f);
   u.mode = glm::ivec4(frame.paramInt("evsm.anisotropy"), frame.paramInt("evsm.footprint"), 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bindForFiltering();
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/evsm.glsl"));
-}
-
-std::vector<DebugImage> EvsmFilter::debugImages() const { return {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
-          {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
+  dispatchVisibility(frame, "techniques/filters/evsm.glsl");
 }
 
 }  // namespace penumbra

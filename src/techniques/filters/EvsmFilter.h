@@ -1,14 +1,13 @@
 #pragma once
 // evsm: exponential variance shadow maps — the moments of a positive (and negative) exponential
 // warp of depth in 32- or 16-bit floats, a mip chain, trilinear + anisotropic filtering over the
-// pixel footprint, Chebyshev's bound on each warp (docs/evsm.md).
-#include "techniques/filters/ExpWarpMaps.h"
-
-#include "frame/Filter.h"
+// pixel footprint, Chebyshev's bound on each warp (docs/evsm.md). The maps, their mips and
+// binding are the exp-warp family's (ExpWarpFilter.h).
+#include "techniques/filters/ExpWarpFilter.h"
 
 namespace penumbra {
 
-class EvsmFilter final : public Filter {
+class EvsmFilter final : public ExpWarpFilter {
 public:
   EvsmFilter();
   std::string_view id() const override { return "evsm"; }
@@ -16,13 +15,10 @@ public:
     return "exponential variance shadow maps: moments of exp(c+ (2z - 1)) (and -exp(-c- (2z - 1))), mip chain, "
            "trilinear + anisotropic, Chebyshev bound per warp";
   }
-  void renderShadowMaps(FrameContext& frame) override;
-  void prefilter(FrameContext& frame) override;
   void computeVisibility(FrameContext& frame) override;
-  std::vector<DebugImage> debugImages() const override;
 
 private:
-  ExpWarpMaps mMaps;
+  ExpWarpMaps::Warp warp(const FrameContext& frame) const override;
 };
 
 }  // namespace penumbra

@@ -28,44 +28,36 @@ constexpr ParamDesc kParams[] = {
 
 constexpr int kComponents = 4;
 
-ExpWarpMaps::Warp softWarp(const FrameContext& f) {
-  ExpWarpMaps::Warp w;
-  w.components = kComponents;
-  w.storage = static_cast<ExpWarpStorage>(f.paramInt("evsm-soft.storage"));
-  w.positive = clampWarpExponent(f.param("evsm-soft.positiveExponent"), w.storage);
-  w.negative = clampWarpExponent(f.param("evsm-soft.negativeExponent"), w.storage);
-  return w;
-}
-
 }  // namespace
 
-EvsmSoftFilter::EvsmSoftFilter() : Filter(kParams) {}
+EvsmSoftFilter::EvsmSoftFilter()
+    : ExpWarpFilter(kParams, "evsm-soft moments", "warped moments (p, p², n, n²) of the linear light depth") {}
 
-void EvsmSoftFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "evsm-soft moments", softWarp(frame)); }
+ExpWarpMaps::Warp EvsmSoftFilter::warp(const FrameContext& frame) const {
+  return chebyshevWarp(kComponents, static_cast<ExpWarpStorage>(frame.paramInt("evsm-soft.storage")),
+                       frame.param("evsm-soft.positiveExponent"), frame.param("evsm-soft.negativeExponent"));
+}
 
 void EvsmSoftFilter::prefilter(FrameContext& frame) {
-  mMaps.buildMips();
-  mTightSearch.build(frame, frame.paramInt("evsm-soft.tightSearch") != 0, mMaps.depth());
+  ExpWarpFilter::prefilter(frame);
+  mTightSearch.build(frame, frame.paramInt("evsm-soft.tightSearch") != 0, maps().depth());
 }
 
 void EvsmSoftFilter::computeVisibility(FrameContext& frame) {
-  const ExpWarpMaps::Warp w = softWarp(frame);
   gpu::EvsmSoftUniforms u{};
-  u.warp = glm::vec4(w.positive, w.negative, minRelativeWarpVariance(w.storage), 0.0f);
+  u.warp = chebyshevWarpUniform(warp(frame));
   u.params = glm::vec4(frame.param("evsm-soft.minVariance"), frame.param("evsm-soft.bleedReduction"),
                        frame.param("evsm-soft.minRadiusTexels"), frame.param("evsm-soft.maxRadiusTexels"));
   u.mode = glm::ivec4(frame.paramInt("evsm-soft.anisotropy"), frame.paramInt("evsm-soft.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bindForFiltering();
   mPenumbraDebug.bind(frame);
   ShaderDefines defines;
   mTightSearch.bind(frame.paramInt("evsm-soft.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/evsm_soft.glsl", defines));
+  dispatchVisibility(frame, "techniques/filters/evsm_soft.glsl", defines);
 }
 
 std::vector<DebugImage> EvsmSoftFilter::debugImages() const {
-  std::vector<DebugImage> out{{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
-                              {std::string(kMomentsImage), &mMaps.moments(), "warped moments (p, p², n, n²) of the linear light depth"}};
+  std::vector<DebugImage> out = ExpWarpFilter::debugImages();
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

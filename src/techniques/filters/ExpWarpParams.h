@@ -1,10 +1,12 @@
 #pragma once
 // The parameters shared by evsm and evsm-soft (exp_warp.shared.h, ExpWarpMaps.h), declared once
-// for both, and the exponents in force once the storage's limit is applied.
+// for both, the exponents in force once the storage's limit is applied, and the warp those give.
 #include "techniques/filters/ExpWarpMaps.h"
 #include "techniques/filters/exp_warp.shared.h"
 
 #include <penumbra/Params.h>
+
+#include <glm/vec4.hpp>
 
 #include <algorithm>
 #include <string_view>
@@ -51,6 +53,24 @@ constexpr ParamDesc negativeExponentParam(std::string_view key) {
 /// a warp's first two powers.
 inline float clampWarpExponent(float exponent, ExpWarpStorage storage) {
   return std::min(exponent, maxWarpExponent(storage, 2));
+}
+
+/// The warp of a filter that bounds with Chebyshev (evsm, evsm-soft): `components` 2 (the
+/// positive warp) or 4 (both), each exponent clamped to what `storage` holds.
+inline ExpWarpMaps::Warp chebyshevWarp(int components, ExpWarpStorage storage, float positiveExponent,
+                                       float negativeExponent) {
+  ExpWarpMaps::Warp w;
+  w.components = components;
+  w.storage = storage;
+  w.positive = clampWarpExponent(positiveExponent, storage);
+  w.negative = components == 4 ? clampWarpExponent(negativeExponent, storage) : 0.0f;
+  return w;
+}
+
+/// The warp as evsm's and evsm-soft's blocks take it: (c+, c−, the storage's relative variance
+/// floor, components).
+inline glm::vec4 chebyshevWarpUniform(const ExpWarpMaps::Warp& w) {
+  return {w.positive, w.negative, minRelativeWarpVariance(w.storage), static_cast<float>(w.components)};
 }
 
 }  // namespace penumbra

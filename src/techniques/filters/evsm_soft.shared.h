@@ -6,7 +6,7 @@ PN_GPU_BEGIN
 
 struct EvsmSoftUniforms {
   vec4 warp;    // x: c+, y: c− (both within the storage's limit), z: the storage's relative variance floor
-                // (exp_warp.shared.h), w: unused
+                // (exp_warp.shared.h), w: components (always 4)
   vec4 params;  // x: minimum variance (texels², through each warp's slope), y: light-bleeding reduction [0, 1),
                 // z: minimum filter radius (texels), w: maximum search/filter radius (texels)
   ivec4 mode;   // x: maximum anisotropic taps per sub-box, y: sub-boxes per axis (mip split), zw: unused
