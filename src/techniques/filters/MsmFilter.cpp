@@ -1,10 +1,9 @@
 #include "techniques/filters/MsmFilter.h"
 
-#include "common/MomentQuantization.h"
 #include "frame/FrameContext.h"
 #include "frame/MipBuilder.h"
 #include "techniques/filters/FootprintParams.h"
-#include "techniques/filters/MomentBias.h"
+#include "techniques/filters/MomentParams.h"
 #include "techniques/filters/msm.shared.h"
 #include "shared/Bindings.h"
 
@@ -21,8 +20,7 @@ constexpr ParamDesc kParams[] = {
     {"msm.storage", "Storage", "float32: RGBA32F moments (128 bits/texel); quantized16: RGBA16 in the optimised basis of Peters & Klein (64 bits/texel)", "",
      kStorageFloat32, 0, 1, 1, kStorageNames, "PN_MSM_QUANTIZED"},
     momentBiasParam("msm.bias"),
-    {"msm.depthBias", "Depth bias", "the receiver depth is moved toward the light by this much, in linear depth units (fraction of the map's depth range)", "depth range",
-     0.0f, 0.0f, 0.05f, 0.0f},
+    momentDepthBiasParam("msm.depthBias"),
     footprintWidthParam("msm.filterTexels"),
     footprintParam("msm.footprint"),
     footprintAnisotropyParam("msm.anisotropy"),
@@ -48,24 +46,13 @@ bool throughTranslucent(const FrameContext& f) {
 MsmFilter::MsmFilter() : Filter(kParams) {}
 
 void MsmFilter::renderShadowMaps(FrameContext& frame) {
-  constexpr int kFullMipChain = 0;
-  const bool q = quantized(frame);
-  mMaps.ensure("msm moments", frame.mapSize(), frame.viewCount(), q ? GL_RGBA16 : GL_RGBA32F, kFullMipChain);
-  ShaderDefines defines;
-  defines.set("PN_MOMENT_COUNT", 4);
-  if (q) defines.set("PN_MOMENTS_QUANTIZED");
-  // Cleared to the moments of the far plane, z = 1: (1, 1, 1, 1), or that vector's encoding.
-  glm::vec4 far(1.0f);
-  if (q) {
-    far = glm::mat4(PN_MSM16_ENCODE_MATRIX) * far;
-    far.x += static_cast<float>(PN_MSM16_ENCODE_OFFSET_X);
-  }
-  frame.renderViews(mMaps, frame.shadowProgram("passes/moments.frag.glsl", defines), far);
+  mMaps.render(frame, "msm moments", {.count = 4, .source = MomentMaps::Source::Mips, .quantized = quantized(frame)});
   if (!throughTranslucent(frame)) {
     mTranslucentMoments = {};
     mAbsorbance = {};
     return;
   }
+  constexpr int kFullMipChain = 0;
   constexpr int kMinSide = 16;
   const int side = std::max(kMinSide, static_cast<int>(std::lround(static_cast<float>(frame.mapSize()) * frame.param("msm.translucentScale"))));
   mTranslucentMoments.ensure("msm translucent moments", side, frame.viewCount(), GL_RGBA32F, kFullMipChain);
@@ -79,7 +66,7 @@ void MsmFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void MsmFilter::prefilter(FrameContext& frame) {
-  MipBuilder::build(mMaps.color());
+  mMaps.prefilter(frame);
   if (!throughTranslucent(frame)) return;
   MipBuilder::build(mTranslucentMoments.color());
   MipBuilder::build(mAbsorbance.color());
@@ -95,8 +82,7 @@ void MsmFilter::computeVisibility(FrameContext& frame) {
   u.params = glm::vec4(frame.param("msm.bias"), frame.param("msm.depthBias"), frame.param("msm.filterTexels"), 1.0f / (scale * scale));
   u.mode = glm::ivec4(frame.paramInt("msm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
-  MipBuilder::setTrilinear(mMaps.color());
-  mMaps.color().bindUnit(PN_TEX_FILTER0);
+  mMaps.bind();
   ShaderDefines defines;
   if (translucent) {
     defines.set("PN_MSM_TRANSLUCENT");
@@ -115,8 +101,7 @@ std::string_view MsmFilter::translucentCasters() const {
 bool MsmFilter::shadowsThroughTranslucent(const Parameterized& values) const { return values.paramInt("msm.translucent") != 0; }
 
 std::vector<DebugImage> MsmFilter::debugImages() const {
-  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning},
-                                 {std::string(kMomentsImage), &mMaps.color(), "moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)"}};
+  std::vector<DebugImage> out = mMaps.debugImages("moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)");
   if (mAbsorbance.color()) {
     out.push_back({"translucent-moments", &mTranslucentMoments.color(),
                    "sum over the translucent casters of w·(z, z², z³, z⁴), w the mean of a caster's absorbance −ln(T) over R, G, B"});

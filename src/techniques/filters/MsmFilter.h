@@ -3,9 +3,10 @@
 // the Hamburger 4MSM lower bound (docs/msm.md). With msm.translucent on, translucent casters are
 // left out of those moments and summed into two more maps, weighted by their absorbance
 // (docs/translucent.md): V = V(opaque) × exp(−absorbance × the reconstructed share in front).
-#include "frame/ShadowMaps.h"
-
+// The opaque casters' maps are the moment family's (MomentMaps.h).
 #include "frame/Filter.h"
+#include "frame/ShadowMaps.h"
+#include "techniques/filters/MomentMaps.h"
 
 namespace penumbra {
 
@@ -24,7 +25,7 @@ public:
   bool shadowsThroughTranslucent(const Parameterized& values) const override;
 
 private:
-  ShadowMapArray mMaps;
+  MomentMaps mMaps;
   /// msm.translucent: per view, the absorbance-weighted moments of the translucent casters'
   /// depths and their per-channel absorbance (the two summed maps); empty while it is off.
   ShadowMapArray mTranslucentMoments, mAbsorbance;

@@ -1,11 +1,10 @@
 #pragma once
 // msm-soft: moment soft shadows — a summed-area table of four depth moments, moment-based blocker
-// search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md).
-#include "frame/SatBuilder.h"
-#include "frame/ShadowMaps.h"
-#include "techniques/TightSearch.h"
-
+// search and Hamburger filtering over a PCSS-sized box, both O(1) (docs/msm-soft.md). The maps
+// and the table are the moment family's (MomentMaps.h).
 #include "frame/Filter.h"
+#include "techniques/TightSearch.h"
+#include "techniques/filters/MomentMaps.h"
 
 namespace penumbra {
 
@@ -22,8 +21,7 @@ public:
   std::vector<DebugImage> debugImages() const override;
 
 private:
-  ShadowMapArray mMaps;
-  SatBuilder mSat;
+  MomentMaps mMaps;
   TightSearch mTightSearch;
 };
 

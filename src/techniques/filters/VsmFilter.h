@@ -1,9 +1,9 @@
 #pragma once
 // vsm: variance shadow maps — (z, z²) in 32-bit floats, a mip chain, trilinear + anisotropic
-// filtering over the pixel footprint, Chebyshev's one-tailed bound (docs/vsm.md).
-#include "frame/ShadowMaps.h"
-
+// filtering over the pixel footprint, Chebyshev's one-tailed bound (docs/vsm.md). The maps are
+// the moment family's (MomentMaps.h).
 #include "frame/Filter.h"
+#include "techniques/filters/MomentMaps.h"
 
 namespace penumbra {
 
@@ -20,7 +20,7 @@ public:
   std::vector<DebugImage> debugImages() const override;
 
 private:
-  ShadowMapArray mMaps;
+  MomentMaps mMaps;
 };
 
 }  // namespace penumbra

@@ -1,11 +1,9 @@
 #include "techniques/filters/VssmFilter.h"
 
 #include "frame/FrameContext.h"
-#include "frame/MipBuilder.h"
 #include "techniques/filters/BleedReduction.h"
 #include "techniques/filters/SoftRegionParams.h"
 #include "techniques/filters/vssm.shared.h"
-#include "shared/Bindings.h"
 
 namespace penumbra {
 namespace {
@@ -33,25 +31,15 @@ VssmFilter::VssmFilter() : Filter(kParams) {}
 bool VssmFilter::fromSat(const FrameContext& frame) { return frame.paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
 
 void VssmFilter::renderShadowMaps(FrameContext& frame) {
-  if (fromSat(frame)) {
-    // Linear depth only: the SAT build forms z and z² itself, in exact fixed point.
-    mMaps.ensure("vssm depth", frame.mapSize(), frame.viewCount());
-    frame.renderViews(mMaps, frame.shadowProgram());
-  } else {
-    constexpr int kFullMipChain = 0;
-    mMaps.ensure("vssm moments", frame.mapSize(), frame.viewCount(), GL_RG32F, kFullMipChain);
-    const ShaderDefines defines = ShaderDefines().set("PN_MOMENT_COUNT", 2).set("PN_MOMENT_SLOPE_VARIANCE");
-    frame.renderViews(mMaps, frame.shadowProgram("passes/moments.frag.glsl", defines), glm::vec4(1.0f));
-  }
+  if (fromSat(frame))
+    mMaps.render(frame, "vssm depth", {.count = 2, .source = MomentMaps::Source::Sat});
+  else
+    mMaps.render(frame, "vssm moments", {.count = 2, .source = MomentMaps::Source::Mips});
 }
 
 void VssmFilter::prefilter(FrameContext& frame) {
-  if (fromSat(frame))
-    mSat.build(frame.shaders(), mMaps.depth(), 2);
-  else
-    MipBuilder::build(mMaps.color());
-  // From the depth map, or from the moments' z (channel r) with source=mip.
-  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, fromSat(frame) ? mMaps.depth() : mMaps.color());
+  mMaps.prefilter(frame);
+  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, mMaps.linearDepth());
 }
 
 void VssmFilter::computeVisibility(FrameContext& frame) {
@@ -60,12 +48,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
                        frame.param("vssm.maxRadiusTexels"));
   u.mode = glm::ivec4(frame.paramInt("vssm.anisotropy"), frame.paramInt("vssm.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
-  if (fromSat(frame)) {
-    mSat.bindTable();
-  } else {
-    MipBuilder::setTrilinear(mMaps.color());
-    mMaps.color().bindUnit(PN_TEX_FILTER0);
-  }
+  mMaps.bind();
   mPenumbraDebug.bind(frame);
   ShaderDefines defines;
   mTightSearch.bind(frame.paramInt("vssm.tightSearch") != 0, defines);
@@ -73,8 +56,7 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
-  std::vector<DebugImage> out = {{std::string(kShadowMapImage), &mMaps.depth(), kShadowMapMeaning}};
-  if (mMaps.color()) out.push_back({std::string(kMomentsImage), &mMaps.color(), "moments (z, z²) of the linear light depth z"});
+  std::vector<DebugImage> out = mMaps.debugImages("moments (z, z²) of the linear light depth z");
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }

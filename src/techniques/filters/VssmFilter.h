@@ -1,12 +1,11 @@
 #pragma once
 // vssm: variance soft shadow maps — O(1) blocker search and filtering from a summed-area table
-// of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md).
-#include "frame/SatBuilder.h"
-#include "frame/ShadowMaps.h"
+// of (z, z²) (or vsm's mip chain), penumbra by similar triangles as PCSS (docs/vssm.md). The maps
+// are the moment family's (MomentMaps.h).
+#include "frame/Filter.h"
 #include "techniques/PenumbraDebugImages.h"
 #include "techniques/TightSearch.h"
-
-#include "frame/Filter.h"
+#include "techniques/filters/MomentMaps.h"
 
 namespace penumbra {
 
@@ -25,8 +24,7 @@ public:
 
 private:
   static bool fromSat(const FrameContext& frame);
-  ShadowMapArray mMaps;
-  SatBuilder mSat;
+  MomentMaps mMaps;
   PenumbraDebugImages mPenumbraDebug;
   TightSearch mTightSearch;
 };
