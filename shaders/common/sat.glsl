@@ -98,6 +98,16 @@ dvec2 satBoxMeanSnapped(ivec2 size, vec2 lo, vec2 hi, int layer) {
   return sum / (double(h.x - l.x) * double(h.y - l.y) * kSatFixedOne);
 }
 
+// The mean of pair layer `layer` over the box of half-size radiusUv (map uv) around uv, kept
+// centred (satCentredBox): the region read of the O(1) soft filters (vssm, msm-soft). `exact`: the
+// box with its fractional edges (a filter); otherwise its edges snapped to texel corners (a
+// blocker search, which needs only a rough blocker depth: a quarter of the fetches).
+dvec2 satRegionMean(ivec2 size, vec2 uv, vec2 radiusUv, int layer, bool exact) {
+  vec2 lo, hi;
+  satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
+  return exact ? satBoxMean(size, lo, hi, layer) : satBoxMeanSnapped(size, lo, hi, layer);
+}
+
 // Exact box sums over whole texels [lo, hi] (inclusive texel indices): the test's entry point.
 dvec2 satTexelRectMean(ivec2 size, ivec2 lo, ivec2 hi, int layer) {
   dvec2 sum = satCorner(size, hi + 1, layer) - satCorner(size, ivec2(lo.x, hi.y + 1), layer) -

@@ -32,8 +32,7 @@ float shadowVisibility(SurfacePoint s) {
   float storageFloor = u_evsmSoft.warp.z;
 
   // (1) Blocker search.
-  vec2 searchUv = blockerSearchRegionUv(r.view, s.ws, r.coord.xy, r.lightSize, r.minRadiusUv, r.maxRadiusUv);
-  vec4 region = regionMoments(r.view, r.coord.xy, searchUv);
+  vec4 region = regionMoments(r.view, r.coord.xy, softSearchRegionUv(s, r));
   vec2 blocker = evsmBlockerDepth(region.zw, t, WarpFloor(c.y, depthVariance, storageFloor));
   if (blocker.y < kMinBlockerFraction) {
     recordNoBlocker(s);
@@ -42,7 +41,7 @@ float shadowVisibility(SurfacePoint s) {
   recordPenumbra(s, r.view, blocker.x, r.lightSize);
 
   // (2) Penumbra; (3) filtering over it.
-  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(r.view, s.ws, blocker.x, r.lightSize), r.minRadiusUv, r.maxRadiusUv);
-  float v = evsmVisibility(regionMoments(r.view, r.coord.xy, radiusUv), c, t, depthVariance, storageFloor, true);
+  float v = evsmVisibility(regionMoments(r.view, r.coord.xy, softFilterRadiusUv(s, r, blocker.x)), c, t, depthVariance,
+                           storageFloor, true);
   return reduceLightBleeding(v, u_evsmSoft.params.y);
 }

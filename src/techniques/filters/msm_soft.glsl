@@ -7,11 +7,9 @@
 // (2) penumbra width from z_occ by similar triangles; (3) visibility = 1 − the Hamburger 4MSM
 // bound over the penumbra-sized box. Linear light depth per view. Artifacts: far less bleeding
 // than vssm; the bound's slack still lightens the inside of overlapping penumbrae.
-#include "common/depth_compare.glsl"
 #include "common/moments.glsl"
-#include "common/penumbra.glsl"
 #include "common/sat.glsl"
-#include "common/visibility.glsl"
+#include "common/soft_receiver.glsl"
 #include "techniques/filters/msm_soft.shared.h"
 
 layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u_msmSoft; };
@@ -22,30 +20,21 @@ layout(std140, binding = PN_UBO_FILTER) uniform MsmSoftBlock { MsmSoftUniforms u
 // search: 8 texel fetches instead of 32).
 vec4 regionMoments(int view, vec2 uv, vec2 radiusUv, float alpha, bool exact) {
   ivec2 size = ivec2(shadowMapSize());
-  vec2 lo, hi;
-  satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
-  vec4 b = exact ? vec4(vec2(satBoxMean(size, lo, hi, 2 * view)), vec2(satBoxMean(size, lo, hi, 2 * view + 1)))
-                 : vec4(vec2(satBoxMeanSnapped(size, lo, hi, 2 * view)), vec2(satBoxMeanSnapped(size, lo, hi, 2 * view + 1)));
+  vec4 b = vec4(vec2(satRegionMean(size, uv, radiusUv, 2 * view, exact)),
+                vec2(satRegionMean(size, uv, radiusUv, 2 * view + 1, exact)));
   return biasMoments(b, alpha);
 }
 
 float shadowVisibility(SurfacePoint s) {
-  int view = selectShadowView(s.ws);
-  vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) return 1.0;
-  coord = coordInsideMap(view, s, coord, ivec2(shadowMapSize()));
-  float lightSize = u_frame.light.radiance.w;
-  float t = coord.z - u_msmSoft.params.y;
-  float texelUv = 1.0 / shadowMapSize();
-  vec2 minRadiusUv = vec2(u_msmSoft.params.z * texelUv), maxRadiusUv = vec2(u_msmSoft.params.w * texelUv);
-  float alpha = floorMomentBias(texelDepthVariance(view, s.ws, u_msmSoft.params.x), false);  // solved in float32
+  SoftReceiver r;
+  if (!softReceiverNoRecord(s, u_msmSoft.params.z, u_msmSoft.params.w, r)) return 1.0;
+  float t = r.coord.z - u_msmSoft.params.y;
+  float alpha = floorMomentBias(texelDepthVariance(r.view, s.ws, u_msmSoft.params.x), false);  // solved in float32
 
   // (1) Moment-based blocker search.
-  vec2 searchUv = blockerSearchRegionUv(view, s.ws, coord.xy, lightSize, minRadiusUv, maxRadiusUv);
-  vec2 blocker = momentBlockerDepth(regionMoments(view, coord.xy, searchUv, alpha, false), t);
+  vec2 blocker = momentBlockerDepth(regionMoments(r.view, r.coord.xy, softSearchRegionUv(s, r), alpha, false), t);
   if (blocker.y < kMinBlockerFraction) return 1.0;
 
   // (2) Penumbra; (3) filtering over it.
-  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(view, s.ws, blocker.x, lightSize), minRadiusUv, maxRadiusUv);
-  return 1.0 - hamburgerShadowIntensity(regionMoments(view, coord.xy, radiusUv, alpha, true), t);
+  return 1.0 - hamburgerShadowIntensity(regionMoments(r.view, r.coord.xy, softFilterRadiusUv(s, r, blocker.x), alpha, true), t);
 }

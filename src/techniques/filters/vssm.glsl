@@ -30,10 +30,7 @@ const float kUnoccludedLit = 0.99;
 // (the blocker search, which only needs a rough blocker depth: 4 texel fetches instead of 16).
 vec2 regionMeanVariance(int view, vec2 uv, vec2 radiusUv, float minVariance, bool exact) {
 #if PN_VSSM_SOURCE == PN_VSSM_SOURCE_SAT
-  ivec2 size = ivec2(shadowMapSize());
-  vec2 lo, hi;
-  satCentredBox(size, uv * vec2(size), radiusUv * vec2(size), lo, hi);
-  vec2 m = satMeanVariance(exact ? satBoxMean(size, lo, hi, view) : satBoxMeanSnapped(size, lo, hi, view));
+  vec2 m = satMeanVariance(satRegionMean(ivec2(shadowMapSize()), uv, radiusUv, view, exact));
   return vec2(m.x, floorVariance(m.y, minVariance));
 #else
   return meanVariance(boxMeanFromMips(s_moments, view, uv, radiusUv, u_vssm.mode.y, u_vssm.mode.x).rg, minVariance);
@@ -47,8 +44,7 @@ float shadowVisibility(SurfacePoint s) {
   float minVariance = texelDepthVariance(r.view, s.ws, u_vssm.params.x);
 
   // (1) Blocker search.
-  vec2 searchUv = blockerSearchRegionUv(r.view, s.ws, r.coord.xy, r.lightSize, r.minRadiusUv, r.maxRadiusUv);
-  vec2 region = regionMeanVariance(r.view, r.coord.xy, searchUv, minVariance, false);
+  vec2 region = regionMeanVariance(r.view, r.coord.xy, softSearchRegionUv(s, r), minVariance, false);
   vec2 blocker = chebyshevBlockerDepth(region.x, region.y, t);
   if (1.0 - blocker.y > kUnoccludedLit) {
     recordNoBlocker(s);
@@ -58,7 +54,6 @@ float shadowVisibility(SurfacePoint s) {
   recordPenumbra(s, r.view, blockerDepth, r.lightSize);
 
   // (2) Penumbra; (3) filtering over it.
-  vec2 radiusUv = clamp(0.5 * penumbraWidthUv(r.view, s.ws, blockerDepth, r.lightSize), r.minRadiusUv, r.maxRadiusUv);
-  vec2 filtered = regionMeanVariance(r.view, r.coord.xy, radiusUv, minVariance, true);
+  vec2 filtered = regionMeanVariance(r.view, r.coord.xy, softFilterRadiusUv(s, r, blockerDepth), minVariance, true);
   return reduceLightBleeding(chebyshevUpperBound(filtered.x, filtered.y, t), u_vssm.params.y);
 }
