@@ -96,7 +96,7 @@ bool Viewer::frame() {
   const auto start = std::chrono::steady_clock::now();
   glfwPollEvents();
   if (glfwWindowShouldClose(mWindow.window())) return false;
-  if (mOptions.scripted) mScript.run([this](const ScriptAction& a) { return execute(a); });
+  if (mOptions.scripted) mScript.run();
   if (mScript.finished()) return false;
 
   ImGui_ImplOpenGL3_NewFrame();
@@ -321,6 +321,29 @@ void Viewer::setView(ViewState& view, const std::string& name, const char* slot)
   // V in colour (translucent casters tint it: an RGBA32F layer) is shown as colour.
   if (t && t->desc().format == GL_RGBA32F && name == "visibility") view.settings.channel = DisplaySettings::kChannelRgb;
   mStatus.set(fmt::format("{}: {}", slot, name), false);
+}
+
+void Viewer::showView(bool inset, const std::string& name) {
+  if (inset)
+    setView(mInset, name, "inset");
+  else
+    setView(mMain, name, "main view");
+}
+
+void Viewer::openPanel(const std::string& id) {
+  for (const PanelInfo& p : kPanels)
+    if (id == p.id) mSelectPanel = p.panel;
+}
+
+void Viewer::requestScreenshot(Shot shot, const std::filesystem::path& path) {
+  switch (shot) {
+    case Shot::View: mViewShot = path; break;
+    case Shot::Window: mWindowShot = path; break;
+    case Shot::Inset:
+      if (mInset.name == kNoInset) throw usageError("no inset is shown (inset NAME first)");
+      mInsetShot = path;
+      break;
+  }
 }
 
 bool Viewer::selectScene(const std::string& nameOrPath) {

@@ -73,7 +73,7 @@ inline constexpr PanelInfo kPanels[] = {{Panel::Technique, "technique", "Techniq
                                         {Panel::Timings, "timings", "Timings"},
                                         {Panel::Tools, "tools", "Tools"}};
 
-class Viewer {
+class Viewer final : private ScriptedViewer {
 public:
   /// Opens the window (throws Error if no 4.5 context), then the session on `scene`.
   Viewer(Scene scene, const Technique& technique, ViewerOptions options);
@@ -107,33 +107,37 @@ private:
   void drawViews();
   void recordTimings(double frameMs);
 
-  // Actions shared by the panels and the script. They report problems in the status line
-  // (and, when scripted, on stdout) instead of throwing, except for unknown names.
-  bool selectScene(const std::string& nameOrPath);
-  bool selectProjection(const std::string& id);
-  bool selectFilter(const std::string& id);
-  void flipReference();  ///< R: technique ↔ reference (a heatmap first when there is none)
+  // Actions shared by the panels and the script (ScriptedViewer). They report problems in the
+  // status line (and, when scripted, on stdout) instead of throwing, except for unknown names.
+  bool selectScene(const std::string& nameOrPath) override;
+  bool selectProjection(const std::string& id) override;
+  bool selectFilter(const std::string& id) override;
+  void flipReference() override;  ///< R: technique ↔ reference (a heatmap first when there is none)
   /// Split view: the right half of the view shows `filter` with `projection` ("" = off).
-  bool setSplit(const std::string& filter, const std::string& projection);
+  bool setSplit(const std::string& filter, const std::string& projection) override;
   void renderSplit(int width, int height);
   void setView(ViewState& view, const std::string& name, const char* slot);
   void screenshotView(const std::filesystem::path& path);
   void screenshotWindow(const std::filesystem::path& path);
   void screenshotInset(const std::filesystem::path& path);  ///< with its labels (after ImGui)
-  void saveSettings(const std::filesystem::path& path);
+  void saveSettings(const std::filesystem::path& path) override;
   std::filesystem::path nextScreenshotPath() const;
   const gl::Texture* findView(const std::string& name) const;
   int litView() const;  ///< RenderOptions::debugView for the main view
   std::vector<std::string> viewNames() const;
 
-  // ScriptRunner.cpp: one script action handed to the part that does it (mScript calls it).
-  bool execute(const ScriptAction& a);  ///< true = let this frame pass before the next action
+  // The rest of what the script asks of the viewer (ScriptedViewer; the runner dispatches).
+  void showView(bool inset, const std::string& name) override;
+  void openPanel(const std::string& id) override;
+  void requestScreenshot(Shot shot, const std::filesystem::path& path) override;
+  void showUi(bool show) override { mOptions.showUi = show; }
+  double lastFrameMs() const override { return mLastFrameMs; }
 
   // Lights (LightsPanel.cpp): the light list and the selected light's editor, labels over the
   // views that name the light and the layer (cube face, cascade) shown, the `light` action.
   void drawLightsPanel();
   void drawViewLabels();
-  void executeLight(const ScriptAction& a);
+  void executeLight(const ScriptAction& a) override;
 
   // Panels (Panels.cpp).
   void drawPanels();
@@ -146,7 +150,7 @@ private:
   void drawToolsPanel();
   void drawSplitControls();
   void loadFont();
-  std::string layoutText() const;  ///< `print layout`: the open panel's extent, the font's coverage
+  std::string layoutText() const override;  ///< `print layout`: the open panel's extent, the font's coverage
 
   // Legends (Legends.cpp): what the colours of the main view and the inset mean.
   void drawLegends();
@@ -189,7 +193,7 @@ private:
   long mFrameCount = 0;
 
   // Script and screenshot requests for the current frame.
-  ScriptRunner mScript{mOptions.script, mHeatmap, mHotReload};
+  ScriptRunner mScript{mOptions.script, {*this, mSession, mCamera, mPlayback, mHeatmap, mHotReload, mStatus}};
   std::optional<std::filesystem::path> mViewShot, mWindowShot, mInsetShot;
   char mSavePath[512] = {};
   char mScenePath[512] = {};
