@@ -43,10 +43,15 @@ bool throughTranslucent(const FrameContext& f) {
 
 }  // namespace
 
-MsmFilter::MsmFilter() : Filter(kParams) {}
+MsmFilter::MsmFilter()
+    : MomentFilter(kParams, "moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)") {}
+
+MomentMaps::Moments MsmFilter::moments(const FrameContext& frame) const {
+  return {.count = 4, .source = MomentMaps::Source::Mips, .quantized = quantized(frame)};
+}
 
 void MsmFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.render(frame, "msm moments", {.count = 4, .source = MomentMaps::Source::Mips, .quantized = quantized(frame)});
+  MomentFilter::renderShadowMaps(frame);
   if (!throughTranslucent(frame)) {
     mTranslucentMoments = {};
     mAbsorbance = {};
@@ -66,7 +71,7 @@ void MsmFilter::renderShadowMaps(FrameContext& frame) {
 }
 
 void MsmFilter::prefilter(FrameContext& frame) {
-  mMaps.prefilter(frame);
+  MomentFilter::prefilter(frame);
   if (!throughTranslucent(frame)) return;
   MipBuilder::build(mTranslucentMoments.color());
   MipBuilder::build(mAbsorbance.color());
@@ -82,7 +87,6 @@ void MsmFilter::computeVisibility(FrameContext& frame) {
   u.params = glm::vec4(frame.param("msm.bias"), frame.param("msm.depthBias"), frame.param("msm.filterTexels"), 1.0f / (scale * scale));
   u.mode = glm::ivec4(frame.paramInt("msm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bind();
   ShaderDefines defines;
   if (translucent) {
     defines.set("PN_MSM_TRANSLUCENT");
@@ -90,7 +94,7 @@ void MsmFilter::computeVisibility(FrameContext& frame) {
     mTranslucentMoments.color().bindUnit(PN_TEX_FILTER1);
     mAbsorbance.color().bindUnit(PN_TEX_FILTER2);
   }
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/msm.glsl", defines));
+  dispatchVisibility(frame, "techniques/filters/msm.glsl", defines);
 }
 
 std::string_view MsmFilter::translucentCasters() const {
@@ -101,7 +105,7 @@ std::string_view MsmFilter::translucentCasters() const {
 bool MsmFilter::shadowsThroughTranslucent(const Parameterized& values) const { return values.paramInt("msm.translucent") != 0; }
 
 std::vector<DebugImage> MsmFilter::debugImages() const {
-  std::vector<DebugImage> out = mMaps.debugImages("moments (z, z², z³, z⁴) of the linear light depth z (msm.storage basis)");
+  std::vector<DebugImage> out = MomentFilter::debugImages();
   if (mAbsorbance.color()) {
     out.push_back({"translucent-moments", &mTranslucentMoments.color(),
                    "sum over the translucent casters of w·(z, z², z³, z⁴), w the mean of a caster's absorbance −ln(T) over R, G, B"});

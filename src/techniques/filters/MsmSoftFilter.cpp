@@ -20,15 +20,16 @@ constexpr int kMoments = 4;
 
 }  // namespace
 
-MsmSoftFilter::MsmSoftFilter() : Filter(kParams) {}
+MsmSoftFilter::MsmSoftFilter() : MomentFilter(kParams, {}) {}
 
-void MsmSoftFilter::renderShadowMaps(FrameContext& frame) {
-  mMaps.render(frame, "msm-soft depth", {.count = kMoments, .source = MomentMaps::Source::Sat});
+MomentMaps::Moments MsmSoftFilter::moments(const FrameContext& frame) const {
+  (void)frame;
+  return {.count = kMoments, .source = MomentMaps::Source::Sat};
 }
 
 void MsmSoftFilter::prefilter(FrameContext& frame) {
-  mMaps.prefilter(frame);
-  mTightSearch.build(frame, frame.paramInt("msm-soft.tightSearch") != 0, mMaps.linearDepth());
+  MomentFilter::prefilter(frame);
+  mTightSearch.build(frame, frame.paramInt("msm-soft.tightSearch") != 0, maps().linearDepth());
 }
 
 void MsmSoftFilter::computeVisibility(FrameContext& frame) {
@@ -36,12 +37,9 @@ void MsmSoftFilter::computeVisibility(FrameContext& frame) {
   u.params = glm::vec4(frame.param("msm-soft.bias"), frame.param("msm-soft.depthBias"), frame.param("msm-soft.minRadiusTexels"),
                        frame.param("msm-soft.maxRadiusTexels"));
   frame.setFilterBlock(u);
-  mMaps.bind();
   ShaderDefines defines;
   mTightSearch.bind(frame.paramInt("msm-soft.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/msm_soft.glsl", defines));
+  dispatchVisibility(frame, "techniques/filters/msm_soft.glsl", defines);
 }
-
-std::vector<DebugImage> MsmSoftFilter::debugImages() const { return mMaps.debugImages({}); }
 
 }  // namespace penumbra

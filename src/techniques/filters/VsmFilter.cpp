@@ -20,21 +20,19 @@ constexpr ParamDesc kParams[] = {
 
 }  // namespace
 
-VsmFilter::VsmFilter() : Filter(kParams) {}
+VsmFilter::VsmFilter() : MomentFilter(kParams, "moments (z, z²) of the linear light depth z") {}
 
-void VsmFilter::renderShadowMaps(FrameContext& frame) { mMaps.render(frame, "vsm moments", {.count = 2}); }
-
-void VsmFilter::prefilter(FrameContext& frame) { mMaps.prefilter(frame); }
+MomentMaps::Moments VsmFilter::moments(const FrameContext& frame) const {
+  (void)frame;
+  return {.count = 2, .source = MomentMaps::Source::Mips};
+}
 
 void VsmFilter::computeVisibility(FrameContext& frame) {
   gpu::VsmUniforms u{};
   u.params = glm::vec4(frame.param("vsm.minVariance"), frame.param("vsm.bleedReduction"), frame.param("vsm.filterTexels"), 0.0f);
   u.mode = glm::ivec4(frame.paramInt("vsm.anisotropy"), 0, 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bind();
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/vsm.glsl"));
+  dispatchVisibility(frame, "techniques/filters/vsm.glsl");
 }
-
-std::vector<DebugImage> VsmFilter::debugImages() const { return mMaps.debugImages("moments (z, z²) of the linear light depth z"); }
 
 }  // namespace penumbra

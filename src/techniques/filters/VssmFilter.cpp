@@ -26,20 +26,17 @@ constexpr ParamDesc kParams[] = {
 
 }  // namespace
 
-VssmFilter::VssmFilter() : Filter(kParams) {}
+VssmFilter::VssmFilter() : MomentFilter(kParams, "moments (z, z²) of the linear light depth z") {}
 
-bool VssmFilter::fromSat(const FrameContext& frame) { return frame.paramInt("vssm.source") == PN_VSSM_SOURCE_SAT; }
-
-void VssmFilter::renderShadowMaps(FrameContext& frame) {
-  if (fromSat(frame))
-    mMaps.render(frame, "vssm depth", {.count = 2, .source = MomentMaps::Source::Sat});
-  else
-    mMaps.render(frame, "vssm moments", {.count = 2, .source = MomentMaps::Source::Mips});
+MomentMaps::Moments VssmFilter::moments(const FrameContext& frame) const {
+  const bool fromSat = frame.paramInt("vssm.source") == PN_VSSM_SOURCE_SAT;
+  return {.count = 2, .source = fromSat ? MomentMaps::Source::Sat : MomentMaps::Source::Mips};
 }
 
 void VssmFilter::prefilter(FrameContext& frame) {
-  mMaps.prefilter(frame);
-  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, mMaps.linearDepth());
+  MomentFilter::prefilter(frame);
+  // From the depth map, or from the moments' z (channel r) with source=mip.
+  mTightSearch.build(frame, frame.paramInt("vssm.tightSearch") != 0, maps().linearDepth());
 }
 
 void VssmFilter::computeVisibility(FrameContext& frame) {
@@ -48,15 +45,14 @@ void VssmFilter::computeVisibility(FrameContext& frame) {
                        frame.param("vssm.maxRadiusTexels"));
   u.mode = glm::ivec4(frame.paramInt("vssm.anisotropy"), frame.paramInt("vssm.mipSplit"), 0, 0);
   frame.setFilterBlock(u);
-  mMaps.bind();
   mPenumbraDebug.bind(frame);
   ShaderDefines defines;
   mTightSearch.bind(frame.paramInt("vssm.tightSearch") != 0, defines);
-  frame.dispatchScreen(frame.visibilityProgram("techniques/filters/vssm.glsl", defines));
+  dispatchVisibility(frame, "techniques/filters/vssm.glsl", defines);
 }
 
 std::vector<DebugImage> VssmFilter::debugImages() const {
-  std::vector<DebugImage> out = mMaps.debugImages("moments (z, z²) of the linear light depth z");
+  std::vector<DebugImage> out = MomentFilter::debugImages();
   for (const DebugImage& d : mPenumbraDebug.debugImages()) out.push_back(d);
   return out;
 }
