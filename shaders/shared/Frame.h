@@ -30,7 +30,7 @@ struct ObjectGpu {
   mat4 worldFromObject;
   mat4 normalFromObject;  // inverse transpose of the upper 3x3, in a mat4 for std140
   vec4 baseColor;         // rgb linear; a: alpha cutoff (0 = opaque)
-  ivec4 material;         // x: texture layer or -1; y: alpha-mask flag; zw: unused
+  ivec4 material;         // x: texture layer or -1; y: alpha-mask flag; z: 1 = translucent caster (CasterSet), baseColor.rgb then its transmittance; w: unused
 };
 
 PN_GPU_END

@@ -57,8 +57,9 @@ public:
   /// add-on tints V by it (kTranslucentThroughAddOn).
   virtual std::string_view translucentCasters() const { return kTranslucentThroughAddOn; }
   static constexpr std::string_view kTranslucentThroughAddOn =
-      "drawn as opaque; with translucent.shadows on, left out of its maps and shadowed through "
-      "(V tinted by their transmittance map)";
+      "drawn as opaque; with translucent.shadows on, shadowed through: translucent.method=map leaves them "
+      "out of its maps and tints V by their transmittance map (colour), translucent.method=stochastic dithers "
+      "them into its maps by their opacity (V one channel, resolved by temporal.accumulate)";
   /// Whether, with these parameter values, the filter shadows through translucent casters
   /// itself: its maps then hold the opaque casters alone (FrameContext::translucentCasters is
   /// Skip), its visibility pass writes RGB, and the translucent add-on is refused beside it
