@@ -43,7 +43,9 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "bench", "time and measure every technique against the reference; write results.csv, results.json, report.html");
-  sub->add_option("--scenes", o->scenes, "built-in scene names or scene files, comma-separated (default: every built-in scene)")
+  sub->add_option("--scenes", o->scenes, "built-in scene names or scene files, comma-separated (default: every built-in scene); "
+                  "a scene with translucent casters (glass) also gets, without --sweep, the techniques that shadow through them "
+                  "on hard, pcf and msm (translucent.shadows, msm.translucent, translucent.method=stochastic)")
       ->delimiter(',');
   sub->add_option("--filters", o->filters, "filter ids or technique folders, comma-separated (default: every filter)")
       ->delimiter(',')
@@ -52,7 +54,7 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--sweep", o->sweeps,
                   "key=from:to:count or key=a,b,..., repeatable: run each technique that has the parameter at "
                   "count values, or at the listed ones (light.size and light.count apply to all; e.g. "
-                  "pcss.filterSamples=8:64:4, light.count=1,2,4,8)");
+                  "pcss.filterSamples=8:64:4, light.count=1,2,4,8; a choice by its names: translucent.method=map,stochastic)");
   sub->add_option("--frames", o->frames, "timed frames per configuration (default 9; --quick 3)")->check(CLI::Range(1, 1000));
   sub->add_option("--motion-frames", o->motionFrames,
                   "frames at 30 fps over which each row of a recommendation's scene is also scored: the scene's "
@@ -105,6 +107,10 @@ void addBenchCommand(CLI::App& app, std::vector<Command>& commands) {
       if (!o->projections.empty()) custom.projections = o->projections;
       for (const std::string& s : o->sweeps) custom.sweeps.push_back(report::parseSweep(s));
       plans = {custom};
+      // Scenes with translucent casters also get the techniques that shadow through them (a run
+      // with its own --sweep measures what it sweeps).
+      if (custom.sweeps.empty())
+        for (report::BenchPlan& p : report::translucentPlans(custom)) plans.push_back(std::move(p));
     }
     if (o->size) std::tie(settings.width, settings.height) = parseSize(*o->size);
     if (o->shadowMap) settings.shadowMapSize = *o->shadowMap;

@@ -245,28 +245,19 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         exr(fmt::format("reference-visibility-cos-light{}.exr", l.index), refs[l.index].visibilityCosWeighted);
       }
 
-    // A scene with translucent casters: each light's V (RGB where the technique tints it, else
-    // its one channel as grey) against its RGB V_ref.
-    std::vector<std::optional<ColourMetrics>> colour(refs.size());
-    for (const report::LightComparison& l : cmp.lights) {
-      if (!l.castsShadow || refs[l.index].visibilityRgb.empty()) continue;
-      std::vector<glm::vec3> grey = l.visibilityRgb;
-      if (grey.empty()) {
-        grey.resize(l.visibility.size());
-        std::transform(l.visibility.begin(), l.visibility.end(), grey.begin(), [](float v) { return glm::vec3(v); });
-      }
-      colour[l.index] = compareColourVisibility(grey, refs[l.index].visibilityRgb, refs[l.index].litMask);
-      if (l.index == 0 || !std::any_of(colour.begin(), colour.begin() + static_cast<std::ptrdiff_t>(l.index),
-                                        [](const auto& c) { return c.has_value(); })) {  // the first such light's image
-        const ColorImage error = colourErrorImage(grey, refs[l.index].visibilityRgb, refs[l.index].litMask, width, height);
-        const ColorImage sheet = colourErrorSheet(
-            error, *colour[l.index],
-            fmt::format("{} · {} on {}, light {}: colour error against the RGB reference", renderer.technique().filter(),
-                        renderer.technique().projection(), scene.name, l.index));
-        writePng(dir / "heatmap-colour.png", sheet.width, sheet.height, sheet.rgba);
-      }
+    // A scene with translucent casters: each light's colour metrics (compareFrame), and the
+    // first such light's colour error image.
+    const auto coloured = std::find_if(cmp.lights.begin(), cmp.lights.end(), [](const report::LightComparison& l) { return l.colour.has_value(); });
+    if (coloured != cmp.lights.end()) {
+      const report::LightComparison& l = *coloured;
+      const ColorImage error = colourErrorImage(report::colourVisibility(l), refs[l.index].visibilityRgb, refs[l.index].litMask, width, height);
+      const ColorImage sheet = colourErrorSheet(
+          error, *l.colour,
+          fmt::format("{} · {} on {}, light {}: colour error against the RGB reference", renderer.technique().filter(),
+                      renderer.technique().projection(), scene.name, l.index));
+      writePng(dir / "heatmap-colour.png", sheet.width, sheet.height, sheet.rgba);
     }
-    const std::optional<ColourMetrics> topColour = refs.size() == 1 ? colour[0] : std::nullopt;
+    const std::optional<ColourMetrics>& topColour = cmp.colour;
     std::optional<ShimmerResult> shimmer;
     if (o->shimmer > 0) {
       ShimmerOptions so;
@@ -396,7 +387,7 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
         jl["type"] = lightTypeName(l.type);
         jl["casts_shadow"] = l.castsShadow;
         if (l.castsShadow) putMetrics(jl, l.metrics);
-        if (colour[l.index]) putColourMetrics(jl, *colour[l.index]);
+        if (l.colour) putColourMetrics(jl, *l.colour);
         jl["map_texels"] = l.map.texels();
         jl["map_size"] = l.map.mapSize;
         jl["map_size_requested"] = l.map.requestedMapSize;
@@ -468,10 +459,9 @@ void addCompareCommand(CLI::App& app, std::vector<Command>& commands) {
       }
     }
     for (const report::LightComparison& l : cmp.lights)
-      if (colour[l.index])
+      if (l.colour)
         std::printf("  colour RMSE     %8.4f  (over RGB; red %.4f, green %.4f, blue %.4f) against light %zu's RGB reference\n",
-                    colour[l.index]->rmse, colour[l.index]->channelRmse[0], colour[l.index]->channelRmse[1],
-                    colour[l.index]->channelRmse[2], l.index);
+                    l.colour->rmse, l.colour->channelRmse[0], l.colour->channelRmse[1], l.colour->channelRmse[2], l.index);
     for (const report::LightComparison& l : cmp.lights)
       if (l.map.pages.poolPages > 0)
         std::printf("  pages           light %zu: %d needed, %d drawn, %d resident in the last frame; pool %d pages, %.1f MiB\n", l.index,

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <tuple>
 
 namespace penumbra::report {
 namespace {
@@ -38,6 +39,13 @@ bool isLightKey(std::string_view key) { return key.starts_with("light."); }
 
 std::vector<float> Sweep::values(const ParamDesc& desc) const {
   std::vector<float> out;
+  if (!names.empty()) {
+    for (const std::string& name : names) {
+      const float v = parseParamValue(desc, name);
+      if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+    }
+    return out;
+  }
   const int n = list.empty() ? count : static_cast<int>(list.size());
   for (int i = 0; i < n; ++i) {
     const float t = count == 1 ? 0.0f : static_cast<float>(i) / static_cast<float>(count - 1);
@@ -56,13 +64,22 @@ Sweep parseSweep(std::string_view text) {
   s.key = std::string(text.substr(0, eq));
   const std::string_view range = text.substr(eq + 1);
   if (range.find(':') == std::string_view::npos) {  // a list
+    std::vector<std::string_view> tokens;
     for (size_t start = 0; start <= range.size();) {
       const size_t comma = std::min(range.find(',', start), range.size());
-      s.list.push_back(parseFloat(range.substr(start, comma - start), text));
+      tokens.push_back(range.substr(start, comma - start));
       start = comma + 1;
     }
-    if (s.list.size() > static_cast<size_t>(kMaxSweepCount))
-      throw usageError(fmt::format("--sweep {}: {} values, more than {}", text, s.list.size(), kMaxSweepCount));
+    if (tokens.size() > static_cast<size_t>(kMaxSweepCount))
+      throw usageError(fmt::format("--sweep {}: {} values, more than {}", text, tokens.size(), kMaxSweepCount));
+    // Names where every value starts with a letter (a choice's), else numbers.
+    const bool named = std::all_of(tokens.begin(), tokens.end(), [](std::string_view t) {
+      return !t.empty() && ((t.front() >= 'a' && t.front() <= 'z') || (t.front() >= 'A' && t.front() <= 'Z'));
+    });
+    for (const std::string_view t : tokens) {
+      if (named) s.names.emplace_back(t);
+      else s.list.push_back(parseFloat(t, text));
+    }
     return s;
   }
   const size_t c1 = range.find(':'), c2 = c1 == std::string_view::npos ? c1 : range.find(':', c1 + 1);
@@ -85,6 +102,33 @@ std::string BenchConfig::paramsText() const {
     out += k + "=" + v;
   }
   return out;
+}
+
+std::vector<BenchPlan> translucentPlans(const BenchPlan& run) {
+  std::vector<std::string> scenes;
+  for (const std::string& name : run.scenes) {
+    const Scene scene = loadScene(name);
+    if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.translucent(); }))
+      scenes.push_back(name);
+  }
+  const auto has = [](const std::vector<std::string>& list, std::string_view id) {
+    return std::find(list.begin(), list.end(), id) != list.end();
+  };
+  std::vector<std::string> filters;
+  for (const char* id : kTranslucentPlanFilters)
+    if (has(run.filters, id)) filters.emplace_back(id);
+  if (scenes.empty() || filters.empty()) return {};
+  const std::vector<std::string> projections = has(run.projections, "uniform") ? std::vector<std::string>{"uniform"} : run.projections;
+  const auto on = [](const char* key) { return Sweep{key, 0.0f, 0.0f, 1, {1.0f}, {}}; };  // on / the second choice
+  const std::string name(kTranslucentPlan);
+  std::vector<BenchPlan> plans;
+  plans.push_back({.name = name, .scenes = scenes, .projections = projections, .filters = filters, .sweeps = {on("translucent.shadows")}});
+  if (has(filters, "msm"))
+    plans.push_back({.name = name, .scenes = scenes, .projections = projections, .filters = {"msm"}, .sweeps = {on("msm.translucent")}});
+  if (has(filters, "pcf"))  // translucent.method's second choice: stochastic
+    plans.push_back({.name = name, .scenes = scenes, .projections = projections, .filters = {"pcf"},
+                     .sweeps = {on("translucent.shadows"), on("translucent.method"), on("temporal.accumulate")}});
+  return plans;
 }
 
 std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
@@ -111,12 +155,14 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
             if (!desc) continue;
             sweepUsed[i] = true;
             std::vector<std::vector<std::pair<std::string, std::string>>> next;
-            for (const float v : sweep.values(*desc)) {
-              try {
-                checkParamValue(*desc, v);
-              } catch (const Error& e) {  // named by the option it came from
-                throw usageError(fmt::format("--sweep {}: {}", sweep.key, e.what()));
-              }
+            std::vector<float> values;
+            try {
+              values = sweep.values(*desc);
+              for (const float v : values) checkParamValue(*desc, v);
+            } catch (const Error& e) {  // named by the option it came from
+              throw usageError(fmt::format("--sweep {}: {}", sweep.key, e.what()));
+            }
+            for (const float v : values) {
               for (auto combo : combos) {
                 combo.emplace_back(sweep.key, formatParamValue(*desc, v));
                 next.push_back(std::move(combo));
@@ -146,9 +192,11 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans) {
   auto rank = [&](const BenchConfig& c) {
     return (c.projection == sceneProjection[c.scene] ? 0 : 2) + (c.params.empty() ? 0 : 1);
   };
-  std::map<std::pair<std::string, std::string>, size_t> best;
+  // The translucent plan's techniques each get a row of their own beside the filter's (its
+  // casters drawn opaque): what a coloured shadow looks like is what they are measured for.
+  std::map<std::tuple<std::string, std::string, std::string>, size_t> best;
   for (size_t i = 0; i < out.size(); ++i) {
-    const auto key = std::pair(out[i].scene, out[i].filter);
+    const auto key = std::tuple(out[i].scene, out[i].filter, out[i].plan == kTranslucentPlan ? out[i].paramsText() : "");
     const auto it = best.find(key);
     if (it == best.end() || rank(out[i]) < rank(out[it->second])) best[key] = i;
   }
@@ -172,16 +220,16 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
   std::erase(matrixScenes, std::string(kLightCountScene));
   BenchPlan matrix{.name = "matrix", .scenes = matrixScenes, .projections = projectionIds(), .filters = filterIds(), .sweeps = {}};
   BenchPlan light{.name = "light-size", .scenes = {"pen"}, .projections = {"uniform"}, .filters = filterIds(),
-                  .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5, {}}}};
+                  .sweeps = {Sweep{"light.size", kPenLightMinM, kPenLightMaxM, quick ? 3 : 5, {}, {}}}};
   // Contact shadows off and on, with the filters they are most often paired with, on the
   // scenes where casters stand on receivers.
   BenchPlan contact{.name = "contact", .scenes = {"boxes", "pen", "grazing"}, .projections = {"uniform"},
-                    .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2, {}}}};
+                    .filters = {"hard", "pcf", "pcss", "vsm"}, .sweeps = {Sweep{"contact.shadows", 0.0f, 1.0f, 2, {}, {}}}};
   if (quick) {
     // Seconds, not minutes: small images and maps, few frames, a noisier reference, the scenes
     // of the recommendation's situations (Recommendation.h) and two projections (enough for
     // every chart, table, recommendation and the grid).
-    matrix.scenes = {"boxes", "pen", "fence", "city"};
+    matrix.scenes = {"boxes", "pen", "fence", "city", "glass"};
     matrix.projections = {"uniform", "csm"};
     settings.width = 96;
     settings.height = 64;
@@ -198,12 +246,14 @@ std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings) {
   // Cost, memory and error against the number of shadowed lights: night's first 1, 2, 4 and 8
   // lamps (its points and spots alternate so that each subset mixes both).
   BenchPlan lights{.name = std::string(kLightCountPlan), .scenes = {std::string(kLightCountScene)}, .projections = {"uniform"},
-                   .filters = {"hard", "pcf", "pcss", "vsm", "msm"}, .sweeps = {Sweep{"light.count", 0, 0, 0, {1, 2, 4, 8}}}};
+                   .filters = {"hard", "pcf", "pcss", "vsm", "msm"}, .sweeps = {Sweep{"light.count", 0, 0, 0, {1, 2, 4, 8}, {}}}};
   if (quick) {
     contact.scenes = {"boxes"};
     lights.filters = {"pcf"};
   }
-  return {matrix, light, contact, lights};
+  std::vector<BenchPlan> plans = {matrix, light, contact, lights};
+  for (BenchPlan& p : translucentPlans(matrix)) plans.push_back(std::move(p));
+  return plans;
 }
 
 }  // namespace penumbra::report

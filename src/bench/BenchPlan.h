@@ -16,13 +16,17 @@
 namespace penumbra::report {
 
 /// `--sweep key=from:to:count`: count values evenly spaced from `from` to `to` (both included);
-/// `--sweep key=a,b,c`: those values (e.g. light.count=1,2,4,8).
+/// `--sweep key=a,b,c`: those values (e.g. light.count=1,2,4,8, or by name: translucent.method=map,stochastic).
 struct Sweep {
   std::string key;
   float from = 0.0f, to = 0.0f;
   int count = 1;
   std::vector<float> list;  ///< the values as listed; when not empty, from/to/count are unused
-  /// The values; rounded and de-duplicated for integer and choice parameters of `desc`.
+  /// The values as listed by name where one of them is not a number (a choice:
+  /// translucent.method=stochastic, contact.shadows=on), read with the parameter's description.
+  std::vector<std::string> names;
+  /// The values; rounded and de-duplicated for integer and choice parameters of `desc`. Throws a
+  /// usage Error for a name the parameter does not have.
   std::vector<float> values(const ParamDesc& desc) const;
 };
 
@@ -112,6 +116,22 @@ struct BenchSettings {
 /// The frame rate of the bench's motion: consecutive frames as a game shows them.
 inline constexpr float kMotionFps = 30.0f;
 
+/// The plan that measures light through translucent casters (translucentPlans).
+inline constexpr std::string_view kTranslucentPlan = "translucent";
+/// The filters the translucent plan shadows through the add-on's map: one of each family the
+/// three techniques build on (a hard edge, a filtered edge, moments).
+inline constexpr const char* kTranslucentPlanFilters[] = {"hard", "pcf", "msm"};
+
+/// What a run adds for its scenes with translucent casters (any material with a transmittance):
+/// the three ways Penumbra shadows through them (docs/translucent.md), beside the run's own rows
+/// on those scenes, which draw them as opaque (the baseline that ignores translucency):
+/// translucent.shadows=on (the add-on's coloured transmittance map) with each of the run's
+/// filters among kTranslucentPlanFilters; msm.translucent=on with msm; translucent.method=
+/// stochastic with temporal.accumulate=on with pcf (its dither resolved over frames). At the
+/// uniform projection where the run has it, else at the run's projections. Empty where no scene
+/// of the run has translucent casters, or none of those filters is in it.
+std::vector<BenchPlan> translucentPlans(const BenchPlan& run);
+
 /// Every configuration of the plans, in run order: grouped by scene (one upload; one reference
 /// per light of the scene), in plan order within a scene, so a technique's swept values run one
 /// after the other. One configuration per scene and filter is
@@ -122,7 +142,8 @@ std::vector<BenchConfig> expandPlans(const std::vector<BenchPlan>& plans);
 
 /// The plans of `penumbra bench` with no arguments (quick = the `--quick` variant): every
 /// registered filter and projection on every built-in scene, plus a light-size sweep of every
-/// filter on the `pen` scene (cost vs light size). Also sets the matching settings.
+/// filter on the `pen` scene (cost vs light size), contact shadows off and on, the light-count
+/// plan and the translucent plans on `glass` (translucentPlans). Also sets the matching settings.
 std::vector<BenchPlan> defaultPlans(bool quick, BenchSettings& settings);
 
 }  // namespace penumbra::report

@@ -62,6 +62,9 @@ struct MotionScore {
   std::string what;  ///< kAnimationMotion or kWalkMotion
   float fps = kMotionFps;
   std::vector<VisibilityMetrics> frames;
+  /// Each frame's colour metrics (SequenceFrame::colour), one per `frames` entry where the scene
+  /// has translucent casters; empty otherwise.
+  std::vector<ColourMetrics> colourFrames;
   FlickerCounts flicker;
   /// A paged projection's pages drawn in each frame, every light's together (LightShadowReport::
   /// pages); empty for a projection that does not page.
@@ -93,6 +96,9 @@ struct BenchRow {
   /// Work done once and kept while the casters do not move (Filter::oneOffCosts): in no frame.
   std::vector<OneOffCost> oneOff;
   VisibilityMetrics metrics;
+  /// The still frame's V (RGB, or grey) against the RGB V_ref (FrameComparison::colour): on a
+  /// scene with translucent casters and one shadowed light; empty otherwise.
+  std::optional<ColourMetrics> colour;
   std::optional<MotionScore> motion;  ///< for BenchConfig::motion rows
   std::optional<RoundCosts> rounds;   ///< for the recommendation's contenders
   /// Image files relative to the output folder; empty when the row is not in the grid.

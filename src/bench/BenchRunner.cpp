@@ -228,6 +228,7 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
       row.oneOff = oneOffCosts(renderer.shadows());
       row.metrics = cmp.metrics;
+      row.colour = cmp.colour;
       // One-off work (a bake) is redone as casters move: such a row is left out where they may.
       const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();
       if (c.motion != MotionKind::None && set.motionFrames > 1 && !rebakes) {
@@ -246,8 +247,12 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
             compareSequence(renderer, moving, render, timing, ro, {}, {}, {}, &motionReferences[light]);
         renderer.setPose(s.scene);
         MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
-                           .flicker = seq.flicker, .pagesDrawn = {}};
-        for (const SequenceFrame& f : seq.frames) motion.frames.push_back(f.metrics);
+                           .colourFrames = {}, .flicker = seq.flicker, .pagesDrawn = {}};
+        for (const SequenceFrame& f : seq.frames) {
+          motion.frames.push_back(f.metrics);
+          if (f.colour) motion.colourFrames.push_back(*f.colour);
+        }
+        if (motion.colourFrames.size() != motion.frames.size()) motion.colourFrames.clear();
         // A paged projection's pages drawn a frame (a light that pages has a pool).
         for (const SequenceFrame& f : seq.frames) {
           int drawn = 0;
@@ -262,7 +267,8 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
       }
       if (c.inGrid) {
         const std::string scene = fileStem(renderer.scene().name);
-        const std::string stem = fmt::format("images/{}-{}-{}", scene, fileStem(c.projection), fileStem(c.filter));
+        const std::string stem = fmt::format("images/{}-{}-{}{}", scene, fileStem(c.projection), fileStem(c.filter),
+                                             c.params.empty() ? "" : "-" + fileStem(c.paramsText()));
         row.imagePath = stem + ".png";
         row.heatmapPath = stem + "-heatmap.png";
         writeImage(options.outDir, row.imagePath, cmp.technique);
@@ -279,9 +285,10 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
         const BenchRow& b = results.rows.back();
         const std::string motion = b.motion ? fmt::format(", flicker {:.3f}% over {} frames", b.motion->flicker.pct(), b.motion->frames.size())
                                             : std::string();
-        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s (%d frames, %.1f s)\n",
+        const std::string colour = b.colour ? fmt::format(", colour RMSE {:.4f}", b.colour->rmse) : std::string();
+        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s%s (%d frames, %.1f s)\n",
                      c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(), b.shadowCost.median,
-                     b.memoryMiB(), cmp.metrics.rmse, motion.c_str(), frames,
+                     b.memoryMiB(), cmp.metrics.rmse, colour.c_str(), motion.c_str(), frames,
                      std::chrono::duration<double>(Clock::now() - configStart).count());
       }
     } catch (const std::exception& e) {

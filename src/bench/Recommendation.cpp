@@ -30,19 +30,32 @@ const char* budgetKey(Budget b) {
 
 namespace {
 
-double metricOf(ErrorMetric metric, const VisibilityMetrics& m) { return metric == ErrorMetric::PenumbraRmse ? m.penumbraRmse : m.rmse; }
+// One frame's error: the colour RMSE where the frame has colour metrics (else the RMSE: V_ref
+// is grey, and so is the colour RMSE's), the others from the frame's visibility metrics.
+double metricOf(ErrorMetric metric, const VisibilityMetrics& m, const ColourMetrics* colour) {
+  switch (metric) {
+    case ErrorMetric::Rmse: return m.rmse;
+    case ErrorMetric::PenumbraRmse: return m.penumbraRmse;
+    case ErrorMetric::ColourRmse: return colour ? colour->rmse : m.rmse;
+  }
+  return m.rmse;
+}
 
 // p10 ≤ 1 ≤ p90: a ratio that goes either way over its samples.
 bool spansOne(const TimeStats& ratio) { return ratio.p10 <= 1.0 && ratio.p90 >= 1.0; }
 
 }  // namespace
 
-double situationError(ErrorMetric metric, const BenchRow& row) { return metricOf(metric, row.metrics); }
+double situationError(ErrorMetric metric, const BenchRow& row) {
+  return metricOf(metric, row.metrics, row.colour ? &*row.colour : nullptr);
+}
 
 std::vector<double> frameErrors(ErrorMetric metric, const BenchRow& row) {
   if (!row.motion || row.motion->frames.empty()) return {situationError(metric, row)};
+  const std::vector<ColourMetrics>& colour = row.motion->colourFrames;
   std::vector<double> out;
-  for (const VisibilityMetrics& m : row.motion->frames) out.push_back(metricOf(metric, m));
+  for (size_t f = 0; f < row.motion->frames.size(); ++f)
+    out.push_back(metricOf(metric, row.motion->frames[f], f < colour.size() ? &colour[f] : nullptr));
   return out;
 }
 
@@ -99,8 +112,23 @@ void markMotion(std::vector<BenchConfig>& configs) {
   }
 }
 
-const char* metricName(ErrorMetric metric) { return metric == ErrorMetric::PenumbraRmse ? "penumbra RMSE" : "RMSE"; }
-const char* metricKey(ErrorMetric metric) { return metric == ErrorMetric::PenumbraRmse ? "penumbra_rmse" : "rmse"; }
+const char* metricName(ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::Rmse: return "RMSE";
+    case ErrorMetric::PenumbraRmse: return "penumbra RMSE";
+    case ErrorMetric::ColourRmse: return "colour RMSE";
+  }
+  return "";
+}
+
+const char* metricKey(ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::Rmse: return "rmse";
+    case ErrorMetric::PenumbraRmse: return "penumbra_rmse";
+    case ErrorMetric::ColourRmse: return "rmse_rgb";
+  }
+  return "";
+}
 
 std::optional<size_t> SituationPicks::pick(Budget b) const {
   switch (b) {

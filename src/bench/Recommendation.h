@@ -35,6 +35,11 @@ namespace penumbra::report {
 enum class ErrorMetric {
   Rmse,          ///< RMSE of V over every pixel that faces the light
   PenumbraRmse,  ///< RMSE of V over the reference's penumbra pixels only
+  /// RMSE of V over RGB against the RGB reference (translucent casters: a technique whose V is
+  /// one channel counts as grey, so a shadow of the right darkness and the wrong hue is an
+  /// error). Where a row has no colour metric (no translucent caster: V_ref is grey) it reads
+  /// the RMSE, which is then the same number.
+  ColourRmse,
 };
 
 /// A situation users bring, the scene that stands for it and the error that decides.
@@ -61,6 +66,12 @@ inline constexpr Situation kSituations[] = {
     {"static", "Static scene: nothing moves", "boxes", ErrorMetric::Rmse, true,
      "boxes and spheres on a plane under the sun, casters that never move: work done once (sdf's distance-field "
      "bake) is allowed, shown beside the per-frame cost. The error is taken over every pixel that faces the sun."},
+    {"translucent", "Light through translucent casters", "glass", ErrorMetric::ColourRmse, false,
+     "a stained-glass canopy of four coloured panes and a tinted pane over a floor under the sun: the light keeps "
+     "each pane's colour, and the product of two where it crosses both. A technique that ignores translucency "
+     "shadows the panes as opaque; one whose V is one channel gets the darkness without the hue. The error is the "
+     "RMSE over red, green and blue against the RGB reference (a one-channel V counts as grey), over every pixel "
+     "that faces the sun."},
 };
 
 /// Acceptable: an error at most this many times the lowest error any candidate reached in the
@@ -110,8 +121,8 @@ std::optional<TimeStats> errorRatio(ErrorMetric metric, const BenchRow& a, const
 /// Marks the configurations the situations judge (a situation's scene at its own light) to be
 /// scored in motion too (BenchConfig::motion).
 void markMotion(std::vector<BenchConfig>& configs);
-const char* metricName(ErrorMetric metric);  ///< "RMSE", "penumbra RMSE"
-const char* metricKey(ErrorMetric metric);   ///< "rmse", "penumbra_rmse" (the results column)
+const char* metricName(ErrorMetric metric);  ///< "RMSE", "penumbra RMSE", "colour RMSE"
+const char* metricKey(ErrorMetric metric);   ///< "rmse", "penumbra_rmse", "rmse_rgb" (the results column)
 
 /// A pick that tied: the rows it tied with (by cost for the cheapest, by error for the best) and
 /// the row the plain order would have picked among them.

@@ -40,10 +40,10 @@ nlohmann::json statsJson(const TimeStats& t) { return {{"median", t.median}, {"p
 std::vector<std::string> tableColumns(const BenchResults& results) {
   std::vector<std::string> cols = {"plan", "scene", "projection", "filter", "params", "light_size", "lights", "width", "height",
                                    "shadow_map", "frames", "rmse", "mae", "bias", "leak_pct", "umbra_leak_pct",
-                                   "overdark_pct", "penumbra_rmse", "pixels"};
+                                   "overdark_pct", "penumbra_rmse", "pixels", "rmse_rgb", "rmse_r", "rmse_g", "rmse_b"};
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kShadowCostColumn) + suffix);
   for (const char* c : {"shadow_memory_mb", "one_off_s", "one_off_what", "motion", "motion_frames", "flicker_pct",
-                        "rmse_motion_mean", "penumbra_rmse_motion_mean", "pages_drawn"})
+                        "rmse_motion_mean", "penumbra_rmse_motion_mean", "rmse_rgb_motion_mean", "pages_drawn"})
     cols.emplace_back(c);
   for (const char* suffix : kStatSuffixes) cols.push_back(std::string(kRoundsCostColumn) + suffix);
   for (const std::string& pass : results.passNames())
@@ -60,8 +60,14 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   std::vector<Cell> cells = {r.config.plan, r.config.scene, r.config.projection, r.config.filter,
                              r.config.paramsText(), numFloat(r.lightSize), num(r.lights), num(r.width), num(r.height),
                              num(r.shadowMapSize), num(r.frames), num(m.rmse), num(m.mae), num(m.bias),
-                             num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels),
-                             num(r.shadowCost.median), num(r.shadowCost.p10), num(r.shadowCost.p90), num(r.memoryMiB())};
+                             num(m.leakPct), num(m.umbraLeakPct), num(m.overDarkPct), num(m.penumbraRmse), num(m.pixels)};
+  // The colour metrics where the row has them (a scene with translucent casters), else empty cells.
+  if (r.colour)
+    cells.insert(cells.end(), {num(r.colour->rmse), num(r.colour->channelRmse[0]), num(r.colour->channelRmse[1]),
+                               num(r.colour->channelRmse[2])});
+  else
+    cells.insert(cells.end(), 4, Cell());
+  cells.insert(cells.end(), {num(r.shadowCost.median), num(r.shadowCost.p10), num(r.shadowCost.p90), num(r.memoryMiB())});
   if (r.oneOff.empty()) {
     cells.insert(cells.end(), 2, Cell());
   } else {
@@ -73,8 +79,10 @@ std::vector<Cell> tableRow(const BenchResults& results, const BenchRow& r) {
   if (r.motion) {
     cells.insert(cells.end(), {Cell(r.motion->what), num(r.motion->frames.size()), num(flickerPct(r)),
                                num(motionError(ErrorMetric::Rmse, r)), num(motionError(ErrorMetric::PenumbraRmse, r))});
+    if (r.colour) cells.emplace_back(motionError(ErrorMetric::ColourRmse, r));
+    else cells.emplace_back();
   } else {
-    cells.insert(cells.end(), 5, Cell());
+    cells.insert(cells.end(), 6, Cell());
   }
   if (const std::optional<double> pages = r.pagesDrawnMean()) cells.emplace_back(*pages);
   else cells.emplace_back();
@@ -176,7 +184,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
     j["frame_ms"].push_back(std::move(frames));
   }
   // Per row, what its motion and its interleaved rounds measured (null where it had none): each
-  // frame's RMSE and penumbra RMSE (the still frame first), the flicker counts, each round's cost.
+  // frame's RMSE and penumbra RMSE (the still frame first; the colour RMSE too where the row has it), the flicker counts, each round's cost.
   j["samples"] = nlohmann::json::array();
   for (const BenchRow& r : results.rows) {
     nlohmann::json m = nullptr;
@@ -184,6 +192,7 @@ nlohmann::json resultsJson(const BenchResults& results) {
       m = {{"what", r.motion->what}, {"fps", r.motion->fps}, {"rmse", frameErrors(ErrorMetric::Rmse, r)},
            {"penumbra_rmse", frameErrors(ErrorMetric::PenumbraRmse, r)}, {"flicker_followed", r.motion->flicker.followed},
            {"flicker_points", r.motion->flicker.flickering}};
+      if (r.colour) m["rmse_rgb"] = frameErrors(ErrorMetric::ColourRmse, r);
     }
     nlohmann::json rounds = nullptr;
     if (r.rounds) rounds = {{"group", r.rounds->group}, {"ms", r.rounds->ms}};

@@ -7,8 +7,9 @@
 // projected into frame k+1 and kept when the pixel there sees the same object within a few
 // pixels' footprint of it (not hidden, not off screen). The technique's V of frame k+1 is taken
 // at the followed point itself (Renderer::visibilityAt), not at the pixel it lands on: a jagged
-// edge under a sub-pixel re-projection is not flicker. V_ref is compared pixel to pixel (a
-// reference that changes there only excludes the point). No GL here: the frames are read-backs.
+// edge under a sub-pixel re-projection is not flicker (a V tinted by translucent casters, which
+// visibilityAt does not give, is read at that pixel: compareSequence). V_ref is compared pixel to
+// pixel (a reference that changes there only excludes the point). No GL here: the frames are read-backs.
 #include <penumbra/Image.h>
 #include <penumbra/Math.h>
 #include <penumbra/Shadows.h>

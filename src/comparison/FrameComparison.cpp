@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 
@@ -21,6 +22,13 @@ std::vector<ReferenceResult> traceLights(const ReferenceTracer& tracer, const GB
       std::fprintf(stderr, "penumbra: warning: %s; references are traced but not kept (set PENUMBRA_CACHE to a writable "
                            "folder, or --no-cache)\n", r.cacheWarning.c_str());
   return refs;
+}
+
+std::vector<glm::vec3> colourVisibility(const LightComparison& light) {
+  if (!light.visibilityRgb.empty()) return light.visibilityRgb;
+  std::vector<glm::vec3> grey(light.visibility.size());
+  std::transform(light.visibility.begin(), light.visibility.end(), grey.begin(), [](float v) { return glm::vec3(v); });
+  return grey;
 }
 
 FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std::span<const ReferenceResult> refs,
@@ -41,6 +49,8 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     l.visibilityRgb = renderer.readVisibilityRgb(i);
     l.map = renderer.shadows().lightReports().at(i);
     if (l.castsShadow) l.metrics = compareVisibility(l.visibility, refs[i].visibility, refs[i].litMask, gbuffer.width);
+    if (l.castsShadow && !refs[i].visibilityRgb.empty())
+      l.colour = compareColourVisibility(colourVisibility(l), refs[i].visibilityRgb, refs[i].litMask);
     c.lights.push_back(std::move(l));
   }
   for (size_t i = 0; i < lights.size(); ++i)
@@ -50,6 +60,7 @@ FrameComparison compareFrame(Renderer& renderer, const GBufferData& gbuffer, std
     if (shadowedIndex.size() > 1) weights[i] = lightWeights(gbuffer, lights[i], refs[i].litMask);
     shadowed.push_back({c.lights[i].visibility, refs[i].visibility, refs[i].visibilityCosWeighted, refs[i].litMask, weights[i]});
   }
+  if (shadowedIndex.size() == 1) c.colour = c.lights[shadowedIndex.front()].colour;
   c.combined = combineLights(shadowed);
   c.metrics = compareVisibility(c.combined.v, c.combined.vRef, c.combined.mask, gbuffer.width);
   if (images) {

@@ -6,6 +6,7 @@
 #include <penumbra/Reference.h>
 #include <penumbra/Renderer.h>
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -26,14 +27,24 @@ struct LightComparison {
   /// empty otherwise.
   std::vector<glm::vec3> visibilityRgb;
   VisibilityMetrics metrics;      ///< V against V_ref over the light's litMask
+  /// Where the light's reference has colour (translucent casters in the scene): V (RGB, or its
+  /// one channel as grey) against the RGB V_ref over the same mask; empty otherwise.
+  std::optional<ColourMetrics> colour;
   LightShadowReport map;          ///< what the shadow budget gave it
 };
+
+/// The light's V in colour: visibilityRgb where the frame's V has colour, else its one channel as grey.
+std::vector<glm::vec3> colourVisibility(const LightComparison& light);
 
 struct FrameComparison {
   /// The combined V, V_ref and cos-weighted V_ref (combineLights over the lights that cast
   /// shadows; with one light, that light's own arrays) and its mask.
   CombinedVisibility combined;
   VisibilityMetrics metrics;  ///< combined V against combined V_ref
+  /// The colour metrics of the frame where exactly one light casts shadows and its reference has
+  /// colour (that light's LightComparison::colour); empty otherwise (several lights' colours are
+  /// not combined).
+  std::optional<ColourMetrics> colour;
   std::vector<LightComparison> lights;
   /// Filled when images are asked for: the frame's colour, the same frame lit with every light's
   /// V_ref, and the signed error heatmap of the combination over the technique's image (kLabHeatmap).

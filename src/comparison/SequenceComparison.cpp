@@ -88,6 +88,7 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
     }
     const FrameComparison cmp = compareFrame(renderer, gbuffer, refs, false);
     frame.metrics = cmp.metrics;
+    frame.colour = cmp.colour;
     // Flicker and lag of each light that casts shadows (its own V and V_ref).
     size_t shadowed = 0;
     for (const LightComparison& light : cmp.lights) {
@@ -106,7 +107,14 @@ SequenceComparison compareSequence(Renderer& renderer, const Scene& scene, const
         std::vector<SurfaceSample> samples;
         samples.reserve(points.size());
         for (const FollowedPoint& p : points) samples.push_back(p.at);
-        const std::vector<float> vAt = samples.empty() ? std::vector<float>() : renderer.visibilityAt(samples, light.index);
+        // A V tinted by translucent casters (RGB) is not what visibilityAt gives (the filter's V
+        // of the opaque casters alone): its flicker is read from the frame's own V at the pixel
+        // the point lands on.
+        std::vector<float> vAt;
+        if (!light.visibilityRgb.empty())
+          for (const FollowedPoint& p : points) vAt.push_back(now.v[p.to]);
+        else if (!samples.empty())
+          vAt = renderer.visibilityAt(samples, light.index);
         const FlickerCounts flicker = countFlicker(previous, now, points, vAt, flickerOptions);
         std::vector<const FlickerFrame*> frames;
         for (const FlickerFrame& e : before) frames.push_back(&e);

@@ -11,6 +11,7 @@
 #include <penumbra/Renderer.h>
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace penumbra::report {
@@ -26,6 +27,7 @@ struct SequenceTiming {
 struct SequenceFrame {
   float timeS = 0.0f;
   VisibilityMetrics metrics;  ///< the combined V against the combined V_ref
+  std::optional<ColourMetrics> colour;  ///< FrameComparison::colour: one shadowed light whose reference has colour
   FlickerCounts flicker;      ///< from the frame before into this one, every shadowed light's (empty for the first)
   LagCounts lag;              ///< this frame's changing pixels, every shadowed light's (empty for the first)
   std::vector<LightShadowReport> lights;  ///< what each light got in this frame (map, pages)

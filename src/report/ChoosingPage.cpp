@@ -294,18 +294,22 @@ std::string pageTitle(const BenchResults& r) {
 
 std::string benchCommand(const BenchResults& results, const std::vector<size_t>& rows) {
   std::vector<std::string> scenes, projections, filters;
-  std::vector<std::pair<std::string, std::string>> params;
+  std::vector<std::pair<std::string, std::vector<std::string>>> params;  // per key, its values in order
   for (const size_t i : rows) {
     const BenchConfig& c = results.rows[i].config;
     addOnce(scenes, c.scene);
     addOnce(projections, c.projection);
     addOnce(filters, c.filter);
-    for (const auto& kv : c.params) addOnce(params, kv);
+    for (const auto& [key, value] : c.params) {
+      auto it = std::find_if(params.begin(), params.end(), [&](const auto& p) { return p.first == key; });
+      if (it == params.end()) it = params.insert(params.end(), {key, {}});
+      addOnce(it->second, value);
+    }
   }
   const BenchSettings& s = results.settings;
   std::string cmd = fmt::format("penumbra bench --scenes {} --projections {} --filters {}", joinSet(scenes),
                                 joinSet(projections), joinSet(filters));
-  for (const auto& [key, value] : params) cmd += fmt::format(" --sweep {}={}:{}:1", key, value, value);
+  for (const auto& [key, values] : params) cmd += fmt::format(" --sweep {}={}", key, joinSet(values));
   cmd += fmt::format(" --size {}x{} --samples {} --frames {} --warmup {}", s.width, s.height, s.referenceSamples,
                      s.timedFrames, s.warmupFrames);
   if (s.motionFrames != BenchSettings{}.motionFrames) cmd += fmt::format(" --motion-frames {}", s.motionFrames);
@@ -368,12 +372,12 @@ std::string choosingMarkdown(const BenchResults& r, const std::vector<SituationP
        "regenerate it). -->\n\n";
   if (r.settings.quick) m += "> **" + quickText(r) + "**\n\n";
   m += fmt::format(
-      "For four situations users bring, the configuration that [the bench]({}) measured as the **cheapest acceptable**, "
+      "For each of the {} situations users bring, the configuration that [the bench]({}) measured as the **cheapest acceptable**, "
       "the **balanced** and the **best** choice: its error against the ray-traced reference, still and in motion, its "
       "flicker, its whole cost per frame, the GPU memory it keeps, and the `penumbra compare` command that reproduces its "
       "error, motion and flicker (and prints its warm pass times). This page is written by `penumbra bench`; every "
       "number comes from that run.\n\n",
-      reportLink);
+      std::size(kSituations), reportLink);
   m += fmt::format("- Run: `{}`, {}.\n- Machine: {}.\n- Times are this machine's (llvmpipe runs on the CPU): compare them "
                    "with each other, not with a GPU's. Whole cost = shadow + prefilter + visibility passes per frame "
                    "(docs/bench.md, \"What is measured\", says what is counted).\n\n",

@@ -120,7 +120,7 @@ std::string picksText(const BenchResults& r, const std::vector<SituationPicks>& 
 std::string qualitySection(const BenchResults& r) {
   std::string h = fmt::format(
       "<h2 id=\"quality\">1. Quality against whole cost and memory</h2>\n<p>One point per configuration: the error that "
-      "decides in the scene's situation (penumbra RMSE on <code>pen</code>, RMSE elsewhere: pixels that face the light), "
+      "decides in the scene's situation (penumbra RMSE on <code>pen</code>, colour RMSE on <code>glass</code>, RMSE elsewhere: pixels that face the light), "
       "the mean over the frames it was scored on (its still frame and, for a situation's scene, the scene's animation or "
       "a camera walk), against its <b>whole cost</b>: per frame the {} passes added up, then the median over the timed "
       "frames (the G-buffer and lit passes are the same for every technique and left out). Beside it, the same errors "
@@ -195,9 +195,11 @@ std::string gridSection(const BenchResults& r) {
                            "click for {4}×{5}\"></a></td>",
                            esc(path), thumbW, thumbH, esc(alt), row.width, row.height);
       };
-      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}<br>RMSE {:.4f}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %"
+      rows += fmt::format("<tr><td class=\"l\"><b>{}</b><br>{}{}<br>RMSE {:.4f}{}<br>leak {:.2f} % (umbra {:.2f} %)<br>over-dark {:.2f} %"
                           "<br>whole cost {} ms<br>memory {} MiB{}{}</td>",
-                          esc(row.config.filter), esc(row.config.projection), row.metrics.rmse, row.metrics.leakPct,
+                          esc(row.config.filter), esc(row.config.projection),
+                          techniqueParams(row).empty() ? "" : "<br><small>" + esc(techniqueParams(row)) + "</small>", row.metrics.rmse,
+                          row.colour ? fmt::format("<br>colour RMSE {:.4f}", row.colour->rmse) : "", row.metrics.leakPct,
                           row.metrics.umbraLeakPct, row.metrics.overDarkPct, numberText(row.shadowCost.median), numberText(row.memoryMiB()),
                           row.oneOff.empty() ? "" : fmt::format("<br>+ {:.3g} s bake<br><small>(static casters only)</small>",
                                                                 row.oneOffSeconds()),
@@ -300,7 +302,10 @@ std::string resultsTables(const BenchResults& r) {
          "<th class=\"l\">params</th><th>light size</th><th>frames</th><th>whole cost</th><th>memory MiB</th>"
          "<th title=\"valid for static casters only\">one-off s</th>";
     for (const std::string& p : passes) h += "<th>" + esc(p) + "</th>";
-    h += "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th title=\"leaking pixels inside the reference's umbra: light "
+    const bool colour = std::any_of(rows.begin(), rows.end(), [](const BenchRow* row) { return row->colour.has_value(); });
+    h += std::string(colour ? "<th title=\"V against the RGB reference, over red, green and blue (a one-channel V counts as "
+                              "grey)\">colour RMSE</th>" : "") +
+         "<th>RMSE</th><th>penumbra RMSE</th><th>leak %</th><th title=\"leaking pixels inside the reference's umbra: light "
          "bleeding rather than an edge's shape\">umbra leak %</th><th>over-dark %</th></tr>\n";
     for (const BenchRow* row : rows) {
       h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{:g}</td><td>{}</td>",
@@ -309,6 +314,7 @@ std::string resultsTables(const BenchResults& r) {
       h += fmt::format("<td><b>{}</b></td><td>{:.3g}</td><td>{}</td>", ms(row->shadowCost), row->memoryMiB(),
                        row->oneOff.empty() ? "—" : fmt::format("{:.3g}", row->oneOffSeconds()));
       for (const std::string& p : passes) h += "<td>" + ms(row->time(p)) + "</td>";
+      if (colour) h += row->colour ? fmt::format("<td>{:.4f}</td>", row->colour->rmse) : "<td>—</td>";
       h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n",
                        row->metrics.rmse, row->metrics.penumbraRmse, row->metrics.leakPct, row->metrics.umbraLeakPct,
                        row->metrics.overDarkPct);

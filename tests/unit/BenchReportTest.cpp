@@ -52,6 +52,42 @@ TEST(BenchPlan, BadSweepsAreUsageErrors) {
   }
 }
 
+// A choice is swept by its names (the re-time command of a recommendation writes them so); a
+// name the parameter does not have is a usage error naming the sweep.
+TEST(BenchPlan, ChoicesAreSweptByName) {
+  const BenchPlan plan{.name = "custom", .scenes = {"glass"}, .projections = {"uniform"}, .filters = {"pcf"},
+                       .sweeps = {parseSweep("translucent.shadows=on"), parseSweep("translucent.method=map,stochastic")}};
+  const std::vector<BenchConfig> configs = expandPlans({plan});
+  ASSERT_EQ(configs.size(), 2u);
+  EXPECT_EQ(configs[0].paramsText(), "translucent.shadows=on;translucent.method=map");
+  EXPECT_EQ(configs[1].paramsText(), "translucent.shadows=on;translucent.method=stochastic");
+  BenchPlan bad = plan;
+  bad.sweeps = {parseSweep("translucent.method=map,dither")};
+  try {
+    expandPlans({bad});
+    ADD_FAILURE() << "translucent.method=dither was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_NE(std::string(e.what()).find("--sweep translucent.method"), std::string::npos) << e.what();
+  }
+}
+
+// A scene with translucent casters gets the three techniques that shadow through them, on the
+// run's filters among hard, pcf and msm; a scene without gets nothing more.
+TEST(BenchPlan, TranslucentCastersGetTheTechniquesThatShadowThroughThem) {
+  const BenchPlan run{.name = "custom", .scenes = {"boxes", "glass"}, .projections = {"uniform", "csm"},
+                      .filters = {"hard", "pcf", "pcss", "msm"}, .sweeps = {}};
+  std::vector<std::string> rows;
+  for (const BenchConfig& c : expandPlans(translucentPlans(run)))
+    rows.push_back(c.scene + " " + c.projection + " " + c.filter + " " + c.paramsText() + (c.inGrid ? " (grid)" : ""));
+  EXPECT_EQ(rows, (std::vector<std::string>{
+                      "glass uniform hard translucent.shadows=on (grid)", "glass uniform pcf translucent.shadows=on (grid)",
+                      "glass uniform msm translucent.shadows=on (grid)", "glass uniform msm msm.translucent=on (grid)",
+                      "glass uniform pcf translucent.shadows=on;translucent.method=stochastic;temporal.accumulate=on (grid)"}));
+  EXPECT_TRUE(translucentPlans({.name = "custom", .scenes = {"boxes"}, .projections = {"uniform"}, .filters = {"pcf"}, .sweeps = {}}).empty());
+  EXPECT_TRUE(translucentPlans({.name = "custom", .scenes = {"glass"}, .projections = {"uniform"}, .filters = {"pcss"}, .sweeps = {}}).empty());
+}
+
 TEST(BenchPlan, SweepAppliesOnlyToTechniquesThatDeclareTheKey) {
   const BenchPlan plan{.name = "custom", .scenes = {"boxes"}, .projections = {"uniform"}, .filters = {"hard", "pcf"},
                        .sweeps = {parseSweep("pcf.radiusTexels=1:4:4"), parseSweep("light.size=0.01:0.03:2")}};
@@ -173,7 +209,7 @@ TEST(BenchResultsIO, PagesDrawnIsTheMotionsMeanForPagedRowsOnly) {
   BenchResults r;
   BenchRow paged;
   paged.config = {.plan = "custom", .scene = "city", .projection = "virtual", .filter = "hard", .params = {}, .inGrid = false};
-  paged.motion = MotionScore{.what = kAnimationMotion, .fps = kMotionFps, .frames = {{}, {}, {}, {}}, .flicker = {}, .pagesDrawn = {0, 4, 3, 3}};
+  paged.motion = MotionScore{.what = kAnimationMotion, .fps = kMotionFps, .frames = {{}, {}, {}, {}}, .colourFrames = {}, .flicker = {}, .pagesDrawn = {0, 4, 3, 3}};
   BenchRow cascaded = paged;
   cascaded.config.projection = "csm";
   cascaded.motion->pagesDrawn.clear();
