@@ -251,7 +251,18 @@ std::vector<std::string> pickNotes(const BenchResults& r, const SituationPicks& 
                                 rowLabel(r.rows[*p.best]), metricName(p.situation->metric),
                                 errorText(motionError(p.situation->metric, r.rows[*p.best])), with));
   }
-  if (!picked.empty()) notes.push_back("Re-time these: `" + benchCommand(r, picked) + "`.");
+  // One bench command per parameter set among the picks: a run's sweeps form a cross product,
+  // which would add combinations no pick has (msm.translucent beside translucent.shadows is refused).
+  std::vector<std::vector<size_t>> byParams;
+  for (const size_t i : picked) {
+    const auto same = std::find_if(byParams.begin(), byParams.end(),
+                                   [&](const std::vector<size_t>& g) { return r.rows[g.front()].config.params == r.rows[i].config.params; });
+    if (same == byParams.end()) byParams.push_back({i});
+    else same->push_back(i);
+  }
+  std::string retime;
+  for (const std::vector<size_t>& g : byParams) retime += (retime.empty() ? "`" : "; `") + benchCommand(r, g) + "`";
+  if (!picked.empty()) notes.push_back("Re-time these: " + retime + (byParams.size() > 1 ? " (one run per parameter set)." : "."));
   if (!p.excluded.empty()) {
     // "label: why" entries, the labels that share a reason named together.
     std::vector<std::pair<std::string, std::string>> byReason;
