@@ -157,10 +157,15 @@ float virtualPixelWidthM(vec3 ws) {
 // The level a pixel at ws on a surface of normal n asks for, before rounding: the finest level
 // whose texels, seen from the camera, each cover at most one pixel is its floor. The pixel's
 // footprint on its surface (width² / cos of the camera's angle to it) projected along the light's
-// rays onto the map's plane (× cos of the light's angle) holds w²·ratio m², ratio capped at 1 (a
-// texel no wider than the pixel), and a texel of level l is t_l = t_0·2^l wide:
-// log2(w·√ratio / t_0), moved by the level bias. n = vec3(0): no surface known (the pixel faces
-// camera and light alike).
+// rays onto the map's plane (× cos of the light's angle) holds w²·ratio m², and a texel of level
+// l is t_l = t_0·2^l wide: log2(w·√ratio / t_0), moved by the level bias. The ratio is capped at
+// 1 (never coarser than the pixel's width): a camera grazing the surface stretches its footprint
+// along the view only, and the texels must still resolve its width across. There, past the cap,
+// each doubling of the ratio asks for one level finer, up to u_pages.shape.x levels: the thin
+// shadows of poles and wires on a street seen far off span a pixel or two across, and a texel as
+// wide as the pixel breaks them into dashes; a surface seen face on keeps the pixel's width (its
+// pages cost the most, as it fills the screen near the camera). A light grazing the surface makes
+// the texels finer too. n = vec3(0): no surface known (the pixel faces camera and light alike).
 float virtualLevelValue(vec3 ws, vec3 n) {
   float ratio = 1.0;
   if (dot(n, n) > 0.0) {
@@ -170,12 +175,10 @@ float virtualLevelValue(vec3 ws, vec3 n) {
 #else
     vec3 toEye = normalize(u_frame.cameraPosition.xyz - ws);
 #endif
-    // Never coarser than the pixel's width: a camera grazing the surface stretches its footprint
-    // along the view only, and the texels must still resolve its width across (the thin shadows
-    // of poles and wires on a street seen far off); a light grazing it makes the texels finer.
-    ratio = min(max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine), 1.0);
+    ratio = max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine);
   }
-  return log2(virtualPixelWidthM(ws)) + 0.5 * log2(ratio) - u_pages.lod.x + u_pages.lod.z;
+  float grazing = min(log2(max(ratio, 1.0)), u_pages.shape.x);
+  return log2(virtualPixelWidthM(ws)) + 0.5 * log2(min(ratio, 1.0)) - grazing - u_pages.lod.x + u_pages.lod.z;
 }
 
 // The level read for a level value: its floor among the levels, or the first coarser level whose

@@ -11,10 +11,13 @@ struct PagesUniforms {
   // (an orthographic camera: the pixel's width, m); z: level bias (levels, + = coarser);
   // w: margin (texels) marked around each pixel's texel
   vec4 lod;
+  // x: grazing levels (at most this many levels finer where the camera grazes the surface more
+  // than the light does); yzw: unused
+  vec4 shape;
 };
 
 PN_GPU_END
 
 #ifdef __cplusplus
-static_assert(sizeof(penumbra::gpu::PagesUniforms) == 16, "std140 size of PagesUniforms");
+static_assert(sizeof(penumbra::gpu::PagesUniforms) == 32, "std140 size of PagesUniforms");
 #endif

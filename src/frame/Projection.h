@@ -39,9 +39,10 @@ public:
 struct PageLayout {
   int virtualSize = 16384;  ///< texels per side of each view's virtual map (a multiple of pageSize)
   int pageSize = 128;       ///< texels per side of a page
-  int poolPages = 1024;     ///< pages the pool holds (its fixed memory: poolPages · pageSize² depths)
+  int poolPages = 2048;     ///< pages the pool holds (its fixed memory: poolPages · pageSize² depths)
   float marginTexels = 4.0f;  ///< texels around each pixel's texel whose pages are marked with it
   float levelBias = 0.0f;     ///< levels added to each pixel's choice (+ = coarser, fewer pages)
+  float grazingLevels = 1.0f;  ///< at most this many levels finer where the camera grazes a surface
   int pagesPerSide() const { return virtualSize / pageSize; }
   bool operator==(const PageLayout&) const = default;
 };

@@ -96,6 +96,7 @@ void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frust
   gpu::PagesUniforms u{};
   u.lod = glm::vec4(static_cast<float>(std::log2(mLevelExtentM.front() / layout.virtualSize)), pixelWidthPerM, layout.levelBias,
                     layout.marginTexels);
+  u.shape = glm::vec4(layout.grazingLevels, 0.0f, 0.0f, 0.0f);
   mBlock.upload(u);
   ++mFrame;
   mStats = {};

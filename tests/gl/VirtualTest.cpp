@@ -212,3 +212,20 @@ TEST(Virtual, SoftFiltersBoundTheirSearchWithThePagesMinDepth) {
   EXPECT_LT(pcss, 0.042);
   EXPECT_LT(smrt, 0.042);
 }
+
+// Where the camera grazes the street far off, the poles' shadows span a pixel or two across: a
+// level finer there (virtual.grazingLevels) resolves them, a texel as wide as the pixel breaks
+// them into dashes.
+TEST(Virtual, GrazingLevelsResolveThinShadowsFarOff) {
+  const Scene city = makeBuiltinScene("city");
+  ReferenceOptions o;
+  o.samples = 64;
+  o.progress = false;
+  const RenderResult fine = renderScene(city, "virtual", "smrt", {}, kW, kH, 2048);
+  const RenderResult flat = renderScene(city, "virtual", "smrt", {{"virtual.grazingLevels", "0"}}, kW, kH, 2048);
+  const ReferenceResult ref = ReferenceTracer(city).trace(fine.gbuffer, city.light(), o);
+  const double withLevels = compareVisibility(fine.visibility, ref.visibility, ref.litMask, kW).rmse;
+  const double without = compareVisibility(flat.visibility, ref.visibility, ref.litMask, kW).rmse;
+  std::printf("virtual x smrt: RMSE %.4f with grazing levels, %.4f without\n", withLevels, without);
+  EXPECT_LT(withLevels, 0.8 * without);
+}

@@ -24,11 +24,14 @@ constexpr ParamDesc kParams[] = {
      128.0f, 32.0f, 512.0f, 1.0f},
     {"virtual.poolPages", "Pool", "pages the pool holds: its fixed memory is this × page size² × 4 bytes (× 2 with cached map "
      "updates, which keep the static casters' copy); when a frame needs more, coarser levels serve the rest", "pages",
-     1024.0f, 16.0f, 16384.0f, 1.0f},
+     2048.0f, 16.0f, 16384.0f, 1.0f},
     {"virtual.marginTexels", "Margin", "texels around each pixel's texel whose pages are marked with it (a filter's kernel reads "
      "there; beyond, a coarser level serves)", "texels", 4.0f, 0.0f, 64.0f, 1.0f},
     {"virtual.levelBias", "Level bias", "levels added to each pixel's choice: + reads coarser levels (fewer pages, one texel over "
      "several pixels), − finer ones", "levels", 0.0f, -2.0f, 4.0f, 0.0f},
+    {"virtual.grazingLevels", "Grazing levels", "where the camera grazes a surface more than the light does, each doubling of "
+     "that ratio reads a level finer, up to this many (thin shadows far off resolved across their width)", "levels", 1.0f, 0.0f,
+     3.0f, 0.0f},
 };
 
 // The depth range is the scene's along the light, widened to whole steps of an eighth of its
@@ -59,6 +62,7 @@ std::optional<PageLayout> VirtualProjection::pageLayout() const {
   l.poolPages = paramInt("virtual.poolPages");
   l.marginTexels = param("virtual.marginTexels");
   l.levelBias = param("virtual.levelBias");
+  l.grazingLevels = param("virtual.grazingLevels");
   return l;
 }
 
