@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 namespace penumbra {
 namespace {
@@ -180,6 +181,11 @@ void VirtualPages::mark(FrameContext& frame) {
   std::vector<uint32_t> list(count);
   if (count > 0) mList.download(list.data(), count * sizeof(uint32_t), sizeof(uint32_t));
 
+  // Coarsest level first: when the pool cannot hold every needed page, the pages left out are
+  // the finest, and a read there finds the chain of coarser pages each pixel marked (a coarse
+  // page left out instead would leave its points with nothing to read but the far plane). Within
+  // a level the order is the page's index, so a frame's plan does not hang on the marking's order.
+  std::sort(list.begin(), list.end(), std::greater<>());
   const int pages = mLayout.pagesPerSide();
   mDraws.clear();
   mStats.needed = static_cast<int>(count);
