@@ -129,7 +129,8 @@ bool insideMap(vec3 coord) { return all(greaterThanEqual(coord.xy, vec2(0.0))) &
 
 #ifdef PN_VIRTUAL_PAGES
 // A paged projection (`virtual`, docs/virtual.md): each view is one level of a clipmap around the
-// camera, a virtual map of PN_PAGES_PER_SIDE² pages of PN_PAGE_SIZE² texels whose extent doubles
+// camera (a sun's; a spot's levels are mips of one perspective view, level l the view over the
+// corner [0, 2^-l]² of its virtual square), a virtual map of PN_PAGES_PER_SIDE² pages of PN_PAGE_SIZE² texels whose extent doubles
 // from level to level; only the pages this frame's pixels need are drawn, into tiles of a pool
 // (the filter's map: PN_POOL_TILES_PER_SIDE² tiles a layer), and a page table (a layer per level)
 // says which tile holds each page. Filters address the virtual map as any other (mapTexel,
@@ -178,7 +179,9 @@ float virtualLevelValue(vec3 ws, vec3 n) {
     ratio = max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine);
   }
   float grazing = min(log2(max(ratio, 1.0)), u_pages.shape.x);
-  return log2(virtualPixelWidthM(ws)) + 0.5 * log2(min(ratio, 1.0)) - grazing - u_pages.lod.x + u_pages.lod.z;
+  // A spot's level 0 texel grows with the distance to the light: u_pages.lod.x is its log2 at 1 m.
+  float texel0 = u_pages.lod.x + (isPerspectiveView(0) ? log2(max(lightDistance(0, ws), 1e-6)) : 0.0);
+  return log2(virtualPixelWidthM(ws)) + 0.5 * log2(min(ratio, 1.0)) - grazing - texel0 + u_pages.lod.z;
 }
 
 // The level read for a level value: its floor among the levels, or the first coarser level whose
@@ -195,6 +198,8 @@ int virtualLevelFor(vec3 ws, vec3 n) { return virtualLevelAt(ws, virtualLevelVal
 // rotation and depth plane (their views look from the world's origin): clip.xy = k·(light-space
 // xy) + t with k = 2 / extent, t the view's translation.
 vec2 virtualUvInLevel(vec2 uv, int from, int to) {
+  // A spot's levels are mips of one view, level l in the corner [0, 2^-l]² (VirtualProjection).
+  if (isPerspectiveView(from)) return uv * exp2(float(from - to));
   vec2 kFrom = 2.0 / u_shadow.views[from].extent.xy, kTo = 2.0 / u_shadow.views[to].extent.xy;
   vec2 tFrom = u_shadow.views[from].clipFromWorld[3].xy, tTo = u_shadow.views[to].clipFromWorld[3].xy;
   return ((uv * 2.0 - 1.0 - tFrom) * (kTo / kFrom) + tTo) * 0.5 + 0.5;

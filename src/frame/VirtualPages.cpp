@@ -37,9 +37,33 @@ void VirtualPages::unpackPage(uint64_t page, int& level, int64_t& x, int64_t& y)
 }
 
 glm::dvec4 VirtualPages::pageRect(int level, int64_t x, int64_t y) const {
+  if (mPerspective) {
+    // Level l's uv is 2^-l · level 0's: its page (x, y) spans 2^l / pagesPerSide of level 0's uv.
+    const double w = std::exp2(static_cast<double>(level)) / mLayout.pagesPerSide();
+    return {static_cast<double>(x) * w, static_cast<double>(y) * w, static_cast<double>(x + 1) * w, static_cast<double>(y + 1) * w};
+  }
   const double pageM = mLevelExtentM[static_cast<size_t>(level)] / mLayout.pagesPerSide();
   return {static_cast<double>(x) * pageM, static_cast<double>(y) * pageM, static_cast<double>(x + 1) * pageM,
           static_cast<double>(y + 1) * pageM};
+}
+
+glm::dvec4 VirtualPages::cullRect(const Aabb& world) const {
+  if (!mPerspective) {
+    const Aabb b = world.transformed(mLightFromWorld);
+    return {b.lo.x, b.lo.y, b.hi.x, b.hi.y};
+  }
+  // A spot's page is a sub-frustum: a box touches it when its corners' projection (a convex
+  // hull's bounds, all corners in front of the light) meets the page's uv rectangle. A box that
+  // reaches behind the light's near plane touches every page.
+  constexpr double kInf = 1e30;
+  glm::dvec4 r(kInf, kInf, -kInf, -kInf);
+  for (const glm::vec3& c : world.corners()) {
+    const glm::vec4 clip = mClipFromWorld0 * glm::vec4(c, 1.0f);
+    if (clip.w <= 1e-6f) return {-kInf, -kInf, kInf, kInf};
+    const glm::dvec2 uv = glm::dvec2(clip.x, clip.y) / static_cast<double>(clip.w) * 0.5 + 0.5;
+    r = glm::dvec4(std::min(r.x, uv.x), std::min(r.y, uv.y), std::max(r.z, uv.x), std::max(r.w, uv.y));
+  }
+  return r;
 }
 
 void VirtualPages::dropAll() {
@@ -78,11 +102,19 @@ void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frust
   h.value(frusta.views.front().viewFromWorld);
   h.value(frusta.views.front().depthPlane);
   mLightFromWorld = frusta.views.front().viewFromWorld;
+  mPerspective = frusta.views.front().perspective;
+  mClipFromWorld0 = frusta.views.front().clipFromWorld;
+  if (mPerspective) h.value(mClipFromWorld0);  // a spot's view: its place, cone and depth range
   mLevelExtentM.assign(static_cast<size_t>(levels), 0.0);
   mLevelOrigin.assign(static_cast<size_t>(levels), glm::i64vec2(0));
   for (int l = 0; l < levels; ++l) {
     const ShadowView& v = frusta.views[static_cast<size_t>(l)];
     h.value(v.extent);
+    if (mPerspective) {
+      // One view in mips (VirtualProjection::spotMips): no level slides; its extent is at 1 m.
+      mLevelExtentM[static_cast<size_t>(l)] = std::max(v.extent.x, v.extent.y);
+      continue;
+    }
     const double extent = v.extent.x;
     const double pageM = extent / layout.pagesPerSide();
     // clip.x = 2·(x − lo) / extent − 1 with the view's eye at the origin: its translation t = −2·lo / extent − 1.
@@ -121,14 +153,14 @@ void VirtualPages::bind() const {
 
 void VirtualPages::invalidateUnder(const Aabb& world) {
   if (world.empty()) return;
-  const Aabb box = world.transformed(mLightFromWorld);
+  const glm::dvec4 box = cullRect(world);
   for (Tile& t : mTiles) {
     if (t.page == 0) continue;
     int level;
     int64_t x, y;
     unpackPage(t.page, level, x, y);
     const glm::dvec4 r = pageRect(level, x, y);
-    if (r.x > box.hi.x || r.z < box.lo.x || r.y > box.hi.y || r.w < box.lo.y) continue;
+    if (r.x > box.z || r.z < box.x || r.y > box.w || r.w < box.y) continue;
     if (mKeepStatic) t.dynamicStale = true;
     else t.valid = false;
   }
@@ -233,13 +265,10 @@ void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaq
                                                                 pool.layers(), 1});
   if (!mKeepStatic) mStaticCopy = {};
 
-  // Each caster's light-space rectangle: a page draws the casters over it alone.
+  // Each caster's rectangle in the pages' space (cullRect): a page draws the casters over it alone.
   std::vector<glm::dvec4> rects;
   rects.reserve(mPlacements.size());
-  for (const CasterSet::Placement& p : mPlacements) {
-    const Aabb b = p.bounds.transformed(mLightFromWorld);
-    rects.emplace_back(b.lo.x, b.lo.y, b.hi.x, b.hi.y);
-  }
+  for (const CasterSet::Placement& p : mPlacements) rects.push_back(cullRect(p.bounds));
   mCasterMask.assign(mPlacements.size(), 0);
   const int ps = mLayout.pageSize, pages = mLayout.pagesPerSide(), perLayer = mTilesPerSide * mTilesPerSide;
   const float clearDepth = 1.0f;

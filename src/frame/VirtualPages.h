@@ -71,8 +71,11 @@ private:
   };
   static uint64_t packPage(int level, int64_t x, int64_t y);
   void unpackPage(uint64_t page, int& level, int64_t& x, int64_t& y) const;
-  /// The light-space rectangle (m) of page (x, y) of `level`'s grid.
+  /// The rectangle of page (x, y) of `level`'s grid in the space casters are culled in: the sun's
+  /// light space (m), a spot's level 0 uv.
   glm::dvec4 pageRect(int level, int64_t x, int64_t y) const;
+  /// A world box's rectangle in that space (cullRect ∩ pageRect empty: the box is off the page).
+  glm::dvec4 cullRect(const Aabb& world) const;
   void dropAll();
   void invalidateUnder(const Aabb& world);
   int takeTile(uint64_t page);
@@ -83,7 +86,9 @@ private:
   bool mKeepStatic = false;
   float mPixelWidthPerM = 0.0f;
   glm::mat4 mLightFromWorld{1.0f};
-  std::vector<double> mLevelExtentM;      ///< per level: its square's width (m)
+  bool mPerspective = false;            ///< a spot's one view in mips (else the sun's clipmap)
+  glm::mat4 mClipFromWorld0{1.0f};      ///< a spot's level 0
+  std::vector<double> mLevelExtentM;      ///< per level: its square's width (m; a spot's: at 1 m from the light)
   std::vector<glm::i64vec2> mLevelOrigin;  ///< per level: its square's corner, in pages of its grid
   uint64_t mContentKey = 0;               ///< what every page depends on (beginFrame + render's pass key)
   uint64_t mPassKey = 0;

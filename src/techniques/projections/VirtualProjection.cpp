@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -43,11 +44,38 @@ constexpr float kDepthStepsPerSpan = 8.0f;
 
 VirtualProjection::VirtualProjection() : Projection(kParams) {}
 
+// A spot light: one perspective view of the whole scene from the light (clamped to its cone),
+// fitted to the scene's bounds alone so that it stays while the camera moves, in mips. Level l
+// holds the view at virtualSize / 2^l texels: its clip square maps the view onto the corner
+// [0, 2^-l]² of the level's virtual square (uv_l = 2^-l · uv_0), so every level keeps the page
+// table's and the filters' addressing (virtualSize texels a side, pages on one grid) and a level
+// uses its first (pagesPerSide / 2^l)² pages. Levels stop where the view fits one page.
+LightFrusta VirtualProjection::spotMips(const Light& light, const SceneExtent& scene, const PageLayout& layout) const {
+  Aabb bounds = scene.bounds();
+  if (bounds.empty()) bounds = Aabb{light.position - glm::vec3(1.0f), light.position + glm::vec3(1.0f)};
+  const std::array<glm::vec3, 8> corners = bounds.corners();
+  const ShadowView base = fitLightView(scene, light, corners, corners, 0.0f);
+  const int levels = std::min(paramInt("virtual.levels"), std::countr_zero(static_cast<unsigned>(layout.pagesPerSide())) + 1);
+  LightFrusta f;
+  for (int level = 0; level < levels; ++level) {
+    const float s = std::exp2(-static_cast<float>(level));
+    // clip'.xy = s·clip.xy + (s − 1)·clip.w: ndc' = s·(ndc + 1) − 1.
+    glm::mat4 corner(1.0f);
+    corner[0][0] = corner[1][1] = s;
+    corner[3][0] = corner[3][1] = s - 1.0f;
+    ShadowView v = base;
+    v.clipFromWorld = corner * base.clipFromWorld;
+    v.extent = base.extent / s;  // the level's whole virtual square, at 1 m from the light
+    f.views.push_back(v);
+  }
+  return f;
+}
+
 std::string VirtualProjection::incompatibility(const Light& light) const {
-  if (light.type != LightType::Directional)
-    return "virtual maps are built here for the sun only (a clipmap of levels around the camera); a spot light's single virtual "
-           "map and a point light's six are not: give the light its own projection (its LightShadowSettings::projection, e.g. "
-           "\"uniform\")";
+  if (light.type == LightType::Point)
+    return "virtual maps are built here for the sun (a clipmap of levels around the camera) and a spot light (one perspective "
+           "view in mips); a point light's six are not: give the light its own projection (its LightShadowSettings::projection, "
+           "e.g. \"uniform\")";
   const int size = paramInt("virtual.virtualSize"), page = paramInt("virtual.pageSize");
   if (!std::has_single_bit(static_cast<unsigned>(size)) || !std::has_single_bit(static_cast<unsigned>(page)))
     return fmt::format("virtual.virtualSize {} and virtual.pageSize {} must be powers of two", size, page);
@@ -71,6 +99,7 @@ LightFrusta VirtualProjection::computeFrusta(const Camera& camera, float aspect,
   (void)aspect;
   (void)mapSize;
   const PageLayout layout = *pageLayout();
+  if (light.type == LightType::Spot) return spotMips(light, scene, layout);
   // The light's rotation alone (the eye at the world's origin): every level shares it, and a
   // level's place is its translation (common/shadow.glsl: virtualUvInLevel).
   const glm::mat4 lightFromWorld = lightViewMatrix(glm::vec3(0.0f), light.direction);

@@ -5,7 +5,8 @@
 // that a page keeps its place in the world while the camera moves; all levels share the light's
 // rotation and one depth range (the scene's), so a page stays valid until its casters or the
 // light move. Which pages are drawn, where they live and when they are drawn again is the
-// frame's (frame/VirtualPages): this class only places the levels and states the layout.
+// frame's (frame/VirtualPages): this class only places the levels and states the layout. A spot
+// light is one perspective view of the scene in mips (spotMips), fixed while the camera moves.
 #include "frame/Projection.h"
 
 namespace penumbra {
@@ -15,13 +16,16 @@ public:
   VirtualProjection();
   std::string_view id() const override { return "virtual"; }
   std::string_view description() const override {
-    return "virtual maps in pages drawn only where pixels need them and cached across frames (sun: a clipmap of levels)";
+    return "virtual maps in pages drawn only where pixels need them and cached across frames (sun: a clipmap of levels; spot: one view in mips)";
   }
   std::string incompatibility(const Light& light) const override;
   /// One view per level; `mapSize` is not used (the virtual size is the projection's).
   LightFrusta computeFrusta(const Camera& camera, float aspect, const Light& light, const SceneExtent& scene,
                             int mapSize) const override;
   std::optional<PageLayout> pageLayout() const override;
+
+private:
+  LightFrusta spotMips(const Light& light, const SceneExtent& scene, const PageLayout& layout) const;
 };
 
 }  // namespace penumbra
