@@ -173,7 +173,7 @@ TEST(ViewerCli, ScreenshotsOfEveryFilterAndProjectionAreNotBlankAndFiltersDiffer
   const Light penLight = makeBuiltinScene("pen").light();
   for (const std::string& p : projectionIds()) {
     check("projection-" + p);
-    // A projection that cannot shadow pen's spot light (virtual pages only the sun) is refused, with its reason.
+    // A projection that cannot shadow pen's spot light is refused, with its reason.
     if (projectionIncompatibility(p, penLight).empty())
       EXPECT_FALSE(refused.count("projection-" + p)) << "projection " << p << " refused: " << refused["projection-" + p];
     else
@@ -194,8 +194,8 @@ TEST(ViewerCli, NoGlObjectGrowthOver1000FramesOfTechniqueSwitching) {
   const std::string dir = freshDir("viewer-objects");
   // One frame per technique pair: the first cycle creates every program the later ones use
   // (the shader cache keeps programs for the whole run, by design).
-  // pen's light is a spot, which the virtual projection refuses (it pages suns only): its pairs
-  // would be refused, not shown.
+  // The virtual projection refuses most filters (the prefiltered ones cannot read pages): its
+  // pairs would mostly be refused, not shown.
   std::vector<std::pair<std::string, std::string>> pairs;
   for (const std::string& p : projectionIds())
     if (p != "virtual")

@@ -226,6 +226,55 @@ TEST(Virtual, SpotIsOneViewInMipsAndReadsTheUniformMapsShadows) {
   EXPECT_LE(differ, 0u);
 }
 
+// A spot's page is a sub-frustum: pen's pencil, declared dynamic and moved 5 cm along the floor,
+// redraws only pages whose uv rectangle meets its box's projection then or now, and V equals a
+// fresh renderer's bit for bit.
+TEST(Virtual, SpotPagesRedrawOnlyUnderAMovedDynamicCaster) {
+  Scene pen = makeBuiltinScene("pen");
+  pen.animation = {};
+  const size_t pencil = static_cast<size_t>(std::find_if(pen.objects.begin(), pen.objects.end(),
+                                                         [&](const Object& o) { return o.name == "pencil"; }) - pen.objects.begin());
+  ASSERT_LT(pencil, pen.objects.size());
+  pen.objects[pencil].dynamic = true;
+  const int pagesPerSide = 16384 / 128;
+  // Whether page (level, x, y) meets the projection of `world`'s corners (all in front of the light).
+  const auto under = [&](const LightFrusta& f, const glm::ivec3& page, const Aabb& world) {
+    const glm::mat4& m = f.views[static_cast<size_t>(page.x)].clipFromWorld;
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& c : world.corners()) {
+      const glm::vec4 clip = m * glm::vec4(c, 1.0f);
+      if (clip.w <= 0.0f) return true;
+      const glm::vec2 at = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * static_cast<float>(pagesPerSide);
+      lo = glm::min(lo, at);
+      hi = glm::max(hi, at);
+    }
+    return lo.x <= static_cast<float>(page.y + 1) && hi.x >= static_cast<float>(page.y) && lo.y <= static_cast<float>(page.z + 1) &&
+           hi.y >= static_cast<float>(page.z);
+  };
+  for (const MapUpdates& updates : {kEvery, kWhenInvalid}) {
+    auto r = virtualRenderer(pen, "hard", updates);
+    r->render(kRender);
+    const int resident = pages(*r).resident;
+    Scene moved = pen;
+    moved.objects[pencil].worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(0.05f, 0.0f, 0.0f)) * pen.objects[pencil].worldFromObject;
+    r->setPose(moved);
+    r->render(kRender);
+    Aabb both = objectBounds(pen, pencil);
+    both.extend(objectBounds(moved, pencil));
+    int inside = 0;
+    const std::vector<glm::ivec3>& drawn = ShadowsAccess::pages(r->shadows(), 0)->drawnPages();
+    for (const glm::ivec3& page : drawn) inside += under(r->frusta(), page, both) ? 1 : 0;
+    std::printf("%s: %d pages drawn of %d resident, %d of them under the pencil's box then and now\n", mapUpdatesName(updates).c_str(),
+                pages(*r).drawn, resident, inside);
+    EXPECT_GT(pages(*r).drawn, 0);
+    EXPECT_LT(pages(*r).drawn, resident);
+    EXPECT_EQ(inside, pages(*r).drawn);
+    auto fresh = virtualRenderer(moved, "hard", updates);
+    fresh->render(kRender);
+    EXPECT_EQ(r->readVisibility(), fresh->readVisibility()) << mapUpdatesName(updates);
+  }
+}
+
 TEST(Virtual, RefusesFiltersThatCannotReadPagesAndLightsItDoesNotPage) {
   Scene boxes = makeBuiltinScene("boxes");
   for (const char* filter : {"vsm", "msm", "esm", "vssm", "sdf", "second-depth"}) {
