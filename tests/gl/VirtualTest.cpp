@@ -42,6 +42,12 @@ bool pageUnder(const LightFrusta& f, const glm::ivec3& page, const Aabb& world, 
          at(clip.lo.y) <= static_cast<float>(page.z + 1) && at(clip.hi.y) >= static_cast<float>(page.z);
 }
 
+// The index of the object named `name` (objects.size() when there is none).
+size_t objectNamed(const Scene& s, const std::string& name) {
+  return static_cast<size_t>(std::find_if(s.objects.begin(), s.objects.end(), [&](const Object& o) { return o.name == name; }) -
+                             s.objects.begin());
+}
+
 Aabb objectBounds(const Scene& s, size_t i) { return s.meshes[s.objects[i].mesh].bounds().transformed(s.objects[i].worldFromObject); }
 
 }  // namespace
@@ -75,8 +81,7 @@ TEST(Virtual, StillCameraAndLightDrawNoPageAfterTheFirstFrame) {
 TEST(Virtual, MovingDynamicCasterRedrawsOnlyThePagesItTouches) {
   Scene boxes = makeBuiltinScene("boxes");
   boxes.animation.suns.clear();
-  const size_t ball = static_cast<size_t>(std::find_if(boxes.objects.begin(), boxes.objects.end(),
-                                                       [&](const Object& o) { return o.name == "sphere A"; }) - boxes.objects.begin());
+  const size_t ball = objectNamed(boxes, "sphere A");
   ASSERT_LT(ball, boxes.objects.size()) << "boxes' rolling ball";
   for (const MapUpdates& updates : {kEvery, kWhenInvalid}) {
     auto r = virtualRenderer(boxes, "pcf", updates);
@@ -112,8 +117,7 @@ TEST(Virtual, MovingDynamicCasterRedrawsOnlyThePagesItTouches) {
 TEST(Virtual, DynamicCasterMovingOutOfSightDrawsNoPage) {
   Scene boxes = makeBuiltinScene("boxes");
   boxes.animation = {};
-  const size_t ball = static_cast<size_t>(std::find_if(boxes.objects.begin(), boxes.objects.end(),
-                                                       [&](const Object& o) { return o.name == "sphere A"; }) - boxes.objects.begin());
+  const size_t ball = objectNamed(boxes, "sphere A");
   ASSERT_LT(ball, boxes.objects.size());
   boxes.objects[ball].dynamic = true;
   boxes.objects[ball].worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.5f, 3000.0f));  // far behind the camera
@@ -232,8 +236,7 @@ TEST(Virtual, SpotIsOneViewInMipsAndReadsTheUniformMapsShadows) {
 TEST(Virtual, SpotPagesRedrawOnlyUnderAMovedDynamicCaster) {
   Scene pen = makeBuiltinScene("pen");
   pen.animation = {};
-  const size_t pencil = static_cast<size_t>(std::find_if(pen.objects.begin(), pen.objects.end(),
-                                                         [&](const Object& o) { return o.name == "pencil"; }) - pen.objects.begin());
+  const size_t pencil = objectNamed(pen, "pencil");
   ASSERT_LT(pencil, pen.objects.size());
   pen.objects[pencil].dynamic = true;
   const int pagesPerSide = 16384 / 128;
