@@ -188,6 +188,9 @@ float virtualLevelValue(vec3 ws, vec3 n) {
 // square holds ws (a point far off, or seen at a grazing angle).
 int virtualLevelAt(vec3 ws, float value) {
   int l = int(clamp(floor(value), 0.0, float(shadowViewCount() - 1)));
+  // A spot's levels are mips of one view: each holds every point of the view, and a point off the
+  // view is off its every level (its uv in a coarser level lands in that level's unused pages).
+  if (isPerspectiveView(0)) return l;
   while (l < shadowViewCount() - 1 && !insideMap(shadowCoord(l, ws))) ++l;
   return l;
 }
