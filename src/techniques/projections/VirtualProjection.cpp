@@ -15,9 +15,11 @@ namespace penumbra {
 namespace {
 
 constexpr ParamDesc kParams[] = {
-    {"virtual.levels", "Levels", "clipmap levels around the camera, each a virtual map twice as wide as the one before", "levels",
+    {"virtual.levels", "Levels", "a sun's clipmap levels around the camera, each a virtual map twice as wide as the one before; a "
+     "spot's mips of its one view, each half the last's resolution (at most log2(virtual size / page size) + 1)", "levels",
      12.0f, 1.0f, static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
-    {"virtual.firstLevelM", "First level", "width of the finest level's square in metres (its texel: this / virtual size)", "m",
+    {"virtual.firstLevelM", "First level", "width of a sun's finest level's square in metres (its texel: this / virtual size); a "
+     "spot's finest level is its whole view", "m",
      16.0f, 0.25f, 4096.0f, 0.0f},
     {"virtual.virtualSize", "Virtual size", "texels per side of each level's virtual map (a power of two, a multiple of the page size)",
      "texels", 16384.0f, 1024.0f, 16384.0f, 1.0f},
