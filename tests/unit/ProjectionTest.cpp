@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -630,4 +632,41 @@ TEST(Projection, VirtualLevelsDoubleAroundTheCameraOnTheirPageGrids) {
   const std::vector<glm::vec3> body = receiverBody(city.camera, kAspect, city.camera.nearM, city.camera.farM, city.extent(), city.light());
   ASSERT_FALSE(body.empty());
   for (const glm::vec3& s : samplesIn(body, 400, 11)) EXPECT_TRUE(insideClip(f.views.back(), s).inside);
+}
+
+// virtual's spot: mips of one perspective view from the light (level l: the view over the corner
+// [0, 2^-l]² of its square, i.e. uv_l = 2^-l · uv_0), as many as halve the view down to one page;
+// level 0 holds every point of the scene inside the light's cone, and a camera that moves leaves
+// the levels as they are (pages stay valid).
+TEST(Projection, VirtualSpotLevelsAreMipsOfOneViewThatStaysWhenTheCameraMoves) {
+  const Scene pen = makeBuiltinScene("pen");
+  auto p = makeProjection("virtual");
+  const LightFrusta f = p->computeFrusta(pen.camera, kAspect, pen.light(), pen.extent(), kMapSize);
+  const int pagesPerSide = p->paramInt("virtual.virtualSize") / p->paramInt("virtual.pageSize");
+  ASSERT_EQ(f.views.size(), static_cast<size_t>(std::countr_zero(static_cast<unsigned>(pagesPerSide)) + 1));
+  Camera moved = pen.camera;
+  moved.position += glm::vec3(0.7f, 0.2f, -0.4f);
+  const LightFrusta g = p->computeFrusta(moved, kAspect, pen.light(), pen.extent(), kMapSize);
+  const auto uv = [](const ShadowView& v, const glm::vec3& w) {
+    const glm::vec4 c = v.clipFromWorld * glm::vec4(w, 1.0f);
+    return glm::vec2(c) / c.w * 0.5f + 0.5f;
+  };
+  int inCone = 0;
+  const std::array<glm::vec3, 8> corners = pen.extent().bounds().corners();
+  for (const glm::vec3& s : samplesIn(std::vector<glm::vec3>(corners.begin(), corners.end()), 400, 5)) {
+    const glm::vec3 d = glm::normalize(s - pen.light().position);
+    if (glm::dot(d, pen.light().direction) < std::cos(pen.light().coneAngleRad)) continue;
+    ++inCone;
+    const glm::vec2 uv0 = uv(f.views[0], s);
+    EXPECT_TRUE(insideClip(f.views[0], s).inside);
+    for (size_t l = 0; l < f.views.size(); ++l) {
+      EXPECT_TRUE(f.views[l].perspective);
+      EXPECT_EQ(f.views[l].depthPlane, f.views[0].depthPlane);
+      const glm::vec2 uvL = uv(f.views[l], s);
+      EXPECT_NEAR(uvL.x, uv0.x * std::exp2(-static_cast<float>(l)), 1e-5f) << "level " << l;
+      EXPECT_NEAR(uvL.y, uv0.y * std::exp2(-static_cast<float>(l)), 1e-5f) << "level " << l;
+      EXPECT_EQ(g.views[l].clipFromWorld, f.views[l].clipFromWorld) << "level " << l;
+    }
+  }
+  EXPECT_GT(inCone, 50);
 }
