@@ -90,7 +90,7 @@ TEST(BiasModel, DefaultsLeaveNoAcneAndNoDetachedShadow) {
     const bool leakBound = name == "boxes" || name == "pen" || name == "grazing";
     for (const std::string& projection : projectionIds()) {
       if (refusesALight(truth.scene, projection)) {
-        // A point light's six faces are uniform's alone, and virtual pages only the sun: the
+        // A point light's six faces are uniform's alone (virtual pages a sun and a spot): the
         // projection refuses the scene.
         EXPECT_THROW(measure(truth, projection, "hard", {}, truth.scene.shadow.mapSize), Error) << name << " " << projection;
         continue;

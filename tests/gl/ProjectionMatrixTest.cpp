@@ -26,7 +26,7 @@ struct Outcome {
 
 Outcome run(const Scene& scene, const std::string& projection, const std::string& filter) {
   Outcome o;
-  // The projection may refuse the light (virtual pages only the sun), or the filter the pair.
+  // The projection may refuse the light (virtual pages no point light), or the filter the pair.
   std::string reason = projectionIncompatibility(projection, scene.light());
   if (reason.empty()) reason = filterIncompatibility(filter, projection, scene.light());
   if (!reason.empty()) {

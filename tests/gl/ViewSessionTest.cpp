@@ -33,7 +33,7 @@ TEST(ViewSession, SwitchingFiltersKeepsTheValuesTheUserSet) {
   }
   s.setFilter("hard");
   EXPECT_FLOAT_EQ(s.renderer().technique().get("hard.constantBias"), 0.001f);
-  // The last registered projection that can shadow pen's spot light (virtual pages only the sun).
+  // The last registered projection that can shadow pen's spot light.
   std::string last;
   for (const std::string& id : projectionIds())
     if (projectionIncompatibility(id, makeBuiltinScene("pen").light()).empty()) last = id;
