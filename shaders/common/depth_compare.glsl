@@ -28,10 +28,11 @@ float slopeDepthOffset(int view, vec3 ws, float tanTheta, float texels) {
 // The test: lit when the receiver is not farther from the light than the stored surface.
 float compareDepth(float receiverDepth, float storedDepth) { return receiverDepth <= storedDepth ? 1.0 : 0.0; }
 
-// The texel of `map` (layer `layer`) under uv, clamped to the map's edge.
+// The texel of `map` (layer `layer`) under uv, clamped to the edge of the layer's view.
 ivec3 mapTexel(sampler2DArray map, vec2 uv, int layer) {
   ivec2 size = mapTexels(map);
-  return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), layer);
+  ivec2 last = ivec2(vec2(size) * viewUvExtent(layer)) - 1;
+  return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), last), layer);
 }
 
 // What a filter compares: the receiver in its map, as a plane, and its bias.
@@ -192,7 +193,7 @@ struct TapKernel {
 };
 
 // The kernel of radius radiusUv (per axis) around r, its pattern turned by `rotation`, in a map of
-// mapSize (textureSize) texels.
+// mapSize (textureSize) texels (of which r's view may cover a corner: viewUvExtent).
 TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 mapSize) {
   vec2 size = vec2(mapSize);
   vec2 radiusTexels = radiusUv * size;
@@ -202,7 +203,7 @@ TapKernel tapKernel(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, ivec2 ma
   // maxKernelRadiusTexels, PcfFilter.h): narrowing it here, per pixel, cost pcf's pass 5 %.
   vec2 reach = abs(k.texelsPerUnit[0]) + abs(k.texelsPerUnit[1]);
   k.receiver = r.uv * size;
-  k.centre = clamp(k.receiver, 0.5 + reach, size - 0.5 - reach);
+  k.centre = clamp(k.receiver, 0.5 + reach, size * viewUvExtent(r.layer) - 0.5 - reach);
   k.depthPerTexel = r.depthPerUv / size;
   k.projectivePerTexel = r.projectivePerUv / size;
   k.depth = r.depth - r.bias;

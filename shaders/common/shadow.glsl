@@ -130,17 +130,28 @@ bool insideMap(vec3 coord) { return all(greaterThanEqual(coord.xy, vec2(0.0))) &
 #ifdef PN_VIRTUAL_PAGES
 // A paged projection (`virtual`, docs/virtual.md): each view is one level of a clipmap around the
 // camera (a sun's; a spot's levels are mips of one perspective view, level l the view over the
-// corner [0, 2^-l]² of its virtual square), a virtual map of PN_PAGES_PER_SIDE² pages of PN_PAGE_SIZE² texels whose extent doubles
-// from level to level; only the pages this frame's pixels need are drawn, into tiles of a pool
-// (the filter's map: PN_POOL_TILES_PER_SIDE² tiles a layer), and a page table (a layer per level)
-// says which tile holds each page. Filters address the virtual map as any other (mapTexel,
-// shadowMapSize, the view's clipFromWorld) and read it through fetchMapDepth.
+// corner [0, 2^-l]² of its virtual square; a point light's six cube faces are each such a view in
+// mips, face after face: view = face · levels + level), a virtual map of PN_PAGES_PER_SIDE² pages
+// of PN_PAGE_SIZE² texels whose extent doubles from level to level; only the pages this frame's
+// pixels need are drawn, into tiles of a pool (the filter's map: PN_POOL_TILES_PER_SIDE² tiles a
+// layer), and a page table (a layer per view) says which tile holds each page. Filters address
+// the virtual map as any other (mapTexel, shadowMapSize, the view's clipFromWorld) and read it
+// through fetchMapDepth.
 #include "shared/VirtualPages.h"
 layout(std140, binding = PN_UBO_PAGES) uniform PagesBlock { PagesUniforms u_pages; };
 layout(binding = PN_TEX_PAGE_TABLE) uniform usampler2DArray s_pageTable;
 
 // Below this cosine a surface seen or lit edge-on counts as at this angle (its footprint is finite).
 const float kMinLevelCosine = 0.02;
+
+// Levels of each of the light's virtual maps: the views, or a point light's views over its six faces.
+int virtualLevels() { return int(u_pages.shape.y); }
+
+// Level 0's view of the virtual map that holds ws: a point light's face in ws's direction, else 0.
+int virtualFirstView(vec3 ws) { return isPointLight() ? cubeFace(ws - u_frame.light.position.xyz) * virtualLevels() : 0; }
+
+// The coarsest level's view of the map `view` belongs to.
+int virtualLastView(int view) { return view - view % virtualLevels() + virtualLevels() - 1; }
 
 // The width (m) of a camera pixel at ws, across its ray: a pixel at angle φ off the camera's axis
 // subtends k²·cos³φ steradians (k: the width per metre on the axis), so at distance d it is
@@ -179,18 +190,21 @@ float virtualLevelValue(vec3 ws, vec3 n) {
     ratio = max(abs(dot(nn, toLight(ws))), kMinLevelCosine) / max(abs(dot(nn, toEye)), kMinLevelCosine);
   }
   float grazing = min(log2(max(ratio, 1.0)), u_pages.shape.x);
-  // A spot's level 0 texel grows with the distance to the light: u_pages.lod.x is its log2 at 1 m.
-  float texel0 = u_pages.lod.x + (isPerspectiveView(0) ? log2(max(lightDistance(0, ws), 1e-6)) : 0.0);
+  // A spot's (a point light's face's) level 0 texel grows with the distance to the light:
+  // u_pages.lod.x is its log2 at 1 m.
+  int first = virtualFirstView(ws);
+  float texel0 = u_pages.lod.x + (isPerspectiveView(first) ? log2(max(lightDistance(first, ws), 1e-6)) : 0.0);
   return log2(virtualPixelWidthM(ws)) + 0.5 * log2(min(ratio, 1.0)) - grazing - texel0 + u_pages.lod.z;
 }
 
-// The level read for a level value: its floor among the levels, or the first coarser level whose
-// square holds ws (a point far off, or seen at a grazing angle).
+// The level read for a level value: its floor among the levels a pixel reads, or the first coarser
+// level whose square holds ws (a point far off, or seen at a grazing angle).
 int virtualLevelAt(vec3 ws, float value) {
-  int l = int(clamp(floor(value), 0.0, float(shadowViewCount() - 1)));
+  int l = int(clamp(floor(value), 0.0, u_pages.shape.z - 1.0));
   // A spot's levels are mips of one view: each holds every point of the view, and a point off the
   // view is off its every level (its uv in a coarser level lands in that level's unused pages).
-  if (isPerspectiveView(0)) return l;
+  // A point light's are its face's.
+  if (isPerspectiveView(0)) return virtualFirstView(ws) + l;
   while (l < shadowViewCount() - 1 && !insideMap(shadowCoord(l, ws))) ++l;
   return l;
 }
@@ -201,7 +215,8 @@ int virtualLevelFor(vec3 ws, vec3 n) { return virtualLevelAt(ws, virtualLevelVal
 // rotation and depth plane (their views look from the world's origin): clip.xy = k·(light-space
 // xy) + t with k = 2 / extent, t the view's translation.
 vec2 virtualUvInLevel(vec2 uv, int from, int to) {
-  // A spot's levels are mips of one view, level l in the corner [0, 2^-l]² (VirtualProjection).
+  // A spot's levels are mips of one view, level l in the corner [0, 2^-l]² (VirtualProjection);
+  // from and to are levels of one view (a point light's face).
   if (isPerspectiveView(from)) return uv * exp2(float(from - to));
   vec2 kFrom = 2.0 / u_shadow.views[from].extent.xy, kTo = 2.0 / u_shadow.views[to].extent.xy;
   vec2 tFrom = u_shadow.views[from].clipFromWorld[3].xy, tTo = u_shadow.views[to].clipFromWorld[3].xy;
@@ -228,7 +243,7 @@ bool pageInPool(ivec2 t, int l, out ivec3 pool0) {
 float pagedDepth(sampler2DArray pool, ivec2 texel, int level) {
   const int size = PN_PAGE_SIZE * PN_PAGES_PER_SIDE;
   vec2 uv = (vec2(texel) + 0.5) / float(size);
-  for (int l = level; l < shadowViewCount(); ++l) {
+  for (int l = level; l <= virtualLastView(level); ++l) {
     ivec2 t = l == level ? texel : ivec2(floor(virtualUvInLevel(uv, level, l) * float(size)));
     ivec3 pool0;
     if (!pageInPool(t, l, pool0)) continue;
@@ -247,7 +262,7 @@ float pagedCellMinDepth(sampler2DArray pyramid, ivec2 cell, int k, int level) {
   const int size = PN_PAGE_SIZE * PN_PAGES_PER_SIDE;
   int cellTexels = 2 << k;
   vec2 uv = (vec2(cell) + 0.5) * float(cellTexels) / float(size);
-  for (int l = level; l < shadowViewCount(); ++l) {
+  for (int l = level; l <= virtualLastView(level); ++l) {
     ivec2 c = l == level ? cell : ivec2(floor(virtualUvInLevel(uv, level, l) * float(size) / float(cellTexels)));
     ivec2 t = c * cellTexels;
     ivec3 pool0;
@@ -266,7 +281,7 @@ float pagedMinDepthOverBox(sampler2DArray pyramid, int level, vec2 uv, vec2 radi
   const float size = float(PN_PAGE_SIZE * PN_PAGES_PER_SIDE);
   const int maxK = findMSB(PN_PAGE_SIZE) - 1;  // a cell of 2^(maxK+1) texels is a page
   float width = max(2.0 * max(radiusUv.x, radiusUv.y) * size, 1.0);
-  int l = min(level + max(int(ceil(log2(width / float(PN_PAGE_SIZE)))), 0), shadowViewCount() - 1);
+  int l = min(level + max(int(ceil(log2(width / float(PN_PAGE_SIZE)))), 0), virtualLastView(level));
   float scale = exp2(float(level - l));
   vec2 centre = virtualUvInLevel(uv, level, l);
   vec2 lo = (centre - radiusUv * scale) * size, hi = (centre + radiusUv * scale) * size;
@@ -280,6 +295,30 @@ float pagedMinDepthOverBox(sampler2DArray pyramid, int level, vec2 uv, vec2 radi
   return m;
 }
 #endif
+
+// The share of the map's uv square per axis that view `view` covers: all of it, but a perspective
+// virtual map's level l holds its view in the corner [0, 2^-l]² (VirtualProjection): a read past
+// that corner is past the view's edge, as one past a whole map's edge.
+float viewUvExtent(int view) {
+#ifdef PN_VIRTUAL_PAGES
+  if (isPerspectiveView(view)) return exp2(-float(view % virtualLevels()));
+#endif
+  return 1.0;
+}
+
+bool insideViewMap(int view, vec3 coord) {
+  return all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(viewUvExtent(view))));
+}
+
+// A point light's view of the cube face in ws's direction at the level of `view` (a paged cube's
+// faces are in mips; a whole map's face is one view).
+int cubeFaceView(vec3 ws, int view) {
+#ifdef PN_VIRTUAL_PAGES
+  return cubeFace(ws - u_frame.light.position.xyz) * virtualLevels() + view % virtualLevels();
+#else
+  return cubeFace(ws - u_frame.light.position.xyz);
+#endif
+}
 
 // The depth map's texels per side: a paged map's virtual size, else the texture's.
 ivec2 mapTexels(sampler2DArray map) {
@@ -301,7 +340,7 @@ float fetchMapDepth(sampler2DArray map, ivec3 texel) {
 }
 
 // The view that covers ws: a point light's face by direction, a cascade by camera depth, a
-// clipmap's level by the pixel's size there.
+// virtual map's level by the pixel's size there (of a point light's face by direction).
 int shadowViewFor(vec3 ws) {
 #ifdef PN_VIRTUAL_PAGES
   return virtualLevelFor(ws, vec3(0.0));

@@ -42,7 +42,12 @@ vec3 debugTint(ivec2 px, vec3 ws, vec3 shaded) {
   float shade = kBaseShade + (1.0 - kBaseShade) * dot(shaded, vec3(0.2126, 0.7152, 0.0722));
   if (kDebugView == PN_VIEW_CASCADES) {
     ShadowViewBlend b = shadowViewBlend(ws);
+#ifdef PN_VIRTUAL_PAGES
+    // A paged light's level (a point light's views are its six faces' levels, face after face).
+    return shade * cascadeColor(b.first % virtualLevels()).rgb;
+#else
     return shade * mix(cascadeColor(b.first).rgb, cascadeColor(b.second).rgb, b.weight);
+#endif
   }
   float density = screenPixelsPerTexel(s_gbufPosition, px);
   return density > 0.0 ? shade * densityRampColor(log2(density)).rgb : vec3(shade);

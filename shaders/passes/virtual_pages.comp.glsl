@@ -10,7 +10,7 @@ layout(local_size_x = PN_SCREEN_GROUP, local_size_y = PN_SCREEN_GROUP) in;
 layout(std430, binding = PN_SSBO_PAGE_FLAGS) buffer PageFlags { uint o_flags[]; };
 layout(std430, binding = PN_SSBO_PAGE_LIST) buffer PageList {
   uint o_count;
-  uint o_pages[];  // (level · PN_PAGES_PER_SIDE + y) · PN_PAGES_PER_SIDE + x
+  uint o_pages[];  // (view · PN_PAGES_PER_SIDE + y) · PN_PAGES_PER_SIDE + x
 };
 
 void markPage(int level, ivec2 page) {
@@ -34,9 +34,10 @@ void main() {
   for (int i = 0; i < 2; ++i) {
     if (i == 1 && levels[1] == levels[0]) break;
     vec3 coord = shadowCoord(levels[i], pos.xyz);
-    if (!insideMap(coord)) continue;
-    ivec2 lo = clamp(ivec2(floor(coord.xy * size - u_pages.lod.w)), ivec2(0), ivec2(int(size) - 1)) / PN_PAGE_SIZE;
-    ivec2 hi = clamp(ivec2(floor(coord.xy * size + u_pages.lod.w)), ivec2(0), ivec2(int(size) - 1)) / PN_PAGE_SIZE;
+    if (!insideViewMap(levels[i], coord)) continue;
+    ivec2 last = ivec2(int(size * viewUvExtent(levels[i])) - 1);  // the view's corner of the level
+    ivec2 lo = clamp(ivec2(floor(coord.xy * size - u_pages.lod.w)), ivec2(0), last) / PN_PAGE_SIZE;
+    ivec2 hi = clamp(ivec2(floor(coord.xy * size + u_pages.lod.w)), ivec2(0), last) / PN_PAGE_SIZE;
     for (int y = lo.y; y <= hi.y; ++y)
       for (int x = lo.x; x <= hi.x; ++x) markPage(levels[i], ivec2(x, y));
   }
@@ -44,8 +45,8 @@ void main() {
   // kernel's or a ray's far taps, a blocker search, the min-depth bounds) falls back to the first
   // coarser level that holds it, and this keeps one resident around every point a pixel sees. Each
   // level's pages are twice as wide as the last's, so the chain adds about a third to the pages.
-  for (int l = max(levels[0], levels[1]) + 1; l < shadowViewCount(); ++l) {
+  for (int l = max(levels[0], levels[1]) + 1; l <= virtualLastView(levels[0]); ++l) {
     vec3 coord = shadowCoord(l, pos.xyz);
-    if (insideMap(coord)) markPage(l, ivec2(floor(coord.xy * size)) / PN_PAGE_SIZE);
+    if (insideViewMap(l, coord)) markPage(l, ivec2(floor(coord.xy * size)) / PN_PAGE_SIZE);
   }
 }

@@ -51,6 +51,6 @@
 #define PN_LOC_PAGE 5    // vec4: a paged shadow pass's page: clip xy scaled by xy, then moved by zw·w
 
 // Limits
-#define PN_MAX_SHADOW_VIEWS 16  // views of one light: cascades, cube faces, a clipmap's levels
+#define PN_MAX_SHADOW_VIEWS 48  // views of one light: cascades, cube faces, a clipmap's levels, a paged cube's 6 faces × 8 levels
 #define PN_MAX_CASCADES 8       // csm and sdsm allow up to 8 cascades
 #define PN_SCREEN_GROUP 8      // workgroup side of full-screen compute passes

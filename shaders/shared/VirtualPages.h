@@ -12,7 +12,9 @@ struct PagesUniforms {
   // w: margin (texels) marked around each pixel's texel
   vec4 lod;
   // x: grazing levels (at most this many levels finer where the camera grazes the surface more
-  // than the light does); yzw: unused
+  // than the light does); y: levels of each virtual map (the views; a point light's: a sixth of
+  // them, face after face); z: the levels a pixel reads, the first this many of each map (a
+  // perspective view's coarser ones only serve reads past the resident pages); w: unused
   vec4 shape;
 };
 

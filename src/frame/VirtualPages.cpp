@@ -7,13 +7,14 @@
 #include "shared/VirtualPages.h"
 
 #include <penumbra/Error.h>
+#include <penumbra/MapSizes.h>
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
-#include <functional>
 
 namespace penumbra {
 namespace {
@@ -39,7 +40,7 @@ void VirtualPages::unpackPage(uint64_t page, int& level, int64_t& x, int64_t& y)
 glm::dvec4 VirtualPages::pageRect(int level, int64_t x, int64_t y) const {
   if (mPerspective) {
     // Level l's uv is 2^-l · level 0's: its page (x, y) spans 2^l / pagesPerSide of level 0's uv.
-    const double w = std::exp2(static_cast<double>(level)) / mLayout.pagesPerSide();
+    const double w = std::exp2(static_cast<double>(level % mMapLevels)) / mLayout.pagesPerSide();
     return {static_cast<double>(x) * w, static_cast<double>(y) * w, static_cast<double>(x + 1) * w, static_cast<double>(y + 1) * w};
   }
   const double pageM = mLevelExtentM[static_cast<size_t>(level)] / mLayout.pagesPerSide();
@@ -47,18 +48,18 @@ glm::dvec4 VirtualPages::pageRect(int level, int64_t x, int64_t y) const {
           static_cast<double>(y + 1) * pageM};
 }
 
-glm::dvec4 VirtualPages::cullRect(const Aabb& world) const {
+glm::dvec4 VirtualPages::cullRect(const Aabb& world, int map) const {
   if (!mPerspective) {
     const Aabb b = world.transformed(mLightFromWorld);
     return {b.lo.x, b.lo.y, b.hi.x, b.hi.y};
   }
-  // A spot's page is a sub-frustum: a box touches it when its corners' projection (a convex
-  // hull's bounds, all corners in front of the light) meets the page's uv rectangle. A box that
-  // reaches behind the light's near plane touches every page.
+  // A spot's (a face's) page is a sub-frustum: a box touches it when its corners' projection (a
+  // convex hull's bounds, all corners in front of the light) meets the page's uv rectangle. A box
+  // that reaches behind the light's near plane touches every page.
   constexpr double kInf = 1e30;
   glm::dvec4 r(kInf, kInf, -kInf, -kInf);
   for (const glm::vec3& c : world.corners()) {
-    const glm::vec4 clip = mClipFromWorld0 * glm::vec4(c, 1.0f);
+    const glm::vec4 clip = mMapClip[static_cast<size_t>(map)] * glm::vec4(c, 1.0f);
     if (clip.w <= 1e-6f) return {-kInf, -kInf, kInf, kInf};
     const glm::dvec2 uv = glm::dvec2(clip.x, clip.y) / static_cast<double>(clip.w) * 0.5 + 0.5;
     r = glm::dvec4(std::min(r.x, uv.x), std::min(r.y, uv.y), std::max(r.z, uv.x), std::max(r.w, uv.y));
@@ -66,13 +67,22 @@ glm::dvec4 VirtualPages::cullRect(const Aabb& world) const {
   return r;
 }
 
+std::vector<glm::dvec4> VirtualPages::cullRects(std::span<const Aabb> world) const {
+  std::vector<glm::dvec4> rects;
+  rects.reserve(mMapClip.size() * world.size());
+  for (size_t map = 0; map < mMapClip.size(); ++map)
+    for (const Aabb& b : world) rects.push_back(cullRect(b, static_cast<int>(map)));
+  return rects;
+}
+
 void VirtualPages::dropAll() {
   for (Tile& t : mTiles) t = {};
   mTileOf.clear();
 }
 
-void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frusta, float pixelWidthPerM, bool keepStatic) {
+void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frusta, int maps, float pixelWidthPerM, bool keepStatic) {
   const int levels = static_cast<int>(frusta.views.size());
+  PN_CHECK(maps >= 1 && levels % maps == 0, fmt::format("VirtualPages: {} views are not {} virtual maps of equal levels", levels, maps));
   if (!(layout == mLayout) || levels != mLevels || keepStatic != mKeepStatic || mTiles.empty()) {
     mLayout = layout;
     mLevels = levels;
@@ -103,15 +113,19 @@ void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frust
   h.value(frusta.views.front().depthPlane);
   mLightFromWorld = frusta.views.front().viewFromWorld;
   mPerspective = frusta.views.front().perspective;
-  mClipFromWorld0 = frusta.views.front().clipFromWorld;
-  if (mPerspective) h.value(mClipFromWorld0);  // a spot's view: its place, cone and depth range
+  mMapLevels = levels / maps;
+  mMapClip.clear();
+  for (int map = 0; map < maps; ++map) {
+    mMapClip.push_back(frusta.views[static_cast<size_t>(map * mMapLevels)].clipFromWorld);
+    if (mPerspective) h.value(mMapClip.back());  // a spot's view (a face's): its place, cone and depth range
+  }
   mLevelExtentM.assign(static_cast<size_t>(levels), 0.0);
   mLevelOrigin.assign(static_cast<size_t>(levels), glm::i64vec2(0));
   for (int l = 0; l < levels; ++l) {
     const ShadowView& v = frusta.views[static_cast<size_t>(l)];
     h.value(v.extent);
     if (mPerspective) {
-      // One view in mips (VirtualProjection::spotMips): no level slides; its extent is at 1 m.
+      // Views in mips (VirtualProjection::perspectiveMips): no level slides; its extent is at 1 m.
       mLevelExtentM[static_cast<size_t>(l)] = std::max(v.extent.x, v.extent.y);
       continue;
     }
@@ -129,7 +143,15 @@ void VirtualPages::beginFrame(const PageLayout& layout, const LightFrusta& frust
   gpu::PagesUniforms u{};
   u.lod = glm::vec4(static_cast<float>(std::log2(mLevelExtentM.front() / layout.virtualSize)), pixelWidthPerM, layout.levelBias,
                     layout.marginTexels);
-  u.shape = glm::vec4(layout.grazingLevels, 0.0f, 0.0f, 0.0f);
+  // A perspective view's level is read by pixels while it holds the view in at least
+  // kMinDefaultsMapSizeTexels texels a side: a coarser one holds it in fewer texels than the least
+  // map the defaults are held to, and the filters' radii, bounded in texels (pcss's search up to
+  // 96), would span it (room's spot at 320×180 read a 128-texel level: pcss RMSE 0.122 against
+  // uniform's 0.011). The coarser levels, down to one page, serve reads past the resident pages (a
+  // ray's far steps, a wide search), which always find that last page.
+  const int fitting = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(layout.virtualSize / kMinDefaultsMapSizeTexels, 1))));
+  const int readLevels = mPerspective ? std::min(mMapLevels, fitting) : mMapLevels;
+  u.shape = glm::vec4(layout.grazingLevels, static_cast<float>(mMapLevels), static_cast<float>(readLevels), 0.0f);
   mBlock.upload(u);
   ++mFrame;
   mStats = {};
@@ -153,13 +175,13 @@ void VirtualPages::bind() const {
 
 void VirtualPages::invalidateUnder(const Aabb& world) {
   if (world.empty()) return;
-  const glm::dvec4 box = cullRect(world);
+  const std::vector<glm::dvec4> boxes = cullRects(std::span(&world, 1));
   for (Tile& t : mTiles) {
     if (t.page == 0) continue;
     int level;
     int64_t x, y;
     unpackPage(t.page, level, x, y);
-    const glm::dvec4 r = pageRect(level, x, y);
+    const glm::dvec4 r = pageRect(level, x, y), box = boxes[static_cast<size_t>(mapOf(level))];
     if (r.x > box.z || r.z < box.x || r.y > box.w || r.w < box.y) continue;
     if (mKeepStatic) t.dynamicStale = true;
     else t.valid = false;
@@ -216,9 +238,11 @@ void VirtualPages::mark(FrameContext& frame) {
   // Coarsest level first: when the pool cannot hold every needed page, the pages left out are
   // the finest, and a read there finds the chain of coarser pages each pixel marked (a coarse
   // page left out instead would leave its points with nothing to read but the far plane). Within
-  // a level the order is the page's index, so a frame's plan does not hang on the marking's order.
-  std::sort(list.begin(), list.end(), std::greater<>());
+  // a level (of every face) the order is the page's index, so a frame's plan does not hang on the
+  // marking's order.
   const int pages = mLayout.pagesPerSide();
+  const auto levelOf = [&](uint32_t index) { return static_cast<int>(index / static_cast<uint32_t>(pages * pages)) % mMapLevels; };
+  std::sort(list.begin(), list.end(), [&](uint32_t a, uint32_t b) { return levelOf(a) != levelOf(b) ? levelOf(a) > levelOf(b) : a > b; });
   mDraws.clear();
   mStats.needed = static_cast<int>(count);
   for (const uint32_t index : list) {
@@ -266,9 +290,10 @@ void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaq
   if (!mKeepStatic) mStaticCopy = {};
 
   // Each caster's rectangle in the pages' space (cullRect): a page draws the casters over it alone.
-  std::vector<glm::dvec4> rects;
-  rects.reserve(mPlacements.size());
-  for (const CasterSet::Placement& p : mPlacements) rects.push_back(cullRect(p.bounds));
+  std::vector<Aabb> bounds;
+  bounds.reserve(mPlacements.size());
+  for (const CasterSet::Placement& p : mPlacements) bounds.push_back(p.bounds);
+  const std::vector<glm::dvec4> rects = cullRects(bounds);  // map after map
   mCasterMask.assign(mPlacements.size(), 0);
   const int ps = mLayout.pageSize, pages = mLayout.pagesPerSide(), perLayer = mTilesPerSide * mTilesPerSide;
   const float clearDepth = 1.0f;
@@ -283,8 +308,9 @@ void VirtualPages::render(FrameContext& frame, ShadowMapArray& pool, GLuint opaq
     const int lx = static_cast<int>(gx - origin.x), ly = static_cast<int>(gy - origin.y);
     mDrawnPages.emplace_back(level, lx, ly);
     const glm::dvec4 r = pageRect(level, gx, gy);
-    for (size_t i = 0; i < rects.size(); ++i)
-      mCasterMask[i] = rects[i].x <= r.z && rects[i].z >= r.x && rects[i].y <= r.w && rects[i].w >= r.y ? 1 : 0;
+    const glm::dvec4* mapRects = rects.data() + static_cast<size_t>(mapOf(level)) * bounds.size();
+    for (size_t i = 0; i < bounds.size(); ++i)
+      mCasterMask[i] = mapRects[i].x <= r.z && mapRects[i].z >= r.x && mapRects[i].y <= r.w && mapRects[i].w >= r.y ? 1 : 0;
     const int layer = d.tile / perLayer, inLayer = d.tile % perLayer;
     const int tx = (inLayer % mTilesPerSide) * ps, ty = (inLayer / mTilesPerSide) * ps;
     gl::Framebuffer& fb = pool.framebuffer(layer);

@@ -16,6 +16,7 @@
 #include "shader/ShaderLibrary.h"
 
 #include <cstdint>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -36,10 +37,12 @@ struct PageStats {
 
 class VirtualPages {
 public:
-  /// This frame's layout and views (what the projection made), the camera pixel's width per
-  /// metre of distance (the pixel's width, an orthographic camera) and whether static casters
-  /// are kept apart (cached map updates). Tiles are made or remade here when the layout changed.
-  void beginFrame(const PageLayout& layout, const LightFrusta& frusta, float pixelWidthPerM, bool keepStatic);
+  /// This frame's layout and views (what the projection made) and how many virtual maps they are,
+  /// each views.size() / maps levels, map after map (a point light's cube: 6 faces; else 1), the
+  /// camera pixel's width per metre of distance (the pixel's width, an orthographic camera) and
+  /// whether static casters are kept apart (cached map updates). Tiles are made or remade here
+  /// when the layout changed.
+  void beginFrame(const PageLayout& layout, const LightFrusta& frusta, int maps, float pixelWidthPerM, bool keepStatic);
   /// The marking pass over the surfaces (bound by the caller, as for the visibility pass), its
   /// read back, and the plan: each needed page's tile, found or taken. Timed by the caller.
   void mark(FrameContext& frame);
@@ -71,11 +74,15 @@ private:
   };
   static uint64_t packPage(int level, int64_t x, int64_t y);
   void unpackPage(uint64_t page, int& level, int64_t& x, int64_t& y) const;
-  /// The rectangle of page (x, y) of `level`'s grid in the space casters are culled in: the sun's
-  /// light space (m), a spot's level 0 uv.
+  /// The rectangle of page (x, y) of view `level`'s grid in the space casters are culled in: the
+  /// sun's light space (m), a spot's (a point light's face's) level 0 uv.
   glm::dvec4 pageRect(int level, int64_t x, int64_t y) const;
-  /// A world box's rectangle in that space (cullRect ∩ pageRect empty: the box is off the page).
-  glm::dvec4 cullRect(const Aabb& world) const;
+  /// A world box's rectangle in that space of virtual map `map` (cullRect ∩ pageRect empty: the
+  /// box is off the page).
+  glm::dvec4 cullRect(const Aabb& world, int map) const;
+  /// Every world box's cullRect in every virtual map, map after map.
+  std::vector<glm::dvec4> cullRects(std::span<const Aabb> world) const;
+  int mapOf(int view) const { return view / mMapLevels; }
   void dropAll();
   void invalidateUnder(const Aabb& world);
   int takeTile(uint64_t page);
@@ -86,8 +93,9 @@ private:
   bool mKeepStatic = false;
   float mPixelWidthPerM = 0.0f;
   glm::mat4 mLightFromWorld{1.0f};
-  bool mPerspective = false;            ///< a spot's one view in mips (else the sun's clipmap)
-  glm::mat4 mClipFromWorld0{1.0f};      ///< a spot's level 0
+  bool mPerspective = false;            ///< perspective views in mips (a spot's, a point light's faces; else the sun's clipmap)
+  int mMapLevels = 0;                   ///< levels of each virtual map (views / maps)
+  std::vector<glm::mat4> mMapClip;      ///< per virtual map (a spot's one, a point light's faces): its level 0's clipFromWorld
   std::vector<double> mLevelExtentM;      ///< per level: its square's width (m; a spot's: at 1 m from the light)
   std::vector<glm::i64vec2> mLevelOrigin;  ///< per level: its square's corner, in pages of its grid
   uint64_t mContentKey = 0;               ///< what every page depends on (beginFrame + render's pass key)

@@ -90,8 +90,8 @@ TEST(BiasModel, DefaultsLeaveNoAcneAndNoDetachedShadow) {
     const bool leakBound = name == "boxes" || name == "pen" || name == "grazing";
     for (const std::string& projection : projectionIds()) {
       if (refusesALight(truth.scene, projection)) {
-        // A point light's six faces are uniform's alone (virtual pages a sun and a spot): the
-        // projection refuses the scene.
+        // A point light's six faces are uniform's and virtual's alone: the other projections
+        // refuse the scene.
         EXPECT_THROW(measure(truth, projection, "hard", {}, truth.scene.shadow.mapSize), Error) << name << " " << projection;
         continue;
       }

@@ -26,7 +26,7 @@ struct Outcome {
 
 Outcome run(const Scene& scene, const std::string& projection, const std::string& filter) {
   Outcome o;
-  // The projection may refuse the light (virtual pages no point light), or the filter the pair.
+  // The projection may refuse the light (only uniform and virtual shadow a point light), or the filter the pair.
   std::string reason = projectionIncompatibility(projection, scene.light());
   if (reason.empty()) reason = filterIncompatibility(filter, projection, scene.light());
   if (!reason.empty()) {
@@ -82,3 +82,11 @@ void checkAllPairs(const Scene& scene) {
 TEST(ProjectionMatrix, EveryPairOnASunScene) { checkAllPairs(makeBuiltinScene("boxes")); }
 
 TEST(ProjectionMatrix, EveryPairOnASpotLightScene) { checkAllPairs(makeBuiltinScene("pen")); }
+
+// room's lamp alone: a point light, which only uniform and virtual shadow (the others refuse it
+// with their reason).
+TEST(ProjectionMatrix, EveryPairOnAPointLightScene) {
+  Scene room = makeBuiltinScene("room");
+  room.lights.resize(1);
+  checkAllPairs(room);
+}

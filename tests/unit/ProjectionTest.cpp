@@ -670,3 +670,46 @@ TEST(Projection, VirtualSpotLevelsAreMipsOfOneViewThatStaysWhenTheCameraMoves) {
   }
   EXPECT_GT(inCone, 50);
 }
+
+// A point light under virtual: its six cube faces (+X, −X, +Y, −Y, +Z, −Z, the shaders' cubeFace
+// order), each in mips as a spot's view, face after face. A point of the scene lies in the face of
+// its dominant direction from the light, at uv_l = 2^-l uv_0 in that face's level l, and the
+// faces stay while the camera moves.
+TEST(Projection, VirtualPointLightIsSixFacesInMipsThatStayWhenTheCameraMoves) {
+  const Scene room = makeBuiltinScene("room");
+  ASSERT_EQ(room.light().type, LightType::Point);
+  auto p = makeProjection("virtual");
+  EXPECT_EQ(p->incompatibility(room.light()), "");
+  const LightFrusta f = p->computeFrusta(room.camera, kAspect, room.light(), room.extent(), kMapSize);
+  const int pagesPerSide = p->paramInt("virtual.virtualSize") / p->paramInt("virtual.pageSize");
+  const size_t levels = static_cast<size_t>(std::countr_zero(static_cast<unsigned>(pagesPerSide)) + 1);
+  ASSERT_EQ(f.views.size(), 6 * levels);
+  Camera moved = room.camera;
+  moved.position += glm::vec3(-0.7f, 0.2f, -0.4f);
+  const LightFrusta g = p->computeFrusta(moved, kAspect, room.light(), room.extent(), kMapSize);
+  const auto uv = [](const ShadowView& v, const glm::vec3& w) {
+    const glm::vec4 c = v.clipFromWorld * glm::vec4(w, 1.0f);
+    return glm::vec2(c) / c.w * 0.5f + 0.5f;
+  };
+  std::array<int, 6> perFace{};
+  const std::array<glm::vec3, 8> corners = room.extent().bounds().corners();
+  for (const glm::vec3& s : samplesIn(std::vector<glm::vec3>(corners.begin(), corners.end()), 600, 7)) {
+    const glm::vec3 d = s - room.light().position, a = glm::abs(d);
+    if (glm::length(d) < 0.2f) continue;
+    const int face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0f ? 0 : 1) : a.y >= a.z ? (d.y > 0.0f ? 2 : 3) : (d.z > 0.0f ? 4 : 5);
+    ++perFace[static_cast<size_t>(face)];
+    const ShadowView& base = f.views[static_cast<size_t>(face) * levels];
+    EXPECT_TRUE(insideClip(base, s).inside) << "face " << face;
+    const glm::vec2 uv0 = uv(base, s);
+    for (size_t l = 0; l < levels; ++l) {
+      const size_t view = static_cast<size_t>(face) * levels + l;
+      EXPECT_TRUE(f.views[view].perspective);
+      EXPECT_EQ(f.views[view].depthPlane, base.depthPlane);
+      const glm::vec2 uvL = uv(f.views[view], s);
+      EXPECT_NEAR(uvL.x, uv0.x * std::exp2(-static_cast<float>(l)), 1e-5f) << "face " << face << " level " << l;
+      EXPECT_NEAR(uvL.y, uv0.y * std::exp2(-static_cast<float>(l)), 1e-5f) << "face " << face << " level " << l;
+      EXPECT_EQ(g.views[view].clipFromWorld, f.views[view].clipFromWorld) << "face " << face << " level " << l;
+    }
+  }
+  for (int face = 0; face < 6; ++face) EXPECT_GT(perFace[static_cast<size_t>(face)], 10) << "face " << face;
+}

@@ -38,12 +38,12 @@ const float kGoldenFraction = 0.61803398875;
 // first coarser cascade that holds p. -1: no map holds p, and the step reads nothing.
 int marchView(int view, vec3 p, out vec3 coord) {
   coord = shadowCoord(view, p);
-  if (insideMap(coord)) return view;
+  if (insideViewMap(view, coord)) return view;
 #if !defined(PN_SHADOW_VIEWS) || PN_SHADOW_VIEWS > 1
   if (isPointLight()) {
-    int face = cubeFace(p - u_frame.light.position.xyz);
+    int face = cubeFaceView(p, view);
     coord = shadowCoord(face, p);
-    return insideMap(coord) ? face : -1;
+    return insideViewMap(face, coord) ? face : -1;
   }
   for (int v = view + 1; v < shadowViewCount(); ++v) {
     coord = shadowCoord(v, p);

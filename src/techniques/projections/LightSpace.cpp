@@ -295,4 +295,35 @@ ShadowView fitLightView(const SceneExtent& scene, const Light& light, std::span<
   return v;
 }
 
+LightFrusta cubeFaceViews(const Light& light, const SceneExtent& scene, int mapSize, float guardTexels) {
+  constexpr glm::vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  constexpr glm::vec3 kUps[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
+  constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
+  constexpr float kMinNearM = 0.01f;              // a face's nearest near plane
+  constexpr float kMinNearFractionOfFar = 1e-3f;  // bounds the perspective depth ratio
+  const Aabb bounds = scene.bounds();
+  float farM = 1e-3f;
+  for (const glm::vec3& c : bounds.corners()) farM = std::max(farM, glm::length(c - light.position));
+  if (light.rangeM > 0.0f) farM = std::min(farM, light.rangeM);
+  // tan of the half angle: 1 at the face's edge, plus the guard band's texels of a map whose
+  // inner (2·mapSize − 2·guard)/2 texels span the face: t = S / (S − 2g).
+  const float size = static_cast<float>(mapSize);
+  const float guard = std::min(guardTexels, 0.25f * size);
+  const float tanHalf = size / (size - 2.0f * guard);
+  const float nearM = std::max({light.size, kMinNearM, farM * kMinNearFractionOfFar});
+  LightFrusta f;
+  for (int face = 0; face < 6; ++face) {
+    ShadowView v;
+    v.viewFromWorld = glm::lookAt(light.position, light.position + kAxes[face], kUps[face]);
+    v.nearM = nearM;
+    v.farM = std::max(farM * (1.0f + kDepthPaddingFraction), 2.0f * nearM);
+    v.perspective = true;
+    v.extent = glm::vec2(2.0f * tanHalf);
+    v.clipFromWorld = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, v.nearM, v.farM) * v.viewFromWorld;
+    v.depthPlane = linearDepthPlane(v.viewFromWorld, v.nearM, v.farM);
+    f.views.push_back(v);
+  }
+  return f;
+}
+
 }  // namespace penumbra

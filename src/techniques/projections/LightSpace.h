@@ -11,10 +11,10 @@
 namespace penumbra {
 
 /// Why a one-view (or cascaded) projection cannot shadow `light`: a point light's map is a cube,
-/// which only the uniform projection makes. Empty for other lights.
+/// which only the uniform and virtual projections make. Empty for other lights.
 inline std::string pointLightIncompatibility(const Light& light) {
   return light.type == LightType::Point
-             ? "a point light shines every way: its shadows are six cube faces, which only the uniform projection makes "
+             ? "a point light shines every way: its shadows are six cube faces, which only the uniform and virtual projections make "
                "(a light's own LightShadowSettings::projection = \"uniform\" gives it one beside the others' technique)"
              : std::string();
 }
@@ -108,5 +108,12 @@ Aabb boundsOf(std::span<const glm::vec3> points, const glm::mat4& m);
 /// casters along the light axis. marginFraction widens xy (texels of margin / map size).
 ShadowView fitLightView(const SceneExtent& scene, const Light& light, std::span<const glm::vec3> receivers,
                         std::span<const glm::vec3> casters, float marginFraction);
+
+/// A point light's six cube faces (+X, −X, +Y, −Y, +Z, −Z: the order common/shadow.glsl's cubeFace
+/// picks them in), perspective views of 90° widened so that each reaches `guardTexels` texels of a
+/// `mapSize`-texel map past its edge (a kernel, blocker search or ray near the edge reads the scene
+/// beyond it, what the neighbouring face holds, instead of clamping); near at the light's sphere,
+/// far at the scene's farthest point or the light's range.
+LightFrusta cubeFaceViews(const Light& light, const SceneExtent& scene, int mapSize, float guardTexels);
 
 }  // namespace penumbra

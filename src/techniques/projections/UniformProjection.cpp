@@ -19,10 +19,6 @@ constexpr ParamDesc kParams[] = {
      "texels", 32.0f, 0.0f, 256.0f, 1.0f, {}, {}, kPointLightBit},
 };
 
-// The six faces of a point light's cube, in the order the shaders pick them (common/shadow.glsl's
-// cubeFace: +X, −X, +Y, −Y, +Z, −Z) with an up vector off each axis.
-constexpr glm::vec3 kCubeAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-constexpr glm::vec3 kCubeUps[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
 constexpr float kMinNearM = 0.01f;          // a spot map's nearest near plane
 constexpr float kMinNearFractionOfFar = 1e-3f;
 constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
@@ -41,41 +37,13 @@ float nearestCasterDistance(const SceneExtent& scene, const glm::mat4& lightFrom
   return nearest;
 }
 
-// A point light: six perspective faces of 90° widened by the guard band, near at the light's
-// sphere (or the nearest caster), far at the farthest receiver or the light's range.
-LightFrusta pointLightFaces(const Light& light, const SceneExtent& scene, int mapSize, float guardTexels) {
-  const Aabb bounds = scene.bounds();
-  float farM = 1e-3f;
-  for (const glm::vec3& c : bounds.corners()) farM = std::max(farM, glm::length(c - light.position));
-  if (light.rangeM > 0.0f) farM = std::min(farM, light.rangeM);
-  // tan of the half angle: 1 at the face's edge, plus the guard band's texels of a map whose
-  // inner (2·mapSize − 2·guard)/2 texels span the face: t = S / (S − 2g).
-  const float size = static_cast<float>(mapSize);
-  const float guard = std::min(guardTexels, 0.25f * size);
-  const float tanHalf = size / (size - 2.0f * guard);
-  const float nearM = std::max({light.size, kMinNearM, farM * kMinNearFractionOfFar});
-  LightFrusta f;
-  for (int face = 0; face < 6; ++face) {
-    ShadowView v;
-    v.viewFromWorld = glm::lookAt(light.position, light.position + kCubeAxes[face], kCubeUps[face]);
-    v.nearM = nearM;
-    v.farM = std::max(farM * (1.0f + kDepthPaddingFraction), 2.0f * nearM);
-    v.perspective = true;
-    v.extent = glm::vec2(2.0f * tanHalf);
-    v.clipFromWorld = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, v.nearM, v.farM) * v.viewFromWorld;
-    v.depthPlane = linearDepthPlane(v.viewFromWorld, v.nearM, v.farM);
-    f.views.push_back(v);
-  }
-  return f;
-}
-
 }  // namespace
 
 UniformProjection::UniformProjection() : Projection(kParams) {}
 
 LightFrusta UniformProjection::computeFrusta(const Camera& camera, float aspect, const Light& light,
                                              const SceneExtent& scene, int mapSize) const {
-  if (light.type == LightType::Point) return pointLightFaces(light, scene, mapSize, param("uniform.cubeGuardTexels"));
+  if (light.type == LightType::Point) return cubeFaceViews(light, scene, mapSize, param("uniform.cubeGuardTexels"));
   const float marginFraction = param("uniform.marginTexels") / static_cast<float>(mapSize);
   ShadowView v;
   if (light.type == LightType::Directional) {

@@ -14,10 +14,17 @@
 namespace penumbra {
 namespace {
 
+// A sun's clipmap levels at most (each level is one shadow view); a point light's six faces take
+// at most a sixth of the views each.
+constexpr int kMaxLevels = 16;
+constexpr int kCubeFaces = 6;
+static_assert(kMaxLevels <= PN_MAX_SHADOW_VIEWS);
+
 constexpr ParamDesc kParams[] = {
     {"virtual.levels", "Levels", "a sun's clipmap levels around the camera, each a virtual map twice as wide as the one before; a "
-     "spot's mips of its one view, each half the last's resolution (at most log2(virtual size / page size) + 1)", "levels",
-     12.0f, 1.0f, static_cast<float>(PN_MAX_SHADOW_VIEWS), 1.0f},
+     "spot's mips of its one view and each of a point light's six faces' mips, each half the last's resolution (at most "
+     "log2(virtual size / page size) + 1, and 8 a face; a pixel reads those at least 1024 texels across)", "levels",
+     12.0f, 1.0f, static_cast<float>(kMaxLevels), 1.0f},
     {"virtual.firstLevelM", "First level", "width of a sun's finest level's square in metres (its texel: this / virtual size); a "
      "spot's finest level is its whole view", "m",
      16.0f, 0.25f, 4096.0f, 0.0f},
@@ -32,6 +39,11 @@ constexpr ParamDesc kParams[] = {
      "there; beyond, a coarser level serves)", "texels", 4.0f, 0.0f, 64.0f, 1.0f},
     {"virtual.levelBias", "Level bias", "levels added to each pixel's choice: + reads coarser levels (fewer pages, one texel over "
      "several pixels), − finer ones", "levels", 0.0f, -2.0f, 4.0f, 0.0f},
+    {"virtual.cubeGuardTexels", "Cube guard band",
+     "point lights: each cube face's virtual map reaches this many of its finest level's texels past the face's edge (a "
+     "coarser level's band is as wide in the scene, fewer of its texels), so a kernel, blocker search or ray near the edge "
+     "reads the scene beyond it instead of clamping",
+     "texels", 256.0f, 0.0f, 4096.0f, 1.0f, {}, {}, kPointLightBit},
     {"virtual.grazingLevels", "Grazing levels", "where the camera grazes a surface more than the light does, each doubling of "
      "that ratio reads a level finer, up to this many (thin shadows far off resolved across their width)", "levels", 1.0f, 0.0f,
      3.0f, 0.0f},
@@ -46,19 +58,20 @@ constexpr float kDepthStepsPerSpan = 8.0f;
 
 VirtualProjection::VirtualProjection() : Projection(kParams) {}
 
-// A spot light: one perspective view of the whole scene from the light (clamped to its cone),
-// fitted to the scene's bounds alone so that it stays while the camera moves, in mips. Level l
-// holds the view at virtualSize / 2^l texels: its clip square maps the view onto the corner
-// [0, 2^-l]² of the level's virtual square (uv_l = 2^-l · uv_0), so every level keeps the page
-// table's and the filters' addressing (virtualSize texels a side, pages on one grid) and a level
-// uses its first (pagesPerSide / 2^l)² pages. Levels stop where the view fits one page.
-LightFrusta VirtualProjection::spotMips(const Light& light, const SceneExtent& scene, const PageLayout& layout) const {
-  Aabb bounds = scene.bounds();
-  if (bounds.empty()) bounds = Aabb{light.position - glm::vec3(1.0f), light.position + glm::vec3(1.0f)};
-  const std::array<glm::vec3, 8> corners = bounds.corners();
-  const ShadowView base = fitLightView(scene, light, corners, corners, 0.0f);
-  const int levels = std::min(paramInt("virtual.levels"), std::countr_zero(static_cast<unsigned>(layout.pagesPerSide())) + 1);
-  LightFrusta f;
+// Perspective views in mips (a spot's one view, each of a point light's faces): level l holds the
+// view at virtualSize / 2^l texels, its clip square mapping the view onto the corner [0, 2^-l]² of
+// the level's virtual square (uv_l = 2^-l · uv_0), so every level keeps the page table's and the
+// filters' addressing (virtualSize texels a side, pages on one grid) and a level uses its first
+// (pagesPerSide / 2^l)² pages. Levels stop where the view fits one page (a read past the resident
+// pages always finds that one); a point light's faces take `levels` views each, face after face
+// (view = face · levels + level).
+int VirtualProjection::mipLevels(const Light& light, const PageLayout& layout) const {
+  const int fit = std::countr_zero(static_cast<unsigned>(layout.pagesPerSide())) + 1;
+  const int most = light.type == LightType::Point ? PN_MAX_SHADOW_VIEWS / kCubeFaces : kMaxLevels;
+  return std::min({paramInt("virtual.levels"), fit, most});
+}
+
+void VirtualProjection::appendMips(const ShadowView& base, int levels, LightFrusta& f) {
   for (int level = 0; level < levels; ++level) {
     const float s = std::exp2(-static_cast<float>(level));
     // clip'.xy = s·clip.xy + (s − 1)·clip.w: ndc' = s·(ndc + 1) − 1.
@@ -70,14 +83,28 @@ LightFrusta VirtualProjection::spotMips(const Light& light, const SceneExtent& s
     v.extent = base.extent / s;  // the level's whole virtual square, at 1 m from the light
     f.views.push_back(v);
   }
+}
+
+// A spot light: one perspective view of the whole scene from the light (clamped to its cone),
+// fitted to the scene's bounds alone so that it stays while the camera moves, in mips. A point
+// light: its six cube faces, each in mips, fixed as the spot's.
+LightFrusta VirtualProjection::perspectiveMips(const Light& light, const SceneExtent& scene, const PageLayout& layout) const {
+  const int levels = mipLevels(light, layout);
+  LightFrusta f;
+  if (light.type == LightType::Point) {
+    for (const ShadowView& face : cubeFaceViews(light, scene, layout.virtualSize, param("virtual.cubeGuardTexels")).views)
+      appendMips(face, levels, f);
+    return f;
+  }
+  Aabb bounds = scene.bounds();
+  if (bounds.empty()) bounds = Aabb{light.position - glm::vec3(1.0f), light.position + glm::vec3(1.0f)};
+  const std::array<glm::vec3, 8> corners = bounds.corners();
+  appendMips(fitLightView(scene, light, corners, corners, 0.0f), levels, f);
   return f;
 }
 
 std::string VirtualProjection::incompatibility(const Light& light) const {
-  if (light.type == LightType::Point)
-    return "virtual maps are built here for the sun (a clipmap of levels around the camera) and a spot light (one perspective "
-           "view in mips); a point light's six are not: give the light its own projection (its LightShadowSettings::projection, "
-           "e.g. \"uniform\")";
+  (void)light;  // every kind of light is paged
   const int size = paramInt("virtual.virtualSize"), page = paramInt("virtual.pageSize");
   if (!std::has_single_bit(static_cast<unsigned>(size)) || !std::has_single_bit(static_cast<unsigned>(page)))
     return fmt::format("virtual.virtualSize {} and virtual.pageSize {} must be powers of two", size, page);
@@ -101,7 +128,7 @@ LightFrusta VirtualProjection::computeFrusta(const Camera& camera, float aspect,
   (void)aspect;
   (void)mapSize;
   const PageLayout layout = *pageLayout();
-  if (light.type == LightType::Spot) return spotMips(light, scene, layout);
+  if (light.type != LightType::Directional) return perspectiveMips(light, scene, layout);
   // The light's rotation alone (the eye at the world's origin): every level shares it, and a
   // level's place is its translation (common/shadow.glsl: virtualUvInLevel).
   const glm::mat4 lightFromWorld = lightViewMatrix(glm::vec3(0.0f), light.direction);
