@@ -3,7 +3,7 @@
 // contract"). It brings everything a visibility function may read, and nothing else:
 //  - the surface: SurfacePoint (position, geometric normal, direction to the light, N·L, pixel),
 //    common/visibility.glsl;
-//  - the light's views: selectShadowView, shadowCoord, insideMap, lightDepth, shadowMapSize,
+//  - the light's views: selectShadowView, shadowCoord, insideMap (insideViewMap: the view's part of its map), lightDepth, shadowMapSize,
 //    shadowTexelWorldSize, texelDepthVariance, … (common/shadow.glsl);
 //  - the frame: lightKind(), isPointLight(), samplingFrame(), the camera (common/frame.glsl);
 //  - noise: interleavedGradientNoise, pixelRotation, the Poisson disk (common/sampling.glsl);

@@ -16,7 +16,7 @@ float shadowVisibility(SurfacePoint s) {
     // The receiver's own plane at the centre of the texel it reads, where that texel's depth was
     // rasterised: a planar receiver meets its map exactly, whatever its slope and the texel's size.
     vec3 coord = shadowCoord(view, s.ws);
-    if (!insideMap(coord)) return 1.0;
+    if (!insideViewMap(view, coord)) return 1.0;
     ComparisonReceiver r = comparisonReceiver(view, s, coord, 0.0, 0.0, u_hard.bias.w);
     ivec3 texel = mapTexel(s_shadowMap, coord.xy, view);
     float depth = biasedDepthAt(r, (vec2(texel.xy) + 0.5) / shadowMapSize());
@@ -25,7 +25,7 @@ float shadowVisibility(SurfacePoint s) {
   vec3 ws = s.ws;
   if (mode == PN_BIAS_NORMAL) ws += s.geoNormal * (u_hard.bias.z * shadowTexelWorldSize(view, s.ws));
   vec3 coord = shadowCoord(view, ws);
-  if (!insideMap(coord)) return 1.0;
+  if (!insideViewMap(view, coord)) return 1.0;
   float bias = 0.0;
   if (mode != PN_BIAS_NONE) bias = u_hard.bias.x;
   // Across one texel, a plane tilted by θ from the light changes depth by texel · tan θ.

@@ -14,7 +14,7 @@ layout(binding = PN_TEX_FILTER0) uniform PN_COMPARISON_MAP s_shadowMap;
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) return 1.0;
+  if (!insideViewMap(view, coord)) return 1.0;
   // The radius is in texels of view 0 (the finest cascade) and held in metres across the other
   // views, so the blur does not widen at every cascade split (one view: the ratio is 1). A point
   // light's cube faces are no cascades: each has the same texels at a given distance, and view 0

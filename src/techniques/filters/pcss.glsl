@@ -48,7 +48,7 @@ bool averageBlockerDepth(ComparisonReceiver r, vec2 radiusUv, mat2 rotation, out
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) {
+  if (!insideViewMap(view, coord)) {
     recordNoBlocker(s);
     return 1.0;
   }

@@ -141,7 +141,7 @@ void traceRays(SurfacePoint s, ComparisonReceiver r, float endDepth, bool receiv
 float shadowVisibility(SurfacePoint s) {
   int view = selectShadowView(s.ws);
   vec3 coord = shadowCoord(view, s.ws);
-  if (!insideMap(coord)) return 1.0;
+  if (!insideViewMap(view, coord)) return 1.0;
   float lightSize = u_frame.light.radiance.w;
   if (isPositionalLight() && distance(u_frame.light.position.xyz, s.ws) <= lightSize) return 1.0;  // inside the light
   ComparisonReceiver r = comparisonReceiver(view, s, coord, u_smrt.params.x, u_smrt.params.y, 0.0);
