@@ -42,13 +42,16 @@ std::string resultsCsv(const BenchResults& results);
 /// description, clock, gl_renderer. Same CSV rules as resultsCsv.
 std::string microCsv(const BenchResults& results);
 /// {"format", "version", "machine", "settings", "seconds", "columns", "rows": [{column: value}],
-///  "skipped": [...], "frame_ms": [per row: {pass: [ms per timed frame]}], "samples": [per row:
-///  {"motion": {what, fps, rmse: [per frame], penumbra_rmse: [...], flicker_followed,
-///  flicker_points} or null, "rounds": {group, ms: [per round]} or null}], "recommendations",
-///  "micro": [...]}; rows hold numbers as numbers, null for no value.
+///  "skipped": [...], "per_frame": "frames.json", "recommendations", "scale", "micro": [...]};
+///  rows hold numbers as numbers, null for no value.
 nlohmann::json resultsJson(const BenchResults& results);
+/// What results.json's rows were computed from, a row each in the same order: {"format",
+///  "version", "frame_ms": [per row: {pass: [ms per timed frame]}], "samples": [per row:
+///  {"motion": {what, fps, rmse: [per frame], penumbra_rmse: [...], flicker_followed,
+///  flicker_points} or null, "rounds": {group, ms: [per round]} or null}]}.
+nlohmann::json framesJson(const BenchResults& results);
 
-/// Writes results.csv, results.json and micro.csv into dir (each atomically).
+/// Writes results.csv, results.json, frames.json and micro.csv into dir (each atomically).
 void writeResults(const std::filesystem::path& dir, const BenchResults& results);
 
 }  // namespace penumbra::report

@@ -118,7 +118,7 @@ TEST(BenchCli, CsvAndJsonCarryTheSameRows) {
 // The whole cost of every row of the quick run: shadow_cost_ms_* are the quantiles of the
 // per-frame sum of the shadow, prefilter and visibility passes, and the contact pass where contact
 // shadows are on (docs/bench.md states the rule),
-// recomputed here from the frame samples results.json carries; shadow_memory_mb is there for
+// recomputed here from the frame samples frames.json carries; shadow_memory_mb is there for
 // every row; one-off costs only where a technique made something once (sdf's bake).
 TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
   const std::string dir = freshDir("bench-cost");
@@ -127,7 +127,9 @@ TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   const nlohmann::json& rows = json["rows"];
   ASSERT_GT(rows.size(), 0u);
-  ASSERT_EQ(json["frame_ms"].size(), rows.size());
+  ASSERT_EQ(json["per_frame"], "frames.json");
+  const nlohmann::json perFrame = nlohmann::json::parse(slurp(dir + "/out/frames.json"));
+  ASSERT_EQ(perFrame["frame_ms"].size(), rows.size());
   // The report's own interpolation rule (BenchResults.h timeStats): linear between ranks.
   auto quantile = [](std::vector<double> v, double q) {
     std::sort(v.begin(), v.end());
@@ -139,7 +141,7 @@ TEST(BenchCli, QuickRunWritesTheWholeCostMemoryAndOneOffCostsOfEveryRow) {
   size_t sdfRows = 0;
   for (size_t i = 0; i < rows.size(); ++i) {
     const nlohmann::json& row = rows[i];
-    const nlohmann::json& frames = json["frame_ms"][i];
+    const nlohmann::json& frames = perFrame["frame_ms"][i];
     const std::string what = row["scene"].get<std::string>() + " " + row["projection"].get<std::string>() + " " +
                              row["filter"].get<std::string>() + " " + row["params"].get<std::string>();
     std::vector<double> sums(static_cast<size_t>(row["frames"].get<double>()), 0.0);
@@ -228,7 +230,8 @@ TEST(BenchCli, QuickRecommendationFollowsItsRuleInMotionAndThroughNoise) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(dir + "/out/results.json"));
   const nlohmann::json& rows = json["rows"];
-  const nlohmann::json& motion = json["samples"];
+  const nlohmann::json perFrame = nlohmann::json::parse(slurp(dir + "/out/frames.json"));
+  const nlohmann::json& motion = perFrame["samples"];
   ASSERT_EQ(motion.size(), rows.size());
   const std::string html = slurp(dir + "/out/report.html"), page = slurp(dir + "/choosing.md");
   EXPECT_FALSE(fs::exists(dir + "/out/choosing.md")) << "--choosing moves the page";
