@@ -56,6 +56,11 @@ std::optional<HeatmapResult> HeatmapJob::takeResult() {
   return std::exchange(mResult, std::nullopt);
 }
 
+bool HeatmapJob::untaken() const {
+  std::lock_guard lock(mMutex);
+  return mResult.has_value() || !mError.empty();
+}
+
 std::string HeatmapJob::takeError() {
   std::lock_guard lock(mMutex);
   return std::exchange(mError, std::string());

@@ -46,6 +46,8 @@ public:
   float progress() const { return mProgress.load(); }
   /// The finished result, once (then empty until the next job finishes).
   std::optional<HeatmapResult> takeResult();
+  /// A finished result or error not taken yet: the job is done, its images not yet shown.
+  bool untaken() const;
   /// The last job's error message, once ("" if none).
   std::string takeError();
 

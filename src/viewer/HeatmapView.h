@@ -42,8 +42,10 @@ public:
   std::optional<std::string> flip(const std::string& mainView);
   /// A new scene: the running trace cancelled, the reference is another scene's.
   void forgetScene();
-  /// Running or requested: what the script's `wait-heatmap` waits on.
-  bool busy() const { return mJob.running() || mRequest.has_value(); }
+  /// Running, requested, or finished with its result not yet taken by poll(): what the script's
+  /// `wait-heatmap` waits on, so that the reference it traced is there after it (a flip right
+  /// after it, under load, found none and traced again).
+  bool busy() const { return mJob.running() || mRequest.has_value() || mJob.untaken(); }
 
   /// The heatmap or the reference image by view name; null when there is none (yet).
   const gl::Texture* image(const std::string& name) const;
