@@ -43,9 +43,136 @@ float label(ImDrawList* dl, ImVec2 pos, const std::string& text) {
   return bottom;
 }
 
+// Type, azimuth and elevation, position, direction: where the light is and where it points.
+bool editLightPlacement(Light& l, const Aabb& bounds, float reach) {
+  bool changed = false;
+  int type = static_cast<int>(l.type);
+  const char* types[] = {lightTypeName(LightType::Directional), lightTypeName(LightType::Spot), lightTypeName(LightType::Point)};
+  if (ImGui::Combo("Type", &type, types, IM_ARRAYSIZE(types))) {
+    changeLightType(l, static_cast<LightType>(type), bounds);
+    changed = true;
+  }
+  // Azimuth and elevation as seen from the point it lights (what right-drag in the view turns).
+  const glm::vec3 aim = lightAimPoint(l, bounds);
+  glm::vec2 deg = glm::degrees(lightAngles(l, aim));
+  bool turned = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
+  turned |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(isPositional(l) ? "right-drag in the view moves it around the point it lights" : "right-drag in the view turns it");
+  if (turned) {
+    setLightAngles(l, aim, glm::radians(deg.x), glm::radians(deg.y));
+    changed = true;
+  }
+  if (isPositional(l))
+    changed |= ImGui::DragFloat3("Position (m)", &l.position.x, kDragFractionOfReach * reach, -kMaxCoordinateM, kMaxCoordinateM, "%.3f");
+  if (l.type != LightType::Point) {
+    glm::vec3 d = l.direction;
+    if (ImGui::DragFloat3("Direction (unit)", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") && glm::length(d) > 0.0f) {
+      l.direction = glm::normalize(d);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+// Size, intensity, colour, a spot's cones and a positional light's range: what it sends out.
+bool editLightEmission(Light& l, float reach) {
+  bool changed = false;
+  if (isPositional(l)) {
+    changed |= ImGui::SliderFloat("Radius (m)", &l.size, 0.0f, kMaxLightSphereM, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  } else {
+    float deg = glm::degrees(l.size);
+    if (ImGui::SliderFloat("Angular radius (°)", &deg, 0.0f, glm::degrees(kMaxSunAngularRadiusRad), "%.3f°", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+      l.size = glm::radians(deg);
+      changed = true;
+    }
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the light's size: soft-shadow filters widen the penumbra with it; 0 = hard");
+  changed |= ImGui::SliderFloat(isPositional(l) ? "Intensity @ 1 m" : "Intensity (irr.)", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(isPositional(l) ? "intensity at 1 m (inverse square beyond)" : "irradiance scale");
+  changed |= ImGui::ColorEdit3("Colour (linear)", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  if (l.type == LightType::Spot) {
+    float outerDeg = glm::degrees(l.coneAngleRad), innerDeg = glm::degrees(l.innerConeAngleRad);
+    if (ImGui::SliderFloat("Outer cone (°)", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+      l.coneAngleRad = glm::radians(outerDeg);
+      l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);  // inner ≤ outer
+      changed = true;
+    }
+    if (ImGui::SliderFloat("Inner cone (°)", &innerDeg, 0.0f, outerDeg, "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
+      l.innerConeAngleRad = glm::radians(innerDeg);
+      changed = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("half angles: full light inside the inner cone, none beyond the outer");
+  }
+  if (isPositional(l)) {
+    changed |= ImGui::DragFloat("Range (m)", &l.rangeM, kDragFractionOfReach * reach, 0.0f, kMaxCoordinateM, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("no light and no shadow beyond it; 0 = unlimited; must exceed the radius");
+  }
+  return changed;
+}
+
+// Whether it casts a shadow, and its own map size and map updates (each may defer to the technique).
+bool editLightShadow(Light& l, int techniqueMapSize) {
+  bool changed = ImGui::Checkbox("Casts shadow", &l.castsShadow);
+  // The light's own map size (texels per side); 0 = the technique's (Shadow map, above).
+  const int own = l.shadow.mapSize;
+  const std::string shown = own > 0 ? fmt::format("{}²", own) : fmt::format("technique's ({}²)", techniqueMapSize);
+  if (ImGui::BeginCombo("Map size (texels)", shown.c_str())) {
+    if (ImGui::Selectable("technique's", own == 0)) {
+      l.shadow.mapSize = 0;
+      changed = true;
+    }
+    for (int size : kShadowMapSizes)
+      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == own)) {
+        l.shadow.mapSize = size;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer); below %d² the default bias and filters no longer keep acne and detached shadows away", kMinDefaultsMapSizeTexels);
+  // The light's own map updates (docs/embedding.md#cached-maps); none = the technique's.
+  const std::string policy = l.shadow.updates ? mapUpdatesName(*l.shadow.updates) : "technique's";
+  if (ImGui::BeginCombo("Map updates", policy.c_str())) {
+    if (ImGui::Selectable("technique's", !l.shadow.updates)) {
+      l.shadow.updates.reset();
+      changed = true;
+    }
+    for (const MapUpdates u : {MapUpdates{}, MapUpdates{MapUpdates::Policy::WhenInvalid}, MapUpdates{MapUpdates::Policy::Budget, 1},
+                               MapUpdates{MapUpdates::Policy::Budget, 2}})
+      if (ImGui::Selectable(mapUpdatesName(u).c_str(), l.shadow.updates == u)) {
+        l.shadow.updates = u;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("when this light's maps are drawn again: every frame; when invalid (static casters cached); or N maps a "
+                      "frame round-robin, the others kept as an earlier frame drew them");
+  return changed;
+}
+
 }  // namespace
 
 void Viewer::drawLightsPanel() {
+  drawLightList();
+  // The selected light, edited on a copy that ViewSession checks.
+  const Scene& scene = mSession.scene();
+  const size_t selected = mSession.selectedLight();
+  Light l = scene.lights.at(selected);
+  const float reach = std::max(scene.bounds().radius(), 1.0f);
+  ImGui::PushID("selected");
+  ImGui::TextUnformatted(lightLabel(l, selected).c_str());
+  bool changed = editLightPlacement(l, scene.bounds(), reach);
+  changed |= editLightEmission(l, reach);
+  changed |= editLightShadow(l, mSession.shadowMapSize());
+  if (changed) applyLightEdit(selected, l);
+  drawLightMapsReport(selected, l);
+  ImGui::PopID();
+}
+
+// The scene's lights, one selectable row each, and the buttons that add and remove lights.
+void Viewer::drawLightList() {
   const Scene& scene = mSession.scene();
   const size_t count = scene.lights.size();
   const float row = ImGui::GetTextLineHeightWithSpacing();
@@ -92,114 +219,21 @@ void Viewer::drawLightsPanel() {
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(count <= 1 ? "a scene needs at least one light" : "remove the selected light");
+}
 
-  // The selected light, edited on a copy that ViewSession checks.
-  const size_t selected = mSession.selectedLight();
-  Light l = scene.lights.at(selected);
-  const float reach = std::max(scene.bounds().radius(), 1.0f);
-  bool changed = false;
-  ImGui::PushID("selected");
-  ImGui::TextUnformatted(lightLabel(l, selected).c_str());
-  int type = static_cast<int>(l.type);
-  const char* types[] = {lightTypeName(LightType::Directional), lightTypeName(LightType::Spot), lightTypeName(LightType::Point)};
-  if (ImGui::Combo("Type", &type, types, IM_ARRAYSIZE(types))) {
-    changeLightType(l, static_cast<LightType>(type), scene.bounds());
-    changed = true;
+// Hands the edited copy to ViewSession, which refuses what it cannot render (the status says why).
+void Viewer::applyLightEdit(size_t selected, const Light& l) {
+  try {
+    mSession.setLight(selected, l);
+    mStatus.set(fmt::format("edited {}", lightLabel(l, selected)), false);
+  } catch (const Error& e) {
+    mStatus.set(e.what(), true);
   }
-  // Azimuth and elevation as seen from the point it lights (what right-drag in the view turns).
-  const glm::vec3 aim = lightAimPoint(l, scene.bounds());
-  glm::vec2 deg = glm::degrees(lightAngles(l, aim));
-  bool turned = ImGui::SliderFloat("Azimuth", &deg.x, -180.0f, 180.0f, "%.1f°");
-  turned |= ImGui::SliderFloat("Elevation", &deg.y, glm::degrees(kMinLightElevationRad), glm::degrees(kMaxLightElevationRad), "%.1f°");
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(isPositional(l) ? "right-drag in the view moves it around the point it lights" : "right-drag in the view turns it");
-  if (turned) {
-    setLightAngles(l, aim, glm::radians(deg.x), glm::radians(deg.y));
-    changed = true;
-  }
-  if (isPositional(l))
-    changed |= ImGui::DragFloat3("Position (m)", &l.position.x, kDragFractionOfReach * reach, -kMaxCoordinateM, kMaxCoordinateM, "%.3f");
-  if (l.type != LightType::Point) {
-    glm::vec3 d = l.direction;
-    if (ImGui::DragFloat3("Direction (unit)", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") && glm::length(d) > 0.0f) {
-      l.direction = glm::normalize(d);
-      changed = true;
-    }
-  }
-  if (isPositional(l)) {
-    changed |= ImGui::SliderFloat("Radius (m)", &l.size, 0.0f, kMaxLightSphereM, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-  } else {
-    float deg = glm::degrees(l.size);
-    if (ImGui::SliderFloat("Angular radius (°)", &deg, 0.0f, glm::degrees(kMaxSunAngularRadiusRad), "%.3f°", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
-      l.size = glm::radians(deg);
-      changed = true;
-    }
-  }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the light's size: soft-shadow filters widen the penumbra with it; 0 = hard");
-  changed |= ImGui::SliderFloat(isPositional(l) ? "Intensity @ 1 m" : "Intensity (irr.)", &l.intensity, 0.0f, kMaxLightIntensity, "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(isPositional(l) ? "intensity at 1 m (inverse square beyond)" : "irradiance scale");
-  changed |= ImGui::ColorEdit3("Colour (linear)", &l.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
-  if (l.type == LightType::Spot) {
-    float outerDeg = glm::degrees(l.coneAngleRad), innerDeg = glm::degrees(l.innerConeAngleRad);
-    if (ImGui::SliderFloat("Outer cone (°)", &outerDeg, kMinSpotConeDeg, glm::degrees(kMaxSpotConeRad), "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
-      l.coneAngleRad = glm::radians(outerDeg);
-      l.innerConeAngleRad = std::min(l.innerConeAngleRad, l.coneAngleRad);  // inner ≤ outer
-      changed = true;
-    }
-    if (ImGui::SliderFloat("Inner cone (°)", &innerDeg, 0.0f, outerDeg, "%.1f°", ImGuiSliderFlags_AlwaysClamp)) {
-      l.innerConeAngleRad = glm::radians(innerDeg);
-      changed = true;
-    }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("half angles: full light inside the inner cone, none beyond the outer");
-  }
-  if (isPositional(l)) {
-    changed |= ImGui::DragFloat("Range (m)", &l.rangeM, kDragFractionOfReach * reach, 0.0f, kMaxCoordinateM, "%.3f", ImGuiSliderFlags_AlwaysClamp);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("no light and no shadow beyond it; 0 = unlimited; must exceed the radius");
-  }
-  changed |= ImGui::Checkbox("Casts shadow", &l.castsShadow);
-  // The light's own map size (texels per side); 0 = the technique's (Shadow map, above).
-  const int own = l.shadow.mapSize;
-  const std::string shown = own > 0 ? fmt::format("{}²", own) : fmt::format("technique's ({}²)", mSession.shadowMapSize());
-  if (ImGui::BeginCombo("Map size (texels)", shown.c_str())) {
-    if (ImGui::Selectable("technique's", own == 0)) {
-      l.shadow.mapSize = 0;
-      changed = true;
-    }
-    for (int size : kShadowMapSizes)
-      if (size <= gl::maxTextureSize() && ImGui::Selectable(fmt::format("{}²", size).c_str(), size == own)) {
-        l.shadow.mapSize = size;
-        changed = true;
-      }
-    ImGui::EndCombo();
-  }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("texels per side of this light's maps (a budget may give it fewer); below %d² the default bias and filters no longer keep acne and detached shadows away", kMinDefaultsMapSizeTexels);
-  // The light's own map updates (docs/embedding.md#cached-maps); none = the technique's.
-  const std::string policy = l.shadow.updates ? mapUpdatesName(*l.shadow.updates) : "technique's";
-  if (ImGui::BeginCombo("Map updates", policy.c_str())) {
-    if (ImGui::Selectable("technique's", !l.shadow.updates)) {
-      l.shadow.updates.reset();
-      changed = true;
-    }
-    for (const MapUpdates u : {MapUpdates{}, MapUpdates{MapUpdates::Policy::WhenInvalid}, MapUpdates{MapUpdates::Policy::Budget, 1},
-                               MapUpdates{MapUpdates::Policy::Budget, 2}})
-      if (ImGui::Selectable(mapUpdatesName(u).c_str(), l.shadow.updates == u)) {
-        l.shadow.updates = u;
-        changed = true;
-      }
-    ImGui::EndCombo();
-  }
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("when this light's maps are drawn again: every frame; when invalid (static casters cached); or N maps a "
-                      "frame round-robin, the others kept as an earlier frame drew them");
-  if (changed) {
-    try {
-      mSession.setLight(selected, l);
-      mStatus.set(fmt::format("edited {}", lightLabel(l, selected)), false);
-    } catch (const Error& e) {
-      mStatus.set(e.what(), true);
-    }
-  }
+}
+
+// What the selected light's maps got last frame, a button that shows them in the inset, and a
+// line on what the views show.
+void Viewer::drawLightMapsReport(size_t selected, const Light& l) {
   const std::vector<LightShadowReport>& reports = mSession.renderer().shadows().lightReports();
   if (selected < reports.size()) {
     const LightShadowReport& r = reports[selected];
@@ -215,7 +249,6 @@ void Viewer::drawLightsPanel() {
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("the views show the selected light's visibility and maps; right-drag in the view moves it");
   ImGui::PopTextWrapPos();
-  ImGui::PopID();
 }
 
 void Viewer::drawViewLabels() {

@@ -136,6 +136,9 @@ private:
   // Lights (LightsPanel.cpp): the light list and the selected light's editor, labels over the
   // views that name the light and the layer (cube face, cascade) shown, the `light` action.
   void drawLightsPanel();
+  void drawLightList();  ///< the list, + sun/spot/point, Remove
+  void applyLightEdit(size_t selected, const Light& l);
+  void drawLightMapsReport(size_t selected, const Light& l);  ///< what its maps got, the inset button
   void drawViewLabels();
   void executeLight(const ScriptAction& a) override;
 
