@@ -75,6 +75,236 @@ void retimeContenders(BenchResults& results, const SetupFactory& makeSetup, cons
   }
 }
 
+ReferenceOptions referenceOptions(const BenchSettings& set) {
+  ReferenceOptions ro;
+  ro.samples = set.referenceSamples;
+  ro.useCache = set.useCache;
+  ro.cacheMaxBytes = set.cacheMaxBytes;
+  ro.progress = false;  // the bench's own bar is on screen
+  return ro;
+}
+
+// A moving row's score: its frames' metrics (and colour), flicker and a paged projection's pages.
+MotionScore motionScore(const SequenceComparison& seq, bool walk) {
+  MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
+                     .colourFrames = {}, .flicker = seq.flicker, .pagesDrawn = {}};
+  for (const SequenceFrame& f : seq.frames) {
+    motion.frames.push_back(f.metrics);
+    if (f.colour) motion.colourFrames.push_back(*f.colour);
+  }
+  if (motion.colourFrames.size() != motion.frames.size()) motion.colourFrames.clear();
+  // A paged projection's pages drawn a frame (a light that pages has a pool).
+  for (const SequenceFrame& f : seq.frames) {
+    int drawn = 0;
+    bool paged = false;
+    for (const LightShadowReport& l : f.lights) {
+      drawn += l.pages.drawn;
+      paged = paged || l.pages.poolPages > 0;
+    }
+    if (paged) motion.pagesDrawn.push_back(drawn);
+  }
+  return motion;
+}
+
+// The configurations measured one after another on one renderer, with the state they share: per
+// scene its reference tracer, and per light key the references and reference images made so far.
+class ConfigSweep {
+public:
+  ConfigSweep(const std::vector<BenchConfig>& configs, const SetupFactory& makeSetup, const RunOptions& options,
+              BenchResults& results);
+  // One configuration: a row in results.rows, or an entry in results.skipped.
+  void run(const BenchConfig& c);
+  void finish() { mBar.reset(); }  // its last line before the next stage's
+
+private:
+  struct FrameReference {
+    GBufferData gbuffer;
+    std::vector<ReferenceResult> lights;
+  };
+  void show(const BenchConfig& c, const BenchSetup& s, const std::string& light);
+  void measure(const BenchConfig& c, const BenchSetup& s, const std::string& light, Clock::time_point configStart);
+  const FrameReference& reference(const std::string& light);
+  BenchRow benchRow(const BenchConfig& c, const Technique& technique, WarmTimes& times, const FrameComparison& cmp);
+  MotionScore scoreMotion(const BenchConfig& c, const Scene& scene, const RenderOptions& render, const std::string& light);
+  void writeGridImages(BenchRow& row, const BenchConfig& c, const FrameComparison& cmp, const std::string& light);
+  void printRow(const BenchRow& b, const BenchConfig& c, Clock::time_point configStart) const;
+  void done();
+
+  const SetupFactory& mMakeSetup;
+  const RunOptions& mOptions;
+  const BenchSettings& mSet;
+  BenchResults& mResults;
+  Renderer mRenderer;
+  std::optional<std::string> mCurrentScene, mCurrentLight;
+  std::unique_ptr<ReferenceTracer> mTracer;
+  std::map<std::string, FrameReference> mReferences;  // by light key, for the current scene
+  std::map<std::string, SequenceReferences> mMotionReferences;  // by light key: the motion's frames
+  std::map<std::string, std::string> mReferenceImages;  // by light key: file written for the grid
+  std::optional<ProgressBar> mBar;
+};
+
+ConfigSweep::ConfigSweep(const std::vector<BenchConfig>& configs, const SetupFactory& makeSetup, const RunOptions& options,
+                         BenchResults& results)
+    : mMakeSetup(makeSetup), mOptions(options), mSet(options.settings), mResults(results) {
+  mBar.emplace("penumbra bench: configurations", configs.size(), options.progress && !options.verbose,
+               ProgressBar::Elsewhere::Lines);
+}
+
+void ConfigSweep::done() {
+  mBar->advance(1);
+  if (mOptions.configDone) mOptions.configDone();
+}
+
+void ConfigSweep::run(const BenchConfig& c) {
+  BenchSetup s = mMakeSetup(c);
+  const std::string light = lightKey(c);
+  show(c, s, light);
+  if (mSet.shadowMapSize) s.technique.setMapSize(*mSet.shadowMapSize);
+  const auto configStart = Clock::now();
+  try {
+    mRenderer.setTechnique(s.technique);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Usage) throw;
+    mResults.skipped.push_back({c, e.what(), false});
+    done();
+    return;
+  }
+  try {
+    measure(c, s, light, configStart);
+  } catch (const std::exception& e) {
+    mResults.skipped.push_back({c, e.what(), true});
+    if (mOptions.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
+  }
+  done();
+}
+
+// The configuration's scene in the renderer: a new scene starts afresh (tracer, references,
+// images); a new light key on the same scene moves only the camera and lights.
+void ConfigSweep::show(const BenchConfig& c, const BenchSetup& s, const std::string& light) {
+  if (mCurrentScene != c.scene) {
+    mRenderer.setScene(s.scene);
+    mTracer = std::make_unique<ReferenceTracer>(s.scene);
+    mReferences.clear();
+    mMotionReferences.clear();
+    mReferenceImages.clear();
+    mCurrentScene = c.scene;
+    mCurrentLight = light;
+  } else if (mCurrentLight != light) {
+    mRenderer.setCameraAndLights(s.scene.camera, s.scene.lights);
+    mCurrentLight = light;
+  }
+}
+
+// Times the configuration's frames, compares its frame (and its motion) with the reference,
+// writes its grid images and keeps its row.
+void ConfigSweep::measure(const BenchConfig& c, const BenchSetup& s, const std::string& light, Clock::time_point configStart) {
+  const RenderOptions render = renderOptions(mSet);
+  WarmTimes times = timeWarmFrames(mRenderer, render, mSet.warmupFrames, mSet.timedFrames, mSet.maxSecondsPerConfig);
+  mResults.machine.clock = times.clock;
+  const FrameReference& ref = reference(light);
+  const FrameComparison cmp = compareFrame(mRenderer, ref.gbuffer, ref.lights, c.inGrid);
+  BenchRow row = benchRow(c, s.technique, times, cmp);
+  // One-off work (a bake) is redone as casters move: such a row is left out where they may.
+  const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();
+  if (c.motion != MotionKind::None && mSet.motionFrames > 1 && !rebakes) row.motion = scoreMotion(c, s.scene, render, light);
+  if (c.inGrid) writeGridImages(row, c, cmp, light);
+  mResults.rows.push_back(std::move(row));
+  if (mOptions.verbose) printRow(mResults.rows.back(), c, configStart);
+}
+
+// The light key's reference on the current scene, traced from the renderer's G-buffer the first time.
+const ConfigSweep::FrameReference& ConfigSweep::reference(const std::string& light) {
+  if (!mReferences.contains(light)) {
+    FrameReference& r = mReferences[light];
+    r.gbuffer = mRenderer.readGBuffer();
+    r.lights = traceLights(*mTracer, r.gbuffer, mRenderer.scene().lights, referenceOptions(mSet));
+  }
+  return mReferences[light];
+}
+
+// The row of the frame just measured (its times moved in).
+BenchRow ConfigSweep::benchRow(const BenchConfig& c, const Technique& technique, WarmTimes& times, const FrameComparison& cmp) {
+  BenchRow row;
+  row.config = c;
+  row.lightSize = mRenderer.scene().light().size;
+  row.lights = static_cast<int>(mRenderer.lightCount());
+  row.width = mSet.width;
+  row.height = mSet.height;
+  row.shadowMapSize = technique.mapSize();
+  row.grantedMapSize = technique.mapSize();
+  for (const LightShadowReport& l : mRenderer.shadows().lightReports())
+    if (l.views > 0) {
+      row.grantedMapSize = l.mapSize;
+      break;
+    }
+  row.frames = times.frames;
+  row.passes = std::move(times.passes);
+  row.frameMs = std::move(times.frameMs);
+  row.shadowCost = times.shadowCost;
+  row.memoryBytes = mRenderer.shadows().techniqueMemoryBytes();
+  row.oneOff = oneOffCosts(mRenderer.shadows());
+  row.metrics = cmp.metrics;
+  row.colour = cmp.colour;
+  return row;
+}
+
+// The still frame again, then the scene's animation (or a camera walk where nothing moves) at
+// kMotionFps; the renderer goes back to the still pose for the next row.
+MotionScore ConfigSweep::scoreMotion(const BenchConfig& c, const Scene& scene, const RenderOptions& render, const std::string& light) {
+  const SequenceTiming timing{mSet.motionFrames, kMotionFps, 0.0f};
+  Scene moving = scene;
+  const bool walk = c.motion == MotionKind::Walk || moving.animation.empty();
+  if (walk) addCameraWalk(moving, timing);
+  const SequenceComparison seq =
+      compareSequence(mRenderer, moving, render, timing, referenceOptions(mSet), {}, {}, {}, &mMotionReferences[light]);
+  mRenderer.setPose(scene);
+  return motionScore(seq, walk);
+}
+
+// The grid's images of the row: the technique's frame, its heatmap, and the light key's reference
+// (written once per scene and light key).
+void ConfigSweep::writeGridImages(BenchRow& row, const BenchConfig& c, const FrameComparison& cmp, const std::string& light) {
+  const std::string scene = fileStem(mRenderer.scene().name);
+  // The suffix through fmt rather than "-" + string: GCC 12 inlines that into a false -Wrestrict.
+  const std::string params = c.params.empty() ? std::string() : fmt::format("-{}", fileStem(c.paramsText()));
+  const std::string stem = fmt::format("images/{}-{}-{}{}", scene, fileStem(c.projection), fileStem(c.filter), params);
+  row.imagePath = stem + ".png";
+  row.heatmapPath = stem + "-heatmap.png";
+  writeImage(mOptions.outDir, row.imagePath, cmp.technique);
+  writeImage(mOptions.outDir, row.heatmapPath, cmp.heatmap);
+  if (!mReferenceImages.contains(light)) {
+    const std::string path = fmt::format("images/{}-reference{}.png", scene, light.empty() ? "" : "-" + fileStem(light));
+    writeImage(mOptions.outDir, path, cmp.reference);
+    mReferenceImages[light] = path;
+  }
+  row.referencePath = mReferenceImages[light];
+}
+
+void ConfigSweep::printRow(const BenchRow& b, const BenchConfig& c, Clock::time_point configStart) const {
+  const std::string motion = b.motion ? fmt::format(", flicker {:.3f}% over {} frames", b.motion->flicker.pct(), b.motion->frames.size())
+                                      : std::string();
+  const std::string colour = b.colour ? fmt::format(", colour RMSE {:.4f}", b.colour->rmse) : std::string();
+  std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s%s (%d frames, %.1f s)\n",
+               c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(), b.shadowCost.median,
+               b.memoryMiB(), b.metrics.rmse, colour.c_str(), motion.c_str(), b.frames,
+               std::chrono::duration<double>(Clock::now() - configStart).count());
+}
+
+// Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
+void runMicro(BenchResults& results, const RunOptions& options, bool cpuClock) {
+  const BenchSettings& set = options.settings;
+  int microMapSize = set.shadowMapSize.value_or(0);
+  for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
+  if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
+  if (options.verbose || options.progress)
+    std::fprintf(stderr, "penumbra bench: micro-benchmarks, %d rounds\n", set.microRepetitions);
+  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
+  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,
+                                                .rounds = set.microRepetitions, .cpuClock = cpuClock}))
+    results.micro.push_back(std::move(m));
+  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
+}
+
 }  // namespace
 
 std::vector<std::vector<double>> timeInterleaved(const std::vector<BenchConfig>& configs, const std::vector<RenderOptions>& renders,
@@ -146,177 +376,16 @@ BenchResults runBench(gl::Context& context, const std::vector<BenchConfig>& conf
   results.settings = set;
   results.machine = describeMachine(context.info());
 
-  Renderer renderer;
-  std::optional<std::string> currentScene, currentLight;
-  std::unique_ptr<ReferenceTracer> tracer;
-  struct FrameReference {
-    GBufferData gbuffer;
-    std::vector<ReferenceResult> lights;
-  };
-  std::map<std::string, FrameReference> references;  // by light key, for the current scene
-  std::map<std::string, SequenceReferences> motionReferences;  // by light key: the motion's frames
-  std::map<std::string, std::string> referenceImages;  // by light key: file written for the grid
-  std::optional<ProgressBar> bar;
-  bar.emplace("penumbra bench: configurations", configs.size(), options.progress && !options.verbose,
-              ProgressBar::Elsewhere::Lines);
-
-  for (const BenchConfig& c : configs) {
-    BenchSetup s = makeSetup(c);
-    const std::string light = lightKey(c);
-    if (currentScene != c.scene) {
-      renderer.setScene(s.scene);
-      tracer = std::make_unique<ReferenceTracer>(s.scene);
-      references.clear();
-      motionReferences.clear();
-      referenceImages.clear();
-      currentScene = c.scene;
-      currentLight = light;
-    } else if (currentLight != light) {
-      renderer.setCameraAndLights(s.scene.camera, s.scene.lights);
-      currentLight = light;
-    }
-    if (set.shadowMapSize) s.technique.setMapSize(*set.shadowMapSize);
-    const RenderOptions render = renderOptions(set);
-    const auto done = [&] {
-      bar->advance(1);
-      if (options.configDone) options.configDone();
-    };
-    const auto configStart = Clock::now();
-    try {
-      renderer.setTechnique(s.technique);
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::Usage) throw;
-      results.skipped.push_back({c, e.what(), false});
-      done();
-      continue;
-    }
-    try {
-      WarmTimes times = timeWarmFrames(renderer, render, set.warmupFrames, set.timedFrames, set.maxSecondsPerConfig);
-      results.machine.clock = times.clock;
-      const int frames = times.frames;
-
-      if (!references.contains(light)) {
-        ReferenceOptions ro;
-        ro.samples = set.referenceSamples;
-        ro.useCache = set.useCache;
-        ro.cacheMaxBytes = set.cacheMaxBytes;
-        ro.progress = false;  // the bench's own bar is on screen
-        FrameReference& r = references[light];
-        r.gbuffer = renderer.readGBuffer();
-        r.lights = traceLights(*tracer, r.gbuffer, renderer.scene().lights, ro);
-      }
-      const FrameReference& ref = references[light];
-      const FrameComparison cmp = compareFrame(renderer, ref.gbuffer, ref.lights, c.inGrid);
-
-      BenchRow row;
-      row.config = c;
-      row.lightSize = renderer.scene().light().size;
-      row.lights = static_cast<int>(renderer.lightCount());
-      row.width = set.width;
-      row.height = set.height;
-      row.shadowMapSize = s.technique.mapSize();
-      row.grantedMapSize = s.technique.mapSize();
-      for (const LightShadowReport& l : renderer.shadows().lightReports())
-        if (l.views > 0) {
-          row.grantedMapSize = l.mapSize;
-          break;
-        }
-      row.frames = frames;
-      row.passes = std::move(times.passes);
-      row.frameMs = std::move(times.frameMs);
-      row.shadowCost = times.shadowCost;
-      row.memoryBytes = renderer.shadows().techniqueMemoryBytes();
-      row.oneOff = oneOffCosts(renderer.shadows());
-      row.metrics = cmp.metrics;
-      row.colour = cmp.colour;
-      // One-off work (a bake) is redone as casters move: such a row is left out where they may.
-      const bool rebakes = c.motion == MotionKind::Animation && !row.oneOff.empty();
-      if (c.motion != MotionKind::None && set.motionFrames > 1 && !rebakes) {
-        // The still frame again, then the scene's animation (or a camera walk where nothing
-        // moves) at kMotionFps; the renderer goes back to the still pose for the next row.
-        const SequenceTiming timing{set.motionFrames, kMotionFps, 0.0f};
-        Scene moving = s.scene;
-        const bool walk = c.motion == MotionKind::Walk || moving.animation.empty();
-        if (walk) addCameraWalk(moving, timing);
-        ReferenceOptions ro;
-        ro.samples = set.referenceSamples;
-        ro.useCache = set.useCache;
-        ro.cacheMaxBytes = set.cacheMaxBytes;
-        ro.progress = false;
-        const SequenceComparison seq =
-            compareSequence(renderer, moving, render, timing, ro, {}, {}, {}, &motionReferences[light]);
-        renderer.setPose(s.scene);
-        MotionScore motion{.what = walk ? kWalkMotion : kAnimationMotion, .fps = kMotionFps, .frames = {},
-                           .colourFrames = {}, .flicker = seq.flicker, .pagesDrawn = {}};
-        for (const SequenceFrame& f : seq.frames) {
-          motion.frames.push_back(f.metrics);
-          if (f.colour) motion.colourFrames.push_back(*f.colour);
-        }
-        if (motion.colourFrames.size() != motion.frames.size()) motion.colourFrames.clear();
-        // A paged projection's pages drawn a frame (a light that pages has a pool).
-        for (const SequenceFrame& f : seq.frames) {
-          int drawn = 0;
-          bool paged = false;
-          for (const LightShadowReport& l : f.lights) {
-            drawn += l.pages.drawn;
-            paged = paged || l.pages.poolPages > 0;
-          }
-          if (paged) motion.pagesDrawn.push_back(drawn);
-        }
-        row.motion = std::move(motion);
-      }
-      if (c.inGrid) {
-        const std::string scene = fileStem(renderer.scene().name);
-        const std::string stem = fmt::format("images/{}-{}-{}{}", scene, fileStem(c.projection), fileStem(c.filter),
-                                             c.params.empty() ? "" : "-" + fileStem(c.paramsText()));
-        row.imagePath = stem + ".png";
-        row.heatmapPath = stem + "-heatmap.png";
-        writeImage(options.outDir, row.imagePath, cmp.technique);
-        writeImage(options.outDir, row.heatmapPath, cmp.heatmap);
-        if (!referenceImages.contains(light)) {
-          const std::string path = fmt::format("images/{}-reference{}.png", scene, light.empty() ? "" : "-" + fileStem(light));
-          writeImage(options.outDir, path, cmp.reference);
-          referenceImages[light] = path;
-        }
-        row.referencePath = referenceImages[light];
-      }
-      results.rows.push_back(std::move(row));
-      if (options.verbose) {
-        const BenchRow& b = results.rows.back();
-        const std::string motion = b.motion ? fmt::format(", flicker {:.3f}% over {} frames", b.motion->flicker.pct(), b.motion->frames.size())
-                                            : std::string();
-        const std::string colour = b.colour ? fmt::format(", colour RMSE {:.4f}", b.colour->rmse) : std::string();
-        std::fprintf(stderr, "bench: %s %s %s %s: shadow cost %.2f ms, %.1f MiB, RMSE %.4f%s%s (%d frames, %.1f s)\n",
-                     c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), c.paramsText().c_str(), b.shadowCost.median,
-                     b.memoryMiB(), cmp.metrics.rmse, colour.c_str(), motion.c_str(), frames,
-                     std::chrono::duration<double>(Clock::now() - configStart).count());
-      }
-    } catch (const std::exception& e) {
-      results.skipped.push_back({c, e.what(), true});
-      if (options.verbose) std::fprintf(stderr, "bench: %s %s %s failed: %s\n", c.scene.c_str(), c.projection.c_str(), c.filter.c_str(), e.what());
-    }
-    done();
-  }
-  bar.reset();  // its last line before the next stage's
+  // Every configuration measured in turn on one renderer: its times, its error against the
+  // reference (and over its motion), its grid images; refused or failed ones are skipped.
+  ConfigSweep sweep(configs, makeSetup, options, results);
+  for (const BenchConfig& c : configs) sweep.run(c);
+  sweep.finish();
+  // The recommendation's contenders timed again in interleaved rounds.
   if (set.retimeRounds > 0 && !results.rows.empty()) retimeContenders(results, makeSetup, options);
-  if (!options.microBenchmarks) {
-    if (results.machine.clock.empty()) results.machine.clock = PassTimer(context.info().softwareRenderer).endFrame().clock;
-    results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
-    results.machine.loadEnd = loadAverage();
-    return results;
-  }
-  // Building blocks on a map of the run's size: the one asked for, else the largest a scene used.
-  int microMapSize = set.shadowMapSize.value_or(0);
-  for (const BenchRow& row : results.rows) microMapSize = std::max(microMapSize, row.shadowMapSize);
-  if (microMapSize == 0) microMapSize = ShadowSettings{}.mapSize;
-  if (options.verbose || options.progress)
-    std::fprintf(stderr, "penumbra bench: micro-benchmarks, %d rounds\n", set.microRepetitions);
+  // The micro-benchmarks: building blocks and baselines on their own.
   const bool cpuClock = context.info().softwareRenderer;
-  results.micro = runMicroBenchmarks(microMapSize, set.microRepetitions, cpuClock);
-  for (MicroResult& m : runVisibilityBaselines({.width = set.width, .height = set.height, .mapSize = microMapSize,
-                                                .rounds = set.microRepetitions, .cpuClock = cpuClock}))
-    results.micro.push_back(std::move(m));
-  for (MicroResult& m : runReferenceBaseline(set.width, set.height, set.microRepetitions)) results.micro.push_back(std::move(m));
+  if (options.microBenchmarks) runMicro(results, options, cpuClock);
   if (results.machine.clock.empty()) results.machine.clock = PassTimer(cpuClock).endFrame().clock;  // no frame ran: its name
   results.seconds = std::chrono::duration<double>(Clock::now() - runStart).count();
   results.machine.loadEnd = loadAverage();
