@@ -8,6 +8,11 @@
 
 namespace penumbra {
 
+/// A point light's cube faces, in the order the shaders pick them (common/shadow.glsl's
+/// cubeFace): +X, −X, +Y, −Y, +Z, −Z. Its views are these faces (uniform), or each face's levels,
+/// face after face (virtual).
+inline constexpr int kCubeFaces = 6;
+
 /// One rendered shadow map's view of the light.
 struct ShadowView {
   glm::mat4 viewFromWorld{1.0f};  ///< light view space: looking down -Z

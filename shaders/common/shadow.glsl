@@ -312,9 +312,8 @@ float pagedMinDepthOverBox(sampler2DArray pyramid, int level, vec2 uv, vec2 radi
 float viewUvExtent(int view) { return 1.0; }
 #endif
 
-bool insideViewMap(int view, vec3 coord) {
-  return all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(viewUvExtent(view))));
-}
+// Whether coord lies on view `view`'s part of its map (insideMap for a whole map's view).
+bool insideViewMap(int view, vec3 coord) { return insideMap(vec3(coord.xy / viewUvExtent(view), coord.z)); }
 
 // A point light's view of the cube face in ws's direction at the level of `view` (a paged cube's
 // faces are in mips; a whole map's face is one view).

@@ -250,7 +250,7 @@ struct Shadows::Impl {
       // A pixel's width per metre of distance, 2·tan(fovY/2) / height (orthographic: its width).
       const float pixelWidthPerM = 2.0f / (in.camera.clipFromView[1][1] * static_cast<float>(screen.y));
       // A point light's views are its six cube faces' levels (VirtualProjection).
-      const int maps = s.light.type == LightType::Point ? 6 : 1;
+      const int maps = s.light.type == LightType::Point ? kCubeFaces : 1;
       s.pages->beginFrame(*layout, s.frusta, maps, pixelWidthPerM, updatesOf(s.light).cached());
     }
     FrameContext ctx = frameContext(s);

@@ -4,6 +4,7 @@
 // `light set N KEY VALUE` with the scene file's keys (docs/scenes.md), and the check that keeps
 // every edited light one that a scene file can hold, so that "save" always loads back.
 #include <penumbra/Scene.h>
+#include <penumbra/ShadowViews.h>
 
 #include <span>
 #include <string>
@@ -19,9 +20,8 @@ LightType parseLightType(std::string_view name);
 /// "light 2 (point)": how the panels, the labels over the views and the messages name a light.
 std::string lightLabel(const Light& light, size_t index);
 
-/// The six layers of a point light's map array, in the order the shaders pick them
-/// (common/shadow.glsl's cubeFace, UniformProjection's kCubeAxes): +X, -X, +Y, -Y, +Z, -Z.
-inline constexpr int kCubeFaces = 6;
+/// The name of a point light's map layer (cube face, kCubeFaces in penumbra/ShadowViews.h):
+/// +X, -X, +Y, -Y, +Z, -Z.
 const char* cubeFaceName(int face);
 
 /// "" when the light is one a scene file can hold; otherwise what is wrong (a spot's inner cone

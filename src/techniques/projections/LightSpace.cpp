@@ -296,8 +296,8 @@ ShadowView fitLightView(const SceneExtent& scene, const Light& light, std::span<
 }
 
 LightFrusta cubeFaceViews(const Light& light, const SceneExtent& scene, int mapSize, float guardTexels) {
-  constexpr glm::vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  constexpr glm::vec3 kUps[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
+  constexpr glm::vec3 kAxes[kCubeFaces] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  constexpr glm::vec3 kUps[kCubeFaces] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
   constexpr float kDepthPaddingFraction = 1e-3f;  // keeps receivers strictly inside [0,1]
   constexpr float kMinNearM = 0.01f;              // a face's nearest near plane
   constexpr float kMinNearFractionOfFar = 1e-3f;  // bounds the perspective depth ratio
@@ -312,7 +312,7 @@ LightFrusta cubeFaceViews(const Light& light, const SceneExtent& scene, int mapS
   const float tanHalf = size / (size - 2.0f * guard);
   const float nearM = std::max({light.size, kMinNearM, farM * kMinNearFractionOfFar});
   LightFrusta f;
-  for (int face = 0; face < 6; ++face) {
+  for (int face = 0; face < kCubeFaces; ++face) {
     ShadowView v;
     v.viewFromWorld = glm::lookAt(light.position, light.position + kAxes[face], kUps[face]);
     v.nearM = nearM;

@@ -17,7 +17,6 @@ namespace {
 // A sun's clipmap levels at most (each level is one shadow view); a point light's six faces take
 // at most a sixth of the views each.
 constexpr int kMaxLevels = 16;
-constexpr int kCubeFaces = 6;
 static_assert(kMaxLevels <= PN_MAX_SHADOW_VIEWS);
 
 constexpr ParamDesc kParams[] = {
